@@ -1,0 +1,189 @@
+// sbr_bench_fft: times sbr's FFT against FFTW (SIMD and scalar) and KissFFT in one run.
+//
+// For each N it runs rounds; in every round each method transforms the same input a fixed
+// number of times (interleaved, so drift of the machine hits all methods alike), and the
+// median over rounds of the time per transform is reported.
+#include <fftw3.h>
+#include <kissfft/kiss_fft.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "sbr/fft.h"
+}
+
+namespace {
+
+struct Options {
+    bool csv = false;
+    int rounds = 41;
+    double round_ms = 4.0;
+    std::vector<unsigned> sizes{64, 128, 256, 512, 1024};
+};
+
+void usage() {
+    std::puts(
+        "usage: sbr_bench_fft [--csv] [--rounds R] [--round-ms T] [--sizes N,N,...]\n"
+        "\n"
+        "Times complex float32 out-of-place forward FFTs of sbr, FFTW with SIMD\n"
+        "(FFTW_MEASURE), FFTW restricted to scalar code (FFTW_MEASURE | FFTW_NO_SIMD) and\n"
+        "KissFFT, interleaved in one run. Reports the median ns per transform over R rounds\n"
+        "(default 41) of about T ms each (default 4) per method.\n"
+        "  --csv    print exactly 'n,sbr_ns,fftw_ns,fftw_nosimd_ns,kissfft_ns' and one row\n"
+        "           per N, then the ratios as '# ' comment lines\n"
+        "  --sizes  comma-separated lengths (default 64,128,256,512,1024)");
+}
+
+using Clock = std::chrono::steady_clock;
+
+template <class F>
+double time_batch(F &&fn, int reps) {
+    const auto t0 = Clock::now();
+    for (int i = 0; i < reps; ++i) fn();
+    const auto t1 = Clock::now();
+    return std::chrono::duration<double, std::nano>(t1 - t0).count() / reps;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+volatile float g_sink;  // keeps results observable so no transform is optimised away
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    Options opt;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--csv") {
+            opt.csv = true;
+        } else if (a == "--rounds" && i + 1 < argc) {
+            opt.rounds = std::max(3, std::atoi(argv[++i]));
+        } else if (a == "--round-ms" && i + 1 < argc) {
+            opt.round_ms = std::max(0.1, std::atof(argv[++i]));
+        } else if (a == "--sizes" && i + 1 < argc) {
+            opt.sizes.clear();
+            std::string s = argv[++i];
+            size_t p = 0;
+            while (p < s.size()) {
+                size_t q = s.find(',', p);
+                if (q == std::string::npos) q = s.size();
+                opt.sizes.push_back(static_cast<unsigned>(std::strtoul(s.substr(p, q - p).c_str(), nullptr, 10)));
+                p = q + 1;
+            }
+        } else if (a == "--help" || a == "-h") {
+            usage();
+            return 0;
+        } else {
+            usage();
+            return 2;
+        }
+    }
+
+    struct Row { unsigned n; double sbr, fftw, nosimd, kiss; };
+    std::vector<Row> rows;
+    std::mt19937 rng(12345);
+    std::uniform_real_distribution<float> dist(-1.0f, 1.0f);
+
+    for (unsigned n : opt.sizes) {
+        sbr_fft_t sf;
+        if (sbr_fft_init(&sf, n) != SBR_OK) {
+            std::fprintf(stderr, "sbr_bench_fft: unsupported length %u\n", n);
+            return 2;
+        }
+        fftwf_complex *fin = fftwf_alloc_complex(n), *fout = fftwf_alloc_complex(n);
+        fftwf_complex *gin = fftwf_alloc_complex(n), *gout = fftwf_alloc_complex(n);
+        fftwf_plan p_simd = fftwf_plan_dft_1d(static_cast<int>(n), fin, fout, FFTW_FORWARD, FFTW_MEASURE);
+        fftwf_plan p_scalar = fftwf_plan_dft_1d(static_cast<int>(n), gin, gout, FFTW_FORWARD,
+                                                FFTW_MEASURE | FFTW_NO_SIMD);
+        kiss_fft_cfg kcfg = kiss_fft_alloc(static_cast<int>(n), 0, nullptr, nullptr);
+        if (!p_simd || !p_scalar || !kcfg) {
+            std::fprintf(stderr, "sbr_bench_fft: could not plan N=%u\n", n);
+            return 1;
+        }
+        std::vector<sbr_complex_t> sin_(n), sout(n);
+        std::vector<kiss_fft_cpx> kin(n), kout(n);
+        for (unsigned i = 0; i < n; ++i) {
+            const float re = dist(rng), im = dist(rng);
+            sin_[i] = {re, im};
+            fin[i][0] = gin[i][0] = re;
+            fin[i][1] = gin[i][1] = im;
+            kin[i].r = re;
+            kin[i].i = im;
+        }
+        auto run_sbr = [&] { (void)sbr_fft_forward(&sf, sin_.data(), sout.data()); };
+        auto run_fftw = [&] { fftwf_execute(p_simd); };
+        auto run_nosimd = [&] { fftwf_execute(p_scalar); };
+        auto run_kiss = [&] { kiss_fft(kcfg, kin.data(), kout.data()); };
+
+        // Sanity: every method computes the same transform (a benchmark of a wrong FFT
+        // would be worthless).
+        run_sbr(); run_fftw(); run_nosimd(); run_kiss();
+        double err = 0.0, ref = 0.0;
+        for (unsigned i = 0; i < n; ++i) {
+            const double r0 = fout[i][0], i0 = fout[i][1];
+            ref += r0 * r0 + i0 * i0;
+            err += std::pow(sout[i].re - r0, 2) + std::pow(sout[i].im - i0, 2) +
+                   std::pow(gout[i][0] - r0, 2) + std::pow(gout[i][1] - i0, 2) +
+                   std::pow(kout[i].r - r0, 2) + std::pow(kout[i].i - i0, 2);
+        }
+        if (err > 1e-8 * ref) {
+            std::fprintf(stderr, "sbr_bench_fft: results disagree at N=%u\n", n);
+            return 1;
+        }
+
+        // Calibrate repetitions so one batch of the slowest method lasts about round_ms.
+        const double est = time_batch(run_kiss, 200);
+        const int reps = std::max(10, static_cast<int>(opt.round_ms * 1e6 / std::max(est, 1.0)));
+        std::vector<double> ts, tf, tn, tk;
+        for (int r = 0; r < opt.rounds; ++r) {
+            ts.push_back(time_batch(run_sbr, reps));
+            tf.push_back(time_batch(run_fftw, reps));
+            tn.push_back(time_batch(run_nosimd, reps));
+            tk.push_back(time_batch(run_kiss, reps));
+        }
+        g_sink = sout[1].re + fout[1][0] + gout[1][0] + kout[1].r;
+        rows.push_back({n, median(ts), median(tf), median(tn), median(tk)});
+
+        fftwf_destroy_plan(p_simd);
+        fftwf_destroy_plan(p_scalar);
+        fftwf_free(fin); fftwf_free(fout); fftwf_free(gin); fftwf_free(gout);
+        kiss_fft_free(kcfg);
+        if (!opt.csv) std::fprintf(stderr, "\rN=%u done", n);
+    }
+    if (!opt.csv) std::fprintf(stderr, "\n");
+
+    bool ok = true;
+    if (opt.csv) {
+        std::printf("n,sbr_ns,fftw_ns,fftw_nosimd_ns,kissfft_ns\n");
+        for (const Row &r : rows)
+            std::printf("%u,%.1f,%.1f,%.1f,%.1f\n", r.n, r.sbr, r.fftw, r.nosimd, r.kiss);
+        std::printf("# ratios: n,sbr/fftw_nosimd (target <= 1.2),sbr/kissfft (target <= 0.8),sbr/fftw_simd (information)\n");
+    } else {
+        std::printf("%6s %12s %12s %16s %12s %14s %12s\n", "N", "sbr ns", "FFTW ns", "FFTW scalar ns",
+                    "KissFFT ns", "sbr/FFTWsc", "sbr/Kiss");
+    }
+    for (const Row &r : rows) {
+        const double q1 = r.sbr / r.nosimd, q2 = r.sbr / r.kiss, q3 = r.sbr / r.fftw;
+        const bool met = q1 <= 1.2 && q2 <= 0.8;
+        ok = ok && met;
+        if (opt.csv)
+            std::printf("# %u,%.2f,%.2f,%.2f%s\n", r.n, q1, q2, q3, met ? "" : ",TARGET MISSED");
+        else
+            std::printf("%6u %12.1f %12.1f %16.1f %12.1f %14.2f %12.2f%s\n", r.n, r.sbr, r.fftw, r.nosimd,
+                        r.kiss, q1, q2, met ? "" : "  (target missed)");
+    }
+    std::printf("# targets %s: sbr <= 1.2x FFTW scalar and <= 0.8x KissFFT at every N\n",
+                ok ? "met" : "NOT met");
+    return 0;
+}

@@ -1,0 +1,82 @@
+#include "fft_internal.h"
+
+#define SBR_FFT_INV 0
+#define SBR_FFT_NAME(x) fwd_##x
+#include "fft_kernel.inc"
+#undef SBR_FFT_INV
+#undef SBR_FFT_NAME
+
+#define SBR_FFT_INV 1
+#define SBR_FFT_NAME(x) inv_##x
+#include "fft_kernel.inc"
+#undef SBR_FFT_INV
+#undef SBR_FFT_NAME
+
+int sbr_fft_size_supported(uint32_t n)
+{
+    return ((n >= SBR_FFT_MIN_SIZE) && (n <= SBR_FFT_MAX_SIZE) && ((n & (n - 1u)) == 0u))
+               ? 1
+               : 0;
+}
+
+/* Cheap consistency checks of an instance; catches never-initialised and overwritten
+   instances without touching more than a few words. */
+static sbr_status_t check_instance(const sbr_fft_t *fft, const sbr_complex_t *in,
+                                   const sbr_complex_t *out)
+{
+    uint32_t s;
+    uint32_t span;
+
+    if ((fft == NULL) || (in == NULL) || (out == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    if ((sbr_fft_size_supported(fft->n) == 0) || (fft->check != (SBR_FFT_CHECK_KEY ^ fft->n)) ||
+        ((1u << (fft->log2n & 31u)) != fft->n) || (fft->bitrev == NULL) ||
+        (fft->stages > SBR_FFT_MAX_STAGES)) {
+        return SBR_ERR_STATE;
+    }
+    if ((fft->bitrev[0] != 0u) || (fft->bitrev[1] != (fft->n / 2u))) {
+        return SBR_ERR_STATE;
+    }
+    span = ((fft->log2n % 2u) == 0u) ? 4u : 8u;
+    for (s = 0u; s < fft->stages; s++) {
+        if (fft->twiddle[s] == NULL) {
+            return SBR_ERR_STATE;
+        }
+        span *= 4u;
+    }
+    if (span != fft->n) {
+        return SBR_ERR_STATE;
+    }
+    if (in != out) {
+        /* Only identical or disjoint buffers are supported. Compared as integers:
+           relational comparison of pointers into different objects is undefined. */
+        const uintptr_t a = (uintptr_t)in;
+        const uintptr_t b = (uintptr_t)out;
+        const uintptr_t bytes = (uintptr_t)fft->n * (uintptr_t)sizeof(sbr_complex_t);
+        if ((a < (b + bytes)) && (b < (a + bytes))) {
+            return SBR_ERR_OVERLAP;
+        }
+    }
+    return SBR_OK;
+}
+
+sbr_status_t sbr_fft_forward(const sbr_fft_t *fft, const sbr_complex_t *in,
+                             sbr_complex_t *out)
+{
+    const sbr_status_t st = check_instance(fft, in, out);
+    if (st == SBR_OK) {
+        fwd_run(fft, in, out);
+    }
+    return st;
+}
+
+sbr_status_t sbr_fft_inverse(const sbr_fft_t *fft, const sbr_complex_t *in,
+                             sbr_complex_t *out)
+{
+    const sbr_status_t st = check_instance(fft, in, out);
+    if (st == SBR_OK) {
+        inv_run(fft, in, out);
+    }
+    return st;
+}

@@ -1,0 +1,7 @@
+#include "fft_internal.h"
+
+/* One translation unit per length, so the linker keeps only the tables in use. */
+sbr_status_t sbr_fft_init_1024(sbr_fft_t *fft)
+{
+    return sbr_fft_priv_setup(fft, 1024u, sbr_fft_bitrev_1024, sbr_fft_tw_4, sbr_fft_tw_16, sbr_fft_tw_64, sbr_fft_tw_256);
+}

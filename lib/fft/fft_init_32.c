@@ -1,0 +1,7 @@
+#include "fft_internal.h"
+
+/* One translation unit per length, so the linker keeps only the tables in use. */
+sbr_status_t sbr_fft_init_32(sbr_fft_t *fft)
+{
+    return sbr_fft_priv_setup(fft, 32u, sbr_fft_bitrev_32, sbr_fft_tw_8, NULL, NULL, NULL);
+}

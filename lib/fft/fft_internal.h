@@ -1,0 +1,15 @@
+/* Private to lib/fft: instance set-up shared by the per-length init functions. */
+#ifndef SBR_FFT_INTERNAL_H
+#define SBR_FFT_INTERNAL_H
+
+#include "sbr/fft.h"
+#include "fft_tables.h"
+
+/* Integrity word mixed with the length; a zeroed or overwritten instance fails it. */
+#define SBR_FFT_CHECK_KEY 0x5B2F0F70u
+
+sbr_status_t sbr_fft_priv_setup(sbr_fft_t *fft, uint32_t n, const uint16_t *bitrev,
+                                const sbr_complex_t *tw0, const sbr_complex_t *tw1,
+                                const sbr_complex_t *tw2, const sbr_complex_t *tw3);
+
+#endif /* SBR_FFT_INTERNAL_H */
