@@ -1,0 +1,18 @@
+/**
+ * @file sbr.h
+ * @brief Umbrella header: every public sbr module.
+ */
+#ifndef SBR_SBR_H
+#define SBR_SBR_H
+
+#include "sbr/status.h"
+#include "sbr/types.h"
+#include "sbr/fft.h"
+#include "sbr/channel.h"
+
+/** Library version. */
+#define SBR_VERSION_MAJOR 0
+#define SBR_VERSION_MINOR 1
+#define SBR_VERSION_PATCH 0
+
+#endif /* SBR_SBR_H */

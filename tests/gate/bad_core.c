@@ -1,0 +1,17 @@
+/* Deliberately breaks every rule the core-symbol gate enforces; built only to prove that
+   the gate fails on it (gate_core_symbols_selftest). Never part of the library. */
+#include <stdio.h>
+#include <stdlib.h>
+
+int bad_core_fn(int n);
+
+static int counter;
+
+int bad_core_fn(int n)
+{
+    FILE *f = fopen("x", "r");
+    char *p = (char *)malloc((size_t)n);
+    counter += n;
+    printf("%d %p %p\n", counter, (void *)f, (void *)p);
+    return counter;
+}
