@@ -50,8 +50,9 @@ sbr_status_t sbr_channel_config_check(const sbr_channel_config_t *cfg)
 static void range_u(const sbr_channel_config_t *cfg, float *lo, float *hi)
 {
     const float half_m = 0.5f * (float)cfg->overlap;
+    const uint32_t last = cfg->count - 1u;
     *lo = half_m - 1.0f;
-    *hi = ((float)(cfg->count - 1u)) - (half_m - 1.0f);
+    *hi = (float)last - (half_m - 1.0f);
 }
 
 sbr_status_t sbr_channel_range(const sbr_channel_config_t *cfg, float *lo, float *hi)
@@ -189,10 +190,12 @@ static float window_offset(uint32_t m, float sre, float sim, int *valid)
         return 0.0f;
     }
     off = ((float)m / (2.0f * SBR_PI_F)) * atan2f(sim, sre);
-    *valid = ((off >= (mid - 0.5f - SBR_CHANNEL_VALID_EPS)) &&
-              (off < (mid + 0.5f + SBR_CHANNEL_VALID_EPS)))
-                 ? 1
-                 : 0;
+    if ((off >= (mid - 0.5f - SBR_CHANNEL_VALID_EPS)) &&
+        (off < (mid + 0.5f + SBR_CHANNEL_VALID_EPS))) {
+        *valid = 1;
+    } else {
+        *valid = 0;
+    }
     return off;
 }
 
@@ -270,19 +273,22 @@ static int insert_1d(sbr_channel_mode_t *modes, uint32_t capacity, uint32_t *n,
 {
     uint32_t i;
     uint32_t pos;
+    uint32_t dup;
 
+    dup = *n;
     for (i = 0u; i < *n; i++) {
-        if (fabsf(modes[i].value - value) <= same) {
-            if (modes[i].certainty >= certainty) {
-                return 0;
-            }
-            while ((i + 1u) < *n) {
-                modes[i] = modes[i + 1u];
-                i++;
-            }
-            (*n)--;
-            break;
+        if ((dup == *n) && (fabsf(modes[i].value - value) <= same)) {
+            dup = i;
         }
+    }
+    if (dup < *n) {
+        if (modes[dup].certainty >= certainty) {
+            return 0;
+        }
+        for (i = dup; (i + 1u) < *n; i++) {
+            modes[i] = modes[i + 1u];
+        }
+        (*n)--;
     }
     pos = *n;
     while ((pos > 0u) && (modes[pos - 1u].certainty < certainty)) {
@@ -310,19 +316,22 @@ static int insert_2d(sbr_channel_mode2d_t *modes, uint32_t capacity, uint32_t *n
 {
     uint32_t i;
     uint32_t pos;
+    uint32_t dup;
 
+    dup = *n;
     for (i = 0u; i < *n; i++) {
-        if ((fabsf(modes[i].x - x) <= same_x) && (fabsf(modes[i].y - y) <= same_y)) {
-            if (modes[i].certainty >= certainty) {
-                return 0;
-            }
-            while ((i + 1u) < *n) {
-                modes[i] = modes[i + 1u];
-                i++;
-            }
-            (*n)--;
-            break;
+        if ((dup == *n) && ((fabsf(modes[i].x - x) <= same_x) && (fabsf(modes[i].y - y) <= same_y))) {
+            dup = i;
         }
+    }
+    if (dup < *n) {
+        if (modes[dup].certainty >= certainty) {
+            return 0;
+        }
+        for (i = dup; (i + 1u) < *n; i++) {
+            modes[i] = modes[i + 1u];
+        }
+        (*n)--;
     }
     pos = *n;
     while ((pos > 0u) && (modes[pos - 1u].certainty < certainty)) {
@@ -466,8 +475,6 @@ sbr_status_t sbr_channel2d_decode(const sbr_channel2d_config_t *cfg, const float
     float qre[SBR_CHANNEL_MAX_OVERLAP];
     float qim[SBR_CHANNEL_MAX_OVERLAP];
     uint32_t n = 0u;
-    uint32_t total;
-    uint32_t k;
     uint32_t wx;
     uint32_t wy;
     int overflow = 0;
@@ -480,7 +487,8 @@ sbr_status_t sbr_channel2d_decode(const sbr_channel2d_config_t *cfg, const float
         st = SBR_ERR_NULL;
     }
     if (st == SBR_OK) {
-        total = cfg->x.count * cfg->y.count;
+        const uint32_t total = cfg->x.count * cfg->y.count;
+        uint32_t k;
         if (len < total) {
             st = SBR_ERR_SIZE;
         }

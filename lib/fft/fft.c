@@ -38,7 +38,11 @@ static sbr_status_t check_instance(const sbr_fft_t *fft, const sbr_complex_t *in
     if ((fft->bitrev[0] != 0u) || (fft->bitrev[1] != (fft->n / 2u))) {
         return SBR_ERR_STATE;
     }
-    span = ((fft->log2n % 2u) == 0u) ? 4u : 8u;
+    if ((fft->log2n % 2u) == 0u) {
+        span = 4u;
+    } else {
+        span = 8u;
+    }
     for (s = 0u; s < fft->stages; s++) {
         if (fft->twiddle[s] == NULL) {
             return SBR_ERR_STATE;

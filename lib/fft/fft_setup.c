@@ -16,7 +16,11 @@ sbr_status_t sbr_fft_priv_setup(sbr_fft_t *fft, uint32_t n, const uint16_t *bitr
     }
     /* The first stage is radix-4 without twiddles for even log2(N), radix-8 for odd;
        every further stage is radix-4 with twiddles of span 4, 16, ... or 8, 32, ... */
-    span = ((log2n % 2u) == 0u) ? 4u : 8u;
+    if ((log2n % 2u) == 0u) {
+        span = 4u;
+    } else {
+        span = 8u;
+    }
     stages = 0u;
     while (span < n) {
         stages++;
