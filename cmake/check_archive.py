@@ -4,7 +4,8 @@ static or global data. With --arm also no soft-float double helpers (__aeabi_d*,
 appear when C code does double arithmetic on a single-precision FPU).
 
 usage: check_archive.py --nm NM [--arm] [--expect-violations a,b,...] ARCHIVE
-Exit 0 when clean. With --expect-violations (self-test of this gate) exit 0 only when
+Double-precision libm calls (sin, sqrt, ...) are rejected on every target. Exit 0 when
+clean. With --expect-violations (self-test of this gate) exit 0 only when
 every named symbol is reported as a violation.
 """
 import argparse
@@ -24,6 +25,11 @@ FILEIO = {"fopen", "fclose", "fread", "fwrite", "fseek", "ftell", "fflush", "fre
           "rewind", "remove", "rename", "tmpfile", "open", "close", "read", "write",
           "lseek", "_open", "_close", "_read", "_write", "_lseek", "stdin", "stdout",
           "stderr", "_impure_ptr", "_impure_data"}
+# Double-precision libm (the core uses the f-suffixed float functions only).
+DOUBLE_LIBM = {"sin", "cos", "tan", "asin", "acos", "atan", "atan2", "sinh", "cosh", "tanh",
+               "exp", "exp2", "expm1", "log", "log2", "log10", "log1p", "pow", "sqrt", "cbrt",
+               "hypot", "fabs", "floor", "ceil", "round", "lround", "trunc", "fmod", "fmin",
+               "fmax", "modf", "frexp", "ldexp", "sincos", "erf", "lgamma", "tgamma"}
 # Soft-float double helpers of the ARM EABI run-time.
 DOUBLE_HELPER = re.compile(r"^__aeabi_(d\w+|f2d|i2d|ui2d|l2d|ul2d|d2\w+)$")
 # nm types of writable data: data, bss, common, small data/bss.
@@ -60,6 +66,8 @@ def main():
             for group, names in (("heap", HEAP), ("stdio", STDIO), ("file I/O", FILEIO)):
                 if base in names:
                     violations.append((base, f"{where}: calls {base} ({group})"))
+            if base in DOUBLE_LIBM:
+                violations.append((base, f"{where}: calls {base} (double-precision libm)"))
             if a.arm and DOUBLE_HELPER.match(base):
                 violations.append((base, f"{where}: calls {base} (double arithmetic)"))
         elif typ in MUTABLE:
@@ -82,7 +90,7 @@ def main():
         for v in violations:
             print("FAIL:", v[1])
         return 1
-    print("OK: no heap, no stdio, no file I/O, no mutable static data"
+    print("OK: no heap, no stdio, no file I/O, no mutable static data, no double libm"
           + (", no double arithmetic helpers" if a.arm else ""))
     return 0
 

@@ -2,8 +2,15 @@
    the gate fails on it (gate_core_symbols_selftest). Never part of the library. */
 #include <stdio.h>
 #include <stdlib.h>
+#include <math.h>
 
 int bad_core_fn(int n);
+double bad_core_math(double x);
+
+double bad_core_math(double x)
+{
+    return cos(x);
+}
 
 static int counter;
 
