@@ -18,7 +18,7 @@ JOBS="$(nproc 2>/dev/null || echo 2)"
 PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip
           gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
           gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user
-          libfftw3-dev libkissfft-dev cppcheck)
+          libfftw3-dev libkissfft-dev cppcheck libopencv-dev)
 
 log() { printf '\n== %s\n' "$*"; }
 

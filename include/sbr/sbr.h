@@ -9,6 +9,8 @@
 #include "sbr/types.h"
 #include "sbr/fft.h"
 #include "sbr/channel.h"
+#include "sbr/image.h"
+#include "sbr/contour.h"
 
 /** Library version. */
 #define SBR_VERSION_MAJOR 0
