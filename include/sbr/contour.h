@@ -42,7 +42,7 @@ typedef struct sbr_contour_s {
  * @brief Workspace bytes for masks up to `width` x `height` (a padded label map).
  */
 #define SBR_CONTOUR_WORKSPACE_SIZE(width, height) \
-    ((size_t)((width) + 2u) * (size_t)((height) + 2u))
+    (((size_t)(width) + 2u) * ((size_t)(height) + 2u))
 
 /**
  * @brief Workspace bytes for masks up to `width` x `height`; 0 if a size is 0 or above

@@ -78,8 +78,8 @@ static void follow(int8_t *map, size_t i0, int16_t x0, int16_t y0, const int32_t
     size_t i3;
     size_t i4 = i0;
     size_t steps = 0u;
-    int16_t x = x0;
-    int16_t y = y0;
+    int32_t x = x0;
+    int32_t y = y0;
 
     /* Clockwise from the west neighbour: the first foreground pixel is the contour's
        last point. */
@@ -90,7 +90,7 @@ static void follow(int8_t *map, size_t i0, int16_t x0, int16_t y0, const int32_t
 
     if (s == s_end) { /* isolated pixel */
         map[i0] = LBL_RIGHT;
-        emit(o, x, y);
+        emit(o, x0, y0);
         return;
     }
     i3 = i0;
@@ -111,9 +111,13 @@ static void follow(int8_t *map, size_t i0, int16_t x0, int16_t y0, const int32_t
         } else {
             /* already labelled by an earlier pass of this border */
         }
-        emit(o, x, y);
-        x = (int16_t)(x + dx[s]);
-        y = (int16_t)(y + dy[s]);
+        {
+            const int16_t xs = (int16_t)x; /* within the image: fits int16_t */
+            const int16_t ys = (int16_t)y;
+            emit(o, xs, ys);
+        }
+        x += dx[s];
+        y += dy[s];
         if ((i4 == i0) && (i3 == i1)) {
             break;
         }
@@ -196,8 +200,9 @@ sbr_status_t sbr_contour_find_external(const sbr_image_t *mask, void *workspace,
                     o.miny = INT16_MAX;
                     o.maxx = INT16_MIN;
                     o.maxy = INT16_MIN;
-                    follow(map, row + x, (int16_t)(x - 1u), (int16_t)(y - 1u), d, dx, dy,
-                           max_steps, &o);
+                    const uint32_t px = x - 1u;
+                    const uint32_t py = y - 1u;
+                    follow(map, row + x, (int16_t)px, (int16_t)py, d, dx, dy, max_steps, &o);
                     if ((o.overflow != 0) || (n >= contour_capacity)) {
                         overflow = 1;
                     } else {
@@ -205,8 +210,10 @@ sbr_status_t sbr_contour_find_external(const sbr_image_t *mask, void *workspace,
                         contours[n].length = o.length;
                         contours[n].bbox.x = (uint32_t)o.minx;
                         contours[n].bbox.y = (uint32_t)o.miny;
-                        contours[n].bbox.width = (uint32_t)(o.maxx - o.minx) + 1u;
-                        contours[n].bbox.height = (uint32_t)(o.maxy - o.miny) + 1u;
+                        const int32_t bw = (int32_t)o.maxx - (int32_t)o.minx;
+                        const int32_t bh = (int32_t)o.maxy - (int32_t)o.miny;
+                        contours[n].bbox.width = (uint32_t)bw + 1u;
+                        contours[n].bbox.height = (uint32_t)bh + 1u;
                         used += o.length;
                         n++;
                     }
