@@ -69,14 +69,14 @@ static void emit(trace_out_t *o, int16_t x, int16_t y)
 
 /* Follows the outer border that starts at map index i0 = pixel (x0, y0), whose west
    neighbour is background; labels the border in the map and emits its points. */
-static void follow(int8_t *map, size_t i0, int16_t x0, int16_t y0, const int32_t d[16],
+static void follow(int8_t *map, ptrdiff_t i0, int16_t x0, int16_t y0, const int32_t d[16],
                    const int16_t dx[8], const int16_t dy[8], size_t max_steps, trace_out_t *o)
 {
     uint32_t s = 4u;
     uint32_t s_end = 4u;
-    size_t i1;
-    size_t i3;
-    size_t i4 = i0;
+    ptrdiff_t i1;
+    ptrdiff_t i3;
+    ptrdiff_t i4 = i0;
     size_t steps = 0u;
     int32_t x = x0;
     int32_t y = y0;
@@ -85,7 +85,7 @@ static void follow(int8_t *map, size_t i0, int16_t x0, int16_t y0, const int32_t
        last point. */
     do {
         s = (s + 7u) & 7u;
-        i1 = (size_t)((ptrdiff_t)i0 + d[s]);
+        i1 = i0 + d[s];
     } while ((map[i1] == LBL_BG) && (s != s_end));
 
     if (s == s_end) { /* isolated pixel */
@@ -100,7 +100,7 @@ static void follow(int8_t *map, size_t i0, int16_t x0, int16_t y0, const int32_t
         /* Counter-clockwise from the direction after the one we came from. */
         do {
             s++;
-            i4 = (size_t)((ptrdiff_t)i3 + d[s]);
+            i4 = i3 + d[s];
         } while ((map[i4] == LBL_BG) && (s < 15u));
         s &= 7u;
         /* The east neighbour was examined and is background: a right bound. */
@@ -202,7 +202,9 @@ sbr_status_t sbr_contour_find_external(const sbr_image_t *mask, void *workspace,
                     o.maxy = INT16_MIN;
                     const uint32_t px = x - 1u;
                     const uint32_t py = y - 1u;
-                    follow(map, row + x, (int16_t)px, (int16_t)py, d, dx, dy, max_steps, &o);
+                    const size_t at = row + x;
+                    follow(map, (ptrdiff_t)at, (int16_t)px, (int16_t)py, d, dx, dy, max_steps,
+                           &o);
                     if ((o.overflow != 0) || (n >= contour_capacity)) {
                         overflow = 1;
                     } else {
