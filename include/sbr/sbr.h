@@ -11,6 +11,7 @@
 #include "sbr/channel.h"
 #include "sbr/image.h"
 #include "sbr/contour.h"
+#include "sbr/fd.h"
 
 /** Library version. */
 #define SBR_VERSION_MAJOR 0

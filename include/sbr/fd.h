@@ -1,0 +1,155 @@
+/**
+ * @file fd.h
+ * @brief Fourier descriptors of closed contours and their correlation matching
+ *        (thesis papers C and D).
+ *
+ * A contour c(l) = x(l) + i y(l) is resampled at N points equally spaced in arc length
+ * (starting at its first point), transformed with the N-point FFT, and reduced to
+ * C(n) = X[n] / N for n = -M..M. C(0) (the centroid) is dropped for translation
+ * invariance and kept aside; the rest is normalised to unit energy for scale invariance,
+ * and the energy's square root is kept as the contour's scale.
+ *
+ * Matching a query Q against a prototype C correlates them for every start point at once:
+ * r(l) = sum_n conj(Q(n)) C(n) e^{i 2 pi n l / P}, l = 0..P-1, one inverse FFT of size P
+ * (zero-padded). With both unit-energy, r(l) lies in the unit disc and
+ *   rotation invariant:  e = 2 - 2 max_l |r(l)|
+ *   rotation covariant:  e = 2 - 2 max_l Re r(l)   (optionally only over rotations whose
+ *                                                   magnitude is at most a bound)
+ * e = 0 for the same shape under translation, scale, rotation (invariant mode) and start
+ * point; e <= 4 always. If the query is the prototype rotated by theta (counter-clockwise
+ * in x-right/y-up axes, i.e. multiplied by e^{i theta}) and started s of its length later,
+ * the peak has arg r = -theta at l = s * P: sbr reports rotation = theta and
+ * shift = s (a fraction of the length, in [0, 1)). The grid peak is refined between
+ * samples by a parabola and one exact evaluation of r, so rotation and shift are not
+ * limited to the grid of P.
+ *
+ * Mirror images: a mirrored contour traced in the same direction has the descriptor
+ * -conj(C(n)) (sbr_fd_mirror()); matching against both gives mirror invariance.
+ */
+#ifndef SBR_FD_H
+#define SBR_FD_H
+
+#include "sbr/contour.h"
+#include "sbr/fft.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest number M of kept coefficients on each side. */
+#define SBR_FD_MAX_M 32u
+/** Largest absolute coordinate accepted (keeps float arc lengths accurate). */
+#define SBR_FD_MAX_COORD 1.0e6f
+
+/** A point with float coordinates. */
+typedef struct sbr_pointf_s {
+    float x; /**< x */
+    float y; /**< y */
+} sbr_pointf_t;
+
+/** A Fourier descriptor. `c[k]` holds C(k - m), k = 0..2m; `c[m]` (the DC term) is 0. */
+typedef struct sbr_fd_s {
+    uint32_t m;                            /**< M: coefficients kept on each side */
+    float scale;                           /**< sqrt of the energy before normalisation
+                                                (a length: doubles when the shape does) */
+    float cx;                              /**< centroid x (of the resampled contour) */
+    float cy;                              /**< centroid y */
+    sbr_complex_t c[(2u * SBR_FD_MAX_M) + 1u]; /**< normalised coefficients */
+} sbr_fd_t;
+
+/**
+ * @brief Descriptor of a traced contour (integer points, as sbr_contour_find_external()).
+ * @param[in]  fft      an FFT instance of length N (the resampling size), N > 2M.
+ * @param[in]  points   closed contour, `count` points (the last connects to the first).
+ * @param[in]  count    number of points.
+ * @param[in]  m        M, 1 .. ::SBR_FD_MAX_M, and 2M < N.
+ * @param[in]  work     scratch of at least N complex values.
+ * @param[in]  work_len length of `work`.
+ * @param[out] out      the descriptor.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_STATE (bad FFT instance); ::SBR_ERR_SIZE for
+ *         0 points, `work_len` < N, or M out of range; ::SBR_ERR_DEGENERATE for 1 or 2
+ *         points, zero length or zero area (collinear points); ::SBR_ERR_RANGE for a
+ *         non-finite coordinate or one beyond ::SBR_FD_MAX_COORD. `out` is written only
+ *         on success.
+ */
+sbr_status_t sbr_fd_from_points(const sbr_fft_t *fft, const sbr_point_t *points,
+                                uint32_t count, uint32_t m, sbr_complex_t *work,
+                                uint32_t work_len, sbr_fd_t *out);
+
+/** @brief As sbr_fd_from_points() for float points. */
+sbr_status_t sbr_fd_from_pointsf(const sbr_fft_t *fft, const sbr_pointf_t *points,
+                                 uint32_t count, uint32_t m, sbr_complex_t *work,
+                                 uint32_t work_len, sbr_fd_t *out);
+
+/**
+ * @brief Descriptor of the mirror image (x -> -x), traced in the same direction.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for an invalid descriptor.
+ *         `in` and `out` may be the same.
+ */
+sbr_status_t sbr_fd_mirror(const sbr_fd_t *in, sbr_fd_t *out);
+
+/** Matching modes. */
+typedef enum sbr_fd_mode_e {
+    SBR_FD_ROTATION_INVARIANT = 0, /**< maximise |r|: any rotation matches */
+    SBR_FD_ROTATION_COVARIANT = 1  /**< maximise Re r: rotation costs (6 and 9 differ) */
+} sbr_fd_mode_t;
+
+/** Matching options. */
+typedef struct sbr_fd_match_config_s {
+    /** Invariant or covariant (default: covariant, what traffic signs need). */
+    sbr_fd_mode_t mode;
+    /** Covariant mode only: accept only peaks whose rotation magnitude is at most this
+        (radians, 0 .. pi; pi = no bound, the default). A bound keeps, say, a left arrow
+        from matching a right arrow turned upside down. If no peak qualifies the error
+        is 4 (the worst). */
+    float max_rotation;
+    /** 1 (default): refine the peak between grid samples (exact rotation and shift, a
+        slightly lower error); 0: grid peak only (faster, for bulk screening). */
+    int refine;
+} sbr_fd_match_config_t;
+
+/** Result of one match. */
+typedef struct sbr_fd_match_s {
+    float error;       /**< e = 2 - 2 max, in [0, 4] */
+    float rotation;    /**< rotation of the query relative to the prototype, (-pi, pi] */
+    float shift;       /**< start-point shift as a fraction of the length, [0, 1) */
+    float scale_ratio; /**< query scale / prototype scale */
+} sbr_fd_match_t;
+
+/** @brief Defaults: covariant, no rotation bound, refined. @return ::SBR_OK, ::SBR_ERR_NULL. */
+sbr_status_t sbr_fd_match_config_default(sbr_fd_match_config_t *cfg);
+
+/**
+ * @brief Correlate a query with one prototype.
+ * @param[in]  fft      FFT instance of size P, P >= 2M + 1 (M of the descriptors).
+ * @param[in]  cfg      options.
+ * @param[in]  query    query descriptor.
+ * @param[in]  proto    prototype descriptor with the same M.
+ * @param[in]  work     scratch of at least P complex values.
+ * @param[in]  work_len its length.
+ * @param[out] result   the match.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_STATE (bad FFT instance); ::SBR_ERR_SIZE for
+ *         different M, P < 2M+1 or short `work`; ::SBR_ERR_RANGE for a bad config or an
+ *         invalid descriptor (M out of range, non-finite or non-positive scale).
+ */
+sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                          const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
+                          uint32_t work_len, sbr_fd_match_t *result);
+
+/**
+ * @brief Correlate a query with a table of prototypes.
+ * @param[out] results  one result per prototype (`count` entries).
+ * @param[out] best     index of the prototype with the smallest error.
+ * @return as sbr_fd_match(); ::SBR_ERR_SIZE for count 0. On an error in one prototype the
+ *         call stops and returns that error.
+ */
+sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                                const sbr_fd_t *query, const sbr_fd_t *protos, uint32_t count,
+                                sbr_complex_t *work, uint32_t work_len, sbr_fd_match_t *results,
+                                uint32_t *best);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SBR_FD_H */

@@ -1,0 +1,336 @@
+/* Unity tests of Fourier descriptors and correlation matching (include/sbr/fd.h). */
+#include "unity.h"
+#include "sbr/fd.h"
+#include "test_support.h"
+
+#include <math.h>
+#include <string.h>
+
+#define NPTS 40u
+#define PI_F 3.14159265f
+#define DEG (PI_F / 180.0f)
+
+static sbr_fft_t g_fft_n;  /* resampling, N = 256 */
+static sbr_fft_t g_fft_p;  /* correlation, P = 64 */
+static sbr_complex_t g_work[256];
+static sbr_pointf_t g_shape[NPTS];
+static sbr_pointf_t g_tmp[NPTS];
+static sbr_fd_match_config_t g_cov;
+static sbr_fd_match_config_t g_inv;
+#define M 12u
+
+void setUp(void)
+{
+    uint32_t i;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_init_256(&g_fft_n));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_init_64(&g_fft_p));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_config_default(&g_cov));
+    g_inv = g_cov;
+    g_inv.mode = SBR_FD_ROTATION_INVARIANT;
+    /* An irregular, asymmetric closed shape (no rotational or mirror symmetry). */
+    for (i = 0; i < NPTS; i++) {
+        const float a = 2.0f * PI_F * (float)i / (float)NPTS;
+        const float r = 10.0f + 3.0f * cosf(2.0f * a) + 2.0f * sinf(3.0f * a + 0.4f) +
+                        (i < 8u ? 4.0f : 0.0f);
+        g_shape[i].x = r * cosf(a);
+        g_shape[i].y = r * sinf(a);
+    }
+}
+void tearDown(void) {}
+
+/* Outer outline of a blocky "6": no rotational or mirror symmetry, far from a circle. */
+static const sbr_pointf_t k_six[8] = {{0, 0}, {0, 10}, {6, 10}, {6, 8}, {2, 8}, {2, 6}, {6, 6}, {6, 0}};
+
+static sbr_fd_t fd_of(const sbr_pointf_t *p, uint32_t n)
+{
+    sbr_fd_t fd;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_from_pointsf(&g_fft_n, p, n, M, g_work, 256u, &fd));
+    return fd;
+}
+
+static sbr_fd_match_t match(const sbr_fd_match_config_t *cfg, const sbr_fd_t *q, const sbr_fd_t *p)
+{
+    sbr_fd_match_t r;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match(&g_fft_p, cfg, q, p, g_work, 256u, &r));
+    return r;
+}
+
+/* transform: rotate by theta (counter-clockwise, y up), scale, translate, start at k */
+static void transform(float theta, float s, float tx, float ty, uint32_t k)
+{
+    uint32_t i;
+    for (i = 0; i < NPTS; i++) {
+        const sbr_pointf_t p = g_shape[(i + k) % NPTS];
+        g_tmp[i].x = s * (p.x * cosf(theta) - p.y * sinf(theta)) + tx;
+        g_tmp[i].y = s * (p.x * sinf(theta) + p.y * cosf(theta)) + ty;
+    }
+}
+
+static float arc_fraction(uint32_t k)
+{
+    float total = 0.0f;
+    float part = 0.0f;
+    uint32_t i;
+    for (i = 0; i < NPTS; i++) {
+        const sbr_pointf_t a = g_shape[i];
+        const sbr_pointf_t b = g_shape[(i + 1u) % NPTS];
+        const float d = hypotf(b.x - a.x, b.y - a.y);
+        if (i < k) {
+            part += d;
+        }
+        total += d;
+    }
+    return part / total;
+}
+
+static void test_self_match_is_perfect(void)
+{
+    const sbr_fd_t a = fd_of(g_shape, NPTS);
+    const sbr_fd_match_t r = match(&g_cov, &a, &a);
+    float e = 0.0f;
+    uint32_t k;
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 0.0f, r.error);
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 0.0f, r.rotation);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, r.scale_ratio);
+    TEST_ASSERT_FLOAT_WITHIN(0.0f, 0.0f, a.c[M].re); /* DC dropped */
+    for (k = 0; k <= 2u * M; k++) {
+        e += a.c[k].re * a.c[k].re + a.c[k].im * a.c[k].im;
+    }
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, e); /* unit energy */
+}
+
+/* Translation, scale, rotation and start point together: in rotation-invariant mode
+   e ~ 0 and the rotation (within 1 deg), scale (within 1 %) and start-point shift (the
+   arc-length fraction of the new start point) are recovered. */
+static void test_similarity_transforms_recovered(void)
+{
+    static const float thetas[] = {0.0f, 37.0f, -101.5f, 179.0f};
+    static const float scales[] = {1.0f, 2.5f, 0.4f, 7.0f};
+    static const uint32_t starts[] = {0u, 5u, 17u, 33u};
+    const sbr_fd_t proto = fd_of(g_shape, NPTS);
+    uint32_t i;
+    for (i = 0; i < 4u; i++) {
+        const float th = thetas[i] * DEG;
+        sbr_fd_t q;
+        sbr_fd_match_t r;
+        float dshift;
+        transform(th, scales[i], 250.0f, -80.0f, starts[i]);
+        q = fd_of(g_tmp, NPTS);
+        r = match(&g_inv, &q, &proto);
+        TEST_ASSERT_FLOAT_WITHIN(2e-3f, 0.0f, r.error);
+        TEST_ASSERT_FLOAT_WITHIN(1.0f * DEG, th, r.rotation);
+        TEST_ASSERT_FLOAT_WITHIN(0.01f * scales[i], scales[i], r.scale_ratio);
+        dshift = fabsf(r.shift - arc_fraction(starts[i]));
+        TEST_ASSERT_TRUE(fminf(dshift, 1.0f - dshift) < 0.005f);
+        /* the centroid follows the translation */
+        TEST_ASSERT_FLOAT_WITHIN(0.05f * scales[i], 250.0f + scales[i] * (proto.cx * cosf(th) - proto.cy * sinf(th)), q.cx);
+        TEST_ASSERT_FLOAT_WITHIN(0.05f * scales[i], -80.0f + scales[i] * (proto.cx * sinf(th) + proto.cy * cosf(th)), q.cy);
+    }
+}
+
+/* Without rotation, covariant mode also gives e ~ 0 under translation, scale and start
+   point, and finds the start point. */
+static void test_covariant_without_rotation(void)
+{
+    const sbr_fd_t proto = fd_of(g_shape, NPTS);
+    sbr_fd_t q;
+    sbr_fd_match_t r;
+    float dshift;
+    transform(0.0f, 3.0f, -40.0f, 12.0f, 21u);
+    q = fd_of(g_tmp, NPTS);
+    r = match(&g_cov, &q, &proto);
+    TEST_ASSERT_FLOAT_WITHIN(2e-3f, 0.0f, r.error);
+    TEST_ASSERT_FLOAT_WITHIN(1.0f * DEG, 0.0f, r.rotation);
+    dshift = fabsf(r.shift - arc_fraction(21u));
+    TEST_ASSERT_TRUE(fminf(dshift, 1.0f - dshift) < 0.005f);
+}
+
+static void rotate_six(float theta, sbr_pointf_t out[8])
+{
+    uint32_t i;
+    for (i = 0; i < 8u; i++) {
+        out[i].x = k_six[i].x * cosf(theta) - k_six[i].y * sinf(theta);
+        out[i].y = k_six[i].x * sinf(theta) + k_six[i].y * cosf(theta);
+    }
+}
+
+/* A "6" and a "9" (the 6 turned by 180 degrees) stay apart in covariant mode and match
+   in invariant mode; a rotation bound limits what covariant mode accepts. */
+static void test_six_and_nine(void)
+{
+    const sbr_fd_t six = fd_of(k_six, 8u);
+    sbr_pointf_t p[8];
+    sbr_fd_t nine;
+    sbr_fd_t tilted;
+    sbr_fd_match_t r;
+    sbr_fd_match_config_t bounded = g_cov;
+    rotate_six(PI_F, p);
+    nine = fd_of(p, 8u);
+    r = match(&g_inv, &nine, &six);
+    TEST_ASSERT_FLOAT_WITHIN(2e-3f, 0.0f, r.error);
+    TEST_ASSERT_FLOAT_WITHIN(1.0f * DEG, PI_F, fabsf(r.rotation));
+    r = match(&g_cov, &nine, &six);
+    TEST_ASSERT_TRUE(r.error > 0.5f);
+    /* a slightly tilted 6 is still a 6 in covariant mode, within a 30 degree bound */
+    bounded.max_rotation = 30.0f * DEG;
+    rotate_six(10.0f * DEG, p);
+    tilted = fd_of(p, 8u);
+    r = match(&bounded, &tilted, &six);
+    TEST_ASSERT_TRUE(r.error < 0.05f);
+    TEST_ASSERT_TRUE(fabsf(r.rotation) <= 30.0f * DEG + 1e-4f);
+    r = match(&bounded, &nine, &six);
+    TEST_ASSERT_TRUE(r.error > 0.5f);
+    TEST_ASSERT_TRUE(fabsf(r.rotation) <= 30.0f * DEG + 1e-4f);
+}
+
+/* Covariant mode with rotation bounded to 0 charges a 60 degree turn. */
+static void test_covariant_penalises_rotation(void)
+{
+    const sbr_fd_t a = fd_of(k_six, 8u);
+    sbr_pointf_t p[8];
+    sbr_fd_t b;
+    sbr_fd_match_t r;
+    sbr_fd_match_config_t zero = g_cov;
+    zero.max_rotation = 0.0f;
+    rotate_six(60.0f * DEG, p);
+    b = fd_of(p, 8u);
+    r = match(&zero, &b, &a);
+    TEST_ASSERT_TRUE(r.error > 0.5f);
+    r = match(&g_inv, &b, &a);
+    TEST_ASSERT_FLOAT_WITHIN(2e-3f, 0.0f, r.error);
+}
+
+/* Mirror images: the mirrored shape matches the mirrored descriptor, not the original. */
+static void test_mirror(void)
+{
+    const sbr_fd_t a = fd_of(k_six, 8u);
+    sbr_fd_t mir;
+    sbr_fd_t am;
+    sbr_fd_match_t r;
+    uint32_t i;
+    /* x -> -x, and the order reversed so the trace direction stays the same */
+    for (i = 0; i < 8u; i++) {
+        g_tmp[i].x = -k_six[(8u - i) % 8u].x;
+        g_tmp[i].y = k_six[(8u - i) % 8u].y;
+    }
+    mir = fd_of(g_tmp, 8u);
+    r = match(&g_inv, &mir, &a);
+    TEST_ASSERT_TRUE(r.error > 0.05f);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_mirror(&a, &am));
+    r = match(&g_inv, &mir, &am);
+    TEST_ASSERT_FLOAT_WITHIN(2e-3f, 0.0f, r.error);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_mirror(&am, &am)); /* in place, twice = identity */
+    TEST_ASSERT_FLOAT_WITHIN(1e-7f, a.c[M + 1u].re, am.c[M + 1u].re);
+}
+
+/* Traced integer contours work the same: a rasterised rectangle matches its float twin. */
+static void test_integer_points(void)
+{
+    sbr_point_t p[4] = {{10, 10}, {10, 30}, {50, 30}, {50, 10}};
+    sbr_pointf_t f[4] = {{0, 0}, {0, 2}, {4, 2}, {4, 0}};
+    sbr_fd_t a;
+    sbr_fd_t b;
+    sbr_fd_match_t r;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_from_points(&g_fft_n, p, 4u, M, g_work, 256u, &a));
+    b = fd_of(f, 4u);
+    r = match(&g_cov, &a, &b);
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 0.0f, r.error);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 10.0f, r.scale_ratio);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 30.0f, a.cx);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 20.0f, a.cy);
+}
+
+static void test_table(void)
+{
+    sbr_fd_t protos[3];
+    sbr_fd_match_t res[3];
+    uint32_t best = 99u;
+    sbr_fd_t q;
+    sbr_pointf_t sq[4] = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+    sbr_pointf_t tri[3] = {{0, 0}, {0, 1}, {1, 0}};
+    protos[0] = fd_of(sq, 4u);
+    protos[1] = fd_of(g_shape, NPTS);
+    protos[2] = fd_of(tri, 3u);
+    transform(5.0f * DEG, 3.0f, 1.0f, 2.0f, 9u);
+    q = fd_of(g_tmp, NPTS);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_table(&g_fft_p, &g_cov, &q, protos, 3u, g_work, 256u, res, &best));
+    TEST_ASSERT_EQUAL_UINT32(1u, best);
+    TEST_ASSERT_TRUE(res[0].error > 0.05f && res[2].error > 0.05f);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_match_table(&g_fft_p, &g_cov, &q, protos, 0u, g_work, 256u, res, &best));
+}
+
+static void test_degenerate_input_gets_status(void)
+{
+    sbr_fd_t fd;
+    sbr_fd_t ok;
+    sbr_fd_match_t r;
+    sbr_pointf_t line[5] = {{0, 0}, {1, 1}, {2, 2}, {3, 3}, {4, 4}};
+    sbr_pointf_t same[4] = {{5, 5}, {5, 5}, {5, 5}, {5, 5}};
+    sbr_pointf_t huge[3] = {{0, 0}, {2e6f, 0}, {0, 1}};
+    sbr_pointf_t nanp[3] = {{0, 0}, {1, 0}, {0, 1}};
+    sbr_fft_t bad;
+    nanp[1].x = nanf("");
+    ok = fd_of(g_shape, NPTS);
+    memset(&fd, 0x77, sizeof fd);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_from_pointsf(&g_fft_n, g_shape, 0u, M, g_work, 256u, &fd));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_fd_from_pointsf(&g_fft_n, g_shape, 1u, M, g_work, 256u, &fd));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_fd_from_pointsf(&g_fft_n, g_shape, 2u, M, g_work, 256u, &fd));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_fd_from_pointsf(&g_fft_n, line, 5u, M, g_work, 256u, &fd));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_fd_from_pointsf(&g_fft_n, same, 4u, M, g_work, 256u, &fd));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_from_pointsf(&g_fft_n, huge, 3u, M, g_work, 256u, &fd));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_from_pointsf(&g_fft_n, nanp, 3u, M, g_work, 256u, &fd));
+    TEST_ASSERT_EQUAL_INT(0x77777777, (int)fd.m); /* untouched on error */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_from_pointsf(&g_fft_n, g_shape, NPTS, 0u, g_work, 256u, &fd));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_from_pointsf(&g_fft_n, g_shape, NPTS, 33u, g_work, 256u, &fd));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_from_pointsf(&g_fft_n, g_shape, NPTS, M, g_work, 255u, &fd));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_fd_from_pointsf(&g_fft_n, NULL, NPTS, M, g_work, 256u, &fd));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_fd_from_points(&g_fft_n, NULL, NPTS, M, g_work, 256u, &fd));
+    memset(&bad, 0, sizeof bad);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_fd_from_pointsf(&bad, g_shape, NPTS, M, g_work, 256u, &fd));
+    /* matching: mismatched M, too small P, corrupted descriptors, bad config */
+    fd = ok;
+    fd.m = M - 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_match(&g_fft_p, &g_cov, &fd, &ok, g_work, 256u, &r));
+    {
+        sbr_fft_t p16;
+        sbr_fd_t big;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_init_16(&p16));
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_from_pointsf(&g_fft_n, g_shape, NPTS, 8u, g_work, 256u, &big));
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_match(&p16, &g_cov, &big, &big, g_work, 256u, &r));
+    }
+    fd = ok;
+    fd.scale = nanf("");
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match(&g_fft_p, &g_cov, &fd, &ok, g_work, 256u, &r));
+    fd = ok;
+    fd.c[3].im = INFINITY;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match(&g_fft_p, &g_cov, &ok, &fd, g_work, 256u, &r));
+    fd = ok;
+    fd.m = 1000u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_mirror(&fd, &fd));
+    {
+        sbr_fd_match_config_t c = g_cov;
+        c.mode = (sbr_fd_mode_t)5;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match(&g_fft_p, &c, &ok, &ok, g_work, 256u, &r));
+        c = g_cov;
+        c.max_rotation = -1.0f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match(&g_fft_p, &c, &ok, &ok, g_work, 256u, &r));
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_match(&g_fft_p, &g_cov, &ok, &ok, g_work, 63u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_fd_match(&g_fft_p, &g_cov, &ok, &ok, g_work, 256u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_fd_match_config_default(NULL));
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_self_match_is_perfect);
+    RUN_TEST(test_similarity_transforms_recovered);
+    RUN_TEST(test_covariant_without_rotation);
+    RUN_TEST(test_six_and_nine);
+    RUN_TEST(test_covariant_penalises_rotation);
+    RUN_TEST(test_mirror);
+    RUN_TEST(test_integer_points);
+    RUN_TEST(test_table);
+    RUN_TEST(test_degenerate_input_gets_status);
+    return UNITY_END();
+}
