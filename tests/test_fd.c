@@ -240,6 +240,30 @@ static void test_integer_points(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-3f, 20.0f, a.cy);
 }
 
+/* Smoothing weights C(n) by exp(-2 pi^2 n^2 sigma^2) and renormalises. */
+static void test_smooth(void)
+{
+    const sbr_fd_t a = fd_of(g_shape, NPTS);
+    sbr_fd_t b;
+    float e = 0.0f;
+    float ratio;
+    uint32_t k;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_smooth(&a, 0.05f, &b));
+    for (k = 0; k <= 2u * M; k++) {
+        e += b.c[k].re * b.c[k].re + b.c[k].im * b.c[k].im;
+    }
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, e);
+    /* relative weight of n = 3 against n = 1 */
+    ratio = hypotf(b.c[M + 3u].re, b.c[M + 3u].im) / hypotf(b.c[M + 1u].re, b.c[M + 1u].im) /
+            (hypotf(a.c[M + 3u].re, a.c[M + 3u].im) / hypotf(a.c[M + 1u].re, a.c[M + 1u].im));
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, expf(-2.0f * PI_F * PI_F * 0.0025f * 8.0f), ratio);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_smooth(&a, 0.0f, &b));
+    TEST_ASSERT_EQUAL_MEMORY(&a, &b, sizeof a);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_smooth(&a, -0.1f, &b));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_smooth(&a, nanf(""), &b));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_fd_smooth(&a, 0.1f, NULL));
+}
+
 static void test_table(void)
 {
     sbr_fd_t protos[3];
@@ -330,6 +354,7 @@ int main(void)
     RUN_TEST(test_covariant_penalises_rotation);
     RUN_TEST(test_mirror);
     RUN_TEST(test_integer_points);
+    RUN_TEST(test_smooth);
     RUN_TEST(test_table);
     RUN_TEST(test_degenerate_input_gets_status);
     return UNITY_END();

@@ -88,6 +88,22 @@ sbr_status_t sbr_fd_from_pointsf(const sbr_fft_t *fft, const sbr_pointf_t *point
  */
 sbr_status_t sbr_fd_mirror(const sbr_fd_t *in, sbr_fd_t *out);
 
+/**
+ * @brief Descriptor of the contour smoothed by a Gaussian along its length.
+ *
+ * Convolving the closed contour with a Gaussian of standard deviation `sigma` (a
+ * fraction of the contour length) multiplies C(n) by exp(-2 pi^2 n^2 sigma^2); the result
+ * is normalised to unit energy again (`scale` keeps the unsmoothed value). Smoothing
+ * suppresses small boundary noise and articulation detail, which helps retrieval of
+ * deformable shapes and costs discrimination of fine detail.
+ *
+ * @param[in]  in    descriptor.
+ * @param[in]  sigma 0 (copy) .. 0.5.
+ * @param[out] out   smoothed descriptor; may equal `in`.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a bad descriptor or sigma.
+ */
+sbr_status_t sbr_fd_smooth(const sbr_fd_t *in, float sigma, sbr_fd_t *out);
+
 /** Matching modes. */
 typedef enum sbr_fd_mode_e {
     SBR_FD_ROTATION_INVARIANT = 0, /**< maximise |r|: any rotation matches */

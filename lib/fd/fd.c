@@ -226,6 +226,47 @@ sbr_status_t sbr_fd_mirror(const sbr_fd_t *in, sbr_fd_t *out)
     return SBR_OK;
 }
 
+sbr_status_t sbr_fd_smooth(const sbr_fd_t *in, float sigma, sbr_fd_t *out)
+{
+    const sbr_status_t st = check_fd(in);
+    const float g = 2.0f * SBR_PI_F * SBR_PI_F * sigma * sigma;
+    float energy = 0.0f;
+    float inv;
+    uint32_t m;
+    uint32_t k;
+
+    if (st != SBR_OK) {
+        return st;
+    }
+    if (out == NULL) {
+        return SBR_ERR_NULL;
+    }
+    if ((isfinite(sigma) == 0) || (sigma < 0.0f) || (sigma > 0.5f)) {
+        return SBR_ERR_RANGE;
+    }
+    m = in->m;
+    *out = *in;
+    for (k = 1u; k <= m; k++) {
+        const float fk = (float)k;
+        const float w = expf(-g * fk * fk);
+        out->c[m + k].re *= w;
+        out->c[m + k].im *= w;
+        out->c[m - k].re *= w;
+        out->c[m - k].im *= w;
+        energy += (out->c[m + k].re * out->c[m + k].re) + (out->c[m + k].im * out->c[m + k].im) +
+                  (out->c[m - k].re * out->c[m - k].re) + (out->c[m - k].im * out->c[m - k].im);
+    }
+    if (energy <= 0.0f) {
+        return SBR_ERR_RANGE;
+    }
+    inv = 1.0f / sqrtf(energy);
+    for (k = 0u; k <= (2u * m); k++) {
+        out->c[k].re *= inv;
+        out->c[k].im *= inv;
+    }
+    return SBR_OK;
+}
+
 sbr_status_t sbr_fd_match_config_default(sbr_fd_match_config_t *cfg)
 {
     if (cfg == NULL) {

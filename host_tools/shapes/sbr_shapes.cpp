@@ -1,0 +1,390 @@
+// sbr_shapes: shape retrieval on a silhouette set (MPEG-7 CE-Shape-1, Kimia-99) with sbr's
+// contour tracing, Fourier descriptors and correlation matcher, against OpenCV baselines
+// measured in the same run:
+//   - OpenCV findContours + matchShapes (Hu moments, I1, I2, I3);
+//   - the same FD correlation written with OpenCV (cv::dft per pair, same N, M, P) as the
+//     speed reference.
+// Prints the bull's-eye score (2 x class size nearest, query included) per variant, the
+// time of each stage, and as its last line:
+//   bullseye_percent=<x> all_pairs_seconds=<x> opencv_same_method_seconds=<x> opencv_hu_best_bullseye_percent=<x>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "sbr/sbr.h"
+}
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct Options {
+    std::string data;
+    uint32_t n = 256, m = 16, p = 64;
+    float sigma = 0.01f;
+    bool skip_opencv_fd = false;
+    int max_images = 0;
+};
+
+void usage() {
+    std::puts(
+        "usage: sbr_shapes --data DIR [--n N] [--m M] [--p P] [--sigma S] [--max-images K]\n"
+        "                  [--skip-opencv-fd]\n"
+        "\n"
+        "DIR holds binary PBM silhouettes (bit 1 = object), named CLASS-k.pbm (MPEG-7) or\n"
+        "trainimageCLASS_k.pbm (Kimia-99). Every shape is the query once against all shapes\n"
+        "(itself included); the bull's-eye score counts same-class shapes among the 2 x\n"
+        "class-size nearest. Defaults: N=256 (arc-length resampling and FFT), M=16 (kept\n"
+        "coefficients per side), P=64 (correlation size), S=0.01 (contour smoothing, a\n"
+        "fraction of the length).");
+}
+
+std::string class_of(const std::string &stem) {
+    const size_t dash = stem.rfind('-');
+    if (dash != std::string::npos) return stem.substr(0, dash);
+    const size_t us = stem.rfind('_');
+    return us != std::string::npos ? stem.substr(0, us) : stem;
+}
+
+// Bull's-eye: for each query, same-class shapes among the `window` smallest distances.
+double bullseye(const std::vector<float> &d, const std::vector<int> &cls, size_t window,
+                size_t class_size) {
+    const size_t n = cls.size();
+    std::vector<size_t> idx(n);
+    size_t hits = 0;
+    for (size_t i = 0; i < n; ++i) {
+        for (size_t j = 0; j < n; ++j) idx[j] = j;
+        const float *row = &d[i * n];
+        std::partial_sort(idx.begin(), idx.begin() + static_cast<long>(std::min(window, n)), idx.end(),
+                          [&](size_t a, size_t b) { return row[a] < row[b] || (row[a] == row[b] && a < b); });
+        for (size_t k = 0; k < std::min(window, n); ++k) hits += cls[idx[k]] == cls[i];
+    }
+    return 100.0 * static_cast<double>(hits) / static_cast<double>(n * class_size);
+}
+
+// The matchShapes formulas on precomputed Hu moments (what cv::matchShapes does inside);
+// checked against cv::matchShapes itself on a sample of pairs.
+double hu_distance(const double *ha, const double *hb, int method) {
+    const double eps = 1e-5;
+    double result = 0.0;
+    for (int i = 0; i < 7; ++i) {
+        const double aa = std::fabs(ha[i]), bb = std::fabs(hb[i]);
+        if (aa <= eps || bb <= eps) continue;
+        const double sa = (ha[i] > 0 ? 1.0 : (ha[i] < 0 ? -1.0 : 0.0)) * std::log10(aa);
+        const double sb = (hb[i] > 0 ? 1.0 : (hb[i] < 0 ? -1.0 : 0.0)) * std::log10(bb);
+        if (method == 1) result += std::fabs(-1.0 / sa + 1.0 / sb);
+        else if (method == 2) result += std::fabs(-sa + sb);
+        else result = std::max(result, std::fabs((sa - sb) / sa));
+    }
+    return result;
+}
+
+struct Variant {
+    const char *name;
+    bool mirror;
+    bool smooth;
+    bool multires;
+};
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto next = [&]() -> const char * { return i + 1 < argc ? argv[++i] : ""; };
+        if (a == "--data") o.data = next();
+        else if (a == "--n") o.n = static_cast<uint32_t>(std::atoi(next()));
+        else if (a == "--m") o.m = static_cast<uint32_t>(std::atoi(next()));
+        else if (a == "--p") o.p = static_cast<uint32_t>(std::atoi(next()));
+        else if (a == "--sigma") o.sigma = static_cast<float>(std::atof(next()));
+        else if (a == "--max-images") o.max_images = std::atoi(next());
+        else if (a == "--skip-opencv-fd") o.skip_opencv_fd = true;
+        else if (a == "--help" || a == "-h") { usage(); return 0; }
+        else { usage(); return 2; }
+    }
+    if (o.data.empty()) { usage(); return 2; }
+    if (!fs::is_directory(o.data)) {
+        std::fprintf(stderr, "sbr_shapes: %s is not a folder\n", o.data.c_str());
+        return 2;
+    }
+    sbr_fft_t fft_n, fft_p;
+    if (sbr_fft_init(&fft_n, o.n) != SBR_OK || sbr_fft_init(&fft_p, o.p) != SBR_OK ||
+        o.m < 2 || o.m > SBR_FD_MAX_M || 2 * o.m >= o.n || 2 * o.m + 1 > o.p) {
+        std::fprintf(stderr, "sbr_shapes: unsupported N=%u M=%u P=%u\n", o.n, o.m, o.p);
+        return 2;
+    }
+
+    std::vector<fs::path> files;
+    for (const auto &e : fs::directory_iterator(o.data))
+        if (e.path().extension() == ".pbm") files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    if (o.max_images > 0 && files.size() > static_cast<size_t>(o.max_images)) files.resize(o.max_images);
+    const size_t count = files.size();
+    if (count == 0) {
+        std::fprintf(stderr, "sbr_shapes: no .pbm files in %s\n", o.data.c_str());
+        return 2;
+    }
+    std::map<std::string, int> class_ids;
+    std::vector<int> cls(count);
+    std::map<int, size_t> class_count;
+    for (size_t i = 0; i < count; ++i) {
+        const std::string c = class_of(files[i].stem().string());
+        const auto it = class_ids.emplace(c, static_cast<int>(class_ids.size())).first;
+        cls[i] = it->second;
+        class_count[cls[i]]++;
+    }
+    const size_t class_size = class_count.begin()->second;
+    const size_t window = 2 * class_size;
+
+    // ---- stage 1: read ----------------------------------------------------------------
+    auto t0 = Clock::now();
+    std::vector<cv::Mat> masks(count);
+    for (size_t i = 0; i < count; ++i) {
+        cv::Mat img = cv::imread(files[i].string(), cv::IMREAD_GRAYSCALE);
+        if (img.empty()) {
+            std::fprintf(stderr, "sbr_shapes: cannot read %s\n", files[i].c_str());
+            return 1;
+        }
+        masks[i] = (img == 0);  // PBM bit 1 = object, decoded as black
+    }
+    const double t_read = seconds_since(t0);
+
+    // ---- stage 2: sbr contours (largest outer boundary of each silhouette) -----------
+    t0 = Clock::now();
+    std::vector<std::vector<sbr_point_t>> contours(count);
+    std::vector<uint8_t> ws;
+    std::vector<sbr_point_t> pts;
+    std::vector<sbr_contour_t> cts(4096);
+    for (size_t i = 0; i < count; ++i) {
+        const cv::Mat &m = masks[i];
+        sbr_image_t v{static_cast<uint32_t>(m.cols), static_cast<uint32_t>(m.rows),
+                      static_cast<uint32_t>(m.step), SBR_PIXEL_GRAY8, m.data};
+        ws.resize(sbr_contour_workspace_size(v.width, v.height));
+        pts.resize(static_cast<size_t>(4) * (m.cols + m.rows) * 8 + 64);
+        uint32_t nc = 0;
+        sbr_status_t st;
+        while ((st = sbr_contour_find_external(&v, ws.data(), ws.size(), pts.data(),
+                                               static_cast<uint32_t>(pts.size()), cts.data(),
+                                               static_cast<uint32_t>(cts.size()), &nc)) == SBR_ERR_CAPACITY)
+            pts.resize(pts.size() * 2);
+        if (st != SBR_OK || nc == 0) {
+            std::fprintf(stderr, "sbr_shapes: no contour in %s (%s)\n", files[i].c_str(), sbr_status_str(st));
+            return 1;
+        }
+        int64_t best_area = -1;
+        uint32_t best = 0;
+        for (uint32_t k = 0; k < nc; ++k) {
+            int64_t a2 = 0;
+            sbr_contour_area2(&pts[cts[k].first], cts[k].length, &a2);
+            if (std::llabs(a2) > best_area) { best_area = std::llabs(a2); best = k; }
+        }
+        contours[i].assign(pts.begin() + cts[best].first, pts.begin() + cts[best].first + cts[best].length);
+    }
+    const double t_contours = seconds_since(t0);
+
+    // ---- stage 3: sbr descriptors -----------------------------------------------------
+    t0 = Clock::now();
+    std::vector<sbr_fd_t> fd(count), fd_mir(count), fd_s(count), fd_smir(count), fd_lo(count), fd_lomir(count);
+    std::vector<sbr_complex_t> work(std::max(o.n, o.p));
+    const uint32_t m_lo = std::max(2u, o.m / 2);
+    for (size_t i = 0; i < count; ++i) {
+        const auto &c = contours[i];
+        if (sbr_fd_from_points(&fft_n, c.data(), static_cast<uint32_t>(c.size()), o.m, work.data(),
+                               static_cast<uint32_t>(work.size()), &fd[i]) != SBR_OK) {
+            std::fprintf(stderr, "sbr_shapes: degenerate contour in %s\n", files[i].c_str());
+            return 1;
+        }
+        sbr_fd_mirror(&fd[i], &fd_mir[i]);
+        sbr_fd_smooth(&fd[i], o.sigma, &fd_s[i]);
+        sbr_fd_mirror(&fd_s[i], &fd_smir[i]);
+        sbr_fd_from_points(&fft_n, c.data(), static_cast<uint32_t>(c.size()), m_lo, work.data(),
+                           static_cast<uint32_t>(work.size()), &fd_lo[i]);
+        sbr_fd_smooth(&fd_lo[i], o.sigma, &fd_lo[i]);
+        sbr_fd_mirror(&fd_lo[i], &fd_lomir[i]);
+    }
+    const double t_fd = seconds_since(t0);
+
+    // ---- stage 4: all pairs with sbr's matcher, per variant -----------------------------
+    sbr_fd_match_config_t cfg;
+    sbr_fd_match_config_default(&cfg);
+    cfg.mode = SBR_FD_ROTATION_INVARIANT;
+    cfg.refine = 0;
+    sbr_fft_t fft_lo;
+    uint32_t p_lo = 16;
+    while (p_lo < 2 * m_lo + 1) p_lo *= 2;
+    sbr_fft_init(&fft_lo, p_lo);
+    const Variant variants[] = {
+        {"plain FD correlation (rotation invariant)", false, false, false},
+        {"+ mirror", true, false, false},
+        {"+ mirror + contour smoothing", true, true, false},
+        {"+ mirror + smoothing + two resolutions (M and M/2)", true, true, true},
+    };
+    const size_t nvar = sizeof(variants) / sizeof(variants[0]);
+    std::vector<double> var_be(nvar), var_sec(nvar);
+    std::vector<float> dist(count * count);
+    auto err = [&](const sbr_fft_t &f, const sbr_fd_t &a, const sbr_fd_t &b) {
+        sbr_fd_match_t r;
+        sbr_fd_match(&f, &cfg, &a, &b, work.data(), static_cast<uint32_t>(work.size()), &r);
+        return r.error;
+    };
+    for (size_t v = 0; v < nvar; ++v) {
+        const Variant &var = variants[v];
+        const auto &base = var.smooth ? fd_s : fd;
+        const auto &mir = var.smooth ? fd_smir : fd_mir;
+        t0 = Clock::now();
+        for (size_t i = 0; i < count; ++i) {
+            dist[i * count + i] = 0.0f;
+            for (size_t j = i + 1; j < count; ++j) {
+                float e = err(fft_p, base[i], base[j]);
+                if (var.mirror) e = std::min(e, err(fft_p, base[i], mir[j]));
+                if (var.multires) {
+                    float e2 = err(fft_lo, fd_lo[i], fd_lo[j]);
+                    if (var.mirror) e2 = std::min(e2, err(fft_lo, fd_lo[i], fd_lomir[j]));
+                    e += e2;
+                }
+                dist[i * count + j] = dist[j * count + i] = e;
+            }
+            if (i % 100 == 0) std::fprintf(stderr, "\r[%zu/%zu] %s      ", v + 1, nvar, var.name);
+        }
+        var_sec[v] = seconds_since(t0);
+        var_be[v] = bullseye(dist, cls, window, class_size);
+    }
+    std::fprintf(stderr, "\n");
+    const size_t head = nvar - 1;  // the headline: every improvement on
+
+    // ---- OpenCV: Hu moments + matchShapes I1..I3 ----------------------------------------
+    t0 = Clock::now();
+    std::vector<std::array<double, 7>> hu(count);
+    std::vector<std::vector<cv::Point>> cv_contours(count);
+    for (size_t i = 0; i < count; ++i) {
+        std::vector<std::vector<cv::Point>> cs;
+        cv::findContours(masks[i].clone(), cs, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+        size_t best = 0;
+        double best_a = -1;
+        for (size_t k = 0; k < cs.size(); ++k) {
+            const double a = std::fabs(cv::contourArea(cs[k]));
+            if (a > best_a) { best_a = a; best = k; }
+        }
+        cv_contours[i] = cs[best];
+        cv::HuMoments(cv::moments(cs[best]), hu[i].data());
+    }
+    double hu_be[3];
+    for (int method = 1; method <= 3; ++method) {
+        for (size_t i = 0; i < count; ++i)
+            for (size_t j = 0; j < count; ++j)
+                dist[i * count + j] = static_cast<float>(hu_distance(hu[i].data(), hu[j].data(), method));
+        hu_be[method - 1] = bullseye(dist, cls, window, class_size);
+    }
+    const double t_hu = seconds_since(t0);
+    // our Hu formulas are OpenCV's: compare with cv::matchShapes on a sample of pairs
+    double hu_check = 0.0;
+    for (size_t s = 0; s < std::min<size_t>(count, 50); ++s) {
+        const size_t i = (s * 7919) % count, j = (s * 104729 + 3) % count;
+        for (int method = 1; method <= 3; ++method) {
+            const double ref = cv::matchShapes(cv_contours[i], cv_contours[j], method, 0.0);
+            hu_check = std::max(hu_check, std::fabs(ref - hu_distance(hu[i].data(), hu[j].data(), method)));
+        }
+    }
+
+    // ---- OpenCV same method: FD correlation with cv::dft per pair -----------------------
+    double t_cv = 0.0, cv_be = 0.0;
+    if (!o.skip_opencv_fd) {
+        // Same descriptors (sbr's coefficients, as cv::Mat), correlation through cv::dft.
+        const int P = static_cast<int>(o.p), M = static_cast<int>(o.m);
+        std::vector<cv::Mat> q(count), qm(count);
+        for (size_t i = 0; i < count; ++i) {
+            q[i] = cv::Mat(1, 2 * M + 1, CV_32FC2, reinterpret_cast<void *>(fd_s[i].c)).clone();
+            qm[i] = cv::Mat(1, 2 * M + 1, CV_32FC2, reinterpret_cast<void *>(fd_smir[i].c)).clone();
+        }
+        cv::Mat buf(1, P, CV_32FC2), out(1, P, CV_32FC2);
+        auto cv_err = [&](const cv::Mat &a, const cv::Mat &b) {
+            buf.setTo(cv::Scalar::all(0));
+            const cv::Vec2f *pa = a.ptr<cv::Vec2f>(), *pb = b.ptr<cv::Vec2f>();
+            cv::Vec2f *pbuf = buf.ptr<cv::Vec2f>();
+            for (int k = 0; k <= 2 * M; ++k) {
+                const int at = k >= M ? k - M : P + k - M;
+                pbuf[at] = cv::Vec2f(pa[k][0] * pb[k][0] + pa[k][1] * pb[k][1],
+                                     pa[k][0] * pb[k][1] - pa[k][1] * pb[k][0]);
+            }
+            cv::dft(buf, out, cv::DFT_INVERSE);
+            float best = 0.0f;
+            const cv::Vec2f *po = out.ptr<cv::Vec2f>();
+            for (int l = 0; l < P; ++l) best = std::max(best, po[l][0] * po[l][0] + po[l][1] * po[l][1]);
+            return 2.0f - 2.0f * std::sqrt(best);
+        };
+        std::vector<cv::Mat> ql(count), qlm(count);
+        const int ML = static_cast<int>(m_lo), PL = static_cast<int>(p_lo);
+        for (size_t i = 0; i < count; ++i) {
+            ql[i] = cv::Mat(1, 2 * ML + 1, CV_32FC2, reinterpret_cast<void *>(fd_lo[i].c)).clone();
+            qlm[i] = cv::Mat(1, 2 * ML + 1, CV_32FC2, reinterpret_cast<void *>(fd_lomir[i].c)).clone();
+        }
+        cv::Mat buf_lo(1, PL, CV_32FC2), out_lo(1, PL, CV_32FC2);
+        auto cv_err_lo = [&](const cv::Mat &a, const cv::Mat &b) {
+            buf_lo.setTo(cv::Scalar::all(0));
+            const cv::Vec2f *pa = a.ptr<cv::Vec2f>(), *pb = b.ptr<cv::Vec2f>();
+            cv::Vec2f *pbuf = buf_lo.ptr<cv::Vec2f>();
+            for (int k = 0; k <= 2 * ML; ++k) {
+                const int at = k >= ML ? k - ML : PL + k - ML;
+                pbuf[at] = cv::Vec2f(pa[k][0] * pb[k][0] + pa[k][1] * pb[k][1],
+                                     pa[k][0] * pb[k][1] - pa[k][1] * pb[k][0]);
+            }
+            cv::dft(buf_lo, out_lo, cv::DFT_INVERSE);
+            float best = 0.0f;
+            const cv::Vec2f *po = out_lo.ptr<cv::Vec2f>();
+            for (int l = 0; l < PL; ++l) best = std::max(best, po[l][0] * po[l][0] + po[l][1] * po[l][1]);
+            return 2.0f - 2.0f * std::sqrt(best);
+        };
+        t0 = Clock::now();
+        for (size_t i = 0; i < count; ++i) {
+            dist[i * count + i] = 0.0f;
+            for (size_t j = i + 1; j < count; ++j) {
+                float e = std::min(cv_err(q[i], q[j]), cv_err(q[i], qm[j]));
+                e += std::min(cv_err_lo(ql[i], ql[j]), cv_err_lo(ql[i], qlm[j]));
+                dist[i * count + j] = dist[j * count + i] = e;
+            }
+            if (i % 100 == 0) std::fprintf(stderr, "\r[OpenCV same method] %zu/%zu   ", i, count);
+        }
+        t_cv = seconds_since(t0);
+        std::fprintf(stderr, "\n");
+        cv_be = bullseye(dist, cls, window, class_size);
+    }
+
+    // ---- report ------------------------------------------------------------------------
+    const size_t pairs = count * (count - 1) / 2;
+    std::printf("data: %s: %zu shapes, %zu classes of %zu; bull's-eye window %zu\n", o.data.c_str(),
+                count, class_ids.size(), class_size, window);
+    std::printf("sbr: N=%u M=%u P=%u smoothing sigma=%.3f, second resolution M=%u P=%u\n", o.n, o.m,
+                o.p, static_cast<double>(o.sigma), m_lo, p_lo);
+    std::printf("stage times (s): read %.3f, sbr contours %.3f, sbr descriptors %.3f, "
+                "OpenCV contours+Hu+ranking %.3f\n", t_read, t_contours, t_fd, t_hu);
+    std::printf("%-56s %10s %12s\n", "variant (sbr, all pairs, one core)", "bull's-eye", "seconds");
+    for (size_t v = 0; v < nvar; ++v)
+        std::printf("%-56s %9.2f%% %12.3f\n", variants[v].name, var_be[v], var_sec[v]);
+    std::printf("OpenCV matchShapes (Hu): I1 %.2f%%, I2 %.2f%%, I3 %.2f%% (max deviation from "
+                "cv::matchShapes on 150 pairs: %.2g)\n", hu_be[0], hu_be[1], hu_be[2], hu_check);
+    if (!o.skip_opencv_fd)
+        std::printf("OpenCV same method (cv::dft per pair, headline variant): %.3f s, bull's-eye "
+                    "%.2f%%; sbr is %.1fx faster\n", t_cv, cv_be, t_cv / var_sec[head]);
+    std::printf("all pairs: %zu unordered pairs (distances are symmetric)\n", pairs);
+    std::printf("bullseye_percent=%.2f all_pairs_seconds=%.3f opencv_same_method_seconds=%.3f "
+                "opencv_hu_best_bullseye_percent=%.2f\n", var_be[head], var_sec[head], t_cv,
+                std::max({hu_be[0], hu_be[1], hu_be[2]}));
+    return 0;
+}
