@@ -1,26 +1,8 @@
 # Cortex-M4F bare metal (arm-none-eabi GCC + newlib), single-precision FPU, hard float.
 # Tests run on qemu's mps2-an386 (Cortex-M4 with FPU) through semihosting.
-set(CMAKE_SYSTEM_NAME Generic)
-set(CMAKE_SYSTEM_PROCESSOR arm)
-set(CMAKE_C_COMPILER arm-none-eabi-gcc)
-set(CMAKE_CXX_COMPILER arm-none-eabi-g++)
-set(CMAKE_ASM_COMPILER arm-none-eabi-gcc)
-set(CMAKE_AR arm-none-eabi-ar)
-set(CMAKE_RANLIB arm-none-eabi-ranlib)
-set(CMAKE_NM arm-none-eabi-nm)
-set(SBR_SIZE_TOOL arm-none-eabi-size)
-set(CMAKE_TRY_COMPILE_TARGET_TYPE STATIC_LIBRARY)
-
 set(SBR_CPU_FLAGS "-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16")
-set(CMAKE_C_FLAGS_INIT "${SBR_CPU_FLAGS}")
-set(CMAKE_CXX_FLAGS_INIT "${SBR_CPU_FLAGS}")
-set(CMAKE_EXE_LINKER_FLAGS_INIT "${SBR_CPU_FLAGS}")
+include(${CMAKE_CURRENT_LIST_DIR}/arm-none-eabi-common.cmake)
 
-set(CMAKE_FIND_ROOT_PATH_MODE_PROGRAM NEVER)
-set(CMAKE_FIND_ROOT_PATH_MODE_LIBRARY ONLY)
-set(CMAKE_FIND_ROOT_PATH_MODE_INCLUDE ONLY)
-
-set(SBR_TARGET_CORTEX_M ON CACHE BOOL "Bare-metal Cortex-M build" FORCE)
 set(SBR_QEMU_MACHINE mps2-an386 CACHE STRING "qemu machine for the tests")
 set(CMAKE_CROSSCOMPILING_EMULATOR
     qemu-system-arm -M ${SBR_QEMU_MACHINE} -cpu cortex-m4 -nographic

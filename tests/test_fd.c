@@ -311,6 +311,19 @@ static void test_degenerate_input_gets_status(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_fd_from_points(&g_fft_n, NULL, NPTS, M, g_work, 256u, &fd));
     memset(&bad, 0, sizeof bad);
     TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_fd_from_pointsf(&bad, g_shape, NPTS, M, g_work, 256u, &fd));
+    /* an instance with an overwritten integrity word is refused by the matcher too (it
+       must not run a transform that would fail and leave a meaningless result) */
+    bad = g_fft_p;
+    bad.check ^= 4u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_fd_match(&bad, &g_cov, &ok, &ok, g_work, 256u, &r));
+    {
+        sbr_fd_match_t res[1];
+        uint32_t best = 0u;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_fd_match_table(&bad, &g_cov, &ok, &ok, 1u, g_work, 256u, res, &best));
+        fd = ok;
+        fd.scale = -1.0f; /* a corrupted prototype in a table stops the table */
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, &g_cov, &ok, &fd, 1u, g_work, 256u, res, &best));
+    }
     /* matching: mismatched M, too small P, corrupted descriptors, bad config */
     fd = ok;
     fd.m = M - 1u;

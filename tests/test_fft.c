@@ -342,6 +342,9 @@ static void test_bad_arguments_leave_output_untouched(void)
     bad = fft;
     bad.stages = 7u;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_fft_forward(&bad, g_in, g_out));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_fft_check(&bad));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_fft_check(NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_check(&fft));
 
     /* partial overlap is rejected; identical buffers are fine */
     TEST_ASSERT_EQUAL_INT(SBR_ERR_OVERLAP, sbr_fft_forward(&fft, g_out, g_out + 1));

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -241,10 +242,19 @@ int main(int argc, char **argv) {
     const size_t nvar = sizeof(variants) / sizeof(variants[0]);
     std::vector<double> var_be(nvar), var_sec(nvar);
     std::vector<float> dist(count * count);
-    auto err = [&](const sbr_fft_t &f, const sbr_fd_t &a, const sbr_fd_t &b) {
-        sbr_fd_match_t r;
-        sbr_fd_match(&f, &cfg, &a, &b, work.data(), static_cast<uint32_t>(work.size()), &r);
-        return r.error;
+    // One table call per query row (the prototypes j > i are contiguous), as an ECU
+    // matches a region against its prototype library: arguments are checked once per row.
+    std::vector<sbr_fd_match_t> res(count), res2(count);
+    auto row = [&](const sbr_fft_t &f, const std::vector<sbr_fd_t> &q, size_t i,
+                   const std::vector<sbr_fd_t> &protos, std::vector<sbr_fd_match_t> &out) {
+        uint32_t best = 0;
+        const sbr_status_t st = sbr_fd_match_table(&f, &cfg, &q[i], &protos[i + 1],
+                                                   static_cast<uint32_t>(count - i - 1), work.data(),
+                                                   static_cast<uint32_t>(work.size()), out.data(), &best);
+        if (st != SBR_OK) {
+            std::fprintf(stderr, "sbr_shapes: matching failed (%s)\n", sbr_status_str(st));
+            std::exit(1);
+        }
     };
     for (size_t v = 0; v < nvar; ++v) {
         const Variant &var = variants[v];
@@ -253,15 +263,24 @@ int main(int argc, char **argv) {
         t0 = Clock::now();
         for (size_t i = 0; i < count; ++i) {
             dist[i * count + i] = 0.0f;
-            for (size_t j = i + 1; j < count; ++j) {
-                float e = err(fft_p, base[i], base[j]);
-                if (var.mirror) e = std::min(e, err(fft_p, base[i], mir[j]));
-                if (var.multires) {
-                    float e2 = err(fft_lo, fd_lo[i], fd_lo[j]);
-                    if (var.mirror) e2 = std::min(e2, err(fft_lo, fd_lo[i], fd_lomir[j]));
-                    e += e2;
-                }
-                dist[i * count + j] = dist[j * count + i] = e;
+            if (i + 1 == count) break;
+            const size_t k = count - i - 1;
+            std::vector<float> e(k);
+            row(fft_p, base, i, base, res);
+            for (size_t t = 0; t < k; ++t) e[t] = res[t].error;
+            if (var.mirror) {
+                row(fft_p, base, i, mir, res2);
+                for (size_t t = 0; t < k; ++t) e[t] = std::min(e[t], res2[t].error);
+            }
+            if (var.multires) {
+                row(fft_lo, fd_lo, i, fd_lo, res);
+                if (var.mirror) row(fft_lo, fd_lo, i, fd_lomir, res2);
+                for (size_t t = 0; t < k; ++t)
+                    e[t] += var.mirror ? std::min(res[t].error, res2[t].error) : res[t].error;
+            }
+            for (size_t t = 0; t < k; ++t) {
+                const size_t j = i + 1 + t;
+                dist[i * count + j] = dist[j * count + i] = e[t];
             }
             if (i % 100 == 0) std::fprintf(stderr, "\r[%zu/%zu] %s      ", v + 1, nvar, var.name);
         }

@@ -28,22 +28,11 @@ static uint32_t next_index(uint32_t i, uint32_t count)
     return j;
 }
 
-static sbr_status_t check_fft(const sbr_fft_t *fft)
-{
-    if (fft == NULL) {
-        return SBR_ERR_NULL;
-    }
-    if ((sbr_fft_size_supported(fft->n) == 0) || (fft->bitrev == NULL)) {
-        return SBR_ERR_STATE;
-    }
-    return SBR_OK;
-}
-
 static sbr_status_t fd_compute(const sbr_fft_t *fft, const sbr_point_t *pi,
                                const sbr_pointf_t *pf, uint32_t count, uint32_t m,
                                sbr_complex_t *work, uint32_t work_len, sbr_fd_t *out)
 {
-    sbr_status_t st = check_fft(fft);
+    sbr_status_t st = sbr_fft_check(fft);
     float length = 0.0f;
     float area2 = 0.0f;
     float x0;
@@ -315,30 +304,16 @@ static float objective(sbr_fd_mode_t mode, sbr_complex_t r)
     return (mode == SBR_FD_ROTATION_INVARIANT) ? hypotf(r.re, r.im) : r.re;
 }
 
-sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
-                          const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
-                          uint32_t work_len, sbr_fd_match_t *result)
+/* Everything a match needs except the prototype: checked once per call of
+   sbr_fd_match() and once per table in sbr_fd_match_table(). */
+static sbr_status_t check_match_args(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                                     const sbr_fd_t *query, const sbr_complex_t *work,
+                                     uint32_t work_len, const void *result)
 {
-    sbr_status_t st = check_fft(fft);
-    uint32_t size;
-    uint32_t m;
-    uint32_t k;
-    uint32_t l;
-    uint32_t best = 0u;
-    float best_val = -1.0f;
-    float cos_bound;
-    int found = 0;
-    int bounded;
-    sbr_complex_t r;
-    float lag;
-    float val;
-    float rot;
+    sbr_status_t st = sbr_fft_check(fft);
 
     if (st == SBR_OK) {
         st = check_fd(query);
-    }
-    if (st == SBR_OK) {
-        st = check_fd(proto);
     }
     if (st != SBR_OK) {
         return st;
@@ -350,13 +325,44 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
         (isfinite(cfg->max_rotation) == 0) || (cfg->max_rotation < 0.0f)) {
         return SBR_ERR_RANGE;
     }
-    size = fft->n;
-    m = query->m;
-    if ((proto->m != m) || (size < ((2u * m) + 1u)) || (work_len < size)) {
+    if ((fft->n < ((2u * query->m) + 1u)) || (work_len < fft->n)) {
         return SBR_ERR_SIZE;
     }
-    /* conj(Q) C at n mod P, zero elsewhere. */
-    for (k = 0u; k < size; k++) {
+    return SBR_OK;
+}
+
+/* A prototype must be a valid descriptor with the query's M. */
+static sbr_status_t check_proto(const sbr_fd_t *query, const sbr_fd_t *proto)
+{
+    const sbr_status_t st = check_fd(proto);
+
+    if (st != SBR_OK) {
+        return st;
+    }
+    return (proto->m != query->m) ? SBR_ERR_SIZE : SBR_OK;
+}
+
+/* The match itself, on arguments already checked. */
+static void match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                       const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
+                       sbr_fd_match_t *result)
+{
+    const uint32_t size = fft->n;
+    const uint32_t m = query->m;
+    uint32_t k;
+    uint32_t l;
+    uint32_t best = 0u;
+    float best_val = -1.0f;
+    float cos_bound = -1.0f;
+    int found = 0;
+    int bounded;
+    sbr_complex_t r;
+    float lag;
+    float val;
+    float rot;
+
+    /* conj(Q) C at n mod P: indices 0..M and P-M..P-1; the gap between is zero. */
+    for (k = m + 1u; k < (size - m); k++) {
         work[k].re = 0.0f;
         work[k].im = 0.0f;
     }
@@ -370,17 +376,15 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
         work[at].re = (q.re * c.re) + (q.im * c.im);
         work[at].im = (q.re * c.im) - (q.im * c.re);
     }
-    st = sbr_fft_inverse(fft, work, work);
-    if (st != SBR_OK) {
-        return st;
-    }
+    /* The instance was checked by the caller, so this cannot fail. */
+    (void)sbr_fft_inverse(fft, work, work);
     /* The inverse is scaled by 1/P; r = P * work. Only comparisons follow, so the scale
        is applied to the peak only. */
     bounded = 0;
     if ((cfg->mode == SBR_FD_ROTATION_COVARIANT) && (cfg->max_rotation < SBR_PI_F)) {
         bounded = 1;
+        cos_bound = cosf(cfg->max_rotation);
     }
-    cos_bound = cosf(cfg->max_rotation);
     for (l = 0u; l < size; l++) {
         const sbr_complex_t v = work[l];
         if (cfg->mode == SBR_FD_ROTATION_INVARIANT) {
@@ -402,7 +406,7 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
         result->rotation = 0.0f;
         result->shift = 0.0f;
         result->scale_ratio = query->scale / proto->scale;
-        return SBR_OK;
+        return;
     }
     r.re = work[best].re * (float)size;
     r.im = work[best].im * (float)size;
@@ -464,7 +468,21 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
     }
     result->shift = lag;
     result->scale_ratio = query->scale / proto->scale;
-    return SBR_OK;
+}
+
+sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                          const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
+                          uint32_t work_len, sbr_fd_match_t *result)
+{
+    sbr_status_t st = check_match_args(fft, cfg, query, work, work_len, result);
+
+    if (st == SBR_OK) {
+        st = check_proto(query, proto);
+    }
+    if (st == SBR_OK) {
+        match_core(fft, cfg, query, proto, work, result);
+    }
+    return st;
 }
 
 sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
@@ -472,21 +490,25 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
                                 sbr_complex_t *work, uint32_t work_len, sbr_fd_match_t *results,
                                 uint32_t *best)
 {
+    sbr_status_t st = check_match_args(fft, cfg, query, work, work_len, results);
     uint32_t i;
     uint32_t b = 0u;
 
-    if ((protos == NULL) || (results == NULL) || (best == NULL)) {
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((protos == NULL) || (best == NULL)) {
         return SBR_ERR_NULL;
     }
     if (count == 0u) {
         return SBR_ERR_SIZE;
     }
     for (i = 0u; i < count; i++) {
-        const sbr_status_t st =
-            sbr_fd_match(fft, cfg, query, &protos[i], work, work_len, &results[i]);
+        st = check_proto(query, &protos[i]);
         if (st != SBR_OK) {
             return st;
         }
+        match_core(fft, cfg, query, &protos[i], work, &results[i]);
         if (results[i].error < results[b].error) {
             b = i;
         }

@@ -21,13 +21,12 @@ int sbr_fft_size_supported(uint32_t n)
 
 /* Cheap consistency checks of an instance; catches never-initialised and overwritten
    instances without touching more than a few words. */
-static sbr_status_t check_instance(const sbr_fft_t *fft, const sbr_complex_t *in,
-                                   const sbr_complex_t *out)
+sbr_status_t sbr_fft_check(const sbr_fft_t *fft)
 {
     uint32_t s;
     uint32_t span;
 
-    if ((fft == NULL) || (in == NULL) || (out == NULL)) {
+    if (fft == NULL) {
         return SBR_ERR_NULL;
     }
     if ((sbr_fft_size_supported(fft->n) == 0) || (fft->check != (SBR_FFT_CHECK_KEY ^ fft->n)) ||
@@ -51,6 +50,21 @@ static sbr_status_t check_instance(const sbr_fft_t *fft, const sbr_complex_t *in
     }
     if (span != fft->n) {
         return SBR_ERR_STATE;
+    }
+    return SBR_OK;
+}
+
+static sbr_status_t check_instance(const sbr_fft_t *fft, const sbr_complex_t *in,
+                                   const sbr_complex_t *out)
+{
+    sbr_status_t st;
+
+    if ((fft == NULL) || (in == NULL) || (out == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = sbr_fft_check(fft);
+    if (st != SBR_OK) {
+        return st;
     }
     if (in != out) {
         /* Only identical or disjoint buffers are supported. Compared as integers:
