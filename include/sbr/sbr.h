@@ -12,6 +12,8 @@
 #include "sbr/image.h"
 #include "sbr/contour.h"
 #include "sbr/fd.h"
+#include "sbr/map.h"
+#include "sbr/mser.h"
 
 /** Library version. */
 #define SBR_VERSION_MAJOR 0

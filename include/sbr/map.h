@@ -1,0 +1,66 @@
+/**
+ * @file map.h
+ * @brief u8 channel maps from camera images: intensity and colour-opponent maps, with
+ *        optional block subsampling (the input of region extraction).
+ *
+ * Each output pixel first averages an s x s block of the source (s = subsample, rounded
+ * to nearest), giving mean channel values R, G, B in 0..255 (a GRAY8 source gives
+ * R = G = B = its value). Then, with integer arithmetic (division truncates):
+ *
+ *   ::SBR_MAP_INTENSITY  I = (R + G + B + 1) / 3
+ *   ::SBR_MAP_RED        (512 + 2R - G - B) / 4      red vs. green and blue
+ *   ::SBR_MAP_BLUE       (512 + 2B - R - G) / 4      blue vs. red and green
+ *   ::SBR_MAP_YELLOW     (512 + R + G - 2B) / 4      yellow vs. blue
+ *
+ * The opponent maps are 128 for grey pixels of any brightness, rise towards 255 for
+ * saturated red, blue or yellow and fall towards 0 for the opposite hue (cyan for red,
+ * yellow for blue, blue for yellow); all stay in 0..255 without clamping. Red sign rims
+ * are bright regions of the red map, blue mandatory signs bright regions of the blue map,
+ * and the white or black inner parts extremal regions of the intensity map.
+ *
+ * Output size: floor(width / s) x floor(height / s). Work: one pass over the source.
+ */
+#ifndef SBR_MAP_H
+#define SBR_MAP_H
+
+#include "sbr/image.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest subsampling factor. */
+#define SBR_MAP_MAX_SUBSAMPLE 8u
+
+/** Map kinds. */
+typedef enum sbr_map_kind_e {
+    SBR_MAP_INTENSITY = 0,
+    SBR_MAP_RED = 1,
+    SBR_MAP_BLUE = 2,
+    SBR_MAP_YELLOW = 3
+} sbr_map_kind_t;
+
+/**
+ * @brief Make one map.
+ * @param[in]  src        RGB888, BGR888 or (intensity only) GRAY8 view.
+ * @param[in]  kind       which map.
+ * @param[in]  subsample  block size s, 1..::SBR_MAP_MAX_SUBSAMPLE, at most the source's
+ *                        width and height.
+ * @param[out] out        floor(height / s) rows of `out_stride` bytes.
+ * @param[in]  out_stride bytes per output row, >= floor(width / s).
+ * @param[in]  out_size   bytes available at `out`.
+ * @param[out] out_view   (may be NULL) a GRAY8 view of the result.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; errors of sbr_image_check(); ::SBR_ERR_RANGE for an
+ *         unknown kind, a colour map of a GRAY8 source, or a subsample outside its range;
+ *         ::SBR_ERR_ALIGN for a stride below the output width or an output too small;
+ *         ::SBR_ERR_OVERLAP if the output overlaps the source.
+ */
+sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t subsample,
+                          uint8_t *out, uint32_t out_stride, size_t out_size,
+                          sbr_image_t *out_view);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SBR_MAP_H */

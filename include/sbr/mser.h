@@ -1,0 +1,180 @@
+/**
+ * @file mser.h
+ * @brief Maximally stable extremal regions (MSER) of a u8 map, both polarities, in linear
+ *        time with bounded memory.
+ *
+ * An extremal region at level t is a 4-connected component of the pixels whose value is
+ * <= t (dark regions, ::SBR_MSER_DARK) or >= 255 - t' (bright regions, ::SBR_MSER_BRIGHT,
+ * the same on the inverted map). The components of all levels form a tree; sbr builds it
+ * with one flood fill per polarity that visits every pixel a bounded number of times
+ * (Nistér and Stewénius, "Linear time maximally stable extremal regions", ECCV 2008: a
+ * boundary heap with one stack per grey level and a stack of growing components). No
+ * recursion, no sorting.
+ *
+ * Stability of the tree node R at level t, with delta = config.delta:
+ *   variation(R) = (|R(t + delta)| - |R(t - delta)|) / |R|
+ * where R(t + delta) is R's ancestor at level t + delta (the root when the tree ends
+ * below) and R(t - delta) is the first node at or above level t - delta on R's main
+ * chain (the chain of largest children). A node is reported when
+ *   - min_area <= |R| <= max_area and variation(R) <= max_variation,
+ *   - no child (of area >= min_area) has a smaller variation, and
+ *   - its parent's variation is larger (or R's variation is 0),
+ * and, when min_diversity > 0, it is not a near-duplicate of the nearest reported region
+ * that contains it ((|Q| - |R|) / |Q| < min_diversity): of such a pair the less stable one
+ * is dropped. These are the definitions of OpenCV's `cv::MSER` for grey images (which
+ * ignores min_diversity), so both give the same regions for the same parameters; the
+ * host test `host_mser_equals_opencv` measures the agreement on GTSDB scenes.
+ *
+ * As in OpenCV, the outermost row and column on each side of the map are not part of any
+ * region (they bound the flood fill); a map must be at least 3 x 3.
+ *
+ * A region is returned compactly (level, polarity, area, bounding box, one seed pixel);
+ * sbr_mser_region_mask() rebuilds its pixels from the map as a mask of its bounding box,
+ * ready for sbr_contour_find_external().
+ *
+ * Memory: sbr_mser_workspace_size() bytes, 4-byte aligned, of which about 6 bytes per
+ * pixel (a copy of the map, a state byte and a heap entry per pixel) and
+ * ::SBR_MSER_NODE_BYTES per tree node of area >= min_area. The number of such nodes is
+ * at most the number of interior pixels; natural scenes have far fewer (the host tool
+ * `sbr_mser` prints the count). config.max_nodes bounds it: 0 reserves the worst case
+ * (never runs out); a smaller bound saves RAM, and when a frame needs more nodes the
+ * call still completes, returns ::SBR_ERR_CAPACITY and may miss regions.
+ */
+#ifndef SBR_MSER_H
+#define SBR_MSER_H
+
+#include "sbr/image.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Largest supported delta (the history of each growing component is delta + 1 long). */
+#define SBR_MSER_MAX_DELTA 32u
+
+/** Bytes per component-tree node in the workspace. */
+#define SBR_MSER_NODE_BYTES 40u
+
+/** Polarities (bit mask). */
+typedef enum sbr_mser_polarity_e {
+    SBR_MSER_DARK = 1,   /**< regions darker than their surroundings (pixels <= level) */
+    SBR_MSER_BRIGHT = 2, /**< regions brighter than their surroundings (pixels >= level) */
+    SBR_MSER_BOTH = 3    /**< both, dark ones first */
+} sbr_mser_polarity_t;
+
+/** Parameters. Start from sbr_mser_config_default(). */
+typedef struct sbr_mser_config_s {
+    /** Grey-level step over which the area change is measured, 1..::SBR_MSER_MAX_DELTA.
+        Larger: fewer, more contrasted regions. Default 5. */
+    uint32_t delta;
+    /** Smallest region area in pixels, >= 1. Default 60. */
+    uint32_t min_area;
+    /** Largest region area in pixels, >= min_area. Default 14400. */
+    uint32_t max_area;
+    /** Largest accepted variation, > 0 and finite. Larger: more, less stable regions.
+        Default 0.25. */
+    float max_variation;
+    /** Nested regions whose areas differ by less than this fraction of the larger one are
+        reported once (the more stable one), in [0, 1); 0 keeps both. Default 0.2. */
+    float min_diversity;
+    /** Which polarities to extract (::sbr_mser_polarity_t). Default ::SBR_MSER_BOTH. */
+    uint32_t polarity;
+    /** Bound on tree nodes of area >= min_area per polarity; 0 = the worst case for the
+        map size. Default 0. */
+    uint32_t max_nodes;
+} sbr_mser_config_t;
+
+/** One region. Its pixels: the 4-connected component of pixels of the map that pass the
+    level test (<= level for dark, >= level for bright) and contains the seed. */
+typedef struct sbr_mser_region_s {
+    sbr_rect_t bbox;    /**< bounding box of its pixels */
+    uint32_t area;      /**< number of pixels */
+    float variation;    /**< stability (smaller is more stable) */
+    uint16_t seed_x;    /**< a pixel of the region */
+    uint16_t seed_y;
+    uint8_t level;      /**< threshold in map values */
+    uint8_t polarity;   /**< ::SBR_MSER_DARK or ::SBR_MSER_BRIGHT */
+} sbr_mser_region_t;
+
+/** Worst-case node count for a width x height map (its interior pixels). */
+#define SBR_MSER_WORST_NODES(width, height) \
+    ((((size_t)(width)) - 2u) * (((size_t)(height)) - 2u))
+
+/**
+ * @brief Workspace bytes for a width x height map (>= 3 x 3), a delta and a node bound
+ *        (nodes > 0; for config.max_nodes = 0 pass SBR_MSER_WORST_NODES(width, height)).
+ */
+#define SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes) \
+    (2048u + 258u * (32u + (((size_t)(delta)) + 1u) * 8u) + \
+     ((size_t)(nodes)) * SBR_MSER_NODE_BYTES + \
+     (((size_t)(width)) * ((size_t)(height))) * 6u + 8u)
+
+/** @brief Fill a configuration with the defaults documented above. No-op for NULL. */
+void sbr_mser_config_default(sbr_mser_config_t *cfg);
+
+/**
+ * @brief Check a configuration.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for any field outside its range.
+ */
+sbr_status_t sbr_mser_config_check(const sbr_mser_config_t *cfg);
+
+/**
+ * @brief Workspace bytes sbr_mser_detect() needs for maps up to width x height with this
+ *        configuration; 0 for an invalid configuration or a size below 3 x 3 or above
+ *        ::SBR_IMAGE_MAX_DIM.
+ */
+size_t sbr_mser_workspace_size(uint32_t width, uint32_t height, const sbr_mser_config_t *cfg);
+
+/**
+ * @brief Extract the maximally stable extremal regions of a map.
+ *
+ * @param[in]  map            GRAY8 view, at least 3 x 3; not modified.
+ * @param[in]  cfg            parameters (sbr_mser_config_check()).
+ * @param[in]  workspace      sbr_mser_workspace_size() bytes, 4-byte aligned.
+ * @param[in]  workspace_size its size.
+ * @param[out] regions        results: dark regions first, each polarity in the order its
+ *                            tree nodes were completed (smaller before containing ones).
+ * @param[in]  capacity       length of `regions`.
+ * @param[out] count          regions written.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a format other than GRAY8 or a bad
+ *         configuration; ::SBR_ERR_SIZE for a map below 3 x 3 (and errors of
+ *         sbr_image_check()); ::SBR_ERR_WORKSPACE if the workspace is too small or not
+ *         4-byte aligned; ::SBR_ERR_CAPACITY if more regions were found than `capacity`
+ *         (the first `capacity` are written) or the node bound was reached (regions may
+ *         be missing; the others are exact).
+ */
+sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cfg,
+                             void *workspace, size_t workspace_size,
+                             sbr_mser_region_t *regions, uint32_t capacity, uint32_t *count);
+
+/** Workspace bytes sbr_mser_region_mask() needs for a bounding box of w x h pixels. */
+#define SBR_MSER_MASK_WORKSPACE_SIZE(w, h) (((size_t)(w)) * ((size_t)(h)) * 4u)
+
+/**
+ * @brief The pixels of a region as a mask of its bounding box (255 inside, 0 outside).
+ *
+ * @param[in]  map            the map the region was extracted from.
+ * @param[in]  region         a region of that map.
+ * @param[in]  workspace      SBR_MSER_MASK_WORKSPACE_SIZE(bbox.width, bbox.height) bytes,
+ *                            4-byte aligned.
+ * @param[in]  workspace_size its size.
+ * @param[out] mask           bbox.height rows of `mask_stride` bytes; pixel (x, y) of the
+ *                            map is mask[(y - bbox.y) * mask_stride + (x - bbox.x)].
+ * @param[in]  mask_stride    >= bbox.width.
+ * @param[in]  mask_size      bytes available at `mask`.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; errors of sbr_image_check(); ::SBR_ERR_RANGE for a
+ *         format other than GRAY8 or a region that does not lie in the map's interior
+ *         (bad box, seed outside the box, unknown polarity); ::SBR_ERR_ALIGN for a stride
+ *         below bbox.width or a mask too small; ::SBR_ERR_WORKSPACE; ::SBR_ERR_CORRUPT if
+ *         the map does not hold this region (seed fails the level test, or the filled
+ *         area differs from region->area: a different or modified map).
+ */
+sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_t *region,
+                                  void *workspace, size_t workspace_size, uint8_t *mask,
+                                  uint32_t mask_stride, size_t mask_size);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SBR_MSER_H */

@@ -1,0 +1,760 @@
+/*
+ * Maximally stable extremal regions: one flood fill per polarity builds the component
+ * tree (Nistér–Stewénius), nodes of area >= min_area are kept with the area of their
+ * region delta levels below; a second, linear pass over those nodes computes the
+ * variations and selects the stable ones. See include/sbr/mser.h for the definitions.
+ */
+#include "sbr/mser.h"
+
+#include <string.h>
+
+#define MSER_NONE 0xFFFFFFFFu
+#define MSER_LEVELS 256u
+#define MSER_SENTINEL 256u
+#define MSER_STACK 258u
+#define MSER_HEAP_HEADER_BYTES 2048u
+#define MSER_COMP_BYTES 32u
+
+/* Pixel state: bit 3 = reached by the flood; bits 0..2 = the next neighbour to look at
+   (1 right, 2 down, 3 left, 4 up, 5 done). The image border starts as "done". */
+#define ST_SEEN 0x08u
+#define ST_DIR_MASK 0x07u
+#define ST_DONE (ST_SEEN | 5u)
+
+#define NODE_SELECTED 1u
+
+/* A completed tree node of area >= min_area. */
+typedef struct mser_node_s {
+    uint32_t parent;  /* node index or MSER_NONE */
+    uint32_t next;    /* next node in its owner's list of nodes still waiting for a parent */
+    uint32_t size;    /* area at level val */
+    uint32_t size_lo; /* area of the main-chain node delta levels below */
+    uint32_t seed;    /* a pixel (index y * width + x) */
+    float var;        /* variation */
+    float child_var;  /* smallest variation among its children */
+    uint16_t x0;      /* bounding box, inclusive */
+    uint16_t y0;
+    uint16_t x1;
+    uint16_t y1;
+    uint8_t val;      /* level (in the pass's possibly inverted values) */
+    uint8_t flags;
+    uint8_t pad[2];
+} mser_node_t;
+
+/* A component on the flood's stack (levels strictly decrease towards the top). */
+typedef struct mser_comp_s {
+    uint32_t size;
+    uint32_t seed;
+    uint32_t pend_head; /* its completed nodes whose parent is not complete yet */
+    uint32_t pend_tail;
+    uint32_t ring_len;  /* entries of its main-chain history (oldest first) */
+    uint16_t level;     /* 0..255, MSER_SENTINEL for the bottom entry */
+    uint16_t x0;
+    uint16_t y0;
+    uint16_t x1;
+    uint16_t y1;
+} mser_comp_t;
+
+/* The public size macro spells these sizes out; keep them true. */
+typedef char mser_node_size_check[(sizeof(mser_node_t) == SBR_MSER_NODE_BYTES) ? 1 : -1];
+typedef char mser_comp_size_check[(sizeof(mser_comp_t) == MSER_COMP_BYTES) ? 1 : -1];
+
+typedef struct mser_ctx_s {
+    uint32_t *heap_base; /* [256] first heap slot of each level */
+    uint32_t *heap_top;  /* [256] entries on each level's stack */
+    mser_comp_t *comp;   /* [MSER_STACK] */
+    uint32_t *ring_size; /* [MSER_STACK * ring_cap] main-chain areas */
+    uint16_t *ring_val;  /* [MSER_STACK * ring_cap] their levels */
+    mser_node_t *node;   /* [node_cap] */
+    uint32_t *heap;      /* [pixels] */
+    uint8_t *gray;       /* [pixels] the map, inverted for the bright pass */
+    uint8_t *state;      /* [pixels] */
+    uint32_t width;
+    uint32_t height;
+    uint32_t ring_cap;   /* delta + 1 */
+    uint32_t node_cap;
+    uint32_t node_count;
+    uint32_t delta;
+    uint32_t min_area;
+    uint32_t div_shift;  /* y = (p * div_magic) >> div_shift, exact for p < width * height */
+    uint64_t div_magic;
+    int overflow;
+} mser_ctx_t;
+
+void sbr_mser_config_default(sbr_mser_config_t *cfg)
+{
+    if (cfg != NULL) {
+        cfg->delta = 5u;
+        cfg->min_area = 60u;
+        cfg->max_area = 14400u;
+        cfg->max_variation = 0.25f;
+        cfg->min_diversity = 0.2f;
+        cfg->polarity = (uint32_t)SBR_MSER_BOTH;
+        cfg->max_nodes = 0u;
+    }
+}
+
+sbr_status_t sbr_mser_config_check(const sbr_mser_config_t *cfg)
+{
+    if (cfg == NULL) {
+        return SBR_ERR_NULL;
+    }
+    if ((cfg->delta == 0u) || (cfg->delta > SBR_MSER_MAX_DELTA) || (cfg->min_area == 0u) ||
+        (cfg->max_area < cfg->min_area)) {
+        return SBR_ERR_RANGE;
+    }
+    /* Written so that NaN fails every test. */
+    if (!((cfg->max_variation > 0.0f) && (cfg->max_variation <= 1.0e30f))) {
+        return SBR_ERR_RANGE;
+    }
+    if (!((cfg->min_diversity >= 0.0f) && (cfg->min_diversity < 1.0f))) {
+        return SBR_ERR_RANGE;
+    }
+    if ((cfg->polarity == 0u) || (cfg->polarity > (uint32_t)SBR_MSER_BOTH)) {
+        return SBR_ERR_RANGE;
+    }
+    return SBR_OK;
+}
+
+static size_t mser_nodes_for(uint32_t width, uint32_t height, const sbr_mser_config_t *cfg)
+{
+    size_t n = SBR_MSER_WORST_NODES(width, height);
+    if ((cfg->max_nodes != 0u) && ((size_t)cfg->max_nodes < n)) {
+        n = (size_t)cfg->max_nodes;
+    }
+    return n;
+}
+
+size_t sbr_mser_workspace_size(uint32_t width, uint32_t height, const sbr_mser_config_t *cfg)
+{
+    if ((sbr_mser_config_check(cfg) != SBR_OK) || (width < 3u) || (height < 3u) ||
+        (width > SBR_IMAGE_MAX_DIM) || (height > SBR_IMAGE_MAX_DIM)) {
+        return 0u;
+    }
+    {
+        const size_t ring = ((size_t)cfg->delta + 1u) * 8u;
+        const size_t per_comp = (size_t)MSER_COMP_BYTES + ring;
+        const size_t pixels = (size_t)width * (size_t)height;
+        const size_t nodes = mser_nodes_for(width, height, cfg) * (size_t)SBR_MSER_NODE_BYTES;
+        return (size_t)MSER_HEAP_HEADER_BYTES + ((size_t)MSER_STACK * per_comp) + nodes +
+               (pixels * 6u) + 8u;
+    }
+}
+
+/* ---- the flood fill ----------------------------------------------------------------- */
+
+static void comp_init(mser_ctx_t *c, uint32_t k, uint32_t level)
+{
+    mser_comp_t *cp = &c->comp[k];
+    cp->size = 0u;
+    cp->seed = 0u;
+    cp->pend_head = MSER_NONE;
+    cp->pend_tail = MSER_NONE;
+    cp->level = (uint16_t)level;
+    cp->x0 = 0xFFFFu;
+    cp->y0 = 0xFFFFu;
+    cp->x1 = 0u;
+    cp->y1 = 0u;
+    cp->ring_len = 0u;
+}
+
+static void comp_add_pixel(const mser_ctx_t *c, mser_comp_t *cp, uint32_t p)
+{
+    const uint32_t y = (uint32_t)(((uint64_t)p * c->div_magic) >> c->div_shift);
+    const uint32_t x = p - (y * c->width);
+    if (cp->size == 0u) {
+        cp->seed = p;
+    }
+    cp->size++;
+    if (x < (uint32_t)cp->x0) {
+        cp->x0 = (uint16_t)x;
+    }
+    if (x > (uint32_t)cp->x1) {
+        cp->x1 = (uint16_t)x;
+    }
+    if (y < (uint32_t)cp->y0) {
+        cp->y0 = (uint16_t)y;
+    }
+    if (y > (uint32_t)cp->y1) {
+        cp->y1 = (uint16_t)y;
+    }
+}
+
+/* Append (val, size) to component k's main-chain history, keeping the newest ring_cap. */
+static void ring_push(mser_ctx_t *c, uint32_t k, uint32_t val, uint32_t size)
+{
+    uint32_t *rs = &c->ring_size[k * c->ring_cap];
+    uint16_t *rv = &c->ring_val[k * c->ring_cap];
+    uint32_t len = c->comp[k].ring_len;
+
+    if (len == c->ring_cap) {
+        uint32_t i;
+        for (i = 1u; i < len; i++) {
+            rs[i - 1u] = rs[i];
+            rv[i - 1u] = rv[i];
+        }
+        len--;
+    }
+    rs[len] = size;
+    rv[len] = (uint16_t)val;
+    c->comp[k].ring_len = len + 1u;
+}
+
+static void ring_copy(mser_ctx_t *c, uint32_t dst, uint32_t src)
+{
+    const uint32_t len = c->comp[src].ring_len;
+    (void)memcpy(&c->ring_size[dst * c->ring_cap], &c->ring_size[src * c->ring_cap],
+                 (size_t)len * sizeof(uint32_t));
+    (void)memcpy(&c->ring_val[dst * c->ring_cap], &c->ring_val[src * c->ring_cap],
+                 (size_t)len * sizeof(uint16_t));
+    c->comp[dst].ring_len = len;
+}
+
+/* Component k leaves its level for new_level (> level): its node at the old level is
+   complete. */
+static void comp_grow(mser_ctx_t *c, uint32_t k, uint32_t new_level)
+{
+    mser_comp_t *cp = &c->comp[k];
+    const uint32_t level = (uint32_t)cp->level;
+
+    ring_push(c, k, level, cp->size);
+    if (cp->size >= c->min_area) {
+        /* first main-chain node at or above level - delta */
+        const uint32_t *rs = &c->ring_size[k * c->ring_cap];
+        const uint16_t *rv = &c->ring_val[k * c->ring_cap];
+        uint32_t lo_size;
+        uint32_t i = cp->ring_len - 1u;
+        while ((i > 0u) && (((uint32_t)rv[i - 1u] + c->delta) >= level)) {
+            i--;
+        }
+        lo_size = rs[i];
+        if (c->node_count < c->node_cap) {
+            mser_node_t *nd;
+            uint32_t q;
+            const uint32_t n = c->node_count;
+            c->node_count++;
+            nd = &c->node[n];
+            nd->parent = MSER_NONE;
+            nd->next = MSER_NONE;
+            nd->size = cp->size;
+            nd->size_lo = lo_size;
+            nd->seed = cp->seed;
+            nd->var = 0.0f;
+            nd->child_var = 3.0e38f;
+            nd->x0 = cp->x0;
+            nd->y0 = cp->y0;
+            nd->x1 = cp->x1;
+            nd->y1 = cp->y1;
+            nd->val = (uint8_t)level;
+            nd->flags = 0u;
+            nd->pad[0] = 0u;
+            nd->pad[1] = 0u;
+            q = cp->pend_head;
+            while (q != MSER_NONE) {
+                c->node[q].parent = n;
+                q = c->node[q].next;
+            }
+            cp->pend_head = n;
+            cp->pend_tail = n;
+        } else {
+            /* Out of nodes: this node is lost, its children become roots. */
+            c->overflow = 1;
+            cp->pend_head = MSER_NONE;
+            cp->pend_tail = MSER_NONE;
+        }
+    }
+    cp->level = (uint16_t)new_level;
+}
+
+/* The top component b (lower level) joins a (level == the new level). */
+static void comp_merge(mser_ctx_t *c, uint32_t a, uint32_t b)
+{
+    mser_comp_t *ca = &c->comp[a];
+    const mser_comp_t *cb = &c->comp[b];
+    int keep_a;
+
+    comp_grow(c, b, (uint32_t)ca->level);
+    /* The main chain continues through the larger of the two histories (b on a tie). */
+    keep_a = 0;
+    if (ca->ring_len > 0u) {
+        const uint32_t sa = c->ring_size[(a * c->ring_cap) + (ca->ring_len - 1u)];
+        const uint32_t sb = c->ring_size[(b * c->ring_cap) + (cb->ring_len - 1u)];
+        if (sa > sb) {
+            keep_a = 1;
+        }
+    }
+    if (keep_a == 0) {
+        ring_copy(c, a, b);
+    }
+    if (cb->pend_head != MSER_NONE) {
+        if (ca->pend_head == MSER_NONE) {
+            ca->pend_head = cb->pend_head;
+        } else {
+            c->node[ca->pend_tail].next = cb->pend_head;
+        }
+        ca->pend_tail = cb->pend_tail;
+    }
+    if (ca->size == 0u) {
+        ca->seed = cb->seed;
+    }
+    ca->size += cb->size;
+    if (cb->x0 < ca->x0) {
+        ca->x0 = cb->x0;
+    }
+    if (cb->y0 < ca->y0) {
+        ca->y0 = cb->y0;
+    }
+    if (cb->x1 > ca->x1) {
+        ca->x1 = cb->x1;
+    }
+    if (cb->y1 > ca->y1) {
+        ca->y1 = cb->y1;
+    }
+}
+
+static void heap_push(mser_ctx_t *c, uint32_t level, uint32_t p)
+{
+    c->heap[c->heap_base[level] + c->heap_top[level]] = p;
+    c->heap_top[level]++;
+}
+
+static uint32_t heap_pop(mser_ctx_t *c, uint32_t level)
+{
+    c->heap_top[level]--;
+    return c->heap[c->heap_base[level] + c->heap_top[level]];
+}
+
+/* Prepare one pass: the (inverted) copy of the map, states, and the heap layout. */
+static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask)
+{
+    const uint32_t w = c->width;
+    const uint32_t h = c->height;
+    uint32_t x;
+    uint32_t y;
+    uint32_t v;
+    uint32_t acc = 0u;
+
+    for (v = 0u; v < MSER_LEVELS; v++) {
+        c->heap_top[v] = 0u;
+    }
+    for (y = 0u; y < h; y++) {
+        const uint8_t *src = &map->data[(size_t)y * map->stride];
+        uint8_t *g = &c->gray[(size_t)y * w];
+        uint8_t *s = &c->state[(size_t)y * w];
+        for (x = 0u; x < w; x++) {
+            g[x] = (uint8_t)(src[x] ^ xor_mask);
+            s[x] = ST_DONE;
+        }
+        if ((y > 0u) && (y < (h - 1u))) {
+            for (x = 1u; x < (w - 1u); x++) {
+                s[x] = 0u;
+                c->heap_top[g[x]]++; /* count per level for now */
+            }
+        }
+    }
+    for (v = 0u; v < MSER_LEVELS; v++) {
+        c->heap_base[v] = acc;
+        acc += c->heap_top[v];
+        c->heap_top[v] = 0u;
+    }
+    c->node_count = 0u;
+}
+
+/* Build the tree of one pass. */
+static void pass_flood(mser_ctx_t *c)
+{
+    const uint32_t w = c->width;
+    uint32_t off[5];
+    uint32_t p = w + 1u;
+    uint32_t top = 1u;
+    int done = 0;
+
+    off[0] = 0u;
+    off[1] = 1u;
+    off[2] = w;
+    off[3] = 0xFFFFFFFFu;       /* unsigned wrap-around: adds -1 */
+    off[4] = (0xFFFFFFFFu - w) + 1u; /* adds -w */
+
+    comp_init(c, 0u, MSER_SENTINEL);
+    comp_init(c, 1u, (uint32_t)c->gray[p]);
+    c->state[p] = (uint8_t)(ST_SEEN | 1u);
+    while (done == 0) {
+        uint32_t cur = (uint32_t)c->gray[p];
+        uint32_t k = (uint32_t)c->state[p] & ST_DIR_MASK;
+        while (k <= 4u) {
+            const uint32_t q = p + off[k];
+            if (c->state[q] == 0u) {
+                const uint32_t g = (uint32_t)c->gray[q];
+                c->state[q] = (uint8_t)(ST_SEEN | 1u);
+                if (g < cur) {
+                    /* a lower neighbour: come back to p later, descend into q */
+                    heap_push(c, cur, p);
+                    c->state[p] = (uint8_t)(ST_SEEN | (k + 1u));
+                    p = q;
+                    top++;
+                    comp_init(c, top, g);
+                    cur = g;
+                    k = 1u;
+                } else {
+                    heap_push(c, g, q);
+                    k++;
+                }
+            } else {
+                k++;
+            }
+        }
+        c->state[p] = ST_DONE;
+        comp_add_pixel(c, &c->comp[top], p);
+        if (c->heap_top[cur] > 0u) {
+            p = heap_pop(c, cur);
+        } else {
+            uint32_t lv = cur + 1u;
+            while ((lv < MSER_LEVELS) && (c->heap_top[lv] == 0u)) {
+                lv++;
+            }
+            if (lv >= MSER_LEVELS) {
+                done = 1;
+            } else {
+                p = heap_pop(c, lv);
+                if (lv < (uint32_t)c->comp[top - 1u].level) {
+                    comp_grow(c, top, lv);
+                } else {
+                    /* the component below is at exactly this level (its pixel waits in
+                       the heap): merge the top into it */
+                    comp_merge(c, top - 1u, top);
+                    top--;
+                }
+            }
+        }
+    }
+    while ((top > 0u) && ((uint32_t)c->comp[top].level != MSER_SENTINEL)) {
+        comp_grow(c, top, MSER_SENTINEL);
+        top--;
+    }
+}
+
+/* Variations, selection and duplicate removal over the nodes of one pass; emits regions. */
+static void pass_select(mser_ctx_t *c, const sbr_mser_config_t *cfg, uint8_t polarity,
+                        sbr_mser_region_t *regions, uint32_t capacity, uint32_t *count,
+                        int *full)
+{
+    uint32_t n;
+
+    for (n = 0u; n < c->node_count; n++) {
+        mser_node_t *nd = &c->node[n];
+        const uint32_t top_val = (uint32_t)nd->val + c->delta;
+        uint32_t a = n;
+        while ((c->node[a].parent != MSER_NONE) &&
+               ((uint32_t)c->node[c->node[a].parent].val <= top_val)) {
+            a = c->node[a].parent;
+        }
+        {
+            const uint32_t grown = c->node[a].size - nd->size_lo;
+            nd->var = (float)grown / (float)nd->size;
+        }
+        if (nd->parent != MSER_NONE) {
+            mser_node_t *pn = &c->node[nd->parent];
+            if (nd->var < pn->child_var) {
+                pn->child_var = nd->var;
+            }
+        }
+    }
+    /* Children come before their parents, so child_var is complete here. */
+    for (n = 0u; n < c->node_count; n++) {
+        mser_node_t *nd = &c->node[n];
+        int ok = 1;
+        if ((nd->size > cfg->max_area) || (nd->var > cfg->max_variation) ||
+            (nd->var > nd->child_var)) {
+            ok = 0;
+        }
+        if ((ok != 0) && (nd->var > 0.0f) && (nd->parent != MSER_NONE) &&
+            (nd->var >= c->node[nd->parent].var)) {
+            ok = 0;
+        }
+        if (ok != 0) {
+            nd->flags = NODE_SELECTED;
+        }
+    }
+    if (cfg->min_diversity > 0.0f) {
+        for (n = 0u; n < c->node_count; n++) {
+            mser_node_t *nd = &c->node[n];
+            if (nd->flags == NODE_SELECTED) {
+                uint32_t a = nd->parent;
+                while ((a != MSER_NONE) && (c->node[a].flags != NODE_SELECTED)) {
+                    a = c->node[a].parent;
+                }
+                if (a != MSER_NONE) {
+                    mser_node_t *an = &c->node[a];
+                    const uint32_t gap = an->size - nd->size;
+                    if ((float)gap < (cfg->min_diversity * (float)an->size)) {
+                        if (an->var < nd->var) {
+                            nd->flags = 0u;
+                        } else {
+                            an->flags = 0u;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    for (n = 0u; n < c->node_count; n++) {
+        const mser_node_t *nd = &c->node[n];
+        if (nd->flags == NODE_SELECTED) {
+            if (*count < capacity) {
+                sbr_mser_region_t *r = &regions[*count];
+                const uint32_t sy =
+                    (uint32_t)(((uint64_t)nd->seed * c->div_magic) >> c->div_shift);
+                r->bbox.x = (uint32_t)nd->x0;
+                r->bbox.y = (uint32_t)nd->y0;
+                r->bbox.width = ((uint32_t)nd->x1 - (uint32_t)nd->x0) + 1u;
+                r->bbox.height = ((uint32_t)nd->y1 - (uint32_t)nd->y0) + 1u;
+                r->area = nd->size;
+                r->variation = nd->var;
+                r->seed_x = (uint16_t)(nd->seed - (sy * c->width));
+                r->seed_y = (uint16_t)sy;
+                if (polarity == (uint8_t)SBR_MSER_DARK) {
+                    r->level = nd->val;
+                } else {
+                    r->level = (uint8_t)(255u - (uint32_t)nd->val);
+                }
+                r->polarity = polarity;
+                (*count)++;
+            } else {
+                *full = 1;
+            }
+        }
+    }
+}
+
+static int mser_aligned4(const void *p)
+{
+    const uintptr_t a = (uintptr_t)p;
+    int ok = 0;
+    if ((a & 3u) == 0u) {
+        ok = 1;
+    }
+    return ok;
+}
+
+sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cfg,
+                             void *workspace, size_t workspace_size,
+                             sbr_mser_region_t *regions, uint32_t capacity, uint32_t *count)
+{
+    sbr_status_t st;
+    mser_ctx_t c;
+    size_t need;
+    size_t pixels;
+    size_t nodes;
+    uint8_t *base;
+    uint32_t bits;
+    uint64_t span;
+    int full = 0;
+    int overflow = 0;
+
+    if ((map == NULL) || (cfg == NULL) || (regions == NULL) || (count == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    *count = 0u;
+    st = sbr_image_check(map);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if (map->format != SBR_PIXEL_GRAY8) {
+        return SBR_ERR_RANGE;
+    }
+    st = sbr_mser_config_check(cfg);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((map->width < 3u) || (map->height < 3u) || (capacity == 0u)) {
+        return SBR_ERR_SIZE;
+    }
+    need = sbr_mser_workspace_size(map->width, map->height, cfg);
+    if ((workspace == NULL) || (workspace_size < need) || (mser_aligned4(workspace) == 0)) {
+        return SBR_ERR_WORKSPACE;
+    }
+
+    pixels = (size_t)map->width * (size_t)map->height;
+    nodes = mser_nodes_for(map->width, map->height, cfg);
+    base = (uint8_t *)workspace;
+    c.heap_base = (uint32_t *)(void *)base;
+    c.heap_top = &c.heap_base[MSER_LEVELS];
+    base = &base[MSER_HEAP_HEADER_BYTES];
+    c.comp = (mser_comp_t *)(void *)base;
+    base = &base[(size_t)MSER_STACK * MSER_COMP_BYTES];
+    c.ring_cap = cfg->delta + 1u;
+    c.ring_size = (uint32_t *)(void *)base;
+    base = &base[(size_t)MSER_STACK * c.ring_cap * 4u];
+    c.ring_val = (uint16_t *)(void *)base;
+    base = &base[(size_t)MSER_STACK * c.ring_cap * 4u];
+    c.node = (mser_node_t *)(void *)base;
+    base = &base[nodes * SBR_MSER_NODE_BYTES];
+    c.heap = (uint32_t *)(void *)base;
+    base = &base[pixels * 4u];
+    c.gray = base;
+    c.state = &base[pixels];
+
+    c.width = map->width;
+    c.height = map->height;
+    c.node_cap = (uint32_t)nodes;
+    c.node_count = 0u;
+    c.delta = cfg->delta;
+    c.min_area = cfg->min_area;
+    c.overflow = 0;
+    /* exact division by the width: 2^shift > width^2 * height */
+    span = (uint64_t)map->width * (uint64_t)map->width * (uint64_t)map->height;
+    bits = 1u;
+    while ((bits < 63u) && ((((uint64_t)1u) << bits) <= span)) {
+        bits++;
+    }
+    c.div_shift = bits;
+    c.div_magic = ((((uint64_t)1u) << bits) / (uint64_t)map->width) + 1u;
+
+    if ((cfg->polarity & (uint32_t)SBR_MSER_DARK) != 0u) {
+        pass_setup(&c, map, 0u);
+        pass_flood(&c);
+        pass_select(&c, cfg, (uint8_t)SBR_MSER_DARK, regions, capacity, count, &full);
+        overflow |= c.overflow;
+    }
+    if ((cfg->polarity & (uint32_t)SBR_MSER_BRIGHT) != 0u) {
+        c.overflow = 0;
+        pass_setup(&c, map, 0xFFu);
+        pass_flood(&c);
+        pass_select(&c, cfg, (uint8_t)SBR_MSER_BRIGHT, regions, capacity, count, &full);
+        overflow |= c.overflow;
+    }
+    if ((full != 0) || (overflow != 0)) {
+        return SBR_ERR_CAPACITY;
+    }
+    return SBR_OK;
+}
+
+/* ---- region masks ------------------------------------------------------------------- */
+
+static int mser_pass_level(uint8_t v, const sbr_mser_region_t *r)
+{
+    int in = 0;
+    if (r->polarity == (uint8_t)SBR_MSER_DARK) {
+        if (v <= r->level) {
+            in = 1;
+        }
+    } else {
+        if (v >= r->level) {
+            in = 1;
+        }
+    }
+    return in;
+}
+
+sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_t *region,
+                                  void *workspace, size_t workspace_size, uint8_t *mask,
+                                  uint32_t mask_stride, size_t mask_size)
+{
+    sbr_status_t st;
+    const sbr_rect_t *b;
+    uint32_t *stack;
+    uint32_t sp;
+    uint32_t filled;
+    uint32_t y;
+    uint32_t bw;
+
+    if ((map == NULL) || (region == NULL) || (mask == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = sbr_image_check(map);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((map->format != SBR_PIXEL_GRAY8) || (map->width < 3u) || (map->height < 3u)) {
+        return SBR_ERR_RANGE;
+    }
+    b = &region->bbox;
+    if ((region->polarity != (uint8_t)SBR_MSER_DARK) &&
+        (region->polarity != (uint8_t)SBR_MSER_BRIGHT)) {
+        return SBR_ERR_RANGE;
+    }
+    if ((b->width == 0u) || (b->height == 0u) || (b->x < 1u) || (b->y < 1u) ||
+        (b->x >= (map->width - 1u)) || (b->y >= (map->height - 1u)) ||
+        (b->width > ((map->width - 1u) - b->x)) || (b->height > ((map->height - 1u) - b->y)) ||
+        ((uint32_t)region->seed_x < b->x) || ((uint32_t)region->seed_y < b->y) ||
+        ((uint32_t)region->seed_x >= (b->x + b->width)) ||
+        ((uint32_t)region->seed_y >= (b->y + b->height)) || (region->area == 0u) ||
+        (region->area > (b->width * b->height))) {
+        return SBR_ERR_RANGE;
+    }
+    bw = b->width;
+    if ((mask_stride < bw) ||
+        (mask_size < (((size_t)(b->height - 1u) * mask_stride) + (size_t)bw))) {
+        return SBR_ERR_ALIGN;
+    }
+    if ((workspace == NULL) ||
+        (workspace_size < SBR_MSER_MASK_WORKSPACE_SIZE(b->width, b->height)) ||
+        (mser_aligned4(workspace) == 0)) {
+        return SBR_ERR_WORKSPACE;
+    }
+    stack = (uint32_t *)workspace;
+    for (y = 0u; y < b->height; y++) {
+        (void)memset(&mask[(size_t)y * mask_stride], 0, (size_t)bw);
+    }
+    {
+        const uint32_t sx = (uint32_t)region->seed_x - b->x;
+        const uint32_t sy = (uint32_t)region->seed_y - b->y;
+        const uint8_t v = map->data[((size_t)region->seed_y * map->stride) + region->seed_x];
+        if (mser_pass_level(v, region) == 0) {
+            return SBR_ERR_CORRUPT;
+        }
+        mask[((size_t)sy * mask_stride) + sx] = 255u;
+        stack[0] = (sy * bw) + sx;
+        sp = 1u;
+        filled = 1u;
+    }
+    while (sp > 0u) {
+        uint32_t d;
+        uint32_t lx;
+        uint32_t ly;
+        sp--;
+        ly = stack[sp] / bw;
+        lx = stack[sp] - (ly * bw);
+        for (d = 0u; d < 4u; d++) {
+            uint32_t nx = lx;
+            uint32_t ny = ly;
+            int inside = 0;
+            if (d == 0u) {
+                if ((lx + 1u) < bw) {
+                    nx = lx + 1u;
+                    inside = 1;
+                }
+            } else if (d == 1u) {
+                if ((ly + 1u) < b->height) {
+                    ny = ly + 1u;
+                    inside = 1;
+                }
+            } else if (d == 2u) {
+                if (lx > 0u) {
+                    nx = lx - 1u;
+                    inside = 1;
+                }
+            } else {
+                if (ly > 0u) {
+                    ny = ly - 1u;
+                    inside = 1;
+                }
+            }
+            if (inside != 0) {
+                uint8_t *m = &mask[((size_t)ny * mask_stride) + nx];
+                const uint8_t v =
+                    map->data[((size_t)(ny + b->y) * map->stride) + (size_t)(nx + b->x)];
+                if ((*m == 0u) && (mser_pass_level(v, region) != 0)) {
+                    *m = 255u;
+                    stack[sp] = (ny * bw) + nx;
+                    sp++;
+                    filled++;
+                }
+            }
+        }
+    }
+    if (filled != region->area) {
+        return SBR_ERR_CORRUPT;
+    }
+    return SBR_OK;
+}

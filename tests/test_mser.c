@@ -1,0 +1,438 @@
+/* Unity tests of the channel maps (include/sbr/map.h) and MSER (include/sbr/mser.h). */
+#include "unity.h"
+#include "sbr/map.h"
+#include "sbr/mser.h"
+#include "test_support.h"
+
+#include <math.h>
+#include <string.h>
+
+#define W 32u
+#define H 32u
+#define WS_BYTES SBR_MSER_WORKSPACE_SIZE(W, H, SBR_MSER_MAX_DELTA, SBR_MSER_WORST_NODES(W, H))
+
+static uint8_t g_map[H][W];
+static uint32_t g_ws[(WS_BYTES / 4u) + 1u];
+static uint32_t g_mws[(SBR_MSER_MASK_WORKSPACE_SIZE(W, H) / 4u) + 1u];
+static uint8_t g_mask[W * H + TSUP_GUARD_BYTES];
+static sbr_mser_region_t g_reg[64];
+static sbr_mser_config_t g_cfg;
+
+void setUp(void)
+{
+    memset(g_map, 200, sizeof g_map);
+    sbr_mser_config_default(&g_cfg);
+}
+void tearDown(void) {}
+
+static sbr_image_t map_view(void)
+{
+    sbr_image_t v;
+    v.width = W;
+    v.height = H;
+    v.stride = W;
+    v.format = SBR_PIXEL_GRAY8;
+    v.data = &g_map[0][0];
+    return v;
+}
+
+static void fill(uint32_t x0, uint32_t y0, uint32_t w, uint32_t h, uint8_t v)
+{
+    uint32_t x;
+    uint32_t y;
+    for (y = y0; y < y0 + h; y++) {
+        for (x = x0; x < x0 + w; x++) {
+            g_map[y][x] = v;
+        }
+    }
+}
+
+static sbr_status_t detect(uint32_t *n)
+{
+    const sbr_image_t v = map_view();
+    return sbr_mser_detect(&v, &g_cfg, g_ws, sizeof g_ws, g_reg, 64u, n);
+}
+
+/* Rebuild a region's mask and return its pixel count (checks the status too). */
+static uint32_t mask_of(const sbr_mser_region_t *r)
+{
+    const sbr_image_t v = map_view();
+    uint32_t i;
+    uint32_t on = 0u;
+    tsup_guard_fill(&g_mask[r->bbox.width * r->bbox.height], TSUP_GUARD_BYTES);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_region_mask(&v, r, g_mws, sizeof g_mws, g_mask,
+                                                            r->bbox.width,
+                                                            r->bbox.width * r->bbox.height));
+    TEST_ASSERT_TRUE(tsup_guard_intact(&g_mask[r->bbox.width * r->bbox.height], TSUP_GUARD_BYTES));
+    for (i = 0u; i < r->bbox.width * r->bbox.height; i++) {
+        on += (g_mask[i] != 0u) ? 1u : 0u;
+    }
+    return on;
+}
+
+/* ---- maps ----------------------------------------------------------------------------- */
+
+static void test_map_formulas_on_known_colours(void)
+{
+    /* pure red, grey 100, pure blue, yellow (R=G=255, B=0) as RGB888 */
+    static const uint8_t rgb[12] = {255, 0, 0, 100, 100, 100, 0, 0, 255, 255, 255, 0};
+    uint8_t out[4];
+    sbr_image_t src = {4u, 1u, 12u, SBR_PIXEL_RGB888, rgb};
+    sbr_image_t ov;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_INTENSITY, 1u, out, 4u, 4u, &ov));
+    TEST_ASSERT_EQUAL_UINT8(85u, out[0]);  /* (255 + 1) / 3 */
+    TEST_ASSERT_EQUAL_UINT8(100u, out[1]);
+    TEST_ASSERT_EQUAL_UINT8(170u, out[3]); /* (510 + 1) / 3 */
+    TEST_ASSERT_EQUAL_UINT32(4u, ov.width);
+    TEST_ASSERT_EQUAL_INT(SBR_PIXEL_GRAY8, ov.format);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_RED, 1u, out, 4u, 4u, NULL));
+    TEST_ASSERT_EQUAL_UINT8(255u, out[0]); /* (512 + 510) / 4 */
+    TEST_ASSERT_EQUAL_UINT8(128u, out[1]);
+    TEST_ASSERT_EQUAL_UINT8(64u, out[2]);  /* (512 - 255) / 4 */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_BLUE, 1u, out, 4u, 4u, NULL));
+    TEST_ASSERT_EQUAL_UINT8(64u, out[0]);
+    TEST_ASSERT_EQUAL_UINT8(128u, out[1]);
+    TEST_ASSERT_EQUAL_UINT8(255u, out[2]);
+    TEST_ASSERT_EQUAL_UINT8(0u, out[3]);   /* (512 + 0 - 510) / 4 = 0 */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_YELLOW, 1u, out, 4u, 4u, NULL));
+    TEST_ASSERT_EQUAL_UINT8(191u, out[0]); /* (512 + 255) / 4 */
+    TEST_ASSERT_EQUAL_UINT8(128u, out[1]);
+    TEST_ASSERT_EQUAL_UINT8(0u, out[2]);   /* (512 - 510) / 4 = 0 (truncated) */
+    TEST_ASSERT_EQUAL_UINT8(255u, out[3]); /* (512 + 510) / 4 */
+    /* the same pixels in BGR order give the same maps */
+    {
+        static const uint8_t bgr[12] = {0, 0, 255, 100, 100, 100, 255, 0, 0, 0, 255, 255};
+        sbr_image_t s2 = {4u, 1u, 12u, SBR_PIXEL_BGR888, bgr};
+        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&s2, SBR_MAP_RED, 1u, out, 4u, 4u, NULL));
+        TEST_ASSERT_EQUAL_UINT8(255u, out[0]);
+        TEST_ASSERT_EQUAL_UINT8(64u, out[2]);
+    }
+}
+
+static void test_map_subsample_averages_blocks(void)
+{
+    /* 4x2 grey image, 2x2 blocks: mean of {0, 255, 255, 255} = 191.25 -> 191; of
+       {10, 11, 12, 13} = 11.5 -> 12 (rounded to nearest) */
+    static const uint8_t g[8] = {0, 255, 10, 11, 255, 255, 12, 13};
+    uint8_t out[2];
+    sbr_image_t src = {4u, 2u, 4u, SBR_PIXEL_GRAY8, g};
+    sbr_image_t ov;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_INTENSITY, 2u, out, 2u, 2u, &ov));
+    TEST_ASSERT_EQUAL_UINT32(2u, ov.width);
+    TEST_ASSERT_EQUAL_UINT32(1u, ov.height);
+    TEST_ASSERT_EQUAL_UINT8(191u, out[0]);
+    TEST_ASSERT_EQUAL_UINT8(12u, out[1]);
+}
+
+static void test_map_bad_input(void)
+{
+    static uint8_t buf[16];
+    uint8_t out[16];
+    sbr_image_t gray = {4u, 2u, 4u, SBR_PIXEL_GRAY8, buf};
+    sbr_image_t rgb = {2u, 2u, 6u, SBR_PIXEL_RGB888, buf};
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_map_make(NULL, SBR_MAP_RED, 1u, out, 4u, 16u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_map_make(&gray, SBR_MAP_INTENSITY, 1u, NULL, 4u, 16u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_map_make(&gray, SBR_MAP_RED, 1u, out, 4u, 16u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_map_make(&rgb, (sbr_map_kind_t)7, 1u, out, 4u, 16u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_map_make(&rgb, SBR_MAP_RED, 0u, out, 4u, 16u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_map_make(&rgb, SBR_MAP_RED, 3u, out, 4u, 16u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_map_make(&rgb, SBR_MAP_RED, 1u, out, 1u, 16u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_map_make(&rgb, SBR_MAP_RED, 1u, out, 2u, 3u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_OVERLAP, (int)sbr_map_make(&gray, SBR_MAP_INTENSITY, 1u, &buf[4], 4u, 8u, NULL));
+    gray.stride = 3u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_map_make(&gray, SBR_MAP_INTENSITY, 1u, out, 4u, 16u, NULL));
+}
+
+/* ---- MSER ----------------------------------------------------------------------------- */
+
+/* A dark 10x10 square (value 50) on a 200 background: dark regions are the square at level
+   50 and the whole interior (30 x 30, the map's outer ring is never part of a region). */
+static void test_mser_dark_square(void)
+{
+    uint32_t n = 0u;
+    fill(5u, 7u, 10u, 10u, 50u);
+    g_cfg.polarity = SBR_MSER_DARK;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(2u, n);
+    TEST_ASSERT_EQUAL_UINT32(100u, g_reg[0].area);
+    TEST_ASSERT_EQUAL_UINT8(50u, g_reg[0].level);
+    TEST_ASSERT_EQUAL_UINT8(SBR_MSER_DARK, g_reg[0].polarity);
+    TEST_ASSERT_EQUAL_UINT32(5u, g_reg[0].bbox.x);
+    TEST_ASSERT_EQUAL_UINT32(7u, g_reg[0].bbox.y);
+    TEST_ASSERT_EQUAL_UINT32(10u, g_reg[0].bbox.width);
+    TEST_ASSERT_EQUAL_UINT32(10u, g_reg[0].bbox.height);
+    TEST_ASSERT_EQUAL_FLOAT(0.0f, g_reg[0].variation);
+    TEST_ASSERT_EQUAL_UINT32(100u, mask_of(&g_reg[0]));
+    TEST_ASSERT_EQUAL_UINT32(900u, g_reg[1].area);
+    TEST_ASSERT_EQUAL_UINT32(1u, g_reg[1].bbox.x);
+    TEST_ASSERT_EQUAL_UINT32(30u, g_reg[1].bbox.width);
+    TEST_ASSERT_EQUAL_UINT8(200u, g_reg[1].level);
+    /* max_area removes the interior */
+    g_cfg.max_area = 899u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_EQUAL_UINT32(100u, g_reg[0].area);
+    /* min_area above the square leaves only the interior */
+    g_cfg.max_area = 14400u;
+    g_cfg.min_area = 101u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_EQUAL_UINT32(900u, g_reg[0].area);
+}
+
+/* A sign-like pattern: a 12x12 square of value 50 with a 6x6 centre of value 120.
+   Dark: the ring at level 50 (144 - 36 = 108 px, with a hole), the full square at 120 and
+   the interior. Bright (inverted): the background outside the square (900 - 144 = 756 px,
+   level 200); the interior differs from it by 16% of its area, below min_diversity 0.2,
+   so one of the pair goes (both have variation 0: the larger). The 36-px centre is below
+   min_area 60 unless min_area is lowered. */
+static void test_mser_nested_regions_both_polarities(void)
+{
+    uint32_t n = 0u;
+    uint32_t i;
+    uint32_t dark = 0u;
+    fill(8u, 8u, 12u, 12u, 50u);
+    fill(11u, 11u, 6u, 6u, 120u);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(4u, n);
+    TEST_ASSERT_EQUAL_UINT32(108u, g_reg[0].area);
+    TEST_ASSERT_EQUAL_UINT8(50u, g_reg[0].level);
+    TEST_ASSERT_EQUAL_UINT32(108u, mask_of(&g_reg[0]));
+    /* the hole: the centre pixel of the square is outside the ring's mask */
+    TEST_ASSERT_EQUAL_UINT8(0u, g_mask[(14u - g_reg[0].bbox.y) * 12u + (14u - g_reg[0].bbox.x)]);
+    TEST_ASSERT_EQUAL_UINT32(144u, g_reg[1].area);
+    TEST_ASSERT_EQUAL_UINT8(120u, g_reg[1].level);
+    TEST_ASSERT_EQUAL_UINT32(144u, mask_of(&g_reg[1]));
+    TEST_ASSERT_EQUAL_UINT32(900u, g_reg[2].area);
+    TEST_ASSERT_EQUAL_UINT8(SBR_MSER_BRIGHT, g_reg[3].polarity);
+    TEST_ASSERT_EQUAL_UINT32(756u, g_reg[3].area);
+    TEST_ASSERT_EQUAL_UINT8(200u, g_reg[3].level);
+    TEST_ASSERT_EQUAL_UINT32(756u, mask_of(&g_reg[3]));
+    /* without min_diversity both bright regions stay; a lower min_area adds the centre */
+    g_cfg.min_diversity = 0.0f;
+    g_cfg.min_area = 30u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    for (i = 0u; i < n; i++) {
+        dark += (g_reg[i].polarity == SBR_MSER_DARK) ? 1u : 0u;
+    }
+    TEST_ASSERT_EQUAL_UINT32(3u, dark);
+    TEST_ASSERT_EQUAL_UINT32(6u, n);
+    /* completion order: the background (reached first) before the centre */
+    TEST_ASSERT_EQUAL_UINT32(756u, g_reg[3].area);
+    TEST_ASSERT_EQUAL_UINT32(36u, g_reg[4].area);
+    TEST_ASSERT_EQUAL_UINT8(120u, g_reg[4].level);
+    TEST_ASSERT_EQUAL_UINT8(SBR_MSER_BRIGHT, g_reg[4].polarity);
+    TEST_ASSERT_EQUAL_UINT32(900u, g_reg[5].area);
+}
+
+/* A ramp of one grey level per column has no stable region: the region at level t has
+   30 t pixels, so variation = (30 (t + 5) - 30 (t - 5)) / (30 t) = 10 / t >= 0.33 for every
+   t <= 30 (and the same for the bright side). */
+static void test_mser_ramp_is_not_stable(void)
+{
+    uint32_t x;
+    uint32_t y;
+    uint32_t n = 1u;
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            g_map[y][x] = (uint8_t)x;
+        }
+    }
+    g_cfg.max_area = 500u; /* excludes the interior as a whole */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+}
+
+/* On random blobs every region is extremal: inside <= level (dark), every 4-neighbour
+   outside the mask and inside the map's interior > level; the rebuilt area equals the
+   reported one; and the result does not depend on the workspace contents. */
+static void test_mser_random_regions_are_extremal(void)
+{
+    tsup_rng_t rng = {12345u};
+    uint32_t n = 0u;
+    uint32_t n2 = 0u;
+    uint32_t i;
+    uint32_t k;
+    static sbr_mser_region_t first[64];
+    for (k = 0u; k < 12u; k++) {
+        const uint32_t bx = (uint32_t)tsup_uniform(&rng, 1.0f, 24.0f);
+        const uint32_t by = (uint32_t)tsup_uniform(&rng, 1.0f, 24.0f);
+        const uint32_t bw = (uint32_t)tsup_uniform(&rng, 3.0f, 9.0f);
+        const uint32_t bh = (uint32_t)tsup_uniform(&rng, 3.0f, 9.0f);
+        fill(bx, by, bw, bh, (uint8_t)tsup_uniform(&rng, 0.0f, 255.0f));
+    }
+    g_cfg.min_area = 8u;
+    g_cfg.max_variation = 1.0f;
+    memset(g_ws, 0x00, sizeof g_ws);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_TRUE(n > 3u);
+    memcpy(first, g_reg, sizeof first);
+    memset(g_ws, 0xFF, sizeof g_ws);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n2));
+    TEST_ASSERT_EQUAL_UINT32(n, n2);
+    TEST_ASSERT_EQUAL_MEMORY(first, g_reg, n * sizeof(sbr_mser_region_t));
+    for (i = 0u; i < n; i++) {
+        const sbr_mser_region_t *r = &g_reg[i];
+        const int dark = (r->polarity == SBR_MSER_DARK) ? 1 : 0;
+        uint32_t x;
+        uint32_t y;
+        TEST_ASSERT_EQUAL_UINT32(r->area, mask_of(r));
+        for (y = 1u; y < H - 1u; y++) {
+            for (x = 1u; x < W - 1u; x++) {
+                const int inbox = (x >= r->bbox.x) && (y >= r->bbox.y) &&
+                                  (x < r->bbox.x + r->bbox.width) && (y < r->bbox.y + r->bbox.height);
+                const int in = inbox && g_mask[(y - r->bbox.y) * r->bbox.width + (x - r->bbox.x)];
+                const uint8_t v = g_map[y][x];
+                const int pass = dark ? (v <= r->level) : (v >= r->level);
+                if (in) {
+                    TEST_ASSERT_TRUE(pass);
+                } else if (pass) {
+                    /* a passing pixel outside the region must not touch it */
+                    const int d[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+                    uint32_t j;
+                    for (j = 0u; j < 4u; j++) {
+                        const uint32_t nx = (uint32_t)((int)x + d[j][0]);
+                        const uint32_t ny = (uint32_t)((int)y + d[j][1]);
+                        const int ninbox = (nx >= r->bbox.x) && (ny >= r->bbox.y) &&
+                                           (nx < r->bbox.x + r->bbox.width) &&
+                                           (ny < r->bbox.y + r->bbox.height);
+                        TEST_ASSERT_FALSE(ninbox && g_mask[(ny - r->bbox.y) * r->bbox.width +
+                                                           (nx - r->bbox.x)]);
+                    }
+                }
+            }
+        }
+    }
+}
+
+static void test_mser_capacity_and_node_bound(void)
+{
+    uint32_t n = 0u;
+    const sbr_image_t v = map_view();
+    fill(8u, 8u, 12u, 12u, 50u);
+    fill(11u, 11u, 6u, 6u, 120u);
+    /* 4 regions, room for 2 */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY,
+                          (int)sbr_mser_detect(&v, &g_cfg, g_ws, sizeof g_ws, g_reg, 2u, &n));
+    TEST_ASSERT_EQUAL_UINT32(2u, n);
+    TEST_ASSERT_EQUAL_UINT32(108u, g_reg[0].area);
+    /* a node bound of 1 cannot hold the tree: distinct status, smaller workspace */
+    g_cfg.max_nodes = 1u;
+    TEST_ASSERT_TRUE(sbr_mser_workspace_size(W, H, &g_cfg) <
+                     sbr_mser_workspace_size(W, H, &(sbr_mser_config_t){5u, 60u, 14400u, 0.25f, 0.2f, 3u, 0u}));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, (int)detect(&n));
+    /* the size macro and the size query agree */
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_MSER_WORKSPACE_SIZE(W, H, 5u, 1u),
+                             (uint32_t)sbr_mser_workspace_size(W, H, &g_cfg));
+    /* a sufficient bound gives the full result */
+    g_cfg.max_nodes = 16u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(4u, n);
+}
+
+static void test_mser_bad_input(void)
+{
+    uint32_t n = 7u;
+    sbr_image_t v = map_view();
+    sbr_mser_config_t c;
+    static const uint8_t small[4] = {0, 0, 0, 0};
+    sbr_image_t tiny = {2u, 2u, 2u, SBR_PIXEL_GRAY8, small};
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_mser_detect(NULL, &g_cfg, g_ws, sizeof g_ws, g_reg, 64u, &n));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_mser_detect(&v, NULL, g_ws, sizeof g_ws, g_reg, 64u, &n));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_mser_detect(&v, &g_cfg, g_ws, sizeof g_ws, NULL, 64u, &n));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_mser_detect(&v, &g_cfg, g_ws, sizeof g_ws, g_reg, 64u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, (int)sbr_mser_detect(&tiny, &g_cfg, g_ws, sizeof g_ws, g_reg, 64u, &n));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, (int)sbr_mser_detect(&v, &g_cfg, g_ws, sizeof g_ws, g_reg, 0u, &n));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, (int)sbr_mser_detect(&v, &g_cfg, NULL, sizeof g_ws, g_reg, 64u, &n));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
+                          (int)sbr_mser_detect(&v, &g_cfg, g_ws, sbr_mser_workspace_size(W, H, &g_cfg) - 1u,
+                                               g_reg, 64u, &n));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
+                          (int)sbr_mser_detect(&v, &g_cfg, (uint8_t *)g_ws + 1, sizeof g_ws - 4u, g_reg, 64u, &n));
+    v.format = SBR_PIXEL_RGB888;
+    v.stride = 3u * W;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_detect(&v, &g_cfg, g_ws, sizeof g_ws, g_reg, 64u, &n));
+    v = map_view();
+    v.stride = W - 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_mser_detect(&v, &g_cfg, g_ws, sizeof g_ws, g_reg, 64u, &n));
+    /* configuration ranges */
+    sbr_mser_config_default(&c);
+    c.delta = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    c.delta = SBR_MSER_MAX_DELTA + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    sbr_mser_config_default(&c);
+    c.min_area = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    sbr_mser_config_default(&c);
+    c.max_area = c.min_area - 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    sbr_mser_config_default(&c);
+    c.max_variation = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    c.max_variation = 0.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    sbr_mser_config_default(&c);
+    c.min_diversity = 1.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    c.min_diversity = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    sbr_mser_config_default(&c);
+    c.polarity = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    c.polarity = 4u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_mser_workspace_size(W, H, &c));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_mser_workspace_size(2u, H, &g_cfg));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_mser_config_check(NULL));
+}
+
+static void test_mser_region_mask_rejects_bad_regions(void)
+{
+    uint32_t n = 0u;
+    sbr_mser_region_t r;
+    const sbr_image_t v = map_view();
+    fill(5u, 7u, 10u, 10u, 50u);
+    g_cfg.polarity = SBR_MSER_DARK;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    r = g_reg[0];
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_mser_region_mask(&v, NULL, g_mws, sizeof g_mws, g_mask, 10u, 100u));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_mser_region_mask(&v, &r, g_mws, sizeof g_mws, g_mask, 9u, 100u));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_mser_region_mask(&v, &r, g_mws, sizeof g_mws, g_mask, 10u, 99u));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, (int)sbr_mser_region_mask(&v, &r, g_mws, 399u, g_mask, 10u, 100u));
+    r.bbox.x = 0u; /* the outer ring is never part of a region */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_region_mask(&v, &r, g_mws, sizeof g_mws, g_mask, 10u, 100u));
+    r = g_reg[0];
+    r.bbox.width = 30u; /* leaves the interior */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_region_mask(&v, &r, g_mws, sizeof g_mws, g_mask, 30u, 900u));
+    r = g_reg[0];
+    r.seed_x = 20u; /* seed outside the box */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_region_mask(&v, &r, g_mws, sizeof g_mws, g_mask, 10u, 100u));
+    r = g_reg[0];
+    r.polarity = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_region_mask(&v, &r, g_mws, sizeof g_mws, g_mask, 10u, 100u));
+    /* the map changed since detection: one pixel of the square brightened */
+    r = g_reg[0];
+    g_map[10][10] = 250u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, (int)sbr_mser_region_mask(&v, &r, g_mws, sizeof g_mws, g_mask, 10u, 100u));
+    /* the seed itself no longer passes */
+    g_map[r.seed_y][r.seed_x] = 251u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, (int)sbr_mser_region_mask(&v, &r, g_mws, sizeof g_mws, g_mask, 10u, 100u));
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_map_formulas_on_known_colours);
+    RUN_TEST(test_map_subsample_averages_blocks);
+    RUN_TEST(test_map_bad_input);
+    RUN_TEST(test_mser_dark_square);
+    RUN_TEST(test_mser_nested_regions_both_polarities);
+    RUN_TEST(test_mser_ramp_is_not_stable);
+    RUN_TEST(test_mser_random_regions_are_extremal);
+    RUN_TEST(test_mser_capacity_and_node_bound);
+    RUN_TEST(test_mser_bad_input);
+    RUN_TEST(test_mser_region_mask_rejects_bad_regions);
+    return UNITY_END();
+}
