@@ -13,6 +13,7 @@
 static sbr_fft_t g_fft_n;  /* resampling, N = 256 */
 static sbr_fft_t g_fft_p;  /* correlation, P = 64 */
 static sbr_complex_t g_work[256];
+static sbr_complex_t g_wide[SBR_FD_TABLE_WORK_LEN(64)];
 static sbr_pointf_t g_shape[NPTS];
 static sbr_pointf_t g_tmp[NPTS];
 static sbr_fd_match_config_t g_cov;
@@ -283,6 +284,50 @@ static void test_table(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_match_table(&g_fft_p, &g_cov, &q, protos, 0u, g_work, 256u, res, &best));
 }
 
+/* The four-lane table path (scratch of SBR_FD_TABLE_WORK_LEN(P)) gives every prototype the
+   match sbr_fd_match() gives it, in all three modes, with a partial last block (7 = 4 + 3). */
+static void test_table_lanes_equal_single_matches(void)
+{
+    sbr_fd_t protos[7];
+    sbr_fd_match_t res[7];
+    sbr_fd_match_t one;
+    uint32_t best = 99u;
+    uint32_t i;
+    uint32_t c;
+    sbr_fd_t q;
+    sbr_fd_match_config_t cfgs[3];
+    cfgs[0] = g_cov;
+    cfgs[1] = g_inv;
+    cfgs[2] = g_cov;
+    cfgs[2].max_rotation = 10.0f * DEG;
+    for (i = 0u; i < 7u; i++) {
+        transform((float)i * 25.0f * DEG, 1.0f + (float)i, (float)i, -2.0f, 3u * i);
+        protos[i] = fd_of(g_tmp, NPTS);
+        protos[i].c[M + 2u].re += 0.05f * (float)i; /* make them differ in shape too */
+    }
+    transform(30.0f * DEG, 2.0f, 0.0f, 0.0f, 5u);
+    q = fd_of(g_tmp, NPTS);
+    for (c = 0u; c < 3u; c++) {
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_table(&g_fft_p, &cfgs[c], &q, protos, 7u, g_wide,
+                                                         SBR_FD_TABLE_WORK_LEN(64), res, &best));
+        for (i = 0u; i < 7u; i++) {
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match(&g_fft_p, &cfgs[c], &q, &protos[i], g_work, 256u, &one));
+            TEST_ASSERT_FLOAT_WITHIN(1e-5f, one.error, res[i].error);
+            TEST_ASSERT_FLOAT_WITHIN(1e-4f, one.rotation, res[i].rotation);
+            TEST_ASSERT_FLOAT_WITHIN(1e-4f, one.shift, res[i].shift);
+            TEST_ASSERT_FLOAT_WITHIN(1e-6f, one.scale_ratio, res[i].scale_ratio);
+        }
+    }
+    /* the prototype rotated by 25 degrees (index 1) is the best covariant match of a 30-degree
+       query; with a 10-degree bound, no prototype within 10 degrees matches well except
+       index 1 (5 degrees away) */
+    TEST_ASSERT_EQUAL_UINT32(1u, best);
+    /* a corrupted coefficient in the last, partial block is caught */
+    protos[6].c[M + 1u].im = INFINITY;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, &g_cov, &q, protos, 7u, g_wide,
+                                                            SBR_FD_TABLE_WORK_LEN(64), res, &best));
+}
+
 static void test_degenerate_input_gets_status(void)
 {
     sbr_fd_t fd;
@@ -369,6 +414,7 @@ int main(void)
     RUN_TEST(test_integer_points);
     RUN_TEST(test_smooth);
     RUN_TEST(test_table);
+    RUN_TEST(test_table_lanes_equal_single_matches);
     RUN_TEST(test_degenerate_input_gets_status);
     return UNITY_END();
 }

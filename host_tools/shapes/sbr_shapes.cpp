@@ -205,7 +205,7 @@ int main(int argc, char **argv) {
     // ---- stage 3: sbr descriptors -----------------------------------------------------
     t0 = Clock::now();
     std::vector<sbr_fd_t> fd(count), fd_mir(count), fd_s(count), fd_smir(count), fd_lo(count), fd_lomir(count);
-    std::vector<sbr_complex_t> work(std::max(o.n, o.p));
+    std::vector<sbr_complex_t> work(std::max(o.n, SBR_FD_TABLE_WORK_LEN(o.p)));
     const uint32_t m_lo = std::max(2u, o.m / 2);
     for (size_t i = 0; i < count; ++i) {
         const auto &c = contours[i];

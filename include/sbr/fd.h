@@ -152,8 +152,16 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
                           const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
                           uint32_t work_len, sbr_fd_match_t *result);
 
+/** Scratch length (complex values) with which sbr_fd_match_table() correlates four
+    prototypes at a time (lane-interleaved transforms that compilers map to SIMD on hosts);
+    shorter scratch (>= P) matches one after another. Both give the same matches up to
+    float rounding (a different butterfly order). */
+#define SBR_FD_TABLE_WORK_LEN(p) (6u * (uint32_t)(p))
+
 /**
  * @brief Correlate a query with a table of prototypes.
+ * @param[in]  work     scratch of at least P complex values; with
+ *                      SBR_FD_TABLE_WORK_LEN(P) the faster four-lane path is used.
  * @param[out] results  one result per prototype (`count` entries).
  * @param[out] best     index of the prototype with the smallest error.
  * @return as sbr_fd_match(); ::SBR_ERR_SIZE for count 0. On an error in one prototype the

@@ -301,7 +301,11 @@ static sbr_complex_t corr_at(const sbr_fd_t *q, const sbr_fd_t *p, float lag, ui
    fit needs the objective itself). */
 static float objective(sbr_fd_mode_t mode, sbr_complex_t r)
 {
-    return (mode == SBR_FD_ROTATION_INVARIANT) ? hypotf(r.re, r.im) : r.re;
+    float v = r.re;
+    if (mode == SBR_FD_ROTATION_INVARIANT) {
+        v = sqrtf((r.re * r.re) + (r.im * r.im)); /* |r| <= 1: no overflow */
+    }
+    return v;
 }
 
 /* Everything a match needs except the prototype: checked once per call of
@@ -331,41 +335,33 @@ static sbr_status_t check_match_args(const sbr_fft_t *fft, const sbr_fd_match_co
     return SBR_OK;
 }
 
-/* A prototype must be a valid descriptor with the query's M. */
+/* A prototype's header must be valid and its M the query's; its coefficients are checked
+   for finiteness while they are multiplied (fill_products()). */
 static sbr_status_t check_proto(const sbr_fd_t *query, const sbr_fd_t *proto)
 {
-    const sbr_status_t st = check_fd(proto);
-
-    if (st != SBR_OK) {
-        return st;
+    if (proto == NULL) {
+        return SBR_ERR_NULL;
     }
-    return (proto->m != query->m) ? SBR_ERR_SIZE : SBR_OK;
+    if ((proto->m == 0u) || (proto->m > SBR_FD_MAX_M) || (isfinite(proto->scale) == 0) ||
+        (proto->scale <= 0.0f)) {
+        return SBR_ERR_RANGE;
+    }
+    if (proto->m != query->m) {
+        return SBR_ERR_SIZE;
+    }
+    return SBR_OK;
 }
 
-/* The match itself, on arguments already checked. */
-static void match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
-                       const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
-                       sbr_fd_match_t *result)
+/* conj(Q(n)) C(n) for n = -M..M, written through `place` (index n mod P) into re/im with
+   the given element stride. Returns SBR_ERR_RANGE if a coefficient of C is not finite
+   (the energy sum of non-negative terms is then infinite or NaN). */
+static sbr_status_t fill_products(const sbr_fd_t *query, const sbr_fd_t *proto, uint32_t size,
+                                  const uint16_t *place, float *re, float *im, uint32_t stride)
 {
-    const uint32_t size = fft->n;
     const uint32_t m = query->m;
     uint32_t k;
-    uint32_t l;
-    uint32_t best = 0u;
-    float best_val = -1.0f;
-    float cos_bound = -1.0f;
-    int found = 0;
-    int bounded;
-    sbr_complex_t r;
-    float lag;
-    float val;
-    float rot;
+    float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f}; /* independent sums: no serial add chain */
 
-    /* conj(Q) C at n mod P: indices 0..M and P-M..P-1; the gap between is zero. */
-    for (k = m + 1u; k < (size - m); k++) {
-        work[k].re = 0.0f;
-        work[k].im = 0.0f;
-    }
     for (k = 0u; k <= (2u * m); k++) {
         const sbr_complex_t q = query->c[k];
         const sbr_complex_t c = proto->c[k];
@@ -373,60 +369,85 @@ static void match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
         if (k < m) {
             at = (size + k) - m;
         }
-        work[at].re = (q.re * c.re) + (q.im * c.im);
-        work[at].im = (q.re * c.im) - (q.im * c.re);
+        if (place != NULL) {
+            at = (uint32_t)place[at];
+        }
+        re[at * stride] = (q.re * c.re) + (q.im * c.im);
+        im[at * stride] = (q.re * c.im) - (q.im * c.re);
+        acc[k & 3u] += (c.re * c.re) + (c.im * c.im);
     }
-    /* The instance was checked by the caller, so this cannot fail. */
-    (void)sbr_fft_inverse(fft, work, work);
-    /* The inverse is scaled by 1/P; r = P * work. Only comparisons follow, so the scale
-       is applied to the peak only. */
-    bounded = 0;
+    if (isfinite((acc[0] + acc[1]) + (acc[2] + acc[3])) == 0) {
+        return SBR_ERR_RANGE;
+    }
+    return SBR_OK;
+}
+
+/* Objective value used by the peak search: |r|^2 (invariant), Re r (covariant), or
+   FD_OUTSIDE for a covariant value whose rotation exceeds the bound. */
+#define FD_OUTSIDE (-8.0f)
+
+static float peak_value(int invariant, float cos_bound, float re, float im)
+{
+    float v;
+    if (invariant != 0) {
+        v = (re * re) + (im * im);
+    } else {
+        v = re;
+        if (re < (cos_bound * sqrtf((re * re) + (im * im)))) {
+            v = FD_OUTSIDE;
+        }
+    }
+    return v;
+}
+
+static int mode_invariant(const sbr_fd_match_config_t *cfg)
+{
+    int inv = 0;
+    if (cfg->mode == SBR_FD_ROTATION_INVARIANT) {
+        inv = 1;
+    }
+    return inv;
+}
+
+/* cos of the rotation bound, or -2 (no bound) */
+static float rotation_cos_bound(const sbr_fd_match_config_t *cfg)
+{
+    float cb = -2.0f;
+    if ((cfg->mode == SBR_FD_ROTATION_COVARIANT) && (cfg->max_rotation < SBR_PI_F)) {
+        cb = cosf(cfg->max_rotation);
+    }
+    return cb;
+}
+
+/* Refinement and the result, given the grid peak `best` (found = 0: no admissible peak)
+   and r at best - 1, best, best + 1. */
+static void finish_match(uint32_t size, const sbr_fd_match_config_t *cfg,
+                         const sbr_fd_t *query, const sbr_fd_t *proto, int found,
+                         uint32_t best, const sbr_complex_t around[3], sbr_fd_match_t *result)
+{
+    int bounded = 0;
+    sbr_complex_t r;
+    float lag;
+    float val;
+    float rot;
+
     if ((cfg->mode == SBR_FD_ROTATION_COVARIANT) && (cfg->max_rotation < SBR_PI_F)) {
         bounded = 1;
-        cos_bound = cosf(cfg->max_rotation);
     }
-    for (l = 0u; l < size; l++) {
-        const sbr_complex_t v = work[l];
-        if (cfg->mode == SBR_FD_ROTATION_INVARIANT) {
-            val = (v.re * v.re) + (v.im * v.im);
-        } else {
-            val = v.re;
-            if ((bounded != 0) && (v.re < (cos_bound * hypotf(v.re, v.im)))) {
-                continue;
-            }
-        }
-        if ((found == 0) || (val > best_val)) {
-            best_val = val;
-            best = l;
-            found = 1;
-        }
-    }
+    result->scale_ratio = query->scale / proto->scale;
     if (found == 0) {
         result->error = 4.0f;
         result->rotation = 0.0f;
         result->shift = 0.0f;
-        result->scale_ratio = query->scale / proto->scale;
         return;
     }
-    r.re = work[best].re * (float)size;
-    r.im = work[best].im * (float)size;
+    r = around[1];
     lag = (float)best;
     val = objective(cfg->mode, r);
     if (cfg->refine != 0) {
-        const uint32_t lm = (best + size - 1u) % size;
-        const uint32_t lp = (best + 1u) % size;
-        sbr_complex_t a = work[lm];
-        sbr_complex_t b = work[lp];
-        float fa;
-        float fb;
-        float den;
-        a.re *= (float)size;
-        a.im *= (float)size;
-        b.re *= (float)size;
-        b.im *= (float)size;
-        fa = objective(cfg->mode, a);
-        fb = objective(cfg->mode, b);
-        den = fa - (2.0f * val) + fb;
+        const float fa = objective(cfg->mode, around[0]);
+        const float fb = objective(cfg->mode, around[2]);
+        const float den = fa - (2.0f * val) + fb;
         if (den < 0.0f) {
             float d = 0.5f * (fa - fb) / den;
             sbr_complex_t rr;
@@ -467,7 +488,264 @@ static void match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
         lag -= 1.0f;
     }
     result->shift = lag;
-    result->scale_ratio = query->scale / proto->scale;
+}
+
+/* One match through the FFT instance, on checked arguments (header of proto included). */
+static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                               const sbr_fd_t *query, const sbr_fd_t *proto,
+                               sbr_complex_t *work, sbr_fd_match_t *result)
+{
+    const uint32_t size = fft->n;
+    uint32_t k;
+    sbr_status_t st;
+
+    /* indices 0..M and P-M..P-1 are filled; the gap between is zero */
+    for (k = query->m + 1u; k < (size - query->m); k++) {
+        work[k].re = 0.0f;
+        work[k].im = 0.0f;
+    }
+    {
+        /* the complex array seen as interleaved floats (re, im, re, im, ...) */
+        float *f = (float *)(void *)work;
+        st = fill_products(query, proto, size, NULL, f, &f[1], 2u);
+    }
+    if (st != SBR_OK) {
+        return st;
+    }
+    /* The instance was checked by the caller, so this cannot fail. The inverse is scaled
+       by 1/P, so r = P * work. */
+    (void)sbr_fft_inverse(fft, work, work);
+    {
+        const int inv = mode_invariant(cfg);
+        const float cb = rotation_cos_bound(cfg);
+        const float scale = (float)size;
+        float best_val = FD_OUTSIDE;
+        uint32_t best = 0u;
+        uint32_t l;
+        sbr_complex_t around[3];
+        for (l = 0u; l < size; l++) {
+            const float v = peak_value(inv, cb, work[l].re, work[l].im);
+            if (v > best_val) {
+                best_val = v;
+                best = l;
+            }
+        }
+        around[0] = work[(best + size - 1u) % size];
+        around[1] = work[best];
+        around[2] = work[(best + 1u) % size];
+        for (l = 0u; l < 3u; l++) {
+            around[l].re *= scale;
+            around[l].im *= scale;
+        }
+        finish_match(size, cfg, query, proto, (best_val > FD_OUTSIDE) ? 1 : 0, best, around,
+                     result);
+    }
+    return SBR_OK;
+}
+
+/* ---- table matching, FD_LANES prototypes at a time ----------------------------------
+   The same correlation through a radix-2 transform whose butterflies work on FD_LANES
+   independent transforms side by side (lane-interleaved arrays): the innermost loop has
+   a fixed trip count over contiguous floats, which compilers map to SIMD registers on
+   hosts that have them; on a scalar ECU core it costs the same as one transform after
+   another. Layout of `work`: re[P * LANES], im[P * LANES], twiddles[P / 2], scratch[P]. */
+#define FD_LANES 4u
+
+/* One radix-2 butterfly on FD_LANES transforms: all loads before all stores, so that the
+   four lanes form straight-line groups a compiler can keep in one vector register. */
+static void lanes_butterfly(float *ar, float *ai, float *br, float *bi, sbr_complex_t w)
+{
+    float xr[FD_LANES];
+    float xi[FD_LANES];
+    float yr[FD_LANES];
+    float yi[FD_LANES];
+    float tr[FD_LANES];
+    float ti[FD_LANES];
+    uint32_t b;
+
+    for (b = 0u; b < FD_LANES; b++) {
+        xr[b] = ar[b];
+        xi[b] = ai[b];
+        yr[b] = br[b];
+        yi[b] = bi[b];
+    }
+    for (b = 0u; b < FD_LANES; b++) {
+        tr[b] = (yr[b] * w.re) - (yi[b] * w.im);
+        ti[b] = (yr[b] * w.im) + (yi[b] * w.re);
+    }
+    /* one store group per array: the groups stay in program order */
+    for (b = 0u; b < FD_LANES; b++) {
+        ar[b] = xr[b] + tr[b];
+    }
+    for (b = 0u; b < FD_LANES; b++) {
+        ai[b] = xi[b] + ti[b];
+    }
+    for (b = 0u; b < FD_LANES; b++) {
+        br[b] = xr[b] - tr[b];
+    }
+    for (b = 0u; b < FD_LANES; b++) {
+        bi[b] = xi[b] - ti[b];
+    }
+}
+
+static void lanes_transform(uint32_t size, const sbr_complex_t *tw, float *re, float *im)
+{
+    uint32_t half;
+    uint32_t i;
+
+    /* first stage: all twiddles are 1 */
+    for (i = 0u; i < size; i += 2u) {
+        float *ar = &re[i * FD_LANES];
+        float *ai = &im[i * FD_LANES];
+        float *br = &re[(i + 1u) * FD_LANES];
+        float *bi = &im[(i + 1u) * FD_LANES];
+        float xr[FD_LANES];
+        float xi[FD_LANES];
+        float yr[FD_LANES];
+        float yi[FD_LANES];
+        uint32_t b;
+        for (b = 0u; b < FD_LANES; b++) {
+            xr[b] = ar[b];
+            xi[b] = ai[b];
+            yr[b] = br[b];
+            yi[b] = bi[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            ar[b] = xr[b] + yr[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            ai[b] = xi[b] + yi[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            br[b] = xr[b] - yr[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            bi[b] = xi[b] - yi[b];
+        }
+    }
+    for (half = 2u; half < size; half *= 2u) {
+        const uint32_t tstep = size / (2u * half);
+        uint32_t j;
+        for (j = 0u; j < half; j++) {
+            const sbr_complex_t w = tw[j * tstep];
+            for (i = j; i < size; i += 2u * half) {
+                lanes_butterfly(&re[i * FD_LANES], &im[i * FD_LANES], &re[(i + half) * FD_LANES],
+                                &im[(i + half) * FD_LANES], w);
+            }
+        }
+    }
+}
+
+/* Grid peak of each lane (first index of the largest value, as the scalar search). */
+static void lanes_peaks(uint32_t size, int inv, float cb, const float *re, const float *im,
+                        uint32_t best[FD_LANES])
+{
+    float bv[FD_LANES];
+    uint32_t l;
+    uint32_t b;
+
+    for (b = 0u; b < FD_LANES; b++) {
+        bv[b] = FD_OUTSIDE;
+        best[b] = 0u;
+    }
+    for (l = 0u; l < size; l++) {
+        const float *lr = &re[l * FD_LANES];
+        const float *li = &im[l * FD_LANES];
+        float v[FD_LANES];
+        if (inv != 0) {
+            for (b = 0u; b < FD_LANES; b++) {
+                v[b] = (lr[b] * lr[b]) + (li[b] * li[b]);
+            }
+        } else {
+            for (b = 0u; b < FD_LANES; b++) {
+                v[b] = peak_value(0, cb, lr[b], li[b]);
+            }
+        }
+        /* branch-free updates (selects), so the lanes stay in one vector */
+        for (b = 0u; b < FD_LANES; b++) {
+            best[b] = (v[b] > bv[b]) ? l : best[b];
+            bv[b] = (v[b] > bv[b]) ? v[b] : bv[b];
+        }
+    }
+}
+
+/* Was the lane's peak admissible (a value above FD_OUTSIDE)? */
+static int found_any(int inv, float cb, sbr_complex_t at_best)
+{
+    int f = 0;
+    if (peak_value(inv, cb, at_best.re, at_best.im) > FD_OUTSIDE) {
+        f = 1;
+    }
+    return f;
+}
+
+static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                                      const sbr_fd_t *query, const sbr_fd_t *protos,
+                                      uint32_t count, sbr_complex_t *work,
+                                      sbr_fd_match_t *results)
+{
+    const uint32_t size = fft->n;
+    /* lane buffers: the first 4P complex values of `work` seen as 8P floats */
+    float *re = (float *)(void *)work;
+    float *im = &re[size * FD_LANES];
+    sbr_complex_t *tw = &work[size * FD_LANES];
+    const int inv = mode_invariant(cfg);
+    const float cb = rotation_cos_bound(cfg);
+    uint32_t best[FD_LANES];
+    uint32_t j;
+    uint32_t i0;
+
+    for (j = 0u; j < (size / 2u); j++) {
+        const float a = (SBR_TWO_PI_F * (float)j) / (float)size;
+        tw[j].re = cosf(a);
+        tw[j].im = sinf(a);
+    }
+    for (i0 = 0u; i0 < count; i0 += FD_LANES) {
+        uint32_t lanes = count - i0;
+        uint32_t b;
+        uint32_t k;
+        if (lanes > FD_LANES) {
+            lanes = FD_LANES;
+        }
+        /* only the gap n = M+1 .. P-M-1 stays zero after the products are placed */
+        for (k = query->m + 1u; k < (size - query->m); k++) {
+            const uint32_t at = (uint32_t)fft->bitrev[k] * FD_LANES;
+            for (b = 0u; b < FD_LANES; b++) {
+                re[at + b] = 0.0f;
+                im[at + b] = 0.0f;
+            }
+        }
+        /* unused lanes of the last block: zero input, results discarded */
+        for (b = lanes; b < FD_LANES; b++) {
+            for (k = 0u; k < size; k++) {
+                re[(k * FD_LANES) + b] = 0.0f;
+                im[(k * FD_LANES) + b] = 0.0f;
+            }
+        }
+        for (b = 0u; b < lanes; b++) {
+            sbr_status_t st = check_proto(query, &protos[i0 + b]);
+            if (st == SBR_OK) {
+                st = fill_products(query, &protos[i0 + b], size, fft->bitrev, &re[b], &im[b],
+                                   FD_LANES);
+            }
+            if (st != SBR_OK) {
+                return st;
+            }
+        }
+        lanes_transform(size, tw, re, im);
+        lanes_peaks(size, inv, cb, re, im, best);
+        for (b = 0u; b < lanes; b++) {
+            sbr_complex_t around[3];
+            const uint32_t at[3] = {(best[b] + size - 1u) % size, best[b], (best[b] + 1u) % size};
+            for (k = 0u; k < 3u; k++) {
+                around[k].re = re[(at[k] * FD_LANES) + b];
+                around[k].im = im[(at[k] * FD_LANES) + b];
+            }
+            finish_match(size, cfg, query, &protos[i0 + b], found_any(inv, cb, around[1]),
+                         best[b], around, &results[i0 + b]);
+        }
+    }
+    return SBR_OK;
 }
 
 sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
@@ -480,7 +758,7 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
         st = check_proto(query, proto);
     }
     if (st == SBR_OK) {
-        match_core(fft, cfg, query, proto, work, result);
+        st = match_core(fft, cfg, query, proto, work, result);
     }
     return st;
 }
@@ -503,12 +781,23 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
     if (count == 0u) {
         return SBR_ERR_SIZE;
     }
-    for (i = 0u; i < count; i++) {
-        st = check_proto(query, &protos[i]);
+    if (work_len >= SBR_FD_TABLE_WORK_LEN(fft->n)) {
+        st = match_table_lanes(fft, cfg, query, protos, count, work, results);
         if (st != SBR_OK) {
             return st;
         }
-        match_core(fft, cfg, query, &protos[i], work, &results[i]);
+    } else {
+        for (i = 0u; i < count; i++) {
+            st = check_proto(query, &protos[i]);
+            if (st == SBR_OK) {
+                st = match_core(fft, cfg, query, &protos[i], work, &results[i]);
+            }
+            if (st != SBR_OK) {
+                return st;
+            }
+        }
+    }
+    for (i = 1u; i < count; i++) {
         if (results[i].error < results[b].error) {
             b = i;
         }
