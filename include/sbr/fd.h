@@ -156,7 +156,7 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
     prototypes at a time (lane-interleaved transforms that compilers map to SIMD on hosts);
     shorter scratch (>= P) matches one after another. Both give the same matches up to
     float rounding (a different butterfly order). */
-#define SBR_FD_TABLE_WORK_LEN(p) (6u * (uint32_t)(p))
+#define SBR_FD_TABLE_WORK_LEN(p) (5u * (uint32_t)(p))
 
 /**
  * @brief Correlate a query with a table of prototypes.

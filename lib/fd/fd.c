@@ -548,7 +548,7 @@ static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t
    independent transforms side by side (lane-interleaved arrays): the innermost loop has
    a fixed trip count over contiguous floats, which compilers map to SIMD registers on
    hosts that have them; on a scalar ECU core it costs the same as one transform after
-   another. Layout of `work`: re[P * LANES], im[P * LANES], twiddles[P / 2], scratch[P]. */
+   another. Layout of `work` (as floats): re[4P], im[4P], then P / 2 complex twiddles. */
 #define FD_LANES 4u
 
 /* One radix-2 butterfly on FD_LANES transforms: all loads before all stores, so that the
@@ -636,7 +636,9 @@ static void lanes_transform(uint32_t size, const sbr_complex_t *tw, float *re, f
     }
 }
 
-/* Grid peak of each lane (first index of the largest value, as the scalar search). */
+/* Grid peak of each lane (first index of the largest value, as the scalar search): the
+   maxima of all lanes in whole-vector steps, then the first index that holds each
+   maximum (the same float operations give the same values). */
 static void lanes_peaks(uint32_t size, int inv, float cb, const float *re, const float *im,
                         uint32_t best[FD_LANES])
 {
@@ -646,26 +648,31 @@ static void lanes_peaks(uint32_t size, int inv, float cb, const float *re, const
 
     for (b = 0u; b < FD_LANES; b++) {
         bv[b] = FD_OUTSIDE;
-        best[b] = 0u;
     }
-    for (l = 0u; l < size; l++) {
-        const float *lr = &re[l * FD_LANES];
-        const float *li = &im[l * FD_LANES];
-        float v[FD_LANES];
-        if (inv != 0) {
+    if (inv != 0) {
+        for (l = 0u; l < size; l++) {
+            const float *lr = &re[l * FD_LANES];
+            const float *li = &im[l * FD_LANES];
             for (b = 0u; b < FD_LANES; b++) {
-                v[b] = (lr[b] * lr[b]) + (li[b] * li[b]);
-            }
-        } else {
-            for (b = 0u; b < FD_LANES; b++) {
-                v[b] = peak_value(0, cb, lr[b], li[b]);
+                const float v = (lr[b] * lr[b]) + (li[b] * li[b]);
+                bv[b] = (v > bv[b]) ? v : bv[b];
             }
         }
-        /* branch-free updates (selects), so the lanes stay in one vector */
-        for (b = 0u; b < FD_LANES; b++) {
-            best[b] = (v[b] > bv[b]) ? l : best[b];
-            bv[b] = (v[b] > bv[b]) ? v[b] : bv[b];
+    } else {
+        for (l = 0u; l < size; l++) {
+            for (b = 0u; b < FD_LANES; b++) {
+                const float v = peak_value(0, cb, re[(l * FD_LANES) + b], im[(l * FD_LANES) + b]);
+                bv[b] = (v > bv[b]) ? v : bv[b];
+            }
         }
+    }
+    for (b = 0u; b < FD_LANES; b++) {
+        l = 0u;
+        while ((l < (size - 1u)) &&
+               (peak_value(inv, cb, re[(l * FD_LANES) + b], im[(l * FD_LANES) + b]) != bv[b])) {
+            l++;
+        }
+        best[b] = l;
     }
 }
 
@@ -688,7 +695,7 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
     /* lane buffers: the first 4P complex values of `work` seen as 8P floats */
     float *re = (float *)(void *)work;
     float *im = &re[size * FD_LANES];
-    sbr_complex_t *tw = &work[size * FD_LANES];
+    sbr_complex_t *tw = &work[size * FD_LANES];       /* P / 2 twiddles after re, im */
     const int inv = mode_invariant(cfg);
     const float cb = rotation_cos_bound(cfg);
     uint32_t best[FD_LANES];
