@@ -15,7 +15,7 @@ cd "$ROOT"
 BUILD="${SBR_BUILD_ROOT:-$ROOT/build}"
 JOBS="$(nproc 2>/dev/null || echo 2)"
 
-PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip
+PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip python3-venv can-utils
           gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
           gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user
           libfftw3-dev libkissfft-dev cppcheck libopencv-dev)
@@ -34,6 +34,20 @@ setup() {
     $sudo apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
   fi
+  setup_venv
+}
+
+# The pinned Python packages (cantools, python-can) in build/venv, rebuilt when
+# tests/python/requirements.txt changes.
+setup_venv() {
+  local venv="$BUILD/venv" req="$ROOT/tests/python/requirements.txt"
+  if [ ! -x "$venv/bin/python" ] || ! cmp -s "$req" "$venv/requirements.installed"; then
+    log "python environment: $venv"
+    rm -rf "$venv"
+    python3 -m venv "$venv"
+    "$venv/bin/pip" install -q --disable-pip-version-check -r "$req"
+    cp "$req" "$venv/requirements.installed"
+  fi
 }
 
 # configure NAME [cmake args...]: one build tree per configuration under build/.
@@ -51,7 +65,7 @@ cmd_test() {
   setup
   mkdir -p "$BUILD"
   local failed=0 summary=()
-  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON
+  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
   configure_build sanitize -DCMAKE_BUILD_TYPE=Debug -DSBR_SANITIZE=ON -DSBR_BUILD_HOST_TOOLS=OFF \
     -DUNITY_ROOT="$(unity_root)"
   configure_build cortex-m4 -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-cortex-m4f.cmake" \
@@ -107,7 +121,7 @@ cmd_detect() {
   fi
   setup
   mkdir -p "$BUILD" "$out"
-  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON
+  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
   # The recogniser (regions -> contours -> Fourier descriptors -> star-model voting) is
   # not built yet. Until it is, the main job runs what exists: the FFT benchmark.
   log "the recogniser does not exist yet: running the FFT benchmark instead"

@@ -14,6 +14,7 @@
 #include "sbr/fd.h"
 #include "sbr/map.h"
 #include "sbr/mser.h"
+#include "sbr/can.h"
 
 /** Library version. */
 #define SBR_VERSION_MAJOR 0

@@ -1,0 +1,68 @@
+// sbr_canlog: writes the CAN traffic sbr sends for a detections file, as a candump log.
+//   sbr_canlog --detections FILE --out LOG [--images N] [--first K]
+// FILE has GTSDB's format with an optional score: NNNNN.ext;left;top;right;bottom;class[;score]
+// (sbr_detect's output, or GTSDB's gt.txt with score 1). Images K .. K+N-1 are one CAN
+// cycle each (100 ms apart), whether or not they have detections.
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "can_output.hpp"
+
+int main(int argc, char **argv) {
+    std::string det_path, out_path;
+    int images = 600, first = 0;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a == "--detections" && i + 1 < argc) det_path = argv[++i];
+        else if (a == "--out" && i + 1 < argc) out_path = argv[++i];
+        else if (a == "--images" && i + 1 < argc) images = std::atoi(argv[++i]);
+        else if (a == "--first" && i + 1 < argc) first = std::atoi(argv[++i]);
+        else {
+            std::fprintf(stderr, "usage: %s --detections FILE --out LOG [--images N] [--first K]\n", argv[0]);
+            return 2;
+        }
+    }
+    if (det_path.empty() || out_path.empty() || images <= 0 || first < 0) {
+        std::fprintf(stderr, "sbr_canlog: --detections and --out are required\n");
+        return 2;
+    }
+    std::ifstream in(det_path);
+    if (!in) { std::fprintf(stderr, "sbr_canlog: cannot read %s\n", det_path.c_str()); return 1; }
+    std::map<int, std::vector<sbr_host::Detection>> by_image;
+    std::string line;
+    size_t lines = 0;
+    while (std::getline(in, line)) {
+        if (line.empty()) continue;
+        std::stringstream ss(line);
+        std::string f[7];
+        int k = 0;
+        while (k < 7 && std::getline(ss, f[k], ';')) ++k;
+        if (k < 6) { std::fprintf(stderr, "sbr_canlog: bad line: %s\n", line.c_str()); return 1; }
+        sbr_host::Detection d;
+        const int img = std::atoi(f[0].c_str());
+        d.left = std::atoi(f[1].c_str()); d.top = std::atoi(f[2].c_str());
+        d.right = std::atoi(f[3].c_str()); d.bottom = std::atoi(f[4].c_str());
+        d.class_id = std::atoi(f[5].c_str());
+        d.score = k >= 7 ? static_cast<float>(std::atof(f[6].c_str())) : 1.0f;
+        by_image[img].push_back(d);
+        ++lines;
+    }
+    sbr_host::CanLogWriter w(out_path);
+    if (!w.ok()) { std::fprintf(stderr, "sbr_canlog: cannot write %s\n", out_path.c_str()); return 1; }
+    for (int img = first; img < first + images; ++img) {
+        auto it = by_image.find(img);
+        static const std::vector<sbr_host::Detection> none;
+        if (w.write_image(it == by_image.end() ? none : it->second, 0.0f, 0, false) < 0) {
+            std::fprintf(stderr, "sbr_canlog: CAN output failed at image %d\n", img);
+            return 1;
+        }
+    }
+    std::printf("sbr_canlog: %zu detections, %d images, %u frames, %u results dropped -> %s\n",
+                lines, images, w.frames_written(), w.results_dropped(), out_path.c_str());
+    return 0;
+}

@@ -1,0 +1,47 @@
+// Host-side CAN output: one cycle per processed image, scheduled and E2E-protected by the
+// core (sbr_can_schedule) and written through the candump-log port. Used by sbr_canlog
+// and by sbr_detect --canlog.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "sbr/can.h"
+#include "sbr_port_candump.h"
+}
+
+namespace sbr_host {
+
+// One detection in image coordinates (GTSDB convention: inclusive pixel box).
+struct Detection {
+    int left = 0, top = 0, right = 0, bottom = 0;
+    int class_id = 0;
+    float score = 0.0f;  // 0..1
+};
+
+class CanLogWriter {
+public:
+    // base_time_us: timestamp of the first image; period_us: time between images.
+    CanLogWriter(const std::string &path, uint64_t base_time_us = 1700000000000000ull,
+                 uint64_t period_us = 100000ull, const char *ifname = "can0");
+    ~CanLogWriter();
+    bool ok() const { return file_ != nullptr; }
+    // Writes the frames of one image; returns the number of frames, or -1 on error.
+    int write_image(const std::vector<Detection> &dets, float processing_ms, uint32_t regions,
+                    bool error_flag);
+    uint32_t frames_written() const { return port_ctx_.written; }
+    uint32_t results_dropped() const { return dropped_; }
+
+private:
+    FILE *file_ = nullptr;
+    sbr_port_candump_t port_ctx_{};
+    sbr_can_e2e_tx_t tx_{};
+    sbr_can_sched_config_t cfg_{};
+    uint64_t base_ = 0, period_ = 0;
+    uint32_t image_ = 0, dropped_ = 0;
+};
+
+}  // namespace sbr_host

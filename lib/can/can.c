@@ -1,0 +1,724 @@
+/*
+ * CAN messages of dbc/sbr.dbc: Intel-order signals by explicit shifts and masks, E2E
+ * (CRC-8/SAE-J1850 + alive counter, Profile 1 style) and the per-cycle scheduler.
+ */
+#include "sbr/can.h"
+
+#include <math.h>
+#include <string.h>
+
+#define CAN_DLC 8u
+#define MSG_SIGN 0u
+#define MSG_STATUS 1u
+#define MSG_DET 2u
+#define MSG_OBJ 3u
+
+/* ---- bits --------------------------------------------------------------------------- */
+
+static uint64_t frame_bits(const uint8_t data[8])
+{
+    uint64_t v = 0u;
+    uint32_t i;
+    for (i = 0u; i < 8u; i++) {
+        const uint32_t sh = 8u * i;
+        v |= ((uint64_t)data[i]) << sh;
+    }
+    return v;
+}
+
+static void bits_to_frame(uint64_t v, uint8_t data[8])
+{
+    uint32_t i;
+    for (i = 0u; i < 8u; i++) {
+        const uint32_t sh = 8u * i;
+        data[i] = (uint8_t)((v >> sh) & 0xFFu);
+    }
+}
+
+/* Intel signal: `len` bits starting at bit `start` (LSB first). */
+static uint64_t put_bits(uint64_t v, uint32_t start, uint32_t len, uint32_t raw)
+{
+    const uint64_t mask = (((uint64_t)1u) << len) - 1u;
+    return (v & ~(mask << start)) | ((((uint64_t)raw) & mask) << start);
+}
+
+static uint32_t get_bits(uint64_t v, uint32_t start, uint32_t len)
+{
+    const uint64_t mask = (((uint64_t)1u) << len) - 1u;
+    return (uint32_t)((v >> start) & mask);
+}
+
+/* Sign-extend a two's complement field of `len` bits. */
+static int32_t to_signed(uint32_t raw, uint32_t len)
+{
+    const uint32_t sign = 1u << (len - 1u);
+    int32_t v = (int32_t)raw;
+    if ((raw & sign) != 0u) {
+        const uint32_t span = sign << 1u;
+        v = (int32_t)raw - (int32_t)span;
+    }
+    return v;
+}
+
+/* Physical value to raw integer: round(phys / factor); fails outside [lo, hi] or NaN. */
+static int encode(float phys, float factor, float lo, float hi, int32_t *raw)
+{
+    int ok = 0;
+    if ((phys >= lo) && (phys <= hi)) {
+        *raw = (int32_t)floorf((phys / factor) + 0.5f);
+        ok = 1;
+    }
+    return ok;
+}
+
+static void frame_init(sbr_can_frame_t *f, uint32_t id, uint64_t bits)
+{
+    f->id = id;
+    f->dlc = (uint8_t)CAN_DLC;
+    bits_to_frame(bits, f->data);
+}
+
+static sbr_status_t frame_check(const sbr_can_frame_t *f, uint32_t id)
+{
+    if (f->id != id) {
+        return SBR_ERR_RANGE;
+    }
+    if (f->dlc != CAN_DLC) {
+        return SBR_ERR_SIZE;
+    }
+    return SBR_OK;
+}
+
+/* ---- SBR_Detection 0x310 ------------------------------------------------------------ */
+
+sbr_status_t sbr_can_pack_detection(const sbr_can_detection_t *in, sbr_can_frame_t *frame)
+{
+    int32_t conf = 0;
+    int32_t cx = 0;
+    int32_t cy = 0;
+    int32_t w = 0;
+    int32_t h = 0;
+    uint64_t v = 0u;
+    int ok;
+
+    if ((in == NULL) || (frame == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    ok = encode(in->confidence, 2.0f, 0.0f, 100.0f, &conf);
+    ok &= encode(in->center_x, 2.0f, 0.0f, 2046.0f, &cx);
+    ok &= encode(in->center_y, 2.0f, 0.0f, 2046.0f, &cy);
+    ok &= encode(in->width, 4.0f, 0.0f, 508.0f, &w);
+    ok &= encode(in->height, 4.0f, 0.0f, 508.0f, &h);
+    if ((ok == 0) || ((in->class_id > 42u) && (in->class_id != SBR_CAN_CLASS_NONE_DET)) ||
+        (in->track_id > SBR_CAN_TRACK_NONE_DET)) {
+        return SBR_ERR_RANGE;
+    }
+    v = put_bits(v, 12u, 6u, in->class_id);
+    v = put_bits(v, 18u, 6u, (uint32_t)conf);
+    v = put_bits(v, 24u, 10u, (uint32_t)cx);
+    v = put_bits(v, 34u, 10u, (uint32_t)cy);
+    v = put_bits(v, 44u, 7u, (uint32_t)w);
+    v = put_bits(v, 51u, 7u, (uint32_t)h);
+    v = put_bits(v, 58u, 6u, in->track_id);
+    frame_init(frame, SBR_CAN_ID_DETECTION, v);
+    return SBR_OK;
+}
+
+sbr_status_t sbr_can_unpack_detection(const sbr_can_frame_t *frame, sbr_can_detection_t *out)
+{
+    sbr_status_t st;
+    uint64_t v;
+
+    if ((frame == NULL) || (out == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = frame_check(frame, SBR_CAN_ID_DETECTION);
+    if (st != SBR_OK) {
+        return st;
+    }
+    v = frame_bits(frame->data);
+    out->class_id = get_bits(v, 12u, 6u);
+    out->confidence = 2.0f * (float)get_bits(v, 18u, 6u);
+    out->center_x = 2.0f * (float)get_bits(v, 24u, 10u);
+    out->center_y = 2.0f * (float)get_bits(v, 34u, 10u);
+    out->width = 4.0f * (float)get_bits(v, 44u, 7u);
+    out->height = 4.0f * (float)get_bits(v, 51u, 7u);
+    out->track_id = get_bits(v, 58u, 6u);
+    return SBR_OK;
+}
+
+/* ---- SBR_ConfirmedSign 0x300 -------------------------------------------------------- */
+
+sbr_status_t sbr_can_pack_confirmed_sign(const sbr_can_confirmed_sign_t *in,
+                                         sbr_can_frame_t *frame)
+{
+    int32_t conf = 0;
+    uint64_t v = 0u;
+
+    if ((in == NULL) || (frame == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    if ((encode(in->confidence, 1.0f, 0.0f, 100.0f, &conf) == 0) || (in->slot > 3u) ||
+        (in->count > 4u) || ((in->class_id > 42u) && (in->class_id != SBR_CAN_CLASS_NONE)) ||
+        (in->track_id > 255u) ||
+        ((in->speed_kmh > 250u) && (in->speed_kmh != SBR_CAN_SPEED_NONE)) ||
+        (in->age_frames > 255u)) {
+        return SBR_ERR_RANGE;
+    }
+    v = put_bits(v, 12u, 4u, in->slot);
+    v = put_bits(v, 16u, 8u, in->class_id);
+    v = put_bits(v, 24u, 8u, in->track_id);
+    v = put_bits(v, 32u, 8u, in->speed_kmh);
+    v = put_bits(v, 40u, 7u, (uint32_t)conf);
+    v = put_bits(v, 48u, 8u, in->age_frames);
+    v = put_bits(v, 56u, 4u, in->count);
+    frame_init(frame, SBR_CAN_ID_CONFIRMED_SIGN, v);
+    return SBR_OK;
+}
+
+sbr_status_t sbr_can_unpack_confirmed_sign(const sbr_can_frame_t *frame,
+                                           sbr_can_confirmed_sign_t *out)
+{
+    sbr_status_t st;
+    uint64_t v;
+
+    if ((frame == NULL) || (out == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = frame_check(frame, SBR_CAN_ID_CONFIRMED_SIGN);
+    if (st != SBR_OK) {
+        return st;
+    }
+    v = frame_bits(frame->data);
+    out->slot = get_bits(v, 12u, 4u);
+    out->class_id = get_bits(v, 16u, 8u);
+    out->track_id = get_bits(v, 24u, 8u);
+    out->speed_kmh = get_bits(v, 32u, 8u);
+    out->confidence = (float)get_bits(v, 40u, 7u);
+    out->age_frames = get_bits(v, 48u, 8u);
+    out->count = get_bits(v, 56u, 4u);
+    return SBR_OK;
+}
+
+/* ---- SBR_TrackedObject 0x320 -------------------------------------------------------- */
+
+sbr_status_t sbr_can_pack_object(const sbr_can_object_t *in, sbr_can_frame_t *frame)
+{
+    int32_t x = 0;
+    int32_t y = 0;
+    int32_t vx = 0;
+    int32_t vy = 0;
+    int32_t c = 0;
+    uint64_t v = 0u;
+    int ok;
+
+    if ((in == NULL) || (frame == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    ok = encode(in->x, 1.0f, 0.0f, 2047.0f, &x);
+    ok &= encode(in->y, 1.0f, 0.0f, 1023.0f, &y);
+    ok &= encode(in->vx, 4.0f, -256.0f, 252.0f, &vx);
+    ok &= encode(in->vy, 4.0f, -256.0f, 252.0f, &vy);
+    ok &= encode(in->certainty, 4.0f, 0.0f, 100.0f, &c);
+    if ((ok == 0) || (in->index > 15u) || (in->track_id > 255u)) {
+        return SBR_ERR_RANGE;
+    }
+    v = put_bits(v, 12u, 4u, in->index);
+    v = put_bits(v, 16u, 8u, in->track_id);
+    v = put_bits(v, 24u, 11u, (uint32_t)x);
+    v = put_bits(v, 35u, 10u, (uint32_t)y);
+    v = put_bits(v, 45u, 7u, (uint32_t)vx);
+    v = put_bits(v, 52u, 7u, (uint32_t)vy);
+    v = put_bits(v, 59u, 5u, (uint32_t)c);
+    frame_init(frame, SBR_CAN_ID_TRACKED_OBJECT, v);
+    return SBR_OK;
+}
+
+sbr_status_t sbr_can_unpack_object(const sbr_can_frame_t *frame, sbr_can_object_t *out)
+{
+    sbr_status_t st;
+    uint64_t v;
+
+    if ((frame == NULL) || (out == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = frame_check(frame, SBR_CAN_ID_TRACKED_OBJECT);
+    if (st != SBR_OK) {
+        return st;
+    }
+    v = frame_bits(frame->data);
+    out->index = get_bits(v, 12u, 4u);
+    out->track_id = get_bits(v, 16u, 8u);
+    out->x = (float)get_bits(v, 24u, 11u);
+    out->y = (float)get_bits(v, 35u, 10u);
+    out->vx = 4.0f * (float)to_signed(get_bits(v, 45u, 7u), 7u);
+    out->vy = 4.0f * (float)to_signed(get_bits(v, 52u, 7u), 7u);
+    out->certainty = 4.0f * (float)get_bits(v, 59u, 5u);
+    return SBR_OK;
+}
+
+/* ---- SBR_EcuStatus 0x301 ------------------------------------------------------------ */
+
+sbr_status_t sbr_can_pack_ecu_status(const sbr_can_ecu_status_t *in, sbr_can_frame_t *frame)
+{
+    int32_t t = 0;
+    uint32_t regions;
+    uint32_t dets;
+    uint64_t v = 0u;
+
+    if ((in == NULL) || (frame == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    if ((encode(in->processing_ms, 0.1f, 0.0f, 6553.4f, &t) == 0) || (in->overload > 1u) ||
+        (in->error > 1u) || (in->capacity_hit > 1u)) {
+        return SBR_ERR_RANGE;
+    }
+    /* counts saturate by definition (documented in the DBC) */
+    regions = in->region_count;
+    if (regions > 4095u) {
+        regions = 4095u;
+    }
+    dets = in->detection_count;
+    if (dets > 15u) {
+        dets = 15u;
+    }
+    v = put_bits(v, 12u, 1u, in->overload);
+    v = put_bits(v, 13u, 1u, in->error);
+    v = put_bits(v, 14u, 1u, in->capacity_hit);
+    v = put_bits(v, 16u, 16u, in->frame_counter & 0xFFFFu);
+    v = put_bits(v, 32u, 16u, (uint32_t)t);
+    v = put_bits(v, 48u, 12u, regions);
+    v = put_bits(v, 60u, 4u, dets);
+    frame_init(frame, SBR_CAN_ID_ECU_STATUS, v);
+    return SBR_OK;
+}
+
+sbr_status_t sbr_can_unpack_ecu_status(const sbr_can_frame_t *frame, sbr_can_ecu_status_t *out)
+{
+    sbr_status_t st;
+    uint64_t v;
+
+    if ((frame == NULL) || (out == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = frame_check(frame, SBR_CAN_ID_ECU_STATUS);
+    if (st != SBR_OK) {
+        return st;
+    }
+    v = frame_bits(frame->data);
+    out->overload = get_bits(v, 12u, 1u);
+    out->error = get_bits(v, 13u, 1u);
+    out->capacity_hit = get_bits(v, 14u, 1u);
+    out->frame_counter = get_bits(v, 16u, 16u);
+    out->processing_ms = 0.1f * (float)get_bits(v, 32u, 16u);
+    out->region_count = get_bits(v, 48u, 12u);
+    out->detection_count = get_bits(v, 60u, 4u);
+    return SBR_OK;
+}
+
+/* ---- E2E ---------------------------------------------------------------------------- */
+
+uint8_t sbr_crc8_j1850(const uint8_t *data, uint32_t len)
+{
+    uint32_t crc = 0xFFu;
+    uint32_t i;
+    uint32_t b;
+
+    if (data == NULL) {
+        return 0u;
+    }
+    for (i = 0u; i < len; i++) {
+        crc ^= (uint32_t)data[i];
+        for (b = 0u; b < 8u; b++) {
+            if ((crc & 0x80u) != 0u) {
+                crc = ((crc << 1u) ^ 0x1Du) & 0xFFu;
+            } else {
+                crc = (crc << 1u) & 0xFFu;
+            }
+        }
+    }
+    return (uint8_t)(crc ^ 0xFFu);
+}
+
+/* Message slot of an identifier, or 4 for a foreign one. */
+static uint32_t msg_slot(uint32_t id)
+{
+    uint32_t s;
+    switch (id) {
+    case SBR_CAN_ID_CONFIRMED_SIGN:
+        s = MSG_SIGN;
+        break;
+    case SBR_CAN_ID_ECU_STATUS:
+        s = MSG_STATUS;
+        break;
+    case SBR_CAN_ID_DETECTION:
+        s = MSG_DET;
+        break;
+    case SBR_CAN_ID_TRACKED_OBJECT:
+        s = MSG_OBJ;
+        break;
+    default:
+        s = 4u;
+        break;
+    }
+    return s;
+}
+
+/* CRC over Data ID (low, high) and payload bytes 1..7. */
+static uint8_t frame_crc(const sbr_can_frame_t *f)
+{
+    uint8_t buf[9];
+    const uint32_t data_id = SBR_CAN_DATA_ID(f->id);
+    buf[0] = (uint8_t)(data_id & 0xFFu);
+    buf[1] = (uint8_t)((data_id >> 8u) & 0xFFu);
+    (void)memcpy(&buf[2], &f->data[1], 7u);
+    return sbr_crc8_j1850(buf, 9u);
+}
+
+sbr_status_t sbr_can_e2e_tx_init(sbr_can_e2e_tx_t *tx)
+{
+    if (tx == NULL) {
+        return SBR_ERR_NULL;
+    }
+    (void)memset(tx->counter, 0, sizeof tx->counter);
+    return SBR_OK;
+}
+
+sbr_status_t sbr_can_e2e_protect(sbr_can_e2e_tx_t *tx, sbr_can_frame_t *frame)
+{
+    uint32_t s;
+    uint32_t c;
+
+    if ((tx == NULL) || (frame == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    s = msg_slot(frame->id);
+    if (s > MSG_OBJ) {
+        return SBR_ERR_RANGE;
+    }
+    if (frame->dlc != CAN_DLC) {
+        return SBR_ERR_SIZE;
+    }
+    c = (uint32_t)tx->counter[s];
+    if (c > SBR_CAN_COUNTER_MAX) {
+        return SBR_ERR_STATE;
+    }
+    frame->data[1] = (uint8_t)((frame->data[1] & 0xF0u) | c);
+    frame->data[0] = frame_crc(frame);
+    if (c == SBR_CAN_COUNTER_MAX) {
+        c = 0u;
+    } else {
+        c++;
+    }
+    tx->counter[s] = (uint8_t)c;
+    return SBR_OK;
+}
+
+sbr_status_t sbr_can_e2e_rx_init(sbr_can_e2e_rx_t *rx, uint32_t id)
+{
+    if (rx == NULL) {
+        return SBR_ERR_NULL;
+    }
+    if (msg_slot(id) > MSG_OBJ) {
+        return SBR_ERR_RANGE;
+    }
+    rx->id = id;
+    rx->last_counter = 0u;
+    rx->synced = 0u;
+    return SBR_OK;
+}
+
+sbr_status_t sbr_can_e2e_check(sbr_can_e2e_rx_t *rx, const sbr_can_frame_t *frame,
+                               sbr_can_e2e_result_t *result)
+{
+    sbr_can_e2e_result_t r;
+    uint32_t c;
+
+    if ((rx == NULL) || (frame == NULL) || (result == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    c = (uint32_t)frame->data[1] & 0x0Fu;
+    if (frame->id != rx->id) {
+        r = SBR_E2E_WRONG_ID;
+    } else if (frame->dlc != CAN_DLC) {
+        r = SBR_E2E_WRONG_LENGTH;
+    } else if (frame_crc(frame) != frame->data[0]) {
+        r = SBR_E2E_WRONG_CRC;
+    } else if (c > SBR_CAN_COUNTER_MAX) {
+        r = SBR_E2E_BAD_COUNTER;
+    } else if (rx->synced == 0u) {
+        r = SBR_E2E_FIRST;
+        rx->synced = 1u;
+        rx->last_counter = (uint8_t)c;
+    } else {
+        const uint32_t last = (uint32_t)rx->last_counter;
+        const uint32_t delta = ((c + SBR_CAN_COUNTER_MAX + 1u) - last) % (SBR_CAN_COUNTER_MAX + 1u);
+        if (delta == 0u) {
+            r = SBR_E2E_REPEATED;
+        } else {
+            if (delta == 1u) {
+                r = SBR_E2E_OK;
+            } else {
+                r = SBR_E2E_SKIPPED;
+            }
+            rx->last_counter = (uint8_t)c;
+        }
+    }
+    *result = r;
+    if ((r == SBR_E2E_OK) || (r == SBR_E2E_FIRST)) {
+        return SBR_OK;
+    }
+    return SBR_ERR_CORRUPT;
+}
+
+/* ---- scheduler ---------------------------------------------------------------------- */
+
+void sbr_can_sched_config_default(sbr_can_sched_config_t *cfg)
+{
+    if (cfg != NULL) {
+        cfg->frame_budget = 16u;
+        cfg->max_signs = 4u;
+        cfg->max_detections = 8u;
+        cfg->max_objects = 8u;
+    }
+}
+
+/* Sort key of entry i: detection confidence or object certainty; NaN sorts last (its
+   frame is then rejected by the pack function). */
+static float sched_key(const sbr_can_cycle_t *c, int objects, uint32_t i)
+{
+    float k;
+    if (objects != 0) {
+        k = c->objects[i].certainty;
+    } else {
+        k = c->detections[i].confidence;
+    }
+    if (isnan(k) != 0) {
+        k = -1.0f;
+    }
+    return k;
+}
+
+/* Index of the best entry after (prev_key, prev_idx) in the order (key descending, index
+   ascending); n when there is none. Selection without a workspace: O(n) per call. */
+static uint32_t next_best(const sbr_can_cycle_t *c, int objects, uint32_t n, int first,
+                          float prev_key, uint32_t prev_idx)
+{
+    uint32_t i;
+    uint32_t best = n;
+    float best_key = 0.0f;
+    for (i = 0u; i < n; i++) {
+        const float k = sched_key(c, objects, i);
+        int after = 1;
+        if (first == 0) {
+            after = 0;
+            if ((k < prev_key) || ((k == prev_key) && (i > prev_idx))) {
+                after = 1;
+            }
+        }
+        if ((after != 0) && ((best == n) || (k > best_key))) {
+            best = i;
+            best_key = k;
+        }
+    }
+    return best;
+}
+
+typedef struct sched_out_s {
+    sbr_can_e2e_tx_t *tx;
+    sbr_can_frame_t *frames;
+    uint32_t count;
+    uint32_t budget;
+    uint32_t dropped;
+    int invalid;
+} sched_out_t;
+
+/* Protect and keep a packed frame if the budget allows. */
+static void sched_emit(sched_out_t *o, sbr_status_t pack_status, sbr_can_frame_t *f)
+{
+    if (pack_status != SBR_OK) {
+        o->invalid = 1;
+        o->dropped++;
+    } else if (o->count >= o->budget) {
+        o->dropped++;
+    } else {
+        if (sbr_can_e2e_protect(o->tx, f) == SBR_OK) {
+            o->frames[o->count] = *f;
+            o->count++;
+        } else {
+            o->invalid = 1;
+            o->dropped++;
+        }
+    }
+}
+
+sbr_status_t sbr_can_schedule(sbr_can_e2e_tx_t *tx, const sbr_can_sched_config_t *cfg,
+                              const sbr_can_cycle_t *cycle, sbr_can_frame_t *frames,
+                              uint32_t capacity, uint32_t *count, uint32_t *dropped)
+{
+    sched_out_t o;
+    sbr_can_frame_t f;
+    uint32_t n_sign;
+    uint32_t n_det;
+    uint32_t n_obj;
+    uint32_t need;
+    uint32_t i;
+
+    if ((tx == NULL) || (cfg == NULL) || (cycle == NULL) || (frames == NULL) ||
+        (count == NULL) || (dropped == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    *count = 0u;
+    *dropped = 0u;
+    if ((cfg->frame_budget < 4u) || (cfg->max_signs == 0u) || (cfg->max_signs > 4u) ||
+        (cfg->max_detections == 0u) || (cfg->max_objects == 0u) || (cfg->max_objects > 16u)) {
+        return SBR_ERR_RANGE;
+    }
+    if (capacity < cfg->frame_budget) {
+        return SBR_ERR_CAPACITY;
+    }
+    if (((cycle->sign_count > 0u) && (cycle->signs == NULL)) ||
+        ((cycle->detection_count > 0u) && (cycle->detections == NULL)) ||
+        ((cycle->object_count > 0u) && (cycle->objects == NULL))) {
+        return SBR_ERR_NULL;
+    }
+    o.tx = tx;
+    o.frames = frames;
+    o.count = 0u;
+    o.budget = cfg->frame_budget;
+    o.dropped = 0u;
+    o.invalid = 0;
+
+    /* frames wanted this cycle (at least one of each message) */
+    n_sign = cycle->sign_count;
+    if (n_sign > cfg->max_signs) {
+        n_sign = cfg->max_signs;
+    }
+    n_det = cycle->detection_count;
+    if (n_det > cfg->max_detections) {
+        n_det = cfg->max_detections;
+    }
+    n_obj = cycle->object_count;
+    if (n_obj > cfg->max_objects) {
+        n_obj = cfg->max_objects;
+    }
+    need = 4u; /* one frame of each message even when empty */
+    if (n_sign > 1u) {
+        need += n_sign - 1u;
+    }
+    if (n_det > 1u) {
+        need += n_det - 1u;
+    }
+    if (n_obj > 1u) {
+        need += n_obj - 1u;
+    }
+
+    /* 1. confirmed signs, newest first */
+    if (cycle->sign_count == 0u) {
+        sbr_can_confirmed_sign_t none;
+        none.slot = 0u;
+        none.count = 0u;
+        none.class_id = SBR_CAN_CLASS_NONE;
+        none.track_id = SBR_CAN_TRACK_NONE;
+        none.speed_kmh = SBR_CAN_SPEED_NONE;
+        none.confidence = 0.0f;
+        none.age_frames = 0u;
+        sched_emit(&o, sbr_can_pack_confirmed_sign(&none, &f), &f);
+    } else {
+        for (i = 0u; i < n_sign; i++) {
+            sbr_can_confirmed_sign_t s = cycle->signs[i];
+            s.slot = i;
+            s.count = n_sign;
+            sched_emit(&o, sbr_can_pack_confirmed_sign(&s, &f), &f);
+        }
+    }
+    /* 2. status: overload when anything of this cycle will not fit */
+    {
+        sbr_can_ecu_status_t st = cycle->status;
+        st.overload = 0u;
+        if ((need > cfg->frame_budget) || (n_sign < cycle->sign_count) ||
+            (n_det < cycle->detection_count) || (n_obj < cycle->object_count)) {
+            st.overload = 1u;
+        }
+        sched_emit(&o, sbr_can_pack_ecu_status(&st, &f), &f);
+    }
+    /* 3. detections by decreasing confidence */
+    if (cycle->detection_count == 0u) {
+        sbr_can_detection_t none;
+        (void)memset(&none, 0, sizeof none);
+        none.class_id = SBR_CAN_CLASS_NONE_DET;
+        none.track_id = SBR_CAN_TRACK_NONE_DET;
+        sched_emit(&o, sbr_can_pack_detection(&none, &f), &f);
+    } else {
+        float pk = 0.0f;
+        uint32_t pi = 0u;
+        int first = 1;
+        for (i = 0u; i < cycle->detection_count; i++) {
+            const uint32_t k = next_best(cycle, 0, cycle->detection_count, first, pk, pi);
+            first = 0;
+            if (k >= cycle->detection_count) {
+                break;
+            }
+            pk = sched_key(cycle, 0, k);
+            pi = k;
+            if (i < n_det) {
+                sched_emit(&o, sbr_can_pack_detection(&cycle->detections[k], &f), &f);
+            } else {
+                o.dropped++;
+            }
+        }
+    }
+    /* 4. tracked objects by decreasing certainty */
+    if (cycle->object_count == 0u) {
+        sbr_can_object_t none;
+        (void)memset(&none, 0, sizeof none);
+        none.track_id = SBR_CAN_TRACK_NONE;
+        sched_emit(&o, sbr_can_pack_object(&none, &f), &f);
+    } else {
+        float pk = 0.0f;
+        uint32_t pi = 0u;
+        int first = 1;
+        for (i = 0u; i < cycle->object_count; i++) {
+            const uint32_t k = next_best(cycle, 1, cycle->object_count, first, pk, pi);
+            first = 0;
+            if (k >= cycle->object_count) {
+                break;
+            }
+            pk = sched_key(cycle, 1, k);
+            pi = k;
+            if (i < n_obj) {
+                sbr_can_object_t ob = cycle->objects[k];
+                ob.index = i;
+                sched_emit(&o, sbr_can_pack_object(&ob, &f), &f);
+            } else {
+                o.dropped++;
+            }
+        }
+    }
+    *count = o.count;
+    *dropped = o.dropped;
+    if (o.invalid != 0) {
+        return SBR_ERR_RANGE;
+    }
+    return SBR_OK;
+}
+
+sbr_status_t sbr_can_send(const sbr_can_port_t *port, void *ctx, const sbr_can_frame_t *frames,
+                          uint32_t count, uint32_t *sent)
+{
+    uint32_t i;
+
+    if ((port == NULL) || (port->send == NULL) || (sent == NULL) ||
+        ((frames == NULL) && (count > 0u))) {
+        return SBR_ERR_NULL;
+    }
+    *sent = 0u;
+    for (i = 0u; i < count; i++) {
+        const sbr_status_t st = port->send(ctx, &frames[i]);
+        if (st != SBR_OK) {
+            return st;
+        }
+        (*sent)++;
+    }
+    return SBR_OK;
+}
