@@ -686,6 +686,41 @@ static int found_any(int inv, float cb, sbr_complex_t at_best)
     return f;
 }
 
+/* Sum of squares of a prototype's coefficients with four independent partial sums (one
+   vector register on SIMD hosts); not finite iff a coefficient is not finite. */
+static float coeff_energy(const sbr_fd_t *p)
+{
+    const float *f = (const float *)(const void *)p->c; /* 2(2M+1) floats */
+    const uint32_t n = 2u * ((2u * p->m) + 1u);
+    float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    uint32_t k;
+    for (k = 0u; (k + 4u) <= n; k += 4u) {
+        uint32_t j;
+        for (j = 0u; j < 4u; j++) {
+            acc[j] += f[k + j] * f[k + j];
+        }
+    }
+    for (; k < n; k++) {
+        acc[0] += f[k] * f[k];
+    }
+    return (acc[0] + acc[1]) + (acc[2] + acc[3]);
+}
+
+/* conj(Q) C of one prototype into lane `lane`; pos[k] is the lane-buffer row of n = k - M. */
+static void lane_products(const sbr_fd_t *query, const sbr_fd_t *proto, const uint32_t *pos,
+                          float *re, float *im, uint32_t lane)
+{
+    const uint32_t n = (2u * query->m) + 1u;
+    uint32_t k;
+    for (k = 0u; k < n; k++) {
+        const sbr_complex_t q = query->c[k];
+        const sbr_complex_t c = proto->c[k];
+        const uint32_t at = pos[k] + lane;
+        re[at] = (q.re * c.re) + (q.im * c.im);
+        im[at] = (q.re * c.im) - (q.im * c.re);
+    }
+}
+
 static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                       const sbr_fd_t *query, const sbr_fd_t *protos,
                                       uint32_t count, sbr_complex_t *work,
@@ -699,9 +734,17 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
     const int inv = mode_invariant(cfg);
     const float cb = rotation_cos_bound(cfg);
     uint32_t best[FD_LANES];
+    uint32_t pos[(2u * SBR_FD_MAX_M) + 1u];
     uint32_t j;
     uint32_t i0;
 
+    for (j = 0u; j <= (2u * query->m); j++) {
+        uint32_t at = j - query->m;
+        if (j < query->m) {
+            at = (size + j) - query->m;
+        }
+        pos[j] = (uint32_t)fft->bitrev[at] * FD_LANES;
+    }
     for (j = 0u; j < (size / 2u); j++) {
         const float a = (SBR_TWO_PI_F * (float)j) / (float)size;
         tw[j].re = cosf(a);
@@ -730,14 +773,14 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
             }
         }
         for (b = 0u; b < lanes; b++) {
-            sbr_status_t st = check_proto(query, &protos[i0 + b]);
-            if (st == SBR_OK) {
-                st = fill_products(query, &protos[i0 + b], size, fft->bitrev, &re[b], &im[b],
-                                   FD_LANES);
-            }
+            const sbr_status_t st = check_proto(query, &protos[i0 + b]);
             if (st != SBR_OK) {
                 return st;
             }
+            if (isfinite(coeff_energy(&protos[i0 + b])) == 0) {
+                return SBR_ERR_RANGE;
+            }
+            lane_products(query, &protos[i0 + b], pos, re, im, b);
         }
         lanes_transform(size, tw, re, im);
         lanes_peaks(size, inv, cb, re, im, best);
