@@ -1,0 +1,126 @@
+#!/usr/bin/env python3
+"""sbr_eval against detections whose scores are known by construction.
+
+From GTSDB's ground truth of images 400-599 (the development split), box j in file order
+becomes: j%5==0 missed; j%5==1 the next class of the same superclass (a superclass hit, a
+class error); j%5==2 moved to the image's top-left corner (a false detection and a miss);
+j%5==3 shifted by 10 % of its width (IoU about 0.82, a hit); j%5==4 exact. One extra false
+"stop" per 20 images. Hits score 0.9 and false detections 0.5, so every superclass's AP
+equals its recall. The expected table is counted here, independently of sbr_eval.
+
+usage: test_sbr_eval.py --eval PATH --gt gt.txt --work DIR     (exit 77 without the data)
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+
+SUPER = {
+    "prohibitory": [0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 15, 16],
+    "mandatory": [33, 34, 35, 36, 37, 38, 39, 40],
+    "danger": [11, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31],
+    "other": [6, 12, 13, 14, 17, 32, 41, 42],
+}
+
+
+def superclass(c):
+    return next(s for s, cs in SUPER.items() if c in cs)
+
+
+def other_class_same_super(c):
+    cs = SUPER[superclass(c)]
+    return cs[(cs.index(c) + 1) % len(cs)]
+
+
+def overlaps(a, b):
+    return not (a[2] < b[0] or b[2] < a[0] or a[3] < b[1] or b[3] < a[1])
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--eval", required=True)
+    ap.add_argument("--gt", required=True)
+    ap.add_argument("--work", required=True)
+    a = ap.parse_args()
+    if not os.path.exists(a.gt):
+        print(f"SKIP: no ground truth at {a.gt}")
+        return 77
+    os.makedirs(a.work, exist_ok=True)
+    gt = []
+    for line in open(a.gt):
+        p = line.strip().split(";")
+        if len(p) >= 6 and 400 <= int(p[0][:5]) <= 599:
+            gt.append((int(p[0][:5]), [int(v) for v in p[1:5]], int(p[5])))
+    boxes_of = {}
+    for img, box, _ in gt:
+        boxes_of.setdefault(img, []).append(box)
+    exp = {s: dict(tp=0, fp=0, fn=0, n=0) for s in SUPER}
+    cls = dict(tp=0, fp=0, fn=0)
+    out = []
+    for j, (img, (l, t, r, b), c) in enumerate(gt):
+        s = superclass(c)
+        exp[s]["n"] += 1
+        w = r - l
+        kind = j % 5
+        if kind == 0:
+            exp[s]["fn"] += 1
+            cls["fn"] += 1
+        elif kind == 1:
+            out.append((img, (l, t, r, b), other_class_same_super(c), 0.9))
+            exp[s]["tp"] += 1
+            cls["fp"] += 1
+            cls["fn"] += 1
+        elif kind == 2:
+            moved = (0, 0, w, b - t)
+            assert not any(overlaps(moved, o) for o in boxes_of[img]), img
+            out.append((img, moved, c, 0.5))
+            exp[s]["fp"] += 1
+            exp[s]["fn"] += 1
+            cls["fp"] += 1
+            cls["fn"] += 1
+        elif kind == 3:
+            d = max(1, round(0.1 * w))
+            out.append((img, (l + d, t, r + d, b), c, 0.9))
+            exp[s]["tp"] += 1
+            cls["tp"] += 1
+        else:
+            out.append((img, (l, t, r, b), c, 0.9))
+            exp[s]["tp"] += 1
+            cls["tp"] += 1
+    for img in range(400, 600, 20):
+        extra = (0, 700, 30, 730)
+        assert not any(overlaps(extra, o) for o in boxes_of.get(img, [])), img
+        out.append((img, extra, 14, 0.5))
+        exp["other"]["fp"] += 1
+        cls["fp"] += 1
+    det = os.path.join(a.work, "detections.txt")
+    with open(det, "w") as f:
+        for img, (l, t, r, b), c, sc in out:
+            f.write(f"{img:05d}.jpg;{l};{t};{r};{b};{c};{sc}\n")
+    png = os.path.join(a.work, "pr.png")
+    res = subprocess.run([a.eval, "--detections", det, "--gt", a.gt, "--range", "400-599",
+                          "--plot", png], check=True, capture_output=True, text=True).stdout
+    print(res)
+    ok = True
+    for s, e in exp.items():
+        m = re.search(rf"^{s}\s+(\d+)\s+(\d+)\s+(\d+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)\s+([\d.]+)$", res, re.M)
+        tp, fp, fn = (int(m.group(i)) for i in (1, 2, 3))
+        ap_ = float(m.group(7))
+        want_ap = e["tp"] / e["n"]
+        good = (tp, fp, fn) == (e["tp"], e["fp"], e["fn"]) and abs(ap_ - want_ap) < 1e-3
+        print(f"{s}: got TP {tp} FP {fp} FN {fn} AP {ap_:.4f}; expected TP {e['tp']} FP {e['fp']} "
+              f"FN {e['fn']} AP {want_ap:.4f}: {'OK' if good else 'WRONG'}")
+        ok &= good
+    m = re.search(r"class level \(same class id\): TP (\d+), FP (\d+), FN (\d+)", res)
+    got = tuple(int(m.group(i)) for i in (1, 2, 3))
+    want = (cls["tp"], cls["fp"], cls["fn"])
+    print(f"class level: got {got}, expected {want}")
+    ok &= got == want
+    ok &= os.path.getsize(png) > 1000
+    ok &= "most frequent errors" in res
+    return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
