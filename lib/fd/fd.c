@@ -352,11 +352,11 @@ static sbr_status_t check_proto(const sbr_fd_t *query, const sbr_fd_t *proto)
     return SBR_OK;
 }
 
-/* conj(Q(n)) C(n) for n = -M..M, written through `place` (index n mod P) into re/im with
-   the given element stride. Returns SBR_ERR_RANGE if a coefficient of C is not finite
+/* conj(Q(n)) C(n) for n = -M..M, written at index n mod P into re/im with the given
+   element stride. Returns SBR_ERR_RANGE if a coefficient of C is not finite
    (the energy sum of non-negative terms is then infinite or NaN). */
 static sbr_status_t fill_products(const sbr_fd_t *query, const sbr_fd_t *proto, uint32_t size,
-                                  const uint16_t *place, float *re, float *im, uint32_t stride)
+                                  float *re, float *im, uint32_t stride)
 {
     const uint32_t m = query->m;
     uint32_t k;
@@ -368,9 +368,6 @@ static sbr_status_t fill_products(const sbr_fd_t *query, const sbr_fd_t *proto, 
         uint32_t at = k - m;
         if (k < m) {
             at = (size + k) - m;
-        }
-        if (place != NULL) {
-            at = (uint32_t)place[at];
         }
         re[at * stride] = (q.re * c.re) + (q.im * c.im);
         im[at * stride] = (q.re * c.im) - (q.im * c.re);
@@ -507,7 +504,7 @@ static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t
     {
         /* the complex array seen as interleaved floats (re, im, re, im, ...) */
         float *f = (float *)(void *)work;
-        st = fill_products(query, proto, size, NULL, f, &f[1], 2u);
+        st = fill_products(query, proto, size, f, &f[1], 2u);
     }
     if (st != SBR_OK) {
         return st;
@@ -591,43 +588,13 @@ static void lanes_butterfly(float *ar, float *ai, float *br, float *bi, sbr_comp
 static void lanes_transform(uint32_t size, const sbr_complex_t *tw, float *re, float *im)
 {
     uint32_t half;
-    uint32_t i;
 
-    /* first stage: all twiddles are 1 */
-    for (i = 0u; i < size; i += 2u) {
-        float *ar = &re[i * FD_LANES];
-        float *ai = &im[i * FD_LANES];
-        float *br = &re[(i + 1u) * FD_LANES];
-        float *bi = &im[(i + 1u) * FD_LANES];
-        float xr[FD_LANES];
-        float xi[FD_LANES];
-        float yr[FD_LANES];
-        float yi[FD_LANES];
-        uint32_t b;
-        for (b = 0u; b < FD_LANES; b++) {
-            xr[b] = ar[b];
-            xi[b] = ai[b];
-            yr[b] = br[b];
-            yi[b] = bi[b];
-        }
-        for (b = 0u; b < FD_LANES; b++) {
-            ar[b] = xr[b] + yr[b];
-        }
-        for (b = 0u; b < FD_LANES; b++) {
-            ai[b] = xi[b] + yi[b];
-        }
-        for (b = 0u; b < FD_LANES; b++) {
-            br[b] = xr[b] - yr[b];
-        }
-        for (b = 0u; b < FD_LANES; b++) {
-            bi[b] = xi[b] - yi[b];
-        }
-    }
-    for (half = 2u; half < size; half *= 2u) {
+    for (half = 1u; half < size; half *= 2u) {
         const uint32_t tstep = size / (2u * half);
         uint32_t j;
         for (j = 0u; j < half; j++) {
             const sbr_complex_t w = tw[j * tstep];
+            uint32_t i;
             for (i = j; i < size; i += 2u * half) {
                 lanes_butterfly(&re[i * FD_LANES], &im[i * FD_LANES], &re[(i + half) * FD_LANES],
                                 &im[(i + half) * FD_LANES], w);
