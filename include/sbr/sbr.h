@@ -15,6 +15,7 @@
 #include "sbr/map.h"
 #include "sbr/mser.h"
 #include "sbr/can.h"
+#include "sbr/parts.h"
 
 /** Library version. */
 #define SBR_VERSION_MAJOR 0

@@ -1,0 +1,113 @@
+/**
+ * @file parts.h
+ * @brief The front half of the recogniser: channel maps -> MSER regions -> outer contours
+ *        -> Fourier descriptors ("parts"), for a whole frame or a region of interest.
+ *
+ * For every map kind selected in the configuration (intensity, red, blue, yellow; see
+ * map.h) the frame is turned into a u8 map (optionally subsampled), its maximally stable
+ * extremal regions are extracted (both polarities, mser.h), regions failing the shape
+ * filters are skipped, and each remaining region's outer boundary is traced (contour.h)
+ * and described by its Fourier descriptor (fd.h). Coordinates of the results (boxes,
+ * centroids, descriptor scale) are in pixels of the input view, whatever the subsampling.
+ *
+ * Region filters (cheap, before tracing): bounding box at least `min_side` and at most
+ * `max_side` map pixels on each side, aspect ratio (long side / short side) at most
+ * `max_aspect`, fill ratio (area / box area) at least `min_fill`. Contours longer than
+ * `max_contour` points are skipped. Every skip is counted in ::sbr_parts_stats_t.
+ */
+#ifndef SBR_PARTS_H
+#define SBR_PARTS_H
+
+#include "sbr/fd.h"
+#include "sbr/map.h"
+#include "sbr/mser.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** One part: a region and its descriptor. */
+typedef struct sbr_part_s {
+    sbr_fd_t fd;       /**< descriptor; fd.cx, fd.cy = centroid, fd.scale = size (input px) */
+    sbr_rect_t bbox;   /**< bounding box in input pixels */
+    uint32_t area;     /**< region area in map pixels */
+    uint8_t map;       /**< ::sbr_map_kind_t the region came from */
+    uint8_t polarity;  /**< ::SBR_MSER_DARK or ::SBR_MSER_BRIGHT */
+    uint8_t level;     /**< MSER level in map values */
+    uint8_t pad;
+} sbr_part_t;
+
+/** Configuration. Start from sbr_parts_config_default(). */
+typedef struct sbr_parts_config_s {
+    /** Bit mask of map kinds: bit k selects ::sbr_map_kind_t k. Default: intensity, red and
+        blue (0x7). */
+    uint32_t maps;
+    /** Map subsampling, 1..::SBR_MAP_MAX_SUBSAMPLE. 2 quarters the memory and the time and
+        loses signs below about twice the MSER min_area. Default 1. */
+    uint32_t subsample;
+    /** Region extraction. Defaults: delta 5, area 60..14400, variation 0.25, diversity 0.2,
+        both polarities, max_nodes 68000 (a sixteenth of a 1360 x 800 map, measured
+        sufficient on GTSDB scenes; stats.capacity_hit says when a frame needed more). */
+    sbr_mser_config_t mser;
+    /** Regions kept per map before filtering (bounds the workspace). Default 2048. */
+    uint32_t max_regions;
+    /** Box side limits in map pixels. Defaults 6 and 160. */
+    uint32_t min_side;
+    uint32_t max_side;
+    /** Largest long/short side ratio. Default 3. */
+    float max_aspect;
+    /** Smallest area / box area. Default 0.2. */
+    float min_fill;
+    /** Longest contour traced, in points. Default 2048. */
+    uint32_t max_contour;
+    /** Descriptor: resampling size N (the FFT instance's length) and kept coefficients M
+        (2M < N). Defaults 128 and 12. */
+    uint32_t fd_n;
+    uint32_t fd_m;
+} sbr_parts_config_t;
+
+/** What one call did. */
+typedef struct sbr_parts_stats_s {
+    uint32_t regions;          /**< MSER regions, all maps */
+    uint32_t skipped_shape;    /**< failed a region filter */
+    uint32_t skipped_contour;  /**< contour too long, or degenerate descriptor */
+    uint32_t capacity_hit;     /**< 1 if MSER ran out of nodes or regions on some map */
+} sbr_parts_stats_t;
+
+/** @brief Defaults as documented. No-op for NULL. */
+void sbr_parts_config_default(sbr_parts_config_t *cfg);
+
+/** @brief Check a configuration. @return ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE. */
+sbr_status_t sbr_parts_config_check(const sbr_parts_config_t *cfg);
+
+/**
+ * @brief Workspace bytes for views up to width x height; 0 for a bad configuration or
+ *        size (the map must be at least 3 x 3 after subsampling).
+ */
+size_t sbr_parts_workspace_size(uint32_t width, uint32_t height, const sbr_parts_config_t *cfg);
+
+/**
+ * @brief Extract the parts of a frame.
+ * @param[in]  img       RGB888 / BGR888 view (GRAY8 with maps = intensity only).
+ * @param[in]  cfg       configuration.
+ * @param[in]  fft       FFT instance of length cfg->fd_n.
+ * @param[in]  workspace sbr_parts_workspace_size() bytes, 4-byte aligned.
+ * @param[out] parts     results, map by map (in the order of the kinds), each in MSER order.
+ * @param[in]  capacity  length of `parts`.
+ * @param[out] count     parts written.
+ * @param[out] stats     (may be NULL) counters of this call.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad configuration, format/map mismatch);
+ *         ::SBR_ERR_SIZE (view too small after subsampling); ::SBR_ERR_STATE (FFT instance
+ *         invalid or not of length fd_n); ::SBR_ERR_WORKSPACE; ::SBR_ERR_CAPACITY when
+ *         `parts` ran full (the first `capacity` are written).
+ */
+sbr_status_t sbr_parts_extract(const sbr_image_t *img, const sbr_parts_config_t *cfg,
+                               const sbr_fft_t *fft, void *workspace, size_t workspace_size,
+                               sbr_part_t *parts, uint32_t capacity, uint32_t *count,
+                               sbr_parts_stats_t *stats);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SBR_PARTS_H */

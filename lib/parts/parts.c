@@ -1,0 +1,301 @@
+/*
+ * Parts of a frame: maps -> MSER -> region masks -> outer contours -> Fourier descriptors.
+ * All buffers come from the caller's workspace; see include/sbr/parts.h.
+ */
+#include "sbr/parts.h"
+
+#include "sbr/contour.h"
+
+#include <string.h>
+
+#define PARTS_MAX_KINDS 4u
+#define PARTS_ALIGN(x) ((((size_t)(x)) + 7u) & ~((size_t)7u))
+
+void sbr_parts_config_default(sbr_parts_config_t *cfg)
+{
+    if (cfg != NULL) {
+        cfg->maps = 0x7u;
+        cfg->subsample = 1u;
+        sbr_mser_config_default(&cfg->mser);
+        cfg->mser.max_nodes = 68000u;
+        cfg->max_regions = 2048u;
+        cfg->min_side = 6u;
+        cfg->max_side = 160u;
+        cfg->max_aspect = 3.0f;
+        cfg->min_fill = 0.2f;
+        cfg->max_contour = 2048u;
+        cfg->fd_n = 128u;
+        cfg->fd_m = 12u;
+    }
+}
+
+sbr_status_t sbr_parts_config_check(const sbr_parts_config_t *cfg)
+{
+    sbr_status_t st;
+    if (cfg == NULL) {
+        return SBR_ERR_NULL;
+    }
+    st = sbr_mser_config_check(&cfg->mser);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((cfg->maps == 0u) || (cfg->maps > 0xFu) || (cfg->subsample == 0u) ||
+        (cfg->subsample > SBR_MAP_MAX_SUBSAMPLE) || (cfg->max_regions == 0u) ||
+        (cfg->min_side == 0u) || (cfg->max_side < cfg->min_side) || (cfg->max_side > 4096u) ||
+        (cfg->max_contour < 3u) || (cfg->max_contour > 65536u) ||
+        (sbr_fft_size_supported(cfg->fd_n) == 0) || (cfg->fd_m == 0u) ||
+        (cfg->fd_m > SBR_FD_MAX_M) || ((2u * cfg->fd_m) >= cfg->fd_n)) {
+        return SBR_ERR_RANGE;
+    }
+    if (!((cfg->max_aspect >= 1.0f) && (cfg->max_aspect <= 1.0e6f)) ||
+        !((cfg->min_fill >= 0.0f) && (cfg->min_fill <= 1.0f))) {
+        return SBR_ERR_RANGE;
+    }
+    return SBR_OK;
+}
+
+/* Workspace layout (each piece 8-byte aligned). */
+typedef struct parts_layout_s {
+    size_t map;      /* map bytes */
+    size_t mser;     /* MSER workspace */
+    size_t regions;  /* region array */
+    size_t mask;     /* region mask */
+    size_t fill;     /* mask flood-fill stack */
+    size_t trace;    /* contour label map */
+    size_t points;   /* traced points (int16 pairs) */
+    size_t pointsf;  /* float points */
+    size_t fdwork;   /* FFT scratch */
+    size_t total;
+} parts_layout_t;
+
+static int parts_layout(uint32_t width, uint32_t height, const sbr_parts_config_t *cfg,
+                        parts_layout_t *l)
+{
+    const uint32_t mw = width / cfg->subsample;
+    const uint32_t mh = height / cfg->subsample;
+    const size_t side = (size_t)cfg->max_side;
+    size_t ms;
+    if ((mw < 3u) || (mh < 3u)) {
+        return 0;
+    }
+    ms = sbr_mser_workspace_size(mw, mh, &cfg->mser);
+    if (ms == 0u) {
+        return 0;
+    }
+    l->map = PARTS_ALIGN((size_t)mw * (size_t)mh);
+    l->mser = PARTS_ALIGN(ms);
+    l->regions = PARTS_ALIGN((size_t)cfg->max_regions * sizeof(sbr_mser_region_t));
+    l->mask = PARTS_ALIGN(side * side);
+    l->fill = PARTS_ALIGN(SBR_MSER_MASK_WORKSPACE_SIZE(side, side));
+    l->trace = PARTS_ALIGN(SBR_CONTOUR_WORKSPACE_SIZE(side, side));
+    l->points = PARTS_ALIGN((size_t)cfg->max_contour * sizeof(sbr_point_t));
+    l->pointsf = PARTS_ALIGN((size_t)cfg->max_contour * sizeof(sbr_pointf_t));
+    l->fdwork = PARTS_ALIGN((size_t)cfg->fd_n * sizeof(sbr_complex_t));
+    l->total = l->map + l->mser + l->regions + l->mask + l->fill + l->trace + l->points +
+               l->pointsf + l->fdwork;
+    return 1;
+}
+
+size_t sbr_parts_workspace_size(uint32_t width, uint32_t height, const sbr_parts_config_t *cfg)
+{
+    parts_layout_t l;
+    if ((sbr_parts_config_check(cfg) != SBR_OK) || (width > SBR_IMAGE_MAX_DIM) ||
+        (height > SBR_IMAGE_MAX_DIM) || (parts_layout(width, height, cfg, &l) == 0)) {
+        return 0u;
+    }
+    return l.total;
+}
+
+/* Does a region pass the cheap shape filters? */
+static int region_ok(const sbr_mser_region_t *r, const sbr_parts_config_t *cfg)
+{
+    const uint32_t w = r->bbox.width;
+    const uint32_t h = r->bbox.height;
+    uint32_t lo = w;
+    uint32_t hi = h;
+    int ok = 1;
+    if (h < w) {
+        lo = h;
+        hi = w;
+    }
+    if ((lo < cfg->min_side) || (hi > cfg->max_side) ||
+        ((float)hi > (cfg->max_aspect * (float)lo)) ||
+        ((float)r->area < (cfg->min_fill * ((float)w * (float)h)))) {
+        ok = 0;
+    }
+    return ok;
+}
+
+/* Scratch buffers of one call. */
+typedef struct parts_bufs_s {
+    uint8_t *map;
+    uint8_t *mser;
+    sbr_mser_region_t *regions;
+    uint8_t *mask;
+    uint8_t *fill;
+    uint8_t *trace;
+    sbr_point_t *points;
+    sbr_pointf_t *pointsf;
+    sbr_complex_t *fdwork;
+    size_t mser_size;
+    size_t fill_size;
+    size_t trace_size;
+} parts_bufs_t;
+
+/* One region to a part; returns 1 if a part was written. */
+static int region_to_part(const sbr_image_t *map, const sbr_mser_region_t *r,
+                          const sbr_parts_config_t *cfg, const sbr_fft_t *fft,
+                          parts_bufs_t *b, uint8_t kind, sbr_part_t *out)
+{
+    const uint32_t s = cfg->subsample;
+    const float half = 0.5f * ((float)s - 1.0f);
+    sbr_image_t mv;
+    sbr_contour_t ct;
+    uint32_t n = 0u;
+    uint32_t i;
+    sbr_status_t st;
+
+    st = sbr_mser_region_mask(map, r, b->fill, b->fill_size, b->mask, r->bbox.width,
+                              (size_t)r->bbox.width * (size_t)r->bbox.height);
+    if (st != SBR_OK) {
+        return 0;
+    }
+    mv.width = r->bbox.width;
+    mv.height = r->bbox.height;
+    mv.stride = r->bbox.width;
+    mv.format = SBR_PIXEL_GRAY8;
+    mv.data = b->mask;
+    /* a region is one 4-connected blob: its outer boundary is the only external contour */
+    st = sbr_contour_find_external(&mv, b->trace, b->trace_size, b->points, cfg->max_contour,
+                                   &ct, 1u, &n);
+    if ((st != SBR_OK) || (n != 1u)) {
+        return 0;
+    }
+    for (i = 0u; i < ct.length; i++) {
+        const sbr_point_t p = b->points[ct.first + i];
+        const uint32_t mx = (uint32_t)(int32_t)p.x + r->bbox.x; /* map pixel */
+        const uint32_t my = (uint32_t)(int32_t)p.y + r->bbox.y;
+        b->pointsf[i].x = ((float)mx * (float)s) + half;
+        b->pointsf[i].y = ((float)my * (float)s) + half;
+    }
+    st = sbr_fd_from_pointsf(fft, b->pointsf, ct.length, cfg->fd_m, b->fdwork, cfg->fd_n,
+                             &out->fd);
+    if (st != SBR_OK) {
+        return 0;
+    }
+    out->bbox.x = r->bbox.x * s;
+    out->bbox.y = r->bbox.y * s;
+    out->bbox.width = r->bbox.width * s;
+    out->bbox.height = r->bbox.height * s;
+    out->area = r->area;
+    out->map = kind;
+    out->polarity = r->polarity;
+    out->level = r->level;
+    out->pad = 0u;
+    return 1;
+}
+
+sbr_status_t sbr_parts_extract(const sbr_image_t *img, const sbr_parts_config_t *cfg,
+                               const sbr_fft_t *fft, void *workspace, size_t workspace_size,
+                               sbr_part_t *parts, uint32_t capacity, uint32_t *count,
+                               sbr_parts_stats_t *stats)
+{
+    sbr_status_t st;
+    parts_layout_t l;
+    parts_bufs_t b;
+    sbr_parts_stats_t sx;
+    uint8_t *base;
+    uint32_t kind;
+    int full = 0;
+
+    if ((img == NULL) || (cfg == NULL) || (fft == NULL) || (parts == NULL) || (count == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    *count = 0u;
+    (void)memset(&sx, 0, sizeof sx);
+    st = sbr_image_check(img);
+    if (st != SBR_OK) {
+        return st;
+    }
+    st = sbr_parts_config_check(cfg);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((img->format == SBR_PIXEL_GRAY8) && (cfg->maps != 1u)) {
+        return SBR_ERR_RANGE;
+    }
+    if ((sbr_fft_check(fft) != SBR_OK) || (fft->n != cfg->fd_n)) {
+        return SBR_ERR_STATE;
+    }
+    if ((parts_layout(img->width, img->height, cfg, &l) == 0) || (capacity == 0u)) {
+        return SBR_ERR_SIZE;
+    }
+    if ((workspace == NULL) || (workspace_size < l.total) ||
+        ((((uintptr_t)workspace) & 7u) != 0u)) { /* 8-byte alignment (MISRA.md 11.4/11.6) */
+        return SBR_ERR_WORKSPACE;
+    }
+    base = (uint8_t *)workspace;
+    b.map = base;
+    base = &base[l.map];
+    b.mser = base;
+    b.mser_size = l.mser;
+    base = &base[l.mser];
+    b.regions = (sbr_mser_region_t *)(void *)base;
+    base = &base[l.regions];
+    b.mask = base;
+    base = &base[l.mask];
+    b.fill = base;
+    b.fill_size = l.fill;
+    base = &base[l.fill];
+    b.trace = base;
+    b.trace_size = l.trace;
+    base = &base[l.trace];
+    b.points = (sbr_point_t *)(void *)base;
+    base = &base[l.points];
+    b.pointsf = (sbr_pointf_t *)(void *)base;
+    base = &base[l.pointsf];
+    b.fdwork = (sbr_complex_t *)(void *)base;
+
+    for (kind = 0u; (kind < PARTS_MAX_KINDS) && (full == 0); kind++) {
+        sbr_image_t map;
+        uint32_t nreg = 0u;
+        uint32_t i;
+        if ((cfg->maps & (1u << kind)) == 0u) {
+            continue;
+        }
+        st = sbr_map_make(img, (sbr_map_kind_t)kind, cfg->subsample, b.map,
+                          img->width / cfg->subsample, l.map, &map);
+        if (st != SBR_OK) {
+            return st;
+        }
+        st = sbr_mser_detect(&map, &cfg->mser, b.mser, b.mser_size, b.regions, cfg->max_regions,
+                             &nreg);
+        if (st == SBR_ERR_CAPACITY) {
+            sx.capacity_hit = 1u;
+        } else if (st != SBR_OK) {
+            return st;
+        } else {
+            /* complete */
+        }
+        sx.regions += nreg;
+        for (i = 0u; i < nreg; i++) {
+            const sbr_mser_region_t *r = &b.regions[i];
+            if (region_ok(r, cfg) == 0) {
+                sx.skipped_shape++;
+            } else if (*count >= capacity) {
+                full = 1;
+            } else if (region_to_part(&map, r, cfg, fft, &b, (uint8_t)kind, &parts[*count]) != 0) {
+                (*count)++;
+            } else {
+                sx.skipped_contour++;
+            }
+        }
+    }
+    if (stats != NULL) {
+        *stats = sx;
+    }
+    if (full != 0) {
+        return SBR_ERR_CAPACITY;
+    }
+    return SBR_OK;
+}

@@ -1,0 +1,237 @@
+/* Unity tests of part extraction (include/sbr/parts.h): maps -> MSER -> contours -> FDs. */
+#include "unity.h"
+#include "sbr/parts.h"
+#include "test_support.h"
+
+#include <math.h>
+#include <string.h>
+
+#define W 96u
+#define H 64u
+#define PI_F 3.14159265f
+
+static uint8_t g_rgb[H][W][3];
+static uint64_t g_ws[400000u / 8u];
+static sbr_part_t g_parts[64];
+static sbr_fft_t g_fft;
+static sbr_parts_config_t g_cfg;
+static sbr_complex_t g_work[128];
+
+void setUp(void)
+{
+    uint32_t x;
+    uint32_t y;
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            g_rgb[y][x][0] = 110u;
+            g_rgb[y][x][1] = 110u;
+            g_rgb[y][x][2] = 110u;
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_init_128(&g_fft));
+    sbr_parts_config_default(&g_cfg);
+    g_cfg.max_side = 48u;
+    g_cfg.max_contour = 512u;
+    g_cfg.max_regions = 64u;
+    g_cfg.mser.max_nodes = 0u;
+}
+void tearDown(void) {}
+
+static sbr_image_t view(void)
+{
+    sbr_image_t v;
+    v.width = W;
+    v.height = H;
+    v.stride = 3u * W;
+    v.format = SBR_PIXEL_RGB888;
+    v.data = &g_rgb[0][0][0];
+    return v;
+}
+
+static void paint(uint32_t x, uint32_t y, uint8_t r, uint8_t g, uint8_t b)
+{
+    g_rgb[y][x][0] = r;
+    g_rgb[y][x][1] = g;
+    g_rgb[y][x][2] = b;
+}
+
+/* A prohibitory-like sign: red ring (radius 9..14) around a white disc, centred (cx, cy). */
+static void draw_ring_sign(float cx, float cy)
+{
+    uint32_t x;
+    uint32_t y;
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            const float d = hypotf((float)x - cx, (float)y - cy);
+            if (d <= 9.0f) {
+                paint(x, y, 240u, 240u, 240u);
+            } else if (d <= 14.0f) {
+                paint(x, y, 200u, 20u, 30u);
+            }
+        }
+    }
+}
+
+/* A filled, upward triangle (danger-like outline), apex at (cx, cy - 12). */
+static void draw_triangle(float cx, float cy)
+{
+    uint32_t x;
+    uint32_t y;
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            const float dy = (float)y - (cy - 12.0f);
+            const float dx = fabsf((float)x - cx);
+            if ((dy >= 0.0f) && (dy <= 22.0f) && (dx <= 0.58f * dy)) {
+                paint(x, y, 30u, 30u, 30u);
+            }
+        }
+    }
+}
+
+static sbr_fd_t circle_fd(void)
+{
+    sbr_pointf_t pts[64];
+    sbr_fd_t fd;
+    uint32_t i;
+    for (i = 0u; i < 64u; i++) {
+        /* counter-clockwise on screen, as traced outer boundaries run */
+        const float a = 2.0f * PI_F * (float)i / 64.0f;
+        pts[i].x = 10.0f * cosf(a);
+        pts[i].y = -10.0f * sinf(a); /* y points down */
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_from_pointsf(&g_fft, pts, 64u, g_cfg.fd_m, g_work, 128u, &fd));
+    return fd;
+}
+
+static float match_error(const sbr_fd_t *a, const sbr_fd_t *b)
+{
+    sbr_fft_t p;
+    sbr_fd_match_config_t mc;
+    sbr_fd_match_t r;
+    sbr_complex_t work[32];
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_init_32(&p));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_config_default(&mc));
+    mc.mode = SBR_FD_ROTATION_INVARIANT;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match(&p, &mc, a, b, work, 32u, &r));
+    return r.error;
+}
+
+/* The ring sign gives a red-map part and intensity parts centred on the sign, whose
+   descriptors match a circle; the triangle gives a dark part that does not. */
+static void test_ring_sign_and_triangle(void)
+{
+    const sbr_image_t v = view();
+    const sbr_fd_t circ = circle_fd();
+    sbr_parts_stats_t stats;
+    uint32_t n = 0u;
+    uint32_t i;
+    int red_ring = 0;
+    int white_disc = 0;
+    int triangle = 0;
+    draw_ring_sign(30.0f, 32.0f);
+    draw_triangle(70.0f, 32.0f);
+    TEST_ASSERT_TRUE(sbr_parts_workspace_size(W, H, &g_cfg) <= sizeof g_ws);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 64u,
+                                                    &n, &stats));
+    TEST_ASSERT_TRUE(n >= 3u);
+    TEST_ASSERT_TRUE(stats.regions >= n);
+    for (i = 0u; i < n; i++) {
+        const sbr_part_t *p = &g_parts[i];
+        const float e = match_error(&p->fd, &circ);
+        if ((p->map == SBR_MAP_RED) && (p->polarity == SBR_MSER_BRIGHT) &&
+            (fabsf(p->fd.cx - 30.0f) < 1.0f) && (fabsf(p->fd.cy - 32.0f) < 1.0f)) {
+            red_ring = 1;
+            TEST_ASSERT_TRUE(e < 0.01f);
+            /* the outer boundary of a radius-14 disc: about 2 * pi * 14 long, scale ~ 14 */
+            TEST_ASSERT_FLOAT_WITHIN(2.0f, 14.0f, p->fd.scale);
+        }
+        if ((p->map == SBR_MAP_INTENSITY) && (p->polarity == SBR_MSER_BRIGHT) &&
+            (p->bbox.width <= 20u) && (fabsf(p->fd.cx - 30.0f) < 1.0f)) {
+            white_disc = 1;
+            TEST_ASSERT_TRUE(e < 0.01f);
+        }
+        if ((p->polarity == SBR_MSER_DARK) && (fabsf(p->fd.cx - 70.0f) < 1.5f)) {
+            /* an ideal triangle's boundary has |C(1)|^2 = 1 / (1 + 1/16 + 1/256 + ...) of
+               its energy, so its best match with a circle is e = 2 - 2 * 0.967 = 0.065 */
+            triangle = 1;
+            TEST_ASSERT_FLOAT_WITHIN(0.03f, 0.065f, e);
+        }
+    }
+    TEST_ASSERT_TRUE(red_ring);
+    TEST_ASSERT_TRUE(white_disc);
+    TEST_ASSERT_TRUE(triangle);
+}
+
+/* Subsampling by 2 keeps coordinates in input pixels. */
+static void test_subsample_keeps_input_coordinates(void)
+{
+    const sbr_image_t v = view();
+    uint32_t n = 0u;
+    uint32_t i;
+    int found = 0;
+    draw_ring_sign(48.0f, 32.0f);
+    g_cfg.subsample = 2u;
+    g_cfg.mser.min_area = 20u;
+    g_cfg.min_side = 4u;
+    g_cfg.maps = 1u << SBR_MAP_RED;
+    g_cfg.max_side = 40u; /* not the whole 46 x 30 map interior */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 64u,
+                                                    &n, NULL));
+    for (i = 0u; i < n; i++) {
+        /* the bright red ring (the dark background region is centred there as well) */
+        if ((g_parts[i].polarity == SBR_MSER_BRIGHT) && (fabsf(g_parts[i].fd.cx - 48.0f) < 1.5f) &&
+            (fabsf(g_parts[i].fd.cy - 32.0f) < 1.5f)) {
+            found = 1;
+            TEST_ASSERT_FLOAT_WITHIN(2.5f, 14.0f, g_parts[i].fd.scale);
+            TEST_ASSERT_TRUE(g_parts[i].bbox.width >= 26u && g_parts[i].bbox.width <= 32u);
+        }
+    }
+    TEST_ASSERT_TRUE(found);
+}
+
+static void test_parts_capacity_and_bad_input(void)
+{
+    sbr_image_t v = view();
+    uint32_t n = 0u;
+    sbr_parts_config_t c;
+    sbr_fft_t f64;
+    draw_ring_sign(30.0f, 32.0f);
+    draw_triangle(70.0f, 32.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws,
+                                                              g_parts, 1u, &n, NULL));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_parts_extract(NULL, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, 100u, g_parts, 64u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
+                          sbr_parts_extract(&v, &g_cfg, &g_fft, (uint8_t *)g_ws + 4, sizeof g_ws - 8u, g_parts, 64u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_init_64(&f64));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_parts_extract(&v, &g_cfg, &f64, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    c = g_cfg;
+    c.fd_m = 64u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_extract(&v, &c, &g_fft, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    c = g_cfg;
+    c.maps = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_config_check(&c));
+    c = g_cfg;
+    c.min_fill = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_config_check(&c));
+    c = g_cfg;
+    c.subsample = 8u;
+    v.width = 16u; /* a 2 x 2 map after subsampling */
+    v.height = 16u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_parts_extract(&v, &c, &g_fft, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    v = view();
+    /* a grey frame can only give intensity parts */
+    v.format = SBR_PIXEL_GRAY8;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_parts_workspace_size(2u, 5u, &g_cfg));
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_ring_sign_and_triangle);
+    RUN_TEST(test_subsample_keeps_input_coordinates);
+    RUN_TEST(test_parts_capacity_and_bad_input);
+    return UNITY_END();
+}
