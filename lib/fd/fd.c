@@ -172,9 +172,29 @@ sbr_status_t sbr_fd_from_pointsf(const sbr_fft_t *fft, const sbr_pointf_t *point
     return fd_compute(fft, NULL, points, count, m, work, work_len, out);
 }
 
+/* Sum of squares of a descriptor's coefficients with four independent partial sums (one
+   vector register on SIMD hosts); not finite iff a coefficient is not finite. */
+static float coeff_energy(const sbr_fd_t *p)
+{
+    const float *f = (const float *)(const void *)p->c; /* 2(2M+1) floats */
+    const uint32_t n = 2u * ((2u * p->m) + 1u);
+    float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    uint32_t k;
+    for (k = 0u; (k + 4u) <= n; k += 4u) {
+        uint32_t j;
+        for (j = 0u; j < 4u; j++) {
+            acc[j] += f[k + j] * f[k + j];
+        }
+    }
+    for (; k < n; k++) {
+        acc[0] += f[k] * f[k];
+    }
+    return (acc[0] + acc[1]) + (acc[2] + acc[3]);
+}
+
+/* A valid descriptor: M in range, positive finite scale, finite coefficients. */
 static sbr_status_t check_fd(const sbr_fd_t *fd)
 {
-    uint32_t k;
     if (fd == NULL) {
         return SBR_ERR_NULL;
     }
@@ -182,10 +202,8 @@ static sbr_status_t check_fd(const sbr_fd_t *fd)
         (fd->scale <= 0.0f)) {
         return SBR_ERR_RANGE;
     }
-    for (k = 0u; k <= (2u * fd->m); k++) {
-        if ((isfinite(fd->c[k].re) == 0) || (isfinite(fd->c[k].im) == 0)) {
-            return SBR_ERR_RANGE;
-        }
+    if (isfinite(coeff_energy(fd)) == 0) {
+        return SBR_ERR_RANGE;
     }
     return SBR_OK;
 }
@@ -335,16 +353,12 @@ static sbr_status_t check_match_args(const sbr_fft_t *fft, const sbr_fd_match_co
     return SBR_OK;
 }
 
-/* A prototype's header must be valid and its M the query's; its coefficients are checked
-   for finiteness while they are multiplied (fill_products()). */
+/* A prototype must be a valid descriptor with the query's M. */
 static sbr_status_t check_proto(const sbr_fd_t *query, const sbr_fd_t *proto)
 {
-    if (proto == NULL) {
-        return SBR_ERR_NULL;
-    }
-    if ((proto->m == 0u) || (proto->m > SBR_FD_MAX_M) || (isfinite(proto->scale) == 0) ||
-        (proto->scale <= 0.0f)) {
-        return SBR_ERR_RANGE;
+    const sbr_status_t st = check_fd(proto);
+    if (st != SBR_OK) {
+        return st;
     }
     if (proto->m != query->m) {
         return SBR_ERR_SIZE;
@@ -352,31 +366,36 @@ static sbr_status_t check_proto(const sbr_fd_t *query, const sbr_fd_t *proto)
     return SBR_OK;
 }
 
-/* conj(Q(n)) C(n) for n = -M..M, written at index n mod P into re/im with the given
-   element stride. Returns SBR_ERR_RANGE if a coefficient of C is not finite
-   (the energy sum of non-negative terms is then infinite or NaN). */
-static sbr_status_t fill_products(const sbr_fd_t *query, const sbr_fd_t *proto, uint32_t size,
-                                  float *re, float *im, uint32_t stride)
+/* Where conj(Q(n)) C(n), n = -M..M (k = n + M), goes: element `scale * place(n mod P)` of
+   the re/im arrays, place = bit reversal (lane buffers) or identity (bitrev NULL). */
+static void product_positions(uint32_t m, uint32_t size, const uint16_t *bitrev,
+                              uint32_t scale, uint32_t *pos)
 {
-    const uint32_t m = query->m;
     uint32_t k;
-    float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f}; /* independent sums: no serial add chain */
-
     for (k = 0u; k <= (2u * m); k++) {
-        const sbr_complex_t q = query->c[k];
-        const sbr_complex_t c = proto->c[k];
         uint32_t at = k - m;
         if (k < m) {
             at = (size + k) - m;
         }
-        re[at * stride] = (q.re * c.re) + (q.im * c.im);
-        im[at * stride] = (q.re * c.im) - (q.im * c.re);
-        acc[k & 3u] += (c.re * c.re) + (c.im * c.im);
+        if (bitrev != NULL) {
+            at = (uint32_t)bitrev[at];
+        }
+        pos[k] = at * scale;
     }
-    if (isfinite((acc[0] + acc[1]) + (acc[2] + acc[3])) == 0) {
-        return SBR_ERR_RANGE;
+}
+
+/* conj(Q(n)) C(n) at the given positions. */
+static void write_products(const sbr_fd_t *query, const sbr_fd_t *proto, const uint32_t *pos,
+                           float *re, float *im)
+{
+    const uint32_t n = (2u * query->m) + 1u;
+    uint32_t k;
+    for (k = 0u; k < n; k++) {
+        const sbr_complex_t q = query->c[k];
+        const sbr_complex_t c = proto->c[k];
+        re[pos[k]] = (q.re * c.re) + (q.im * c.im);
+        im[pos[k]] = (q.re * c.im) - (q.im * c.re);
     }
-    return SBR_OK;
 }
 
 /* Objective value used by the peak search: |r|^2 (invariant), Re r (covariant), or
@@ -487,14 +506,13 @@ static void finish_match(uint32_t size, const sbr_fd_match_config_t *cfg,
     result->shift = lag;
 }
 
-/* One match through the FFT instance, on checked arguments (header of proto included). */
-static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
-                               const sbr_fd_t *query, const sbr_fd_t *proto,
-                               sbr_complex_t *work, sbr_fd_match_t *result)
+/* One match through the FFT instance, on checked arguments (prototype included). */
+static void match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                       const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
+                       sbr_fd_match_t *result)
 {
     const uint32_t size = fft->n;
     uint32_t k;
-    sbr_status_t st;
 
     /* indices 0..M and P-M..P-1 are filled; the gap between is zero */
     for (k = query->m + 1u; k < (size - query->m); k++) {
@@ -502,12 +520,11 @@ static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t
         work[k].im = 0.0f;
     }
     {
+        uint32_t pos[(2u * SBR_FD_MAX_M) + 1u];
         /* the complex array seen as interleaved floats (re, im, re, im, ...) */
         float *f = (float *)(void *)work;
-        st = fill_products(query, proto, size, f, &f[1], 2u);
-    }
-    if (st != SBR_OK) {
-        return st;
+        product_positions(query->m, size, NULL, 2u, pos);
+        write_products(query, proto, pos, f, &f[1]);
     }
     /* The instance was checked by the caller, so this cannot fail. The inverse is scaled
        by 1/P, so r = P * work. */
@@ -537,7 +554,6 @@ static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t
         finish_match(size, cfg, query, proto, (best_val > FD_OUTSIDE) ? 1 : 0, best, around,
                      result);
     }
-    return SBR_OK;
 }
 
 /* ---- table matching, FD_LANES prototypes at a time ----------------------------------
@@ -653,41 +669,6 @@ static int found_any(int inv, float cb, sbr_complex_t at_best)
     return f;
 }
 
-/* Sum of squares of a prototype's coefficients with four independent partial sums (one
-   vector register on SIMD hosts); not finite iff a coefficient is not finite. */
-static float coeff_energy(const sbr_fd_t *p)
-{
-    const float *f = (const float *)(const void *)p->c; /* 2(2M+1) floats */
-    const uint32_t n = 2u * ((2u * p->m) + 1u);
-    float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    uint32_t k;
-    for (k = 0u; (k + 4u) <= n; k += 4u) {
-        uint32_t j;
-        for (j = 0u; j < 4u; j++) {
-            acc[j] += f[k + j] * f[k + j];
-        }
-    }
-    for (; k < n; k++) {
-        acc[0] += f[k] * f[k];
-    }
-    return (acc[0] + acc[1]) + (acc[2] + acc[3]);
-}
-
-/* conj(Q) C of one prototype into lane `lane`; pos[k] is the lane-buffer row of n = k - M. */
-static void lane_products(const sbr_fd_t *query, const sbr_fd_t *proto, const uint32_t *pos,
-                          float *re, float *im, uint32_t lane)
-{
-    const uint32_t n = (2u * query->m) + 1u;
-    uint32_t k;
-    for (k = 0u; k < n; k++) {
-        const sbr_complex_t q = query->c[k];
-        const sbr_complex_t c = proto->c[k];
-        const uint32_t at = pos[k] + lane;
-        re[at] = (q.re * c.re) + (q.im * c.im);
-        im[at] = (q.re * c.im) - (q.im * c.re);
-    }
-}
-
 static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                       const sbr_fd_t *query, const sbr_fd_t *protos,
                                       uint32_t count, sbr_complex_t *work,
@@ -705,13 +686,7 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
     uint32_t j;
     uint32_t i0;
 
-    for (j = 0u; j <= (2u * query->m); j++) {
-        uint32_t at = j - query->m;
-        if (j < query->m) {
-            at = (size + j) - query->m;
-        }
-        pos[j] = (uint32_t)fft->bitrev[at] * FD_LANES;
-    }
+    product_positions(query->m, size, fft->bitrev, FD_LANES, pos);
     for (j = 0u; j < (size / 2u); j++) {
         const float a = (SBR_TWO_PI_F * (float)j) / (float)size;
         tw[j].re = cosf(a);
@@ -744,10 +719,7 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
             if (st != SBR_OK) {
                 return st;
             }
-            if (isfinite(coeff_energy(&protos[i0 + b])) == 0) {
-                return SBR_ERR_RANGE;
-            }
-            lane_products(query, &protos[i0 + b], pos, re, im, b);
+            write_products(query, &protos[i0 + b], pos, &re[b], &im[b]);
         }
         lanes_transform(size, tw, re, im);
         lanes_peaks(size, inv, cb, re, im, best);
@@ -775,7 +747,7 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
         st = check_proto(query, proto);
     }
     if (st == SBR_OK) {
-        st = match_core(fft, cfg, query, proto, work, result);
+        match_core(fft, cfg, query, proto, work, result);
     }
     return st;
 }
@@ -806,12 +778,10 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
     } else {
         for (i = 0u; i < count; i++) {
             st = check_proto(query, &protos[i]);
-            if (st == SBR_OK) {
-                st = match_core(fft, cfg, query, &protos[i], work, &results[i]);
-            }
             if (st != SBR_OK) {
                 return st;
             }
+            match_core(fft, cfg, query, &protos[i], work, &results[i]);
         }
     }
     for (i = 1u; i < count; i++) {
