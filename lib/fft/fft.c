@@ -1,4 +1,5 @@
 #include "fft_internal.h"
+#include "../common/sbr_util.h"
 
 #define SBR_FFT_INV 0
 #define SBR_FFT_NAME(x) fwd_##x
@@ -66,15 +67,10 @@ static sbr_status_t check_instance(const sbr_fft_t *fft, const sbr_complex_t *in
     if (st != SBR_OK) {
         return st;
     }
-    if (in != out) {
-        /* Only identical or disjoint buffers are supported. Compared as integers:
-           relational comparison of pointers into different objects is undefined. */
-        const uintptr_t a = (uintptr_t)in;
-        const uintptr_t b = (uintptr_t)out;
-        const uintptr_t bytes = (uintptr_t)fft->n * (uintptr_t)sizeof(sbr_complex_t);
-        if ((a < (b + bytes)) && (b < (a + bytes))) {
-            return SBR_ERR_OVERLAP;
-        }
+    /* Only identical or disjoint buffers are supported. */
+    if ((in != out) && (sbr_util_overlap(in, (size_t)fft->n * sizeof(sbr_complex_t), out,
+                                         (size_t)fft->n * sizeof(sbr_complex_t)) != 0)) {
+        return SBR_ERR_OVERLAP;
     }
     return SBR_OK;
 }

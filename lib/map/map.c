@@ -1,17 +1,6 @@
 #include "sbr/map.h"
 
-/* Do [a, a + na) and [b, b + nb) share a byte? (Integer comparison: relational
-   comparison of pointers into different objects would be undefined.) */
-static int map_overlap(const uint8_t *a, size_t na, const uint8_t *b, size_t nb)
-{
-    const uintptr_t ia = (uintptr_t)a;
-    const uintptr_t ib = (uintptr_t)b;
-    int ov = 0;
-    if ((ia < (ib + (uintptr_t)nb)) && (ib < (ia + (uintptr_t)na))) {
-        ov = 1;
-    }
-    return ov;
-}
+#include "../common/sbr_util.h"
 
 /* One map value from mean channel values. */
 static uint8_t map_value(sbr_map_kind_t kind, uint32_t r, uint32_t g, uint32_t b)
@@ -75,7 +64,7 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
     bpp = sbr_image_bytes_per_pixel(src->format);
     src_bytes = ((size_t)src->height - 1u) * (size_t)src->stride;
     src_bytes += (size_t)src->width * (size_t)bpp;
-    if (map_overlap(src->data, src_bytes, out, out_bytes) != 0) {
+    if (sbr_util_overlap(src->data, src_bytes, out, out_bytes) != 0) {
         return SBR_ERR_OVERLAP;
     }
     ri = 0u;

@@ -6,6 +6,8 @@
 
 #include "sbr/contour.h"
 
+#include "../common/sbr_util.h"
+
 #include <string.h>
 
 #define PARTS_MAX_KINDS 4u
@@ -231,7 +233,7 @@ sbr_status_t sbr_parts_extract(const sbr_image_t *img, const sbr_parts_config_t 
         return SBR_ERR_SIZE;
     }
     if ((workspace == NULL) || (workspace_size < l.total) ||
-        ((((uintptr_t)workspace) & 7u) != 0u)) { /* 8-byte alignment (MISRA.md 11.4/11.6) */
+        (sbr_util_aligned(workspace, 8u) == 0)) {
         return SBR_ERR_WORKSPACE;
     }
     base = (uint8_t *)workspace;

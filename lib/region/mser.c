@@ -6,6 +6,8 @@
  */
 #include "sbr/mser.h"
 
+#include "../common/sbr_util.h"
+
 #include <string.h>
 
 #define MSER_NONE 0xFFFFFFFFu
@@ -526,16 +528,6 @@ static void pass_select(mser_ctx_t *c, const sbr_mser_config_t *cfg, uint8_t pol
     }
 }
 
-static int mser_aligned4(const void *p)
-{
-    const uintptr_t a = (uintptr_t)p;
-    int ok = 0;
-    if ((a & 3u) == 0u) {
-        ok = 1;
-    }
-    return ok;
-}
-
 sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cfg,
                              void *workspace, size_t workspace_size,
                              sbr_mser_region_t *regions, uint32_t capacity, uint32_t *count)
@@ -570,7 +562,7 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
         return SBR_ERR_SIZE;
     }
     need = sbr_mser_workspace_size(map->width, map->height, cfg);
-    if ((workspace == NULL) || (workspace_size < need) || (mser_aligned4(workspace) == 0)) {
+    if ((workspace == NULL) || (workspace_size < need) || (sbr_util_aligned(workspace, 4u) == 0)) {
         return SBR_ERR_WORKSPACE;
     }
 
@@ -689,7 +681,7 @@ sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_
     }
     if ((workspace == NULL) ||
         (workspace_size < SBR_MSER_MASK_WORKSPACE_SIZE(b->width, b->height)) ||
-        (mser_aligned4(workspace) == 0)) {
+        (sbr_util_aligned(workspace, 4u) == 0)) {
         return SBR_ERR_WORKSPACE;
     }
     stack = (uint32_t *)workspace;
