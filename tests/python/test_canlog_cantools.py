@@ -5,9 +5,13 @@ file, and the decoded values equal the detections within each signal's resolutio
 (CRC-8/SAE-J1850 over the Data ID and bytes 1..7, alive counter) is recomputed here, in
 Python, independently of the C code.
 
-usage: test_canlog_cantools.py --dbc DBC --canlog-tool PATH --detections FILE --work DIR
-                               [--images N] [--min-images 50]
-Exit 77 (ctest: skipped) when the detections file is missing.
+usage: test_canlog_cantools.py --dbc DBC --work DIR [--images N] [--min-images 50]
+           (--detect-tool SBR_DETECT --input GTSDB_DIR [--first K]
+            | --canlog-tool SBR_CANLOG --detections FILE)
+With --detect-tool, sbr_detect runs over images K .. K+N-1 of the folder and writes both
+the detections file and the CAN log (the path the product takes); with --canlog-tool, a
+given detections file is turned into a log. Exit 77 (ctest: skipped) when the input is
+missing.
 """
 import argparse
 import collections
@@ -48,13 +52,20 @@ def read_detections(path):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--dbc", required=True)
-    ap.add_argument("--canlog-tool", required=True)
-    ap.add_argument("--detections", required=True)
+    ap.add_argument("--canlog-tool")
+    ap.add_argument("--detections")
+    ap.add_argument("--detect-tool")
+    ap.add_argument("--input")
+    ap.add_argument("--first", type=int, default=0)
     ap.add_argument("--work", required=True)
     ap.add_argument("--images", type=int, default=600)
     ap.add_argument("--min-images", type=int, default=50)
     a = ap.parse_args()
-    if not os.path.exists(a.detections):
+    if a.detect_tool:
+        if not a.input or not os.path.isdir(a.input):
+            print(f"SKIP: no image folder {a.input}")
+            return 77
+    elif not a.canlog_tool or not a.detections or not os.path.exists(a.detections):
         print(f"SKIP: no detections file {a.detections}")
         return 77
     import cantools
@@ -74,8 +85,14 @@ def main():
     # 2. sbr writes the log
     os.makedirs(a.work, exist_ok=True)
     log = os.path.join(a.work, "sbr_canlog.log")
-    subprocess.run([a.canlog_tool, "--detections", a.detections, "--out", log,
-                    "--images", str(a.images)], check=True)
+    if a.detect_tool:
+        a.detections = os.path.join(a.work, "detections.txt")
+        subprocess.run([a.detect_tool, "--input", a.input, "--detections", a.detections,
+                        "--canlog", log, "--range", f"{a.first}-{a.first + a.images - 1}",
+                        "--quiet"], check=True)
+    else:
+        subprocess.run([a.canlog_tool, "--detections", a.detections, "--out", log,
+                        "--images", str(a.images), "--first", str(a.first)], check=True)
 
     # 3. decode every frame, check E2E per message
     cycles = collections.OrderedDict()
@@ -121,7 +138,7 @@ def main():
     assert len(images) == a.images >= a.min_images, len(images)
     compared = 0
     for k, (t, fr) in enumerate(images):
-        want = sorted(dets.get(k, []), key=lambda d: (-d["score"], d["order"]))
+        want = sorted(dets.get(a.first + k, []), key=lambda d: (-d["score"], d["order"]))
         status = [d for fid, d in fr if fid == 0x301]
         got = [d for fid, d in fr if fid == 0x310]
         assert len(status) == 1 and status[0]["SBR_Status_FrameCounter"] == k % 65536
@@ -141,6 +158,7 @@ def main():
             compared += 1
     print(f"cantools decode: {frames} frames over {len(images)} images decoded, E2E valid, "
           f"{compared} detections equal within resolution: OK")
+    assert compared > 0, "no detections were compared"
     return 0
 
 

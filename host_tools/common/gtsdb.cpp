@@ -1,0 +1,87 @@
+#include "gtsdb.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace sbr_host {
+
+std::map<int, std::vector<GtBox>> read_gt(const std::string &path) {
+    std::map<int, std::vector<GtBox>> gt;
+    std::ifstream f(path);
+    for (std::string line; std::getline(f, line);) {
+        std::replace(line.begin(), line.end(), ';', ' ');
+        std::istringstream is(line);
+        std::string name;
+        GtBox b;
+        if (is >> name >> b.left >> b.top >> b.right >> b.bottom >> b.class_id)
+            gt[image_number(name)].push_back(b);
+    }
+    return gt;
+}
+
+std::string gtsdb_image_dir(const std::string &dir) {
+    if (fs::is_directory(fs::path(dir) / "FullIJCNN2013")) return (fs::path(dir) / "FullIJCNN2013").string();
+    return dir;
+}
+
+std::vector<std::string> list_images(const std::string &dir) {
+    std::vector<std::string> out;
+    std::error_code ec;
+    for (const auto &e : fs::directory_iterator(dir, ec)) {
+        std::string ext = e.path().extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+        if (e.is_regular_file() && (ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".ppm"))
+            out.push_back(e.path().string());
+    }
+    std::sort(out.begin(), out.end());
+    return out;
+}
+
+int image_number(const std::string &path) {
+    const std::string stem = fs::path(path).stem().string();
+    if (stem.empty() || !std::all_of(stem.begin(), stem.end(), ::isdigit)) return -1;
+    return std::atoi(stem.c_str());
+}
+
+sbr_image_t bgr_view(const cv::Mat &m) {
+    sbr_image_t v{};
+    v.width = static_cast<uint32_t>(m.cols);
+    v.height = static_cast<uint32_t>(m.rows);
+    v.stride = static_cast<uint32_t>(m.step[0]);
+    v.format = SBR_PIXEL_BGR888;
+    v.data = m.data;
+    return v;
+}
+
+int superclass_of(int c) {
+    switch (c) {
+    case 0: case 1: case 2: case 3: case 4: case 5: case 7: case 8: case 9: case 10: case 15: case 16:
+        return 0;
+    case 33: case 34: case 35: case 36: case 37: case 38: case 39: case 40:
+        return 1;
+    case 11: case 18: case 19: case 20: case 21: case 22: case 23: case 24: case 25: case 26: case 27:
+    case 28: case 29: case 30: case 31:
+        return 2;
+    default:
+        return 3;
+    }
+}
+
+const char *class_name(int c) {
+    static const char *names[43] = {
+        "20", "30", "50", "60", "70", "80", "end 80", "100", "120", "no overtaking",
+        "no overtaking trucks", "priority next", "priority road", "give way", "stop", "no traffic",
+        "no trucks", "no entry", "danger", "bend left", "bend right", "double bend", "uneven road",
+        "slippery", "road narrows", "road works", "signals", "pedestrians", "children", "bicycles",
+        "snow", "animals", "end limits", "turn right", "turn left", "ahead only", "ahead or right",
+        "ahead or left", "keep right", "keep left", "roundabout", "end no overtaking",
+        "end no overtaking trucks"};
+    return (c >= 0 && c < 43) ? names[c] : "?";
+}
+
+}  // namespace sbr_host

@@ -1,0 +1,147 @@
+#include "model_io.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+namespace sbr_host {
+
+namespace {
+
+uint32_t crc32(const unsigned char *p, size_t n) {
+    uint32_t c = 0xFFFFFFFFu;
+    for (size_t i = 0; i < n; ++i) {
+        c ^= p[i];
+        for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return ~c;
+}
+
+template <typename T>
+void put(std::string &s, const T &v) {
+    s.append(reinterpret_cast<const char *>(&v), sizeof v);
+}
+
+template <typename T>
+bool get(const std::string &s, size_t &off, T &v) {
+    if (off + sizeof v > s.size()) return false;
+    std::memcpy(&v, s.data() + off, sizeof v);
+    off += sizeof v;
+    return true;
+}
+
+// A float as a C literal that reads back to the same value.
+std::string flit(float v) {
+    char b[48];
+    std::snprintf(b, sizeof b, "%.9ef", static_cast<double>(v));
+    return b;
+}
+
+}  // namespace
+
+void Model::bind() {
+    view.fds = fds.data();
+    view.protos = protos.data();
+    view.cascade = cascade.data();
+    view.proto_count = static_cast<uint32_t>(protos.size());
+}
+
+std::string save_model(const Model &m, const std::string &path) {
+    std::string s = "SBRM";
+    const sbr_model_t &v = m.view;
+    put(s, v.version);
+    put(s, v.fd_n);
+    put(s, v.fd_m);
+    put(s, static_cast<uint32_t>(m.protos.size()));
+    put(s, static_cast<uint32_t>(m.cascade.size()));
+    put(s, v.vote_error);
+    put(s, v.score_threshold);
+    for (auto g : v.group_first) put(s, g);
+    for (auto c : v.class_first) put(s, c);
+    for (const auto &f : m.fds) put(s, f);
+    for (const auto &p : m.protos) put(s, p);
+    for (auto c : m.cascade) put(s, c);
+    put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
+    std::ofstream f(path, std::ios::binary);
+    if (!f) return "cannot write " + path;
+    f.write(s.data(), static_cast<std::streamsize>(s.size()));
+    return f ? "" : "write failed: " + path;
+}
+
+std::string load_model(const std::string &path, Model &m) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return "cannot read " + path;
+    std::stringstream ss;
+    ss << f.rdbuf();
+    const std::string s = ss.str();
+    if (s.size() < 8 || s.compare(0, 4, "SBRM") != 0) return path + ": not an sbr model file";
+    uint32_t stored = 0;
+    std::memcpy(&stored, s.data() + s.size() - 4, 4);
+    if (crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size() - 4) != stored)
+        return path + ": CRC mismatch (corrupted file)";
+    size_t off = 4;
+    sbr_model_t v{};
+    uint32_t np = 0, nc = 0;
+    bool ok = get(s, off, v.version) && get(s, off, v.fd_n) && get(s, off, v.fd_m) &&
+              get(s, off, np) && get(s, off, nc) && get(s, off, v.vote_error) &&
+              get(s, off, v.score_threshold);
+    for (auto &g : v.group_first) ok = ok && get(s, off, g);
+    for (auto &c : v.class_first) ok = ok && get(s, off, c);
+    if (!ok || v.version != SBR_MODEL_VERSION) return path + ": unsupported header";
+    if (np > 65535u || nc > 65535u * SBR_RECOG_CLASSES) return path + ": bad counts";
+    const size_t need = off + np * (sizeof(sbr_fd_t) + sizeof(sbr_model_proto_t)) + nc * 2u + 4u;
+    if (need != s.size()) return path + ": size does not match its counts";
+    m.fds.resize(np);
+    m.protos.resize(np);
+    m.cascade.resize(nc);
+    for (auto &x : m.fds) get(s, off, x);
+    for (auto &x : m.protos) get(s, off, x);
+    for (auto &x : m.cascade) get(s, off, x);
+    m.view = v;
+    m.bind();
+    const sbr_status_t st = sbr_model_check(&m.view);
+    if (st != SBR_OK) return path + ": model check failed: " + sbr_status_str(st);
+    return "";
+}
+
+std::string write_model_c(const Model &m, const std::string &path, const std::string &header) {
+    std::ostringstream o;
+    const sbr_model_t &v = m.view;
+    o << "/*\n";
+    std::istringstream hs(header);
+    for (std::string line; std::getline(hs, line);) o << (line.empty() ? " *" : " * " + line) << "\n";
+    o << " */\n#include \"sbr/recognizer.h\"\n\n";
+    o << "static const sbr_fd_t model_fds[" << m.fds.size() << "] = {\n";
+    for (const auto &f : m.fds) {
+        o << "    {" << f.m << "u, " << flit(f.scale) << ", " << flit(f.cx) << ", " << flit(f.cy) << ", {";
+        for (uint32_t k = 0; k < 2u * f.m + 1u; ++k)
+            o << (k ? ", " : "") << "{" << flit(f.c[k].re) << ", " << flit(f.c[k].im) << "}";
+        o << "}},\n";
+    }
+    o << "};\n\nstatic const sbr_model_proto_t model_protos[" << m.protos.size() << "] = {\n";
+    for (const auto &p : m.protos) {
+        o << "    {" << flit(p.dx) << ", " << flit(p.dy) << ", " << flit(p.w) << ", " << flit(p.h) << ", "
+          << flit(p.weight) << ", " << p.support << "u, " << unsigned(p.map) << "u, " << unsigned(p.polarity)
+          << "u, {";
+        for (unsigned k = 0; k < SBR_MODEL_PROTO_CLASSES; ++k) o << (k ? ", " : "") << unsigned(p.class_id[k]) << "u";
+        o << "}, {";
+        for (unsigned k = 0; k < SBR_MODEL_PROTO_CLASSES; ++k) o << (k ? ", " : "") << flit(p.class_p[k]);
+        o << "}},\n";
+    }
+    o << "};\n\nstatic const uint16_t model_cascade[" << m.cascade.size() << "] = {";
+    for (size_t i = 0; i < m.cascade.size(); ++i) o << (i % 16 ? " " : "\n    ") << m.cascade[i] << "u,";
+    o << "\n};\n\nstatic const sbr_model_t model = {\n    " << v.version << "u, " << v.fd_n << "u, " << v.fd_m
+      << "u, " << m.protos.size() << "u, model_fds, model_protos,\n    {";
+    for (unsigned g = 0; g <= SBR_MODEL_GROUPS; ++g) o << (g ? ", " : "") << v.group_first[g] << "u";
+    o << "},\n    {";
+    for (unsigned c = 0; c <= SBR_RECOG_CLASSES; ++c) o << (c ? ", " : "") << (c % 12 == 11 ? "\n     " : "") << v.class_first[c] << "u";
+    o << "},\n    model_cascade, " << flit(v.vote_error) << ", " << flit(v.score_threshold) << "\n};\n\n";
+    o << "const sbr_model_t *sbr_model_gtsdb(void)\n{\n    return &model;\n}\n";
+    std::ofstream f(path);
+    if (!f) return "cannot write " + path;
+    f << o.str();
+    return f ? "" : "write failed: " + path;
+}
+
+}  // namespace sbr_host

@@ -1,0 +1,37 @@
+// Prototype libraries on the host: the file form (load/save) and the generated C table.
+//
+// File form (.sbrm), little-endian, host struct layout of the core's types:
+//   "SBRM" | u32 version | u32 fd_n | u32 fd_m | u32 proto_count | u32 cascade_count |
+//   f32 vote_error | f32 score_threshold | u16 group_first[9] | u16 class_first[44] |
+//   sbr_fd_t fds[proto_count] | sbr_model_proto_t protos[proto_count] |
+//   u16 cascade[cascade_count] | u32 CRC-32 (IEEE) of every byte before it.
+// A loaded model is checked with sbr_model_check() as well.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "sbr/recognizer.h"
+}
+
+namespace sbr_host {
+
+// Owns the arrays a sbr_model_t points into.
+struct Model {
+    std::vector<sbr_fd_t> fds;
+    std::vector<sbr_model_proto_t> protos;
+    std::vector<uint16_t> cascade;
+    sbr_model_t view{};  // pointers refreshed by bind()
+    void bind();
+};
+
+// Returns "" on success, else the reason.
+std::string save_model(const Model &m, const std::string &path);
+std::string load_model(const std::string &path, Model &m);
+// The generated C source (const tables and sbr_model_gtsdb()); `header` lines go into the
+// file's leading comment.
+std::string write_model_c(const Model &m, const std::string &path, const std::string &header);
+
+}  // namespace sbr_host

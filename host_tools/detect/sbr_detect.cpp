@@ -1,0 +1,269 @@
+// sbr_detect: runs sbr's recogniser over a folder of recorded images.
+//
+//   sbr_detect --input DIR --detections FILE [--annotated DIR] [--canlog FILE]
+//              [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]
+//              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]
+//              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S]
+//
+// --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
+//   accepted too). --range A-B keeps images numbered A..B.
+// --detections: one line per detection at the operating point (score >= --threshold,
+//   default the model's, chosen on its training images), exactly
+//   `NNNNN.jpg;left;top;right;bottom;class_id;score` (GTSDB's format, inclusive pixel box,
+//   plus a score 0..1).
+// --all-detections: the same format with every detection the recogniser reports (score >=
+//   its floor, 0.3 by default): for precision-recall curves and AP.
+// --annotated: each image with its operating-point boxes and class names (JPEG).
+// --canlog: a candump log with the CAN frames of every processed image (dbc/sbr.dbc).
+// --model: a prototype library file (sbr_train --out-model); default: the built-in one.
+// --summary: the summary text (also printed): images, detections, time per frame (median
+//   and 95th percentile, per stage), workspace bytes, capacity hits.
+// --min-parts, --vote-error, --verify-error, --min-score override the recogniser's options
+//   of those names (include/sbr/recognizer.h), for tuning and regression.
+// Time is measured per frame on one core (the tool is single-threaded).
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "can_output.hpp"
+#include "gtsdb.hpp"
+#include "model_io.hpp"
+
+extern "C" {
+#include "sbr/recognizer.h"
+}
+
+namespace fs = std::filesystem;
+using namespace sbr_host;
+
+namespace {
+
+uint32_t host_clock(void *) {
+    return static_cast<uint32_t>(std::chrono::duration_cast<std::chrono::microseconds>(
+                                     std::chrono::steady_clock::now().time_since_epoch())
+                                     .count());
+}
+
+double percentile(std::vector<double> v, double p) {
+    if (v.empty()) return 0.0;
+    std::sort(v.begin(), v.end());
+    const double pos = p * double(v.size() - 1);
+    const size_t i = size_t(pos);
+    const double f = pos - double(i);
+    return i + 1 < v.size() ? v[i] * (1 - f) + v[i + 1] * f : v[i];
+}
+
+void progress(size_t done, size_t total, double ms_avg) {
+    const int width = 40;
+    const int filled = total ? int(double(width) * double(done) / double(total)) : width;
+    std::fprintf(stderr, "\r[%s%s] %zu/%zu  %.0f ms/frame", std::string(size_t(filled), '#').c_str(),
+                 std::string(size_t(width - filled), '.').c_str(), done, total, ms_avg);
+    if (done == total) std::fprintf(stderr, "\n");
+    std::fflush(stderr);
+}
+
+void annotate(cv::Mat &img, const std::vector<sbr_detection_t> &dets) {
+    for (const auto &d : dets) {
+        const cv::Scalar colour[4] = {{0, 0, 255}, {255, 128, 0}, {0, 200, 255}, {0, 200, 0}};
+        const cv::Scalar c = colour[superclass_of(d.class_id)];
+        const cv::Rect r(int(d.box.x), int(d.box.y), int(d.box.width), int(d.box.height));
+        cv::rectangle(img, r, c, 2);
+        char label[96];
+        std::snprintf(label, sizeof label, "%d %s %.2f", d.class_id, class_name(d.class_id), double(d.score));
+        int base = 0;
+        const cv::Size ts = cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, 0.45, 1, &base);
+        const int y = std::max(ts.height + 2, r.y - 3);
+        cv::rectangle(img, cv::Rect(r.x, y - ts.height - 2, ts.width + 4, ts.height + 5), c, cv::FILLED);
+        cv::putText(img, label, cv::Point(r.x + 2, y), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1,
+                    cv::LINE_AA);
+    }
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    std::string input, det_path, all_path, annotated, canlog, model_path, summary_path;
+    int r0 = -1, r1 = -1;
+    float threshold = -1.0f;
+    uint32_t subsample = 1;
+    bool use_roi = false, quiet = false;
+    int min_parts = -1;
+    float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f;
+    sbr_rect_t roi{};
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+        if (a == "--input") input = next();
+        else if (a == "--detections") det_path = next();
+        else if (a == "--all-detections") all_path = next();
+        else if (a == "--annotated") annotated = next();
+        else if (a == "--canlog") canlog = next();
+        else if (a == "--model") model_path = next();
+        else if (a == "--summary") summary_path = next();
+        else if (a == "--threshold") threshold = std::strtof(next().c_str(), nullptr);
+        else if (a == "--subsample") subsample = uint32_t(std::atoi(next().c_str()));
+        else if (a == "--quiet") quiet = true;
+        else if (a == "--min-parts") min_parts = std::atoi(next().c_str());
+        else if (a == "--vote-error") vote_error = std::strtof(next().c_str(), nullptr);
+        else if (a == "--verify-error") verify_error = std::strtof(next().c_str(), nullptr);
+        else if (a == "--min-score") min_score = std::strtof(next().c_str(), nullptr);
+        else if (a == "--range") {
+            if (std::sscanf(next().c_str(), "%d-%d", &r0, &r1) != 2) { std::fprintf(stderr, "--range wants A-B\n"); return 2; }
+        } else if (a == "--roi") {
+            unsigned x, y, w, h;
+            if (std::sscanf(next().c_str(), "%u,%u,%u,%u", &x, &y, &w, &h) != 4) { std::fprintf(stderr, "--roi wants X,Y,W,H\n"); return 2; }
+            roi = {x, y, w, h};
+            use_roi = true;
+        } else {
+            std::fprintf(stderr,
+                         "usage: %s --input DIR --detections FILE [--annotated DIR] [--canlog FILE]\n"
+                         "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
+                         "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]\n"
+                         "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S]\n", argv[0]);
+            return 2;
+        }
+    }
+    if (input.empty() || det_path.empty()) {
+        std::fprintf(stderr, "sbr_detect: --input and --detections are required (--help)\n");
+        return 2;
+    }
+    Model loaded;
+    const sbr_model_t *model = sbr_model_gtsdb();
+    if (!model_path.empty()) {
+        const std::string e = load_model(model_path, loaded);
+        if (!e.empty()) { std::fprintf(stderr, "sbr_detect: %s\n", e.c_str()); return 1; }
+        model = &loaded.view;
+    }
+    if (threshold < 0.0f) threshold = model->score_threshold;
+    sbr_recog_config_t cfg;
+    sbr_recog_config_default(&cfg);
+    cfg.parts.subsample = subsample;
+    cfg.min_score = std::min(cfg.min_score, threshold);
+    if (min_score >= 0.0f) cfg.min_score = min_score;
+    if (min_parts >= 0) cfg.min_parts = uint32_t(min_parts);
+    if (vote_error >= 0.0f) cfg.vote_error = vote_error;
+    if (verify_error >= 0.0f) cfg.verify_error = verify_error;
+    cfg.clock = host_clock;
+    sbr_status_t st = sbr_recog_config_check(&cfg);
+    if (st != SBR_OK) { std::fprintf(stderr, "sbr_detect: bad configuration: %s\n", sbr_status_str(st)); return 2; }
+
+    const std::string dir = gtsdb_image_dir(input);
+    std::vector<std::string> files;
+    for (const auto &f : list_images(dir)) {
+        const int n = image_number(f);
+        if (r0 < 0 || (n >= r0 && n <= r1)) files.push_back(f);
+    }
+    if (files.empty()) { std::fprintf(stderr, "sbr_detect: no images in %s\n", dir.c_str()); return 1; }
+    std::ofstream det(det_path), all;
+    if (!det) { std::fprintf(stderr, "sbr_detect: cannot write %s\n", det_path.c_str()); return 1; }
+    if (!all_path.empty()) all.open(all_path);
+    if (!annotated.empty()) fs::create_directories(annotated);
+    std::unique_ptr<CanLogWriter> can;
+    if (!canlog.empty()) {
+        can.reset(new CanLogWriter(canlog));
+        if (!can->ok()) { std::fprintf(stderr, "sbr_detect: cannot write %s\n", canlog.c_str()); return 1; }
+    }
+
+    std::vector<uint64_t> ws;
+    size_t ws_bytes = 0;
+    std::vector<sbr_detection_t> dets(256);
+    std::vector<double> ms_total;
+    std::vector<std::vector<double>> ms_stage(SBR_RECOG_STAGES);
+    size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
+    uint64_t parts_total = 0;
+    double sum_ms = 0;
+    for (size_t i = 0; i < files.size(); ++i) {
+        cv::Mat img = cv::imread(files[i], cv::IMREAD_COLOR);
+        const std::string name = fs::path(files[i]).stem().string() + ".jpg";
+        std::vector<sbr_detection_t> kept;
+        sbr_recog_stats_t stats{};
+        float frame_ms = 0.0f;
+        bool error = false;
+        if (img.empty()) {
+            std::fprintf(stderr, "\nsbr_detect: cannot read %s\n", files[i].c_str());
+            ++failed;
+            error = true;
+        } else {
+            const sbr_image_t v = bgr_view(img);
+            const uint32_t w = use_roi ? roi.width : v.width, h = use_roi ? roi.height : v.height;
+            const size_t need = sbr_recog_workspace_size(w, h, &cfg);
+            if (need > ws.size() * 8) ws.assign(need / 8 + 1, 0);
+            ws_bytes = std::max(ws_bytes, need);
+            uint32_t n = 0;
+            const auto t0 = std::chrono::steady_clock::now();
+            st = sbr_recog_detect(&v, use_roi ? &roi : nullptr, &cfg, model, ws.data(), ws.size() * 8, dets.data(),
+                                  uint32_t(dets.size()), &n, &stats);
+            const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+            if (st != SBR_OK && st != SBR_ERR_CAPACITY) {
+                std::fprintf(stderr, "\nsbr_detect: %s: %s\n", files[i].c_str(), sbr_status_str(st));
+                ++failed;
+                error = true;
+                n = 0;
+            }
+            frame_ms = float(ms);
+            ms_total.push_back(ms);
+            sum_ms += ms;
+            for (unsigned s = 0; s < SBR_RECOG_STAGES; ++s) ms_stage[s].push_back(stats.stage_ticks[s] / 1000.0);
+            parts_total += stats.parts;
+            if (stats.capacity_hit != 0 || st == SBR_ERR_CAPACITY) ++capacity_frames;
+            for (uint32_t k = 0; k < n; ++k) {
+                const auto &d = dets[k];
+                char line[160];
+                std::snprintf(line, sizeof line, "%s;%u;%u;%u;%u;%u;%.4f\n", name.c_str(), d.box.x, d.box.y,
+                              d.box.x + d.box.width - 1, d.box.y + d.box.height - 1, unsigned(d.class_id),
+                              double(d.score));
+                if (all.is_open()) { all << line; ++nall; }
+                if (d.score >= threshold) { det << line; kept.push_back(d); ++ndet; }
+            }
+            if (!annotated.empty()) {
+                annotate(img, kept);
+                cv::imwrite((fs::path(annotated) / name).string(), img);
+            }
+        }
+        if (can) {
+            std::vector<Detection> cd;
+            for (const auto &d : kept)
+                cd.push_back({int(d.box.x), int(d.box.y), int(d.box.x + d.box.width - 1),
+                              int(d.box.y + d.box.height - 1), int(d.class_id), d.score});
+            can->write_image(cd, frame_ms, stats.parts_stats.regions, error);
+        }
+        if (!quiet) progress(i + 1, files.size(), ms_total.empty() ? 0.0 : sum_ms / double(ms_total.size()));
+    }
+
+    std::ostringstream s;
+    const char *stage_names[SBR_RECOG_STAGES] = {"parts (maps, MSER, contours, FDs)", "matching and votes",
+                                                 "grouping", "evidence and cascade", "NMS"};
+    s << "sbr_detect summary\n";
+    s << "input: " << dir << " (" << files.size() << " images, " << failed << " failed)\n";
+    s << "model: " << (model_path.empty() ? "built-in (lib/models/sbr_model_gtsdb.c)" : model_path) << ", "
+      << model->proto_count << " prototypes, operating point score >= " << threshold << "\n";
+    s << "detections: " << ndet << " at the operating point";
+    if (all.is_open()) s << ", " << nall << " in all";
+    s << "\nparts per frame (mean): " << (ms_total.empty() ? 0 : parts_total / ms_total.size()) << "\n";
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "time per frame (one core): median %.1f ms, 95th percentile %.1f ms\n",
+                  percentile(ms_total, 0.5), percentile(ms_total, 0.95));
+    s << buf;
+    for (unsigned k = 0; k < SBR_RECOG_STAGES; ++k) {
+        std::snprintf(buf, sizeof buf, "  %-36s median %.1f ms, 95th percentile %.1f ms\n", stage_names[k],
+                      percentile(ms_stage[k], 0.5), percentile(ms_stage[k], 0.95));
+        s << buf;
+    }
+    s << "workspace: " << ws_bytes << " bytes (" << (use_roi ? "ROI" : "frame") << ", subsample " << subsample << ")\n";
+    s << "frames with an internal bound reached: " << capacity_frames << "\n";
+    if (can) s << "CAN log: " << canlog << " (" << can->frames_written() << " frames)\n";
+    if (!annotated.empty()) s << "annotated images: " << annotated << "\n";
+    std::fputs(s.str().c_str(), stdout);
+    if (!summary_path.empty()) std::ofstream(summary_path) << s.str();
+    return failed == files.size() ? 1 : 0;
+}

@@ -1,0 +1,247 @@
+/**
+ * @file recognizer.h
+ * @brief Traffic-sign recognition from the shapes of regions (thesis paper D): channel
+ *        maps -> MSER regions -> outer contours -> Fourier descriptors ("parts") ->
+ *        matching against a prototype library -> star-model votes for the sign centre and
+ *        size -> cascaded verification of the class's other parts -> non-maximum
+ *        suppression -> detections.
+ *
+ * ## The model (prototype library)
+ * A prototype is a part that recurs across training instances of signs: its descriptor,
+ * the map and polarity it is found on, the offset from the part's centroid to the sign's
+ * centre and the sign's width and height, all in units of the part's scale
+ * (sbr_fd_t::scale, a length), and the classes whose signs contain it (a ring is shared by
+ * every prohibitory sign, a "5" only by some speed limits). Each prototype carries a vote
+ * weight, its precision on training backgrounds, so parts that also match clutter count
+ * less. Per class, the cascade lists the class's prototypes, most reliable first.
+ * Prototypes are grouped by map and polarity so a part is only matched against the
+ * prototypes of its own group. The library is built by the host tool `sbr_train`, which
+ * writes a const C table (lib/models/, the default, sbr_model_gtsdb()) and a file form
+ * for host tools.
+ *
+ * ## Recognition
+ * 1. Parts of the frame or ROI (parts.h), at most `max_parts`.
+ * 2. Every part is matched (covariant mode, rotation bounded by `max_rotation`) against
+ *    the prototypes of its group; each match with error e <= `vote_error` that predicts a
+ *    sign of `min_size` .. `max_size` pixels casts a vote: centre = part centroid + offset
+ *    x part scale, size = prototype size x part scale, weight = prototype weight x
+ *    (1 - e / vote_error). At most `max_votes` votes.
+ * 3. Votes, strongest first, are grouped into hypotheses: a vote joins the first
+ *    hypothesis whose centre is within `centre_tol` of its size and whose size is within a
+ *    factor 1 + `size_tol`, else starts one (at most `max_hypotheses`).
+ * 4. A hypothesis's evidence for class c is the sum over its distinct prototypes of the
+ *    strongest vote times the prototype's share of class c. The best class is verified by
+ *    its cascade: the class's prototypes that did not vote (at most `cascade_depth`) are
+ *    looked for among the parts where the model predicts them (centre within `centre_tol`,
+ *    scale within a factor 1 + `size_tol`, same group) with the looser `verify_error`;
+ *    each one found adds its weight. A hypothesis needs `min_parts` distinct supporting
+ *    prototypes.
+ * 5. Score = S / (S + 1) for the evidence S of the class (0..1, monotonic). Detections
+ *    below `min_score` are dropped; overlapping ones (IoU > `nms_iou`) are suppressed,
+ *    the higher score kept.
+ *
+ * Everything lives in the caller's workspace (sbr_recog_workspace_size()); the model is
+ * only read. No heap, no statics.
+ */
+#ifndef SBR_RECOGNIZER_H
+#define SBR_RECOGNIZER_H
+
+#include "sbr/parts.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Classes of the German Traffic Sign Detection Benchmark (ids 0..42). */
+#define SBR_RECOG_CLASSES 43u
+/** Classes a prototype can be shared by. */
+#define SBR_MODEL_PROTO_CLASSES 4u
+/** "No class" in sbr_model_proto_t::class_id. */
+#define SBR_MODEL_NO_CLASS 255u
+/** Groups: map kind (0..3) x polarity (dark, bright). */
+#define SBR_MODEL_GROUPS 8u
+/** Model format version (the generated table and the file form). */
+#define SBR_MODEL_VERSION 1u
+
+/** One prototype part (see the file comment). */
+typedef struct sbr_model_proto_s {
+    float dx;        /**< sign centre x - part centroid x, in part scales */
+    float dy;        /**< sign centre y - part centroid y, in part scales */
+    float w;         /**< sign width in part scales, > 0 */
+    float h;         /**< sign height in part scales, > 0 */
+    float weight;    /**< vote weight (precision on training backgrounds), (0, 1] */
+    uint16_t support; /**< training signs the part recurred in */
+    uint8_t map;     /**< ::sbr_map_kind_t */
+    uint8_t polarity; /**< ::SBR_MSER_DARK or ::SBR_MSER_BRIGHT */
+    uint8_t class_id[SBR_MODEL_PROTO_CLASSES]; /**< classes, most frequent first;
+                                                   ::SBR_MODEL_NO_CLASS pads */
+    float class_p[SBR_MODEL_PROTO_CLASSES];     /**< share of each class, sum <= 1 */
+} sbr_model_proto_t;
+
+/** A prototype library. All arrays are borrowed (const tables or host memory). */
+typedef struct sbr_model_s {
+    uint32_t version;          /**< ::SBR_MODEL_VERSION */
+    uint32_t fd_n;             /**< descriptor resampling size it was trained with */
+    uint32_t fd_m;             /**< descriptor M */
+    uint32_t proto_count;      /**< prototypes */
+    const sbr_fd_t *fds;       /**< proto_count descriptors, sorted by group */
+    const sbr_model_proto_t *protos; /**< proto_count prototypes, same order */
+    /** Group g = map * 2 + (polarity - 1) holds prototypes group_first[g] ..
+        group_first[g + 1] - 1. */
+    uint16_t group_first[SBR_MODEL_GROUPS + 1u];
+    /** Class c's cascade is cascade[class_first[c] .. class_first[c + 1] - 1]
+        (prototype indices, most reliable first). */
+    uint16_t class_first[SBR_RECOG_CLASSES + 1u];
+    const uint16_t *cascade;   /**< class_first[SBR_RECOG_CLASSES] entries */
+    float vote_error;          /**< vote threshold it was trained with */
+    float score_threshold;     /**< operating point chosen on the training images */
+} sbr_model_t;
+
+/**
+ * @brief Check a model: version, sizes, group and cascade indices, finite positive
+ *        geometry, weights in (0, 1], class ids < ::SBR_RECOG_CLASSES, finite descriptors.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_CORRUPT for any inconsistency.
+ */
+sbr_status_t sbr_model_check(const sbr_model_t *model);
+
+/** @brief The library trained on GTSDB images 00000-00399 (lib/models/sbr_model_gtsdb.c). */
+const sbr_model_t *sbr_model_gtsdb(void);
+
+/** Options. Start from sbr_recog_config_default(); every field is documented there. */
+typedef struct sbr_recog_config_s {
+    /** Part extraction (parts.h). fd_n and fd_m must equal the model's. Default:
+        sbr_parts_config_default(). Trade-off: maps and subsample set most of the time and
+        memory; subsample 2 quarters both and loses signs below about 24 px. */
+    sbr_parts_config_t parts;
+    /** Correlation size P (a supported FFT size, >= 2M + 1). Default 32. Larger P locates
+        the peak on a finer grid before refinement; the cost grows with P log P. */
+    uint32_t match_p;
+    /** Parts kept per frame (bounds the workspace). Default 4096. */
+    uint32_t max_parts;
+    /** Votes kept per frame. Default 16384. */
+    uint32_t max_votes;
+    /** Hypotheses kept per frame. Default 1024. */
+    uint32_t max_hypotheses;
+    /** Largest prototype count of a model this workspace can serve. Default 1024. */
+    uint32_t max_model_protos;
+    /** Vote threshold on the match error, (0, 4]; 0 = the model's. Default 0 (the model's).
+        Larger: more votes, more recall on distorted parts, more clutter. */
+    float vote_error;
+    /** Cascade verification threshold, (0, 4]. Default 0.25 (looser than voting: the
+        location is already known). */
+    float verify_error;
+    /** Largest rotation of a part against its prototype, radians (0, pi]. Default 0.35
+        (signs stand upright; keeps a "6" from matching a "9"). */
+    float max_rotation;
+    /** Predicted sign size (max of width and height) limits, pixels. Defaults 12 and 200. */
+    float min_size;
+    float max_size;
+    /** Centre tolerance as a fraction of the sign size. Default 0.2. */
+    float centre_tol;
+    /** Size tolerance: factor 1 + size_tol either way. Default 0.3. */
+    float size_tol;
+    /** Cascade prototypes checked per hypothesis. Default 8; 0 = no verification. */
+    uint32_t cascade_depth;
+    /** Distinct prototypes a detection needs (votes and verified parts). Default 2. More:
+        fewer false detections, fewer single-contour signs. */
+    uint32_t min_parts;
+    /** Score floor of reported detections, [0, 1). Default 0.3 (below the usual operating
+        point, so evaluations can draw precision-recall curves). */
+    float min_score;
+    /** Non-maximum suppression IoU, (0, 1]. Default 0.3. */
+    float nms_iou;
+    /** Optional time source for per-stage profiling (e.g. the DWT cycle counter on a
+        Cortex-M, a monotonic clock on a host): returns a free-running tick count; the
+        stats report differences modulo 2^32. NULL (default): no profiling. */
+    uint32_t (*clock)(void *clock_ctx);
+    /** Passed to `clock`. Default NULL. */
+    void *clock_ctx;
+} sbr_recog_config_t;
+
+/** Stages timed when a clock is configured. */
+typedef enum sbr_recog_stage_e {
+    SBR_RECOG_STAGE_PARTS = 0,  /**< maps, MSER, masks, contours, descriptors */
+    SBR_RECOG_STAGE_VOTES = 1,  /**< prototype matching and voting */
+    SBR_RECOG_STAGE_GROUP = 2,  /**< sorting and grouping votes into hypotheses */
+    SBR_RECOG_STAGE_VERIFY = 3, /**< class evidence and cascade verification */
+    SBR_RECOG_STAGE_NMS = 4,    /**< non-maximum suppression and output */
+    SBR_RECOG_STAGES = 5
+} sbr_recog_stage_t;
+
+/** One detection. */
+typedef struct sbr_detection_s {
+    sbr_rect_t box;     /**< in pixels of the full image (a ROI's offset added back) */
+    float score;        /**< 0..1 */
+    float class_share;  /**< the class's share of the hypothesis's evidence, 0..1 */
+    uint16_t class_id;  /**< GTSDB class 0..42 */
+    uint16_t parts;     /**< distinct prototypes that supported it */
+} sbr_detection_t;
+
+/** What one call did. */
+typedef struct sbr_recog_stats_s {
+    sbr_parts_stats_t parts_stats; /**< part extraction counters */
+    uint32_t parts;           /**< parts extracted */
+    uint32_t matches;         /**< part-prototype correlations computed */
+    uint32_t votes;           /**< votes cast */
+    uint32_t hypotheses;      /**< hypotheses formed */
+    uint32_t verified;        /**< parts found by cascade verification */
+    uint32_t rejected;        /**< hypotheses below min_parts or min_score */
+    uint32_t capacity_hit;    /**< bit 0 parts, bit 1 votes, bit 2 hypotheses, bit 3 MSER */
+    uint32_t stage_ticks[SBR_RECOG_STAGES]; /**< clock ticks per ::sbr_recog_stage_t
+                                                 (0 without a clock) */
+} sbr_recog_stats_t;
+
+/** @brief Defaults as documented. No-op for NULL. */
+void sbr_recog_config_default(sbr_recog_config_t *cfg);
+
+/** @brief Check a configuration. @return ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE. */
+sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg);
+
+/**
+ * @brief Workspace bytes for frames (or ROIs) up to width x height; 0 for a bad
+ *        configuration or size.
+ */
+size_t sbr_recog_workspace_size(uint32_t width, uint32_t height, const sbr_recog_config_t *cfg);
+
+/**
+ * Compile-time bound on the workspace for the default configuration (sbr_recog_config_default())
+ * with map subsampling `s` (1..8), for static allocation on an ECU.
+ * sbr_recog_workspace_size() gives the exact figure; this macro is never smaller (checked
+ * by the unit tests).
+ */
+#define SBR_RECOG_WORKSPACE_DEFAULT_SIZE(width, height, s) \
+    (SBR_MSER_WORKSPACE_SIZE((width) / (s), (height) / (s), 5u, 68000u) + \
+     ((size_t)(width) / (s)) * ((size_t)(height) / (s)) + 2048u * 40u + \
+     160u * 160u * 5u + 162u * 162u + 2048u * 12u + 128u * 8u + 4096u * sizeof(sbr_part_t) + \
+     1024u * sizeof(sbr_fd_match_t) + 160u * 8u + 16384u * 32u + 1024u * 40u + 512u)
+
+/**
+ * @brief Detect signs.
+ * @param[in]  img       RGB888 or BGR888 frame.
+ * @param[in]  roi       region of interest (NULL: the whole frame); boxes are reported in
+ *                       frame pixels.
+ * @param[in]  cfg       options.
+ * @param[in]  model     prototype library (sbr_model_gtsdb() or a loaded one).
+ * @param[in]  workspace sbr_recog_workspace_size() bytes for the ROI's size, 8-byte aligned.
+ * @param[out] dets      detections, highest score first.
+ * @param[in]  capacity  length of `dets`.
+ * @param[out] count     detections written.
+ * @param[out] stats     counters (may be NULL).
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad configuration, or model and
+ *         configuration disagree on fd_n/fd_m or the model exceeds max_model_protos);
+ *         ::SBR_ERR_CORRUPT (model fails sbr_model_check()); ::SBR_ERR_SIZE / ::SBR_ERR_ALIGN
+ *         (bad view or ROI outside the frame); ::SBR_ERR_WORKSPACE;
+ *         ::SBR_ERR_CAPACITY when `dets` ran full (the best `capacity` are written).
+ *         Internal bounds (parts, votes, hypotheses, MSER nodes) that run full do not fail
+ *         the call: they are flagged in stats->capacity_hit.
+ */
+sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
+                              const sbr_recog_config_t *cfg, const sbr_model_t *model,
+                              void *workspace, size_t workspace_size, sbr_detection_t *dets,
+                              uint32_t capacity, uint32_t *count, sbr_recog_stats_t *stats);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SBR_RECOGNIZER_H */

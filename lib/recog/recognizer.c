@@ -1,0 +1,824 @@
+/*
+ * Traffic-sign recogniser: parts -> prototype matches -> star-model votes -> hypotheses
+ * -> cascade verification -> NMS. See include/sbr/recognizer.h.
+ */
+#include "sbr/recognizer.h"
+
+#include "../common/sbr_util.h"
+
+#include <math.h>
+#include <string.h>
+
+#define RECOG_ALIGN(x) ((((size_t)(x)) + 7u) & ~((size_t)7u))
+#define RECOG_PI 3.14159265f
+
+/* A vote: a predicted sign (centre, size) from one part-prototype match. */
+typedef struct recog_vote_s {
+    float cx;
+    float cy;
+    float w;
+    float h;
+    float weight;
+    uint32_t part;
+    uint32_t hyp;
+    uint16_t proto;
+    uint16_t pad;
+} recog_vote_t;
+
+/* A hypothesis: weighted sums of its votes' geometry, then its verdict. */
+typedef struct recog_hyp_s {
+    float sx;
+    float sy;
+    float sw;
+    float sh;
+    float sum;
+    float score;
+    float share;
+    uint16_t class_id;
+    uint16_t parts;
+    uint32_t keep;
+} recog_hyp_t;
+
+typedef struct recog_layout_s {
+    size_t parts_ws;
+    size_t parts;
+    size_t results;
+    size_t work;
+    size_t votes;
+    size_t hyps;
+    size_t total;
+} recog_layout_t;
+
+void sbr_recog_config_default(sbr_recog_config_t *cfg)
+{
+    if (cfg != NULL) {
+        sbr_parts_config_default(&cfg->parts);
+        /* finer than the MSER defaults: small, blurred signs need a smaller delta and a
+           looser stability bound to come out as regions at all */
+        cfg->parts.mser.delta = 3u;
+        cfg->parts.mser.max_variation = 0.5f;
+        cfg->match_p = 32u;
+        cfg->max_parts = 4096u;
+        cfg->max_votes = 16384u;
+        cfg->max_hypotheses = 1024u;
+        cfg->max_model_protos = 1024u;
+        cfg->vote_error = 0.0f;
+        cfg->verify_error = 0.25f;
+        cfg->max_rotation = 0.35f;
+        cfg->min_size = 12.0f;
+        cfg->max_size = 200.0f;
+        cfg->centre_tol = 0.2f;
+        cfg->size_tol = 0.3f;
+        cfg->cascade_depth = 8u;
+        cfg->min_parts = 2u;
+        cfg->min_score = 0.3f;
+        cfg->nms_iou = 0.3f;
+        cfg->clock = NULL;
+        cfg->clock_ctx = NULL;
+    }
+}
+
+/* Is v in [lo, hi] (false for NaN)? */
+static int in_range(float v, float lo, float hi)
+{
+    int ok = 0;
+    if ((v >= lo) && (v <= hi)) {
+        ok = 1;
+    }
+    return ok;
+}
+
+sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
+{
+    sbr_status_t st;
+    if (cfg == NULL) {
+        return SBR_ERR_NULL;
+    }
+    st = sbr_parts_config_check(&cfg->parts);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((sbr_fft_size_supported(cfg->match_p) == 0) ||
+        (cfg->match_p < ((2u * cfg->parts.fd_m) + 1u)) || (cfg->max_parts == 0u) ||
+        (cfg->max_parts > 1000000u) || (cfg->max_votes == 0u) || (cfg->max_votes > 4000000u) ||
+        (cfg->max_hypotheses == 0u) || (cfg->max_hypotheses > 1000000u) ||
+        (cfg->max_model_protos == 0u) || (cfg->max_model_protos > 65535u) ||
+        (cfg->cascade_depth > 65535u) || (cfg->min_parts > 65535u)) {
+        return SBR_ERR_RANGE;
+    }
+    if ((in_range(cfg->vote_error, 0.0f, 4.0f) == 0) ||
+        (in_range(cfg->verify_error, 1.0e-6f, 4.0f) == 0) ||
+        (in_range(cfg->max_rotation, 1.0e-6f, RECOG_PI) == 0) ||
+        (in_range(cfg->min_size, 1.0f, 16384.0f) == 0) ||
+        (in_range(cfg->max_size, cfg->min_size, 16384.0f) == 0) ||
+        (in_range(cfg->centre_tol, 1.0e-6f, 10.0f) == 0) ||
+        (in_range(cfg->size_tol, 0.0f, 10.0f) == 0) ||
+        (in_range(cfg->min_score, 0.0f, 0.999999f) == 0) ||
+        (in_range(cfg->nms_iou, 1.0e-6f, 1.0f) == 0)) {
+        return SBR_ERR_RANGE;
+    }
+    return SBR_OK;
+}
+
+static int descriptor_ok(const sbr_fd_t *fd, uint32_t m)
+{
+    uint32_t k;
+    float e = 0.0f;
+    int ok = 1;
+    if ((fd->m != m) || (in_range(fd->scale, 1.0e-6f, 1.0e9f) == 0)) {
+        ok = 0;
+    } else {
+        for (k = 0u; k < ((2u * m) + 1u); k++) {
+            e += (fd->c[k].re * fd->c[k].re) + (fd->c[k].im * fd->c[k].im);
+        }
+        /* unit energy (a NaN fails the comparison) */
+        if (in_range(e, 0.99f, 1.01f) == 0) {
+            ok = 0;
+        }
+    }
+    return ok;
+}
+
+static int proto_ok(const sbr_model_proto_t *p, uint32_t g)
+{
+    uint32_t k;
+    float sum = 0.0f;
+    int ok = 1;
+    if ((in_range(p->dx, -100.0f, 100.0f) == 0) || (in_range(p->dy, -100.0f, 100.0f) == 0) ||
+        (in_range(p->w, 1.0e-3f, 100.0f) == 0) || (in_range(p->h, 1.0e-3f, 100.0f) == 0) ||
+        (in_range(p->weight, 1.0e-6f, 1.0f) == 0) || (p->map > 3u) ||
+        ((p->polarity != (uint8_t)SBR_MSER_DARK) && (p->polarity != (uint8_t)SBR_MSER_BRIGHT)) ||
+        ((((uint32_t)p->map * 2u) + ((uint32_t)p->polarity - 1u)) != g)) {
+        ok = 0;
+    }
+    for (k = 0u; (k < SBR_MODEL_PROTO_CLASSES) && (ok != 0); k++) {
+        if (p->class_id[k] == (uint8_t)SBR_MODEL_NO_CLASS) {
+            if (p->class_p[k] != 0.0f) {
+                ok = 0;
+            }
+        } else if ((p->class_id[k] >= SBR_RECOG_CLASSES) ||
+                   (in_range(p->class_p[k], 0.0f, 1.0f) == 0)) {
+            ok = 0;
+        } else {
+            sum += p->class_p[k];
+        }
+    }
+    if (sum > 1.001f) {
+        ok = 0;
+    }
+    return ok;
+}
+
+sbr_status_t sbr_model_check(const sbr_model_t *model)
+{
+    uint32_t g;
+    uint32_t c;
+    uint32_t i;
+    if (model == NULL) {
+        return SBR_ERR_NULL;
+    }
+    if ((model->fds == NULL) || (model->protos == NULL) || (model->cascade == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    if ((model->version != SBR_MODEL_VERSION) || (model->proto_count == 0u) ||
+        (model->proto_count > 65535u) || (model->fd_m == 0u) || (model->fd_m > SBR_FD_MAX_M) ||
+        (sbr_fft_size_supported(model->fd_n) == 0) || ((2u * model->fd_m) >= model->fd_n) ||
+        (in_range(model->vote_error, 1.0e-6f, 4.0f) == 0) ||
+        (in_range(model->score_threshold, 0.0f, 1.0f) == 0) || (model->group_first[0] != 0u) ||
+        (model->group_first[SBR_MODEL_GROUPS] != model->proto_count) ||
+        (model->class_first[0] != 0u)) {
+        return SBR_ERR_CORRUPT;
+    }
+    for (g = 0u; g < SBR_MODEL_GROUPS; g++) {
+        if (model->group_first[g + 1u] < model->group_first[g]) {
+            return SBR_ERR_CORRUPT;
+        }
+        for (i = model->group_first[g]; i < model->group_first[g + 1u]; i++) {
+            if ((proto_ok(&model->protos[i], g) == 0) ||
+                (descriptor_ok(&model->fds[i], model->fd_m) == 0)) {
+                return SBR_ERR_CORRUPT;
+            }
+        }
+    }
+    for (c = 0u; c < SBR_RECOG_CLASSES; c++) {
+        if (model->class_first[c + 1u] < model->class_first[c]) {
+            return SBR_ERR_CORRUPT;
+        }
+    }
+    for (i = 0u; i < model->class_first[SBR_RECOG_CLASSES]; i++) {
+        if (model->cascade[i] >= model->proto_count) {
+            return SBR_ERR_CORRUPT;
+        }
+    }
+    return SBR_OK;
+}
+
+static int recog_layout(uint32_t width, uint32_t height, const sbr_recog_config_t *cfg,
+                        recog_layout_t *l)
+{
+    l->parts_ws = RECOG_ALIGN(sbr_parts_workspace_size(width, height, &cfg->parts));
+    if (l->parts_ws == 0u) {
+        return 0;
+    }
+    l->parts = RECOG_ALIGN((size_t)cfg->max_parts * sizeof(sbr_part_t));
+    l->results = RECOG_ALIGN((size_t)cfg->max_model_protos * sizeof(sbr_fd_match_t));
+    l->work = RECOG_ALIGN((size_t)SBR_FD_TABLE_WORK_LEN(cfg->match_p) * sizeof(sbr_complex_t));
+    l->votes = RECOG_ALIGN((size_t)cfg->max_votes * sizeof(recog_vote_t));
+    l->hyps = RECOG_ALIGN((size_t)cfg->max_hypotheses * sizeof(recog_hyp_t));
+    l->total = l->parts_ws + l->parts + l->results + l->work + l->votes + l->hyps;
+    return 1;
+}
+
+size_t sbr_recog_workspace_size(uint32_t width, uint32_t height, const sbr_recog_config_t *cfg)
+{
+    recog_layout_t l;
+    if ((sbr_recog_config_check(cfg) != SBR_OK) || (width > SBR_IMAGE_MAX_DIM) ||
+        (height > SBR_IMAGE_MAX_DIM) || (recog_layout(width, height, cfg, &l) == 0)) {
+        return 0u;
+    }
+    return l.total;
+}
+
+/* Vote order: by weight, descending (mode 0), or by hypothesis, part, then weight
+   descending (mode 1). Returns 1 if a comes strictly before b. */
+static int vote_before(const recog_vote_t *a, const recog_vote_t *b, int mode)
+{
+    int before = 0;
+    if (mode == 0) {
+        if (a->weight > b->weight) {
+            before = 1;
+        }
+    } else if (a->hyp != b->hyp) {
+        if (a->hyp < b->hyp) {
+            before = 1;
+        }
+    } else if (a->part != b->part) {
+        if (a->part < b->part) {
+            before = 1;
+        }
+    } else if (a->weight > b->weight) {
+        before = 1;
+    } else {
+        before = 0;
+    }
+    return before;
+}
+
+/* Iterative heap sort (no recursion, O(n log n), in place). */
+static void sort_votes(recog_vote_t *v, uint32_t n, int mode)
+{
+    uint32_t end;
+    uint32_t start;
+    if (n < 2u) {
+        return;
+    }
+    start = n / 2u;
+    end = n;
+    while (end > 1u) {
+        uint32_t root;
+        if (start > 0u) {
+            start--;
+            root = start;
+        } else {
+            const recog_vote_t t = v[0];
+            end--;
+            v[0] = v[end];
+            v[end] = t;
+            root = 0u;
+        }
+        for (;;) {
+            uint32_t child = (2u * root) + 1u;
+            if (child >= end) {
+                break;
+            }
+            /* a max-heap of "comes last" keeps the first elements at the front */
+            if (((child + 1u) < end) && (vote_before(&v[child], &v[child + 1u], mode) != 0)) {
+                child++;
+            }
+            if (vote_before(&v[root], &v[child], mode) != 0) {
+                const recog_vote_t t = v[root];
+                v[root] = v[child];
+                v[child] = t;
+                root = child;
+            } else {
+                break;
+            }
+        }
+    }
+}
+
+/* Hypotheses by score, descending (iterative heap sort). */
+static void sort_hyps(recog_hyp_t *v, uint32_t n)
+{
+    uint32_t end;
+    uint32_t start;
+    if (n < 2u) {
+        return;
+    }
+    start = n / 2u;
+    end = n;
+    while (end > 1u) {
+        uint32_t root;
+        if (start > 0u) {
+            start--;
+            root = start;
+        } else {
+            const recog_hyp_t t = v[0];
+            end--;
+            v[0] = v[end];
+            v[end] = t;
+            root = 0u;
+        }
+        for (;;) {
+            uint32_t child = (2u * root) + 1u;
+            if (child >= end) {
+                break;
+            }
+            if (((child + 1u) < end) && (v[child].score > v[child + 1u].score)) {
+                child++;
+            }
+            if (v[root].score > v[child].score) {
+                const recog_hyp_t t = v[root];
+                v[root] = v[child];
+                v[child] = t;
+                root = child;
+            } else {
+                break;
+            }
+        }
+    }
+}
+
+/* Everything one call works with. */
+typedef struct recog_ctx_s {
+    const sbr_recog_config_t *cfg;
+    const sbr_model_t *model;
+    sbr_fft_t fft_p;
+    sbr_fd_match_config_t mcfg;
+    sbr_part_t *parts;
+    uint32_t nparts;
+    sbr_fd_match_t *results;
+    sbr_complex_t *work;
+    uint32_t work_len;
+    recog_vote_t *votes;
+    uint32_t nvotes;
+    recog_hyp_t *hyps;
+    uint32_t nhyps;
+    float vote_error;
+    sbr_recog_stats_t st;
+} recog_ctx_t;
+
+/* Close a timed stage: ticks since *t0 go to stage `s`; *t0 moves on. */
+static void stage_end(recog_ctx_t *c, uint32_t s, uint32_t *t0)
+{
+    if (c->cfg->clock != NULL) {
+        const uint32_t t = c->cfg->clock(c->cfg->clock_ctx);
+        c->st.stage_ticks[s] = t - *t0;
+        *t0 = t;
+    }
+}
+
+static float maxf(float a, float b)
+{
+    float r = a;
+    if (b > a) {
+        r = b;
+    }
+    return r;
+}
+
+/* Match one part against its group and cast its votes. */
+static sbr_status_t cast_votes(recog_ctx_t *c, uint32_t pi)
+{
+    const sbr_part_t *p = &c->parts[pi];
+    const sbr_model_t *m = c->model;
+    const uint32_t g = ((uint32_t)p->map * 2u) + ((uint32_t)p->polarity - 1u);
+    uint32_t first;
+    uint32_t n;
+    uint32_t best = 0u;
+    uint32_t k;
+    sbr_status_t st;
+    if ((g >= SBR_MODEL_GROUPS) || (p->polarity == 0u)) {
+        return SBR_OK;
+    }
+    first = m->group_first[g];
+    n = (uint32_t)m->group_first[g + 1u] - first;
+    if (n == 0u) {
+        return SBR_OK;
+    }
+    st = sbr_fd_match_table(&c->fft_p, &c->mcfg, &p->fd, &m->fds[first], n, c->work,
+                            c->work_len, c->results, &best);
+    if (st != SBR_OK) {
+        return st;
+    }
+    c->st.matches += n;
+    for (k = 0u; k < n; k++) {
+        const float e = c->results[k].error;
+        if (e <= c->vote_error) {
+            const sbr_model_proto_t *q = &m->protos[first + k];
+            const float s = p->fd.scale;
+            const float w = q->w * s;
+            const float h = q->h * s;
+            const float size = maxf(w, h);
+            if ((size >= c->cfg->min_size) && (size <= c->cfg->max_size)) {
+                if (c->nvotes >= c->cfg->max_votes) {
+                    c->st.capacity_hit |= 2u;
+                } else {
+                    recog_vote_t *v = &c->votes[c->nvotes];
+                    v->cx = p->fd.cx + (q->dx * s);
+                    v->cy = p->fd.cy + (q->dy * s);
+                    v->w = w;
+                    v->h = h;
+                    v->weight = q->weight * (1.0f - (e / c->vote_error));
+                    v->part = pi;
+                    v->hyp = 0u;
+                    v->proto = (uint16_t)(first + k);
+                    v->pad = 0u;
+                    c->nvotes++;
+                }
+            }
+        }
+    }
+    return SBR_OK;
+}
+
+/* Does a (centre, size) agree with a hypothesis's current mean? */
+static int agrees(const recog_hyp_t *h, float cx, float cy, float w, float hh,
+                  const sbr_recog_config_t *cfg)
+{
+    const float mx = h->sx / h->sum;
+    const float my = h->sy / h->sum;
+    const float mw = h->sw / h->sum;
+    const float mh = h->sh / h->sum;
+    const float f = 1.0f + cfg->size_tol;
+    int ok = 0;
+    if ((fabsf(cx - mx) <= (cfg->centre_tol * mw)) && (fabsf(cy - my) <= (cfg->centre_tol * mh)) &&
+        (w <= (mw * f)) && ((w * f) >= mw) && (hh <= (mh * f)) && ((hh * f) >= mh)) {
+        ok = 1;
+    }
+    return ok;
+}
+
+/* Group the votes (sorted by weight) into hypotheses. */
+static void group_votes(recog_ctx_t *c)
+{
+    uint32_t i;
+    for (i = 0u; i < c->nvotes; i++) {
+        recog_vote_t *v = &c->votes[i];
+        uint32_t h;
+        uint32_t found = c->nhyps;
+        for (h = 0u; h < c->nhyps; h++) {
+            if (agrees(&c->hyps[h], v->cx, v->cy, v->w, v->h, c->cfg) != 0) {
+                found = h;
+                break;
+            }
+        }
+        if (found == c->nhyps) {
+            if (c->nhyps >= c->cfg->max_hypotheses) {
+                c->st.capacity_hit |= 4u;
+                v->hyp = 0xFFFFFFFFu; /* dropped */
+                continue;
+            }
+            (void)memset(&c->hyps[found], 0, sizeof c->hyps[found]);
+            c->nhyps++;
+        }
+        c->hyps[found].sx += v->weight * v->cx;
+        c->hyps[found].sy += v->weight * v->cy;
+        c->hyps[found].sw += v->weight * v->w;
+        c->hyps[found].sh += v->weight * v->h;
+        c->hyps[found].sum += v->weight;
+        v->hyp = found;
+    }
+}
+
+/* Share of class `cls` in a prototype (0 if it does not hold the class). */
+static float class_share(const sbr_model_proto_t *q, uint32_t cls)
+{
+    uint32_t k;
+    float p = 0.0f;
+    for (k = 0u; k < SBR_MODEL_PROTO_CLASSES; k++) {
+        if ((uint32_t)q->class_id[k] == cls) {
+            p = q->class_p[k];
+        }
+    }
+    return p;
+}
+
+/* Did prototype `q` vote in votes[a..b)? */
+static int voted(const recog_vote_t *votes, uint32_t a, uint32_t b, uint32_t q)
+{
+    uint32_t i;
+    int found = 0;
+    for (i = a; (i < b) && (found == 0); i++) {
+        if ((uint32_t)votes[i].proto == q) {
+            found = 1;
+        }
+    }
+    return found;
+}
+
+/* Look for cascade prototype q of class cls near where hypothesis h predicts it.
+   Returns the weight it adds (0 if not found). */
+static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint32_t cls)
+{
+    const sbr_model_proto_t *pr = &c->model->protos[q];
+    const float mx = h->sx / h->sum;
+    const float my = h->sy / h->sum;
+    const float mw = h->sw / h->sum;
+    const float mh = h->sh / h->sum;
+    const float s = 0.5f * ((mw / pr->w) + (mh / pr->h)); /* predicted part scale */
+    const float px = mx - (pr->dx * s);
+    const float py = my - (pr->dy * s);
+    const float f = 1.0f + c->cfg->size_tol;
+    const float tol = c->cfg->centre_tol * maxf(mw, mh);
+    float best = 0.0f;
+    uint32_t i;
+    for (i = 0u; i < c->nparts; i++) {
+        const sbr_part_t *p = &c->parts[i];
+        if ((p->map == pr->map) && (p->polarity == pr->polarity) &&
+            (fabsf(p->fd.cx - px) <= tol) && (fabsf(p->fd.cy - py) <= tol) &&
+            (p->fd.scale <= (s * f)) && ((p->fd.scale * f) >= s)) {
+            sbr_fd_match_t r;
+            c->st.matches++;
+            if ((sbr_fd_match(&c->fft_p, &c->mcfg, &p->fd, &c->model->fds[q], c->work,
+                              c->work_len, &r) == SBR_OK) &&
+                (r.error <= c->cfg->verify_error)) {
+                const float w = pr->weight * (1.0f - (r.error / c->cfg->verify_error)) *
+                                class_share(pr, cls);
+                best = maxf(best, w);
+            }
+        }
+    }
+    return best;
+}
+
+/* Score every hypothesis (votes sorted by hypothesis and part). */
+static void score_hyps(recog_ctx_t *c)
+{
+    const sbr_model_t *m = c->model;
+    uint32_t i = 0u;
+    while (i < c->nvotes) {
+        const uint32_t h = c->votes[i].hyp;
+        uint32_t j = i;
+        float cls[SBR_RECOG_CLASSES];
+        float total = 0.0f;
+        float miss = 1.0f; /* probability that no supporting part is a sign's part */
+        float best_s = 0.0f;
+        uint32_t best_c = 0u;
+        uint32_t nprotos = 0u;
+        uint32_t k;
+        while ((j < c->nvotes) && (c->votes[j].hyp == h)) {
+            j++;
+        }
+        if (h >= c->nhyps) {
+            i = j; /* dropped votes sort last */
+            continue;
+        }
+        (void)memset(cls, 0, sizeof cls);
+        for (k = i; k < j; k++) {
+            /* a region counts once, with its strongest vote (the first of its part) */
+            if ((k == i) || (c->votes[k].part != c->votes[k - 1u].part)) {
+                const sbr_model_proto_t *q = &m->protos[c->votes[k].proto];
+                uint32_t t;
+                for (t = 0u; t < SBR_MODEL_PROTO_CLASSES; t++) {
+                    if (q->class_id[t] < SBR_RECOG_CLASSES) {
+                        cls[q->class_id[t]] += c->votes[k].weight * q->class_p[t];
+                    }
+                }
+                total += c->votes[k].weight;
+                miss *= 1.0f - c->votes[k].weight;
+                nprotos++;
+            }
+        }
+        for (k = 0u; k < SBR_RECOG_CLASSES; k++) {
+            if (cls[k] > best_s) {
+                best_s = cls[k];
+                best_c = k;
+            }
+        }
+        /* cascade verification of the best class's other parts */
+        if (best_s > 0.0f) {
+            const uint32_t a = m->class_first[best_c];
+            const uint32_t b = m->class_first[best_c + 1u];
+            uint32_t checked = 0u;
+            for (k = a; (k < b) && (checked < c->cfg->cascade_depth); k++) {
+                const uint32_t q = m->cascade[k];
+                if (voted(c->votes, i, j, q) == 0) {
+                    const float add = verify_part(c, &c->hyps[h], q, best_c);
+                    checked++;
+                    if (add > 0.0f) {
+                        best_s += add;
+                        total += add;
+                        miss *= 1.0f - add;
+                        nprotos++;
+                        c->st.verified++;
+                    }
+                }
+            }
+        }
+        c->hyps[h].class_id = (uint16_t)best_c;
+        c->hyps[h].parts = (uint16_t)((nprotos > 65535u) ? 65535u : nprotos);
+        c->hyps[h].score = 1.0f - miss;
+        c->hyps[h].share = (total > 0.0f) ? (best_s / total) : 0.0f;
+        c->hyps[h].keep = ((nprotos >= c->cfg->min_parts) &&
+                           (c->hyps[h].score >= c->cfg->min_score)) ? 1u : 0u;
+        if (c->hyps[h].keep == 0u) {
+            c->st.rejected++;
+        }
+        i = j;
+    }
+}
+
+/* Box of a hypothesis in view pixels, clamped to the view: x0, y0, x1, y1 (exclusive). */
+static void hyp_box(const recog_hyp_t *h, uint32_t vw, uint32_t vh, float b[4])
+{
+    const float mx = h->sx / h->sum;
+    const float my = h->sy / h->sum;
+    const float hw = 0.5f * (h->sw / h->sum);
+    const float hh = 0.5f * (h->sh / h->sum);
+    b[0] = maxf(0.0f, mx - hw);
+    b[1] = maxf(0.0f, my - hh);
+    b[2] = fminf((float)vw, mx + hw);
+    b[3] = fminf((float)vh, my + hh);
+}
+
+static float box_iou(const float a[4], const float b[4])
+{
+    const float iw = fminf(a[2], b[2]) - maxf(a[0], b[0]);
+    const float ih = fminf(a[3], b[3]) - maxf(a[1], b[1]);
+    float iou = 0.0f;
+    if ((iw > 0.0f) && (ih > 0.0f)) {
+        const float inter = iw * ih;
+        const float uni = ((a[2] - a[0]) * (a[3] - a[1])) + ((b[2] - b[0]) * (b[3] - b[1])) - inter;
+        if (uni > 0.0f) {
+            iou = inter / uni;
+        }
+    }
+    return iou;
+}
+
+sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
+                              const sbr_recog_config_t *cfg, const sbr_model_t *model,
+                              void *workspace, size_t workspace_size, sbr_detection_t *dets,
+                              uint32_t capacity, uint32_t *count, sbr_recog_stats_t *stats)
+{
+    recog_ctx_t c;
+    recog_layout_t l;
+    sbr_image_t view;
+    sbr_fft_t fft_n;
+    uint8_t *base;
+    uint32_t ox = 0u;
+    uint32_t oy = 0u;
+    uint32_t i;
+    uint32_t out = 0u;
+    uint32_t t0 = 0u;
+    int full = 0;
+    sbr_status_t st;
+
+    if ((img == NULL) || (cfg == NULL) || (model == NULL) || (dets == NULL) || (count == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    *count = 0u;
+    st = sbr_recog_config_check(cfg);
+    if (st != SBR_OK) {
+        return st;
+    }
+    st = sbr_model_check(model);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((model->fd_n != cfg->parts.fd_n) || (model->fd_m != cfg->parts.fd_m) ||
+        (model->proto_count > cfg->max_model_protos)) {
+        return SBR_ERR_RANGE;
+    }
+    if ((img->format != SBR_PIXEL_RGB888) && (img->format != SBR_PIXEL_BGR888)) {
+        st = sbr_image_check(img);
+        return (st != SBR_OK) ? st : SBR_ERR_RANGE;
+    }
+    if (roi != NULL) {
+        st = sbr_image_roi(img, roi, &view);
+        ox = roi->x;
+        oy = roi->y;
+    } else {
+        st = sbr_image_check(img);
+        view = *img;
+    }
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((recog_layout(view.width, view.height, cfg, &l) == 0) || (capacity == 0u)) {
+        return SBR_ERR_SIZE;
+    }
+    if ((workspace == NULL) || (workspace_size < l.total) ||
+        (sbr_util_aligned(workspace, 8u) == 0)) {
+        return SBR_ERR_WORKSPACE;
+    }
+    (void)memset(&c, 0, sizeof c);
+    if ((sbr_fft_init(&fft_n, cfg->parts.fd_n) != SBR_OK) ||
+        (sbr_fft_init(&c.fft_p, cfg->match_p) != SBR_OK)) {
+        return SBR_ERR_RANGE;
+    }
+    c.cfg = cfg;
+    c.model = model;
+    c.vote_error = (cfg->vote_error > 0.0f) ? cfg->vote_error : model->vote_error;
+    (void)sbr_fd_match_config_default(&c.mcfg);
+    c.mcfg.mode = SBR_FD_ROTATION_COVARIANT;
+    c.mcfg.max_rotation = cfg->max_rotation;
+    base = (uint8_t *)workspace;
+    c.parts = (sbr_part_t *)(void *)&base[l.parts_ws];
+    c.results = (sbr_fd_match_t *)(void *)&base[l.parts_ws + l.parts];
+    c.work = (sbr_complex_t *)(void *)&base[l.parts_ws + l.parts + l.results];
+    c.work_len = SBR_FD_TABLE_WORK_LEN(cfg->match_p);
+    c.votes = (recog_vote_t *)(void *)&base[l.parts_ws + l.parts + l.results + l.work];
+    c.hyps = (recog_hyp_t *)(void *)&base[l.parts_ws + l.parts + l.results + l.work + l.votes];
+
+    if (cfg->clock != NULL) {
+        t0 = cfg->clock(cfg->clock_ctx);
+    }
+
+    /* 1. parts */
+    st = sbr_parts_extract(&view, &cfg->parts, &fft_n, workspace, l.parts_ws, c.parts,
+                           cfg->max_parts, &c.nparts, &c.st.parts_stats);
+    if (st == SBR_ERR_CAPACITY) {
+        c.st.capacity_hit |= 1u;
+    } else if (st != SBR_OK) {
+        return st;
+    } else {
+        /* all parts */
+    }
+    if (c.st.parts_stats.capacity_hit != 0u) {
+        c.st.capacity_hit |= 8u;
+    }
+    c.st.parts = c.nparts;
+    stage_end(&c, (uint32_t)SBR_RECOG_STAGE_PARTS, &t0);
+
+    /* 2. votes */
+    for (i = 0u; i < c.nparts; i++) {
+        st = cast_votes(&c, i);
+        if (st != SBR_OK) {
+            return st;
+        }
+    }
+    c.st.votes = c.nvotes;
+    stage_end(&c, (uint32_t)SBR_RECOG_STAGE_VOTES, &t0);
+
+    /* 3. hypotheses */
+    sort_votes(c.votes, c.nvotes, 0);
+    group_votes(&c);
+    c.st.hypotheses = c.nhyps;
+    stage_end(&c, (uint32_t)SBR_RECOG_STAGE_GROUP, &t0);
+
+    /* 4. evidence per class, cascade verification */
+    sort_votes(c.votes, c.nvotes, 1);
+    score_hyps(&c);
+    stage_end(&c, (uint32_t)SBR_RECOG_STAGE_VERIFY, &t0);
+
+    /* 5. non-maximum suppression, best first */
+    {
+        uint32_t kept = 0u;
+        for (i = 0u; i < c.nhyps; i++) {
+            if (c.hyps[i].keep != 0u) {
+                c.hyps[kept] = c.hyps[i];
+                kept++;
+            }
+        }
+        sort_hyps(c.hyps, kept);
+        for (i = 0u; i < kept; i++) {
+            float bi[4];
+            uint32_t j;
+            int suppressed = 0;
+            hyp_box(&c.hyps[i], view.width, view.height, bi);
+            for (j = 0u; (j < i) && (suppressed == 0); j++) {
+                if (c.hyps[j].keep != 0u) {
+                    float bj[4];
+                    hyp_box(&c.hyps[j], view.width, view.height, bj);
+                    if (box_iou(bi, bj) > cfg->nms_iou) {
+                        suppressed = 1;
+                    }
+                }
+            }
+            if ((suppressed != 0) || (bi[2] <= bi[0]) || (bi[3] <= bi[1])) {
+                c.hyps[i].keep = 0u;
+            } else if (out >= capacity) {
+                full = 1;
+            } else {
+                sbr_detection_t *d = &dets[out];
+                d->box.x = ox + (uint32_t)bi[0];
+                d->box.y = oy + (uint32_t)bi[1];
+                d->box.width = (uint32_t)(bi[2] + 0.5f) - (uint32_t)bi[0];
+                d->box.height = (uint32_t)(bi[3] + 0.5f) - (uint32_t)bi[1];
+                d->score = c.hyps[i].score;
+                d->class_share = c.hyps[i].share;
+                d->class_id = c.hyps[i].class_id;
+                d->parts = c.hyps[i].parts;
+                out++;
+            }
+        }
+    }
+    stage_end(&c, (uint32_t)SBR_RECOG_STAGE_NMS, &t0);
+    *count = out;
+    if (stats != NULL) {
+        *stats = c.st;
+    }
+    return (full != 0) ? SBR_ERR_CAPACITY : SBR_OK;
+}

@@ -1,0 +1,364 @@
+/* Unity tests of the recogniser (include/sbr/recognizer.h): a model learned in the test
+   from one synthetic sign finds the sign again elsewhere, larger, in another frame; the
+   built-in model is consistent; bad input gets its status. */
+#include "unity.h"
+#include "sbr/recognizer.h"
+
+#include <math.h>
+#include <string.h>
+
+#define W 160u
+#define H 96u
+#define MAXP 32u
+
+static uint8_t g_rgb[H][W][3];
+static uint64_t g_ws[700000u / 8u];
+static sbr_part_t g_parts[128];
+static sbr_fd_t g_fds[MAXP];
+static sbr_model_proto_t g_protos[MAXP];
+static uint16_t g_cascade[MAXP];
+static sbr_model_t g_model;
+static sbr_recog_config_t g_cfg;
+static sbr_detection_t g_dets[16];
+
+static void clear(void)
+{
+    uint32_t x;
+    uint32_t y;
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            g_rgb[y][x][0] = 110u;
+            g_rgb[y][x][1] = 120u;
+            g_rgb[y][x][2] = 110u;
+        }
+    }
+}
+
+static sbr_image_t view(void)
+{
+    sbr_image_t v;
+    v.width = W;
+    v.height = H;
+    v.stride = 3u * W;
+    v.format = SBR_PIXEL_RGB888;
+    v.data = &g_rgb[0][0][0];
+    return v;
+}
+
+/* A prohibitory-like sign of radius r at (cx, cy): red ring, white disc, dark bar. */
+static void draw_sign(float cx, float cy, float r)
+{
+    uint32_t x;
+    uint32_t y;
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            const float dx = (float)x - cx;
+            const float dy = (float)y - cy;
+            const float d = sqrtf((dx * dx) + (dy * dy));
+            uint8_t *p = g_rgb[y][x];
+            if ((fabsf(dx) <= 0.2f * r) && (fabsf(dy) <= 0.4f * r)) {
+                p[0] = 20u; p[1] = 20u; p[2] = 20u;
+            } else if (d <= 0.64f * r) {
+                p[0] = 240u; p[1] = 240u; p[2] = 240u;
+            } else if (d <= r) {
+                p[0] = 210u; p[1] = 20u; p[2] = 30u;
+            } else {
+                /* background */
+            }
+        }
+    }
+}
+
+static void test_config(void)
+{
+    sbr_recog_config_default(&g_cfg);
+    g_cfg.parts.max_side = 48u;
+    g_cfg.parts.max_regions = 256u;
+    g_cfg.parts.max_contour = 512u;
+    g_cfg.parts.mser.max_nodes = 4000u;
+    g_cfg.max_parts = 128u;
+    g_cfg.max_votes = 2048u;
+    g_cfg.max_hypotheses = 128u;
+    g_cfg.max_model_protos = MAXP;
+}
+
+/* Learn the model from the parts of one sign of radius r at (cx, cy): every part centred
+   on the sign becomes a prototype of class 14 whose offset and size are measured from
+   the drawing (the sign is 2r wide). */
+static void learn(float cx, float cy, float r)
+{
+    const sbr_image_t v = view();
+    sbr_fft_t fft;
+    uint32_t n = 0u;
+    uint32_t i;
+    uint32_t np = 0u;
+    uint32_t g;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_init(&fft, g_cfg.parts.fd_n));
+    TEST_ASSERT_TRUE(sbr_parts_workspace_size(W, H, &g_cfg.parts) <= sizeof g_ws);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &g_cfg.parts, &fft, g_ws, sizeof g_ws, g_parts,
+                                                    128u, &n, NULL));
+    (void)memset(&g_model, 0, sizeof g_model);
+    /* group by group, so the prototypes come out sorted by group */
+    for (g = 0u; g < SBR_MODEL_GROUPS; g++) {
+        g_model.group_first[g] = (uint16_t)np;
+        for (i = 0u; (i < n) && (np < MAXP); i++) {
+            const sbr_part_t *p = &g_parts[i];
+            const uint32_t pg = ((uint32_t)p->map * 2u) + ((uint32_t)p->polarity - 1u);
+            sbr_model_proto_t *q = &g_protos[np];
+            if ((pg != g) || (fabsf(p->fd.cx - cx) > 0.3f * r) || (fabsf(p->fd.cy - cy) > 0.3f * r) ||
+                (p->bbox.width > (uint32_t)(2.0f * r) + 3u)) {
+                continue;
+            }
+            g_fds[np] = p->fd;
+            (void)memset(q, 0, sizeof *q);
+            q->dx = (cx - p->fd.cx) / p->fd.scale;
+            q->dy = (cy - p->fd.cy) / p->fd.scale;
+            q->w = (2.0f * r) / p->fd.scale;
+            q->h = q->w;
+            q->weight = 0.6f;
+            q->support = 1u;
+            q->map = p->map;
+            q->polarity = p->polarity;
+            (void)memset(q->class_id, (int)SBR_MODEL_NO_CLASS, sizeof q->class_id);
+            q->class_id[0] = 14u;
+            q->class_p[0] = 1.0f;
+            g_cascade[np] = (uint16_t)np;
+            np++;
+        }
+    }
+    g_model.group_first[SBR_MODEL_GROUPS] = (uint16_t)np;
+    for (i = 0u; i <= SBR_RECOG_CLASSES; i++) {
+        g_model.class_first[i] = (uint16_t)((i <= 14u) ? 0u : np);
+    }
+    g_model.version = SBR_MODEL_VERSION;
+    g_model.fd_n = g_cfg.parts.fd_n;
+    g_model.fd_m = g_cfg.parts.fd_m;
+    g_model.proto_count = np;
+    g_model.fds = g_fds;
+    g_model.protos = g_protos;
+    g_model.cascade = g_cascade;
+    g_model.vote_error = 0.1f;
+    g_model.score_threshold = 0.5f;
+    /* ring outside, ring inside (the disc), disc, bar: several parts over three maps */
+    TEST_ASSERT_TRUE(np >= 3u);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
+}
+
+void setUp(void)
+{
+    clear();
+    test_config();
+    draw_sign(40.0f, 48.0f, 14.0f);
+    learn(40.0f, 48.0f, 14.0f);
+    clear();
+}
+void tearDown(void) {}
+
+/* Another frame: the sign 30 % larger elsewhere, and a plain red disc (one part only). */
+static void test_finds_sign_elsewhere_and_larger(void)
+{
+    const sbr_image_t v = view();
+    sbr_recog_stats_t st;
+    uint32_t n = 0u;
+    float cx;
+    float cy;
+    draw_sign(112.0f, 50.0f, 18.0f);
+    TEST_ASSERT_TRUE(sbr_recog_workspace_size(W, H, &g_cfg) <= sizeof g_ws);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_EQUAL_UINT32(14u, g_dets[0].class_id);
+    cx = (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width);
+    cy = (float)g_dets[0].box.y + (0.5f * (float)g_dets[0].box.height);
+    TEST_ASSERT_FLOAT_WITHIN(2.0f, 112.5f, cx);
+    TEST_ASSERT_FLOAT_WITHIN(2.0f, 50.5f, cy);
+    TEST_ASSERT_FLOAT_WITHIN(4.0f, 36.0f, (float)g_dets[0].box.width);
+    TEST_ASSERT_FLOAT_WITHIN(4.0f, 36.0f, (float)g_dets[0].box.height);
+    TEST_ASSERT_TRUE(g_dets[0].parts >= 3u);
+    /* noisy-OR of >= 3 parts of weight <= 0.6: above 1 - 0.4^3 x (loss to match error) */
+    TEST_ASSERT_TRUE(g_dets[0].score > 0.6f);
+    TEST_ASSERT_TRUE(g_dets[0].score < 1.0f);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, g_dets[0].class_share);
+    TEST_ASSERT_TRUE(st.parts >= 3u);
+    TEST_ASSERT_TRUE(st.votes >= 3u);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.capacity_hit);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.stage_ticks[0]); /* no clock configured */
+}
+
+/* A frame without the sign: nothing. With min_parts above what one sign offers: nothing. */
+static void test_empty_frame_and_min_parts(void)
+{
+    const sbr_image_t v = view();
+    uint32_t n = 99u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, NULL));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    draw_sign(112.0f, 50.0f, 18.0f);
+    g_cfg.min_parts = 20u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, NULL));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+}
+
+/* A ROI: the box comes back in frame pixels, equal to the whole-frame result. */
+static void test_roi_offsets_boxes(void)
+{
+    const sbr_image_t v = view();
+    sbr_rect_t roi;
+    sbr_detection_t full;
+    uint32_t n = 0u;
+    draw_sign(112.0f, 50.0f, 18.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, NULL));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    full = g_dets[0];
+    roi.x = 70u;
+    roi.y = 20u;
+    roi.width = 84u;
+    roi.height = 64u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, &roi, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, NULL));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_UINT32_WITHIN(1u, full.box.x, g_dets[0].box.x);
+    TEST_ASSERT_UINT32_WITHIN(1u, full.box.y, g_dets[0].box.y);
+    TEST_ASSERT_UINT32_WITHIN(1u, full.box.width, g_dets[0].box.width);
+    roi.x = 100u; /* 100 + 84 > 160 */
+    TEST_ASSERT_TRUE(sbr_recog_detect(&v, &roi, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n,
+                                      NULL) < 0);
+}
+
+/* Two signs, room for one: the distinct capacity status, and one detection written. */
+static void test_capacity(void)
+{
+    const sbr_image_t v = view();
+    uint32_t n = 0u;
+    draw_sign(40.0f, 48.0f, 14.0f);
+    draw_sign(112.0f, 50.0f, 16.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, NULL));
+    TEST_ASSERT_EQUAL_UINT32(2u, n);
+    TEST_ASSERT_TRUE(g_dets[0].score >= g_dets[1].score);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws,
+                                                             g_dets, 1u, &n, NULL));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+}
+
+static void test_bad_input(void)
+{
+    sbr_image_t v = view();
+    sbr_recog_config_t c = g_cfg;
+    uint32_t n = 5u;
+    sbr_model_proto_t saved;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_recog_detect(NULL, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws,
+                                                         g_dets, 16u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_recog_detect(&v, NULL, NULL, &g_model, g_ws, sizeof g_ws,
+                                                         g_dets, 16u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_recog_detect(&v, NULL, &g_cfg, NULL, g_ws, sizeof g_ws,
+                                                         g_dets, 16u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws,
+                                                         NULL, 16u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, NULL, sizeof g_ws,
+                                                              g_dets, 16u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, 1000u,
+                                                              g_dets, 16u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_recog_detect(&v, NULL, &g_cfg, &g_model,
+                                                              (uint8_t *)g_ws + 4, sizeof g_ws - 8u,
+                                                              g_dets, 16u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws,
+                                                         g_dets, 0u, &n, NULL));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    /* configuration out of range */
+    c.nms_iou = 0.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&c));
+    c = g_cfg;
+    c.verify_error = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &c, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                          16u, &n, NULL));
+    c = g_cfg;
+    c.max_size = 5.0f; /* below min_size */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&c));
+    c = g_cfg;
+    c.match_p = 16u; /* < 2M + 1 = 25 */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&c));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_recog_workspace_size(W, H, &c));
+    c = g_cfg;
+    c.parts.fd_m = 10u; /* the model has 12 */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &c, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                          16u, &n, NULL));
+    c = g_cfg;
+    c.max_model_protos = 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &c, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                          16u, &n, NULL));
+    /* a grey image has no colour maps */
+    v.format = SBR_PIXEL_GRAY8;
+    v.stride = W;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws,
+                                                          g_dets, 16u, &n, NULL));
+    v = view();
+    v.stride = 3u * W - 1u;
+    TEST_ASSERT_TRUE(sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n,
+                                      NULL) < 0);
+    /* corrupted models */
+    saved = g_protos[0];
+    g_protos[0].weight = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    v = view();
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws,
+                                                            g_dets, 16u, &n, NULL));
+    g_protos[0] = saved;
+    g_protos[0].class_id[1] = 43u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    g_protos[0] = saved;
+    g_protos[0].map = (uint8_t)(g_protos[0].map ^ 1u); /* no longer in its group */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    g_protos[0] = saved;
+    g_cascade[0] = 200u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    g_cascade[0] = 0u;
+    g_fds[1].c[0].re += 0.5f; /* not unit energy any more */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    g_fds[1].c[0].re -= 0.5f;
+    g_model.group_first[SBR_MODEL_GROUPS] = (uint16_t)(g_model.proto_count + 1u);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    g_model.group_first[SBR_MODEL_GROUPS] = (uint16_t)g_model.proto_count;
+    g_model.version = 2u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    g_model.version = SBR_MODEL_VERSION;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_model_check(NULL));
+}
+
+/* The built-in library is consistent and fits the default configuration; the macro bound
+   is never below the exact workspace size. */
+static void test_builtin_model_and_sizes(void)
+{
+    const sbr_model_t *m = sbr_model_gtsdb();
+    sbr_recog_config_t d;
+    uint32_t s;
+    sbr_recog_config_default(&d);
+    TEST_ASSERT_NOT_NULL(m);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(m));
+    TEST_ASSERT_EQUAL_UINT32(d.parts.fd_n, m->fd_n);
+    TEST_ASSERT_EQUAL_UINT32(d.parts.fd_m, m->fd_m);
+    TEST_ASSERT_TRUE(m->proto_count <= d.max_model_protos);
+    TEST_ASSERT_TRUE(m->class_first[SBR_RECOG_CLASSES] > 0u);
+    for (s = 1u; s <= 4u; s *= 2u) {
+        d.parts.subsample = s;
+        TEST_ASSERT_TRUE(sbr_recog_workspace_size(1360u, 800u, &d) > 0u);
+        TEST_ASSERT_TRUE(sbr_recog_workspace_size(1360u, 800u, &d) <=
+                         SBR_RECOG_WORKSPACE_DEFAULT_SIZE(1360u, 800u, s));
+    }
+    TEST_ASSERT_TRUE(sbr_recog_workspace_size(320u, 240u, &d) <= SBR_RECOG_WORKSPACE_DEFAULT_SIZE(320u, 240u, 4u));
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_finds_sign_elsewhere_and_larger);
+    RUN_TEST(test_empty_frame_and_min_parts);
+    RUN_TEST(test_roi_offsets_boxes);
+    RUN_TEST(test_capacity);
+    RUN_TEST(test_bad_input);
+    RUN_TEST(test_builtin_model_and_sizes);
+    return UNITY_END();
+}
