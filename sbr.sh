@@ -1,7 +1,12 @@
 #!/usr/bin/env bash
 # sbr's one entry point: set-up, the main job and the tests.
 #
-#   ./sbr.sh detect [--input DIR] [--out DIR]   the main job (see README.md)
+#   ./sbr.sh detect [--input DIR] [--out DIR] [--range A-B]
+#                                               the main job (see README.md): the recogniser
+#                                               over a folder of images (default: GTSDB's
+#                                               development split 00400-00599), detections,
+#                                               annotated images, CAN log, summary
+#   ./sbr.sh train                              relearn the built-in prototype library
 #   ./sbr.sh test                               every test: native, sanitizers, Cortex-M4
 #                                               (qemu), armhf (qemu user), and the gates
 #   ./sbr.sh setup                              only install what is missing
@@ -107,37 +112,60 @@ cmd_test() {
 }
 
 cmd_detect() {
-  local input="" out="$ROOT/out"
+  local input="" out="$ROOT/out" range=""
   while [ $# -gt 0 ]; do
     case "$1" in
       --input) input="$2"; shift 2 ;;
       --out) out="$2"; shift 2 ;;
-      -h|--help) sed -n '2,12p' "$0"; return 0 ;;
+      --range) range="$2"; shift 2 ;;
+      -h|--help) sed -n '2,15p' "$0"; return 0 ;;
       *) echo "unknown option $1" >&2; return 2 ;;
     esac
   done
-  if [ -z "$input" ] && [ -d "$ROOT/../shared/data/gtsdb" ]; then
-    input="$ROOT/../shared/data/gtsdb"
+  if [ -z "$input" ]; then
+    if [ -d "$ROOT/../shared/data/gtsdb" ]; then
+      input="$ROOT/../shared/data/gtsdb"
+      # the development split by default: the built-in library was trained on 00000-00399
+      [ -n "$range" ] || range="400-599"
+    else
+      echo "no --input folder given and no GTSDB copy in ../shared/data/gtsdb" >&2
+      return 2
+    fi
   fi
   setup
   mkdir -p "$BUILD" "$out"
   configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
-  # The recogniser (regions -> contours -> Fourier descriptors -> star-model voting) is
-  # not built yet. Until it is, the main job runs what exists: the FFT benchmark.
-  log "the recogniser does not exist yet: running the FFT benchmark instead"
-  "$BUILD/native/host_tools/sbr_bench_fft" --csv | tee "$out/bench_fft.csv"
-  {
-    echo "sbr summary ($(date -u +%Y-%m-%dT%H:%M:%SZ))"
-    echo "input folder: ${input:-none} (not processed: the recogniser is not implemented yet)"
-    echo "FFT benchmark (median ns per complex float32 out-of-place transform):"
-    cat "$out/bench_fft.csv"
-  } > "$out/summary.txt"
-  log "wrote $out/summary.txt and $out/bench_fft.csv"
+  local tools="$BUILD/native/host_tools"
+  log "sbr_detect over $input${range:+ (images $range)}"
+  "$tools/sbr_detect" --input "$input" ${range:+--range "$range"} \
+      --detections "$out/detections.txt" --all-detections "$out/detections_all.txt" \
+      --annotated "$out/annotated" --canlog "$out/sbr_can.log" --summary "$out/summary.txt"
+  local gt=""
+  for g in "$input/gt.txt" "$input/FullIJCNN2013/gt.txt"; do [ -f "$g" ] && gt="$g" && break; done
+  if [ -n "$gt" ]; then
+    log "sbr_eval against $gt"
+    local thr
+    thr="$(sed -nE 's/.*operating point score >= ([0-9.]+).*/\1/p' "$out/summary.txt" | head -1)"
+    "$tools/sbr_eval" --detections "$out/detections_all.txt" --gt "$gt" \
+        ${range:+--range "$range"} --threshold "${thr:-0}" --plot "$out/pr_curve.png" \
+        | tee "$out/evaluation.txt"
+    { echo; echo "evaluation (sbr_eval, operating point score >= ${thr:-0}):"; cat "$out/evaluation.txt"; } >> "$out/summary.txt"
+  fi
+  log "wrote $out: detections.txt, detections_all.txt, annotated/, sbr_can.log, summary.txt${gt:+, evaluation.txt, pr_curve.png}"
+}
+
+cmd_train() {
+  setup
+  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
+  log "sbr_train on GTSDB 00000-00399 -> lib/models/sbr_model_gtsdb.c, $BUILD/sbr_gtsdb.sbrm"
+  "$BUILD/native/host_tools/sbr_train" --data "$ROOT/../shared/data/gtsdb" --range 0-399 \
+      --out-c "$ROOT/lib/models/sbr_model_gtsdb.c" --out-model "$BUILD/sbr_gtsdb.sbrm" "$@"
 }
 
 case "${1:-}" in
   test) shift; cmd_test "$@" ;;
   detect) shift; cmd_detect "$@" ;;
+  train) shift; cmd_train "$@" ;;
   setup) setup ;;
-  *) sed -n '2,12p' "$0"; exit 2 ;;
+  *) sed -n '2,15p' "$0"; exit 2 ;;
 esac

@@ -112,16 +112,19 @@ std::string write_model_c(const Model &m, const std::string &path, const std::st
     std::istringstream hs(header);
     for (std::string line; std::getline(hs, line);) o << (line.empty() ? " *" : " * " + line) << "\n";
     o << " */\n#include \"sbr/recognizer.h\"\n\n";
-    o << "static const sbr_fd_t model_fds[" << m.fds.size() << "] = {\n";
+    // The tables are block-scope const objects of the one function that uses them
+    // (MISRA C:2012 8.9); they live in flash, the caller's struct only points at them.
+    o << "sbr_status_t sbr_model_gtsdb(sbr_model_t *out)\n{\n";
+    o << "    static const sbr_fd_t model_fds[" << m.fds.size() << "] = {\n";
     for (const auto &f : m.fds) {
-        o << "    {" << f.m << "u, " << flit(f.scale) << ", " << flit(f.cx) << ", " << flit(f.cy) << ", {";
+        o << "        {" << f.m << "u, " << flit(f.scale) << ", " << flit(f.cx) << ", " << flit(f.cy) << ", {";
         for (uint32_t k = 0; k < 2u * f.m + 1u; ++k)
             o << (k ? ", " : "") << "{" << flit(f.c[k].re) << ", " << flit(f.c[k].im) << "}";
         o << "}},\n";
     }
-    o << "};\n\nstatic const sbr_model_proto_t model_protos[" << m.protos.size() << "] = {\n";
+    o << "    };\n    static const sbr_model_proto_t model_protos[" << m.protos.size() << "] = {\n";
     for (const auto &p : m.protos) {
-        o << "    {" << flit(p.dx) << ", " << flit(p.dy) << ", " << flit(p.w) << ", " << flit(p.h) << ", "
+        o << "        {" << flit(p.dx) << ", " << flit(p.dy) << ", " << flit(p.w) << ", " << flit(p.h) << ", "
           << flit(p.weight) << ", " << p.support << "u, " << unsigned(p.map) << "u, " << unsigned(p.polarity)
           << "u, {";
         for (unsigned k = 0; k < SBR_MODEL_PROTO_CLASSES; ++k) o << (k ? ", " : "") << unsigned(p.class_id[k]) << "u";
@@ -129,15 +132,21 @@ std::string write_model_c(const Model &m, const std::string &path, const std::st
         for (unsigned k = 0; k < SBR_MODEL_PROTO_CLASSES; ++k) o << (k ? ", " : "") << flit(p.class_p[k]);
         o << "}},\n";
     }
-    o << "};\n\nstatic const uint16_t model_cascade[" << m.cascade.size() << "] = {";
-    for (size_t i = 0; i < m.cascade.size(); ++i) o << (i % 16 ? " " : "\n    ") << m.cascade[i] << "u,";
-    o << "\n};\n\nstatic const sbr_model_t model = {\n    " << v.version << "u, " << v.fd_n << "u, " << v.fd_m
-      << "u, " << m.protos.size() << "u, model_fds, model_protos,\n    {";
+    o << "    };\n    static const uint16_t model_cascade[" << m.cascade.size() << "] = {";
+    for (size_t i = 0; i < m.cascade.size(); ++i) o << (i % 16 ? " " : "\n        ") << m.cascade[i] << "u,";
+    o << "\n    };\n    static const uint16_t model_group_first[" << (SBR_MODEL_GROUPS + 1u) << "] = {";
     for (unsigned g = 0; g <= SBR_MODEL_GROUPS; ++g) o << (g ? ", " : "") << v.group_first[g] << "u";
-    o << "},\n    {";
-    for (unsigned c = 0; c <= SBR_RECOG_CLASSES; ++c) o << (c ? ", " : "") << (c % 12 == 11 ? "\n     " : "") << v.class_first[c] << "u";
-    o << "},\n    model_cascade, " << flit(v.vote_error) << ", " << flit(v.score_threshold) << "\n};\n\n";
-    o << "const sbr_model_t *sbr_model_gtsdb(void)\n{\n    return &model;\n}\n";
+    o << "};\n    static const uint16_t model_class_first[" << (SBR_RECOG_CLASSES + 1u) << "] = {";
+    for (unsigned c = 0; c <= SBR_RECOG_CLASSES; ++c) o << (c % 12 ? " " : "\n        ") << v.class_first[c] << "u,";
+    o << "\n    };\n    uint32_t i;\n"
+      << "    if (out == NULL) {\n        return SBR_ERR_NULL;\n    }\n"
+      << "    out->version = " << v.version << "u;\n    out->fd_n = " << v.fd_n << "u;\n    out->fd_m = " << v.fd_m
+      << "u;\n    out->proto_count = " << m.protos.size() << "u;\n    out->fds = model_fds;\n"
+      << "    out->protos = model_protos;\n"
+      << "    for (i = 0u; i <= SBR_MODEL_GROUPS; i++) {\n        out->group_first[i] = model_group_first[i];\n    }\n"
+      << "    for (i = 0u; i <= SBR_RECOG_CLASSES; i++) {\n        out->class_first[i] = model_class_first[i];\n    }\n"
+      << "    out->cascade = model_cascade;\n    out->vote_error = " << flit(v.vote_error)
+      << ";\n    out->score_threshold = " << flit(v.score_threshold) << ";\n    return SBR_OK;\n}\n";
     std::ofstream f(path);
     if (!f) return "cannot write " + path;
     f << o.str();

@@ -30,7 +30,7 @@ struct Model {
 // Returns "" on success, else the reason.
 std::string save_model(const Model &m, const std::string &path);
 std::string load_model(const std::string &path, Model &m);
-// The generated C source (const tables and sbr_model_gtsdb()); `header` lines go into the
+// The generated C source (const tables and sbr_model_gtsdb(), which fills a caller's struct); `header` lines go into the
 // file's leading comment.
 std::string write_model_c(const Model &m, const std::string &path, const std::string &header);
 

@@ -11,8 +11,8 @@
 //   default the model's, chosen on its training images), exactly
 //   `NNNNN.jpg;left;top;right;bottom;class_id;score` (GTSDB's format, inclusive pixel box,
 //   plus a score 0..1).
-// --all-detections: the same format with every detection the recogniser reports (score >=
-//   its floor, 0.3 by default): for precision-recall curves and AP.
+// --all-detections: the same format with every detection down to score 0.05 (the
+//   recogniser's floor is lowered to that): for precision-recall curves and AP.
 // --annotated: each image with its operating-point boxes and class names (JPEG).
 // --canlog: a candump log with the CAN frames of every processed image (dbc/sbr.dbc).
 // --model: a prototype library file (sbr_train --out-model); default: the built-in one.
@@ -138,7 +138,9 @@ int main(int argc, char **argv) {
         return 2;
     }
     Model loaded;
-    const sbr_model_t *model = sbr_model_gtsdb();
+    sbr_model_t builtin{};
+    sbr_model_gtsdb(&builtin);
+    const sbr_model_t *model = &builtin;
     if (!model_path.empty()) {
         const std::string e = load_model(model_path, loaded);
         if (!e.empty()) { std::fprintf(stderr, "sbr_detect: %s\n", e.c_str()); return 1; }
@@ -149,6 +151,7 @@ int main(int argc, char **argv) {
     sbr_recog_config_default(&cfg);
     cfg.parts.subsample = subsample;
     cfg.min_score = std::min(cfg.min_score, threshold);
+    if (!all_path.empty()) cfg.min_score = std::min(cfg.min_score, 0.05f);  // the curve's tail
     if (min_score >= 0.0f) cfg.min_score = min_score;
     if (min_parts >= 0) cfg.min_parts = uint32_t(min_parts);
     if (vote_error >= 0.0f) cfg.vote_error = vote_error;
@@ -180,6 +183,7 @@ int main(int argc, char **argv) {
     std::vector<double> ms_total;
     std::vector<std::vector<double>> ms_stage(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
+    size_t capacity_kind[4] = {0, 0, 0, 0};
     uint64_t parts_total = 0;
     double sum_ms = 0;
     for (size_t i = 0; i < files.size(); ++i) {
@@ -216,6 +220,7 @@ int main(int argc, char **argv) {
             for (unsigned s = 0; s < SBR_RECOG_STAGES; ++s) ms_stage[s].push_back(stats.stage_ticks[s] / 1000.0);
             parts_total += stats.parts;
             if (stats.capacity_hit != 0 || st == SBR_ERR_CAPACITY) ++capacity_frames;
+            for (unsigned b = 0; b < 4; ++b) capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
             for (uint32_t k = 0; k < n; ++k) {
                 const auto &d = dets[k];
                 char line[160];
@@ -260,7 +265,9 @@ int main(int argc, char **argv) {
         s << buf;
     }
     s << "workspace: " << ws_bytes << " bytes (" << (use_roi ? "ROI" : "frame") << ", subsample " << subsample << ")\n";
-    s << "frames with an internal bound reached: " << capacity_frames << "\n";
+    s << "frames with an internal bound reached: " << capacity_frames << " (parts " << capacity_kind[0]
+      << ", votes " << capacity_kind[1] << ", hypotheses " << capacity_kind[2] << ", MSER " << capacity_kind[3]
+      << ")\n";
     if (can) s << "CAN log: " << canlog << " (" << can->frames_written() << " frames)\n";
     if (!annotated.empty()) s << "annotated images: " << annotated << "\n";
     std::fputs(s.str().c_str(), stdout);

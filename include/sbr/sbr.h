@@ -16,6 +16,7 @@
 #include "sbr/mser.h"
 #include "sbr/can.h"
 #include "sbr/parts.h"
+#include "sbr/recognizer.h"
 
 /** Library version. */
 #define SBR_VERSION_MAJOR 0

@@ -60,7 +60,7 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->match_p = 32u;
         cfg->max_parts = 4096u;
         cfg->max_votes = 16384u;
-        cfg->max_hypotheses = 1024u;
+        cfg->max_hypotheses = 4096u;
         cfg->max_model_protos = 1024u;
         cfg->vote_error = 0.0f;
         cfg->verify_error = 0.25f;
@@ -122,12 +122,12 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
 
 static int descriptor_ok(const sbr_fd_t *fd, uint32_t m)
 {
-    uint32_t k;
-    float e = 0.0f;
     int ok = 1;
     if ((fd->m != m) || (in_range(fd->scale, 1.0e-6f, 1.0e9f) == 0)) {
         ok = 0;
     } else {
+        uint32_t k;
+        float e = 0.0f;
         for (k = 0u; k < ((2u * m) + 1u); k++) {
             e += (fd->c[k].re * fd->c[k].re) + (fd->c[k].im * fd->c[k].im);
         }
@@ -222,7 +222,8 @@ static int recog_layout(uint32_t width, uint32_t height, const sbr_recog_config_
     }
     l->parts = RECOG_ALIGN((size_t)cfg->max_parts * sizeof(sbr_part_t));
     l->results = RECOG_ALIGN((size_t)cfg->max_model_protos * sizeof(sbr_fd_match_t));
-    l->work = RECOG_ALIGN((size_t)SBR_FD_TABLE_WORK_LEN(cfg->match_p) * sizeof(sbr_complex_t));
+    l->work = RECOG_ALIGN((size_t)cfg->match_p * 5u * sizeof(sbr_complex_t)); /* the table
+                                                                    matcher's four-lane scratch */
     l->votes = RECOG_ALIGN((size_t)cfg->max_votes * sizeof(recog_vote_t));
     l->hyps = RECOG_ALIGN((size_t)cfg->max_hypotheses * sizeof(recog_hyp_t));
     l->total = l->parts_ws + l->parts + l->results + l->work + l->votes + l->hyps;
@@ -286,12 +287,9 @@ static void sort_votes(recog_vote_t *v, uint32_t n, int mode)
             v[end] = t;
             root = 0u;
         }
-        for (;;) {
+        /* sift down; a max-heap of "comes last" keeps the first elements at the front */
+        while (((2u * root) + 1u) < end) {
             uint32_t child = (2u * root) + 1u;
-            if (child >= end) {
-                break;
-            }
-            /* a max-heap of "comes last" keeps the first elements at the front */
             if (((child + 1u) < end) && (vote_before(&v[child], &v[child + 1u], mode) != 0)) {
                 child++;
             }
@@ -301,7 +299,7 @@ static void sort_votes(recog_vote_t *v, uint32_t n, int mode)
                 v[child] = t;
                 root = child;
             } else {
-                break;
+                root = end; /* in place: stop */
             }
         }
     }
@@ -329,11 +327,8 @@ static void sort_hyps(recog_hyp_t *v, uint32_t n)
             v[end] = t;
             root = 0u;
         }
-        for (;;) {
+        while (((2u * root) + 1u) < end) {
             uint32_t child = (2u * root) + 1u;
-            if (child >= end) {
-                break;
-            }
             if (((child + 1u) < end) && (v[child].score > v[child + 1u].score)) {
                 child++;
             }
@@ -343,7 +338,7 @@ static void sort_hyps(recog_hyp_t *v, uint32_t n)
                 v[child] = t;
                 root = child;
             } else {
-                break;
+                root = end; /* in place: stop */
             }
         }
     }
@@ -619,10 +614,15 @@ static void score_hyps(recog_ctx_t *c)
         c->hyps[h].class_id = (uint16_t)best_c;
         c->hyps[h].parts = (uint16_t)((nprotos > 65535u) ? 65535u : nprotos);
         c->hyps[h].score = 1.0f - miss;
-        c->hyps[h].share = (total > 0.0f) ? (best_s / total) : 0.0f;
-        c->hyps[h].keep = ((nprotos >= c->cfg->min_parts) &&
-                           (c->hyps[h].score >= c->cfg->min_score)) ? 1u : 0u;
-        if (c->hyps[h].keep == 0u) {
+        if (total > 0.0f) {
+            c->hyps[h].share = best_s / total;
+        } else {
+            c->hyps[h].share = 0.0f;
+        }
+        if ((nprotos >= c->cfg->min_parts) && (c->hyps[h].score >= c->cfg->min_score)) {
+            c->hyps[h].keep = 1u;
+        } else {
+            c->hyps[h].keep = 0u;
             c->st.rejected++;
         }
         i = j;
@@ -728,7 +728,7 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
     c.parts = (sbr_part_t *)(void *)&base[l.parts_ws];
     c.results = (sbr_fd_match_t *)(void *)&base[l.parts_ws + l.parts];
     c.work = (sbr_complex_t *)(void *)&base[l.parts_ws + l.parts + l.results];
-    c.work_len = SBR_FD_TABLE_WORK_LEN(cfg->match_p);
+    c.work_len = cfg->match_p * 5u; /* SBR_FD_TABLE_WORK_LEN */
     c.votes = (recog_vote_t *)(void *)&base[l.parts_ws + l.parts + l.results + l.work];
     c.hyps = (recog_hyp_t *)(void *)&base[l.parts_ws + l.parts + l.results + l.work + l.votes];
 
