@@ -242,8 +242,10 @@ size_t sbr_recog_workspace_size(uint32_t width, uint32_t height, const sbr_recog
 
 /* Vote order: by weight, descending (mode 0), or by hypothesis, part, then weight
    descending (mode 1). Returns 1 if a comes strictly before b. */
-static int vote_before(const recog_vote_t *a, const recog_vote_t *b, int mode)
+static int vote_before(const void *pa, const void *pb, int mode)
 {
+    const recog_vote_t *a = (const recog_vote_t *)pa;
+    const recog_vote_t *b = (const recog_vote_t *)pb;
     int before = 0;
     if (mode == 0) {
         if (a->weight > b->weight) {
@@ -265,48 +267,34 @@ static int vote_before(const recog_vote_t *a, const recog_vote_t *b, int mode)
     return before;
 }
 
-/* Iterative heap sort (no recursion, O(n log n), in place). */
-static void sort_votes(recog_vote_t *v, uint32_t n, int mode)
+/* Hypothesis order: by score, descending. */
+static int hyp_before(const void *pa, const void *pb, int mode)
 {
-    uint32_t end;
-    uint32_t start;
-    if (n < 2u) {
-        return;
+    const recog_hyp_t *a = (const recog_hyp_t *)pa;
+    const recog_hyp_t *b = (const recog_hyp_t *)pb;
+    int before = 0;
+    (void)mode;
+    if (a->score > b->score) {
+        before = 1;
     }
-    start = n / 2u;
-    end = n;
-    while (end > 1u) {
-        uint32_t root;
-        if (start > 0u) {
-            start--;
-            root = start;
-        } else {
-            const recog_vote_t t = v[0];
-            end--;
-            v[0] = v[end];
-            v[end] = t;
-            root = 0u;
-        }
-        /* sift down; a max-heap of "comes last" keeps the first elements at the front */
-        while (((2u * root) + 1u) < end) {
-            uint32_t child = (2u * root) + 1u;
-            if (((child + 1u) < end) && (vote_before(&v[child], &v[child + 1u], mode) != 0)) {
-                child++;
-            }
-            if (vote_before(&v[root], &v[child], mode) != 0) {
-                const recog_vote_t t = v[root];
-                v[root] = v[child];
-                v[child] = t;
-                root = child;
-            } else {
-                root = end; /* in place: stop */
-            }
-        }
+    return before;
+}
+
+/* Swap two elements of `size` bytes. */
+static void swap_bytes(uint8_t *a, uint8_t *b, size_t size)
+{
+    size_t i;
+    for (i = 0u; i < size; i++) {
+        const uint8_t t = a[i];
+        a[i] = b[i];
+        b[i] = t;
     }
 }
 
-/* Hypotheses by score, descending (iterative heap sort). */
-static void sort_hyps(recog_hyp_t *v, uint32_t n)
+/* Iterative heap sort of n elements of `size` bytes (no recursion, O(n log n), in place):
+   a max-heap of "comes last" leaves the elements in `before` order. */
+static void heap_sort(uint8_t *base, uint32_t n, size_t size,
+                      int (*before)(const void *a, const void *b, int mode), int mode)
 {
     uint32_t end;
     uint32_t start;
@@ -321,21 +309,18 @@ static void sort_hyps(recog_hyp_t *v, uint32_t n)
             start--;
             root = start;
         } else {
-            const recog_hyp_t t = v[0];
             end--;
-            v[0] = v[end];
-            v[end] = t;
+            swap_bytes(base, &base[(size_t)end * size], size);
             root = 0u;
         }
         while (((2u * root) + 1u) < end) {
             uint32_t child = (2u * root) + 1u;
-            if (((child + 1u) < end) && (v[child].score > v[child + 1u].score)) {
+            if (((child + 1u) < end) &&
+                (before(&base[(size_t)child * size], &base[((size_t)child + 1u) * size], mode) != 0)) {
                 child++;
             }
-            if (v[root].score > v[child].score) {
-                const recog_hyp_t t = v[root];
-                v[root] = v[child];
-                v[child] = t;
+            if (before(&base[(size_t)root * size], &base[(size_t)child * size], mode) != 0) {
+                swap_bytes(&base[(size_t)root * size], &base[(size_t)child * size], size);
                 root = child;
             } else {
                 root = end; /* in place: stop */
@@ -763,13 +748,13 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
     stage_end(&c, (uint32_t)SBR_RECOG_STAGE_VOTES, &t0);
 
     /* 3. hypotheses */
-    sort_votes(c.votes, c.nvotes, 0);
+    heap_sort((uint8_t *)(void *)c.votes, c.nvotes, sizeof(recog_vote_t), vote_before, 0);
     group_votes(&c);
     c.st.hypotheses = c.nhyps;
     stage_end(&c, (uint32_t)SBR_RECOG_STAGE_GROUP, &t0);
 
     /* 4. evidence per class, cascade verification */
-    sort_votes(c.votes, c.nvotes, 1);
+    heap_sort((uint8_t *)(void *)c.votes, c.nvotes, sizeof(recog_vote_t), vote_before, 1);
     score_hyps(&c);
     stage_end(&c, (uint32_t)SBR_RECOG_STAGE_VERIFY, &t0);
 
@@ -782,7 +767,7 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
                 kept++;
             }
         }
-        sort_hyps(c.hyps, kept);
+        heap_sort((uint8_t *)(void *)c.hyps, kept, sizeof(recog_hyp_t), hyp_before, 0);
         for (i = 0u; i < kept; i++) {
             float bi[4];
             uint32_t j;
