@@ -402,6 +402,30 @@ static void test_degenerate_input_gets_status(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_fd_match_config_default(NULL));
 }
 
+/* The descriptor check: valid descriptors pass with unit energy, damaged ones do not. */
+static void test_check_reports_energy(void)
+{
+    sbr_fd_t fd;
+    float e = -1.0f;
+    transform(0.0f, 1.0f, 0.0f, 0.0f, 0u);
+    fd = fd_of(g_tmp, NPTS);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_check(&fd, &e));
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, e);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_check(&fd, NULL));
+    fd.c[0].re += 1.0f; /* C(-M) = c[0] */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_check(&fd, &e));
+    TEST_ASSERT_TRUE(e > 1.5f);
+    fd.c[1].im = nanf("");
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_check(&fd, &e));
+    fd = fd_of(g_tmp, NPTS);
+    fd.scale = 0.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_check(&fd, &e));
+    fd.scale = 1.0f;
+    fd.m = SBR_FD_MAX_M + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_check(&fd, &e));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_fd_check(NULL, &e));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -416,5 +440,6 @@ int main(void)
     RUN_TEST(test_table);
     RUN_TEST(test_table_lanes_equal_single_matches);
     RUN_TEST(test_degenerate_input_gets_status);
+    RUN_TEST(test_check_reports_energy);
     return UNITY_END();
 }

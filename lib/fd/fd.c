@@ -192,9 +192,9 @@ static float coeff_energy(const sbr_fd_t *p)
     return (acc[0] + acc[1]) + (acc[2] + acc[3]);
 }
 
-/* A valid descriptor: M in range, positive finite scale, finite coefficients. */
-static sbr_status_t check_fd(const sbr_fd_t *fd)
+sbr_status_t sbr_fd_check(const sbr_fd_t *fd, float *energy)
 {
+    float e;
     if (fd == NULL) {
         return SBR_ERR_NULL;
     }
@@ -202,15 +202,19 @@ static sbr_status_t check_fd(const sbr_fd_t *fd)
         (fd->scale <= 0.0f)) {
         return SBR_ERR_RANGE;
     }
-    if (isfinite(coeff_energy(fd)) == 0) {
+    e = coeff_energy(fd); /* finite iff every coefficient is */
+    if (isfinite(e) == 0) {
         return SBR_ERR_RANGE;
+    }
+    if (energy != NULL) {
+        *energy = e;
     }
     return SBR_OK;
 }
 
 sbr_status_t sbr_fd_mirror(const sbr_fd_t *in, sbr_fd_t *out)
 {
-    const sbr_status_t st = check_fd(in);
+    const sbr_status_t st = sbr_fd_check(in, NULL);
     uint32_t k;
     uint32_t m;
 
@@ -235,7 +239,7 @@ sbr_status_t sbr_fd_mirror(const sbr_fd_t *in, sbr_fd_t *out)
 
 sbr_status_t sbr_fd_smooth(const sbr_fd_t *in, float sigma, sbr_fd_t *out)
 {
-    const sbr_status_t st = check_fd(in);
+    const sbr_status_t st = sbr_fd_check(in, NULL);
     const float g = 2.0f * SBR_PI_F * SBR_PI_F * sigma * sigma;
     float energy = 0.0f;
     float inv;
@@ -335,7 +339,7 @@ static sbr_status_t check_match_args(const sbr_fft_t *fft, const sbr_fd_match_co
     sbr_status_t st = sbr_fft_check(fft);
 
     if (st == SBR_OK) {
-        st = check_fd(query);
+        st = sbr_fd_check(query, NULL);
     }
     if (st != SBR_OK) {
         return st;
@@ -356,7 +360,7 @@ static sbr_status_t check_match_args(const sbr_fft_t *fft, const sbr_fd_match_co
 /* A prototype must be a valid descriptor with the query's M. */
 static sbr_status_t check_proto(const sbr_fd_t *query, const sbr_fd_t *proto)
 {
-    const sbr_status_t st = check_fd(proto);
+    const sbr_status_t st = sbr_fd_check(proto, NULL);
     if (st != SBR_OK) {
         return st;
     }

@@ -25,13 +25,18 @@ typedef struct recog_vote_s {
     uint16_t pad;
 } recog_vote_t;
 
-/* A hypothesis: weighted sums of its votes' geometry, then its verdict. */
+/* A hypothesis: weighted sums of its votes' geometry and their means (kept current as
+   votes join), then its verdict. */
 typedef struct recog_hyp_s {
     float sx;
     float sy;
     float sw;
     float sh;
     float sum;
+    float mx;
+    float my;
+    float mw;
+    float mh;
     float score;
     float share;
     uint16_t class_id;
@@ -120,25 +125,6 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
     return SBR_OK;
 }
 
-static int descriptor_ok(const sbr_fd_t *fd, uint32_t m)
-{
-    int ok = 1;
-    if ((fd->m != m) || (in_range(fd->scale, 1.0e-6f, 1.0e9f) == 0)) {
-        ok = 0;
-    } else {
-        uint32_t k;
-        float e = 0.0f;
-        for (k = 0u; k < ((2u * m) + 1u); k++) {
-            e += (fd->c[k].re * fd->c[k].re) + (fd->c[k].im * fd->c[k].im);
-        }
-        /* unit energy (a NaN fails the comparison) */
-        if (in_range(e, 0.99f, 1.01f) == 0) {
-            ok = 0;
-        }
-    }
-    return ok;
-}
-
 static int proto_ok(const sbr_model_proto_t *p, uint32_t g)
 {
     uint32_t k;
@@ -194,8 +180,10 @@ sbr_status_t sbr_model_check(const sbr_model_t *model)
             return SBR_ERR_CORRUPT;
         }
         for (i = model->group_first[g]; i < model->group_first[g + 1u]; i++) {
-            if ((proto_ok(&model->protos[i], g) == 0) ||
-                (descriptor_ok(&model->fds[i], model->fd_m) == 0)) {
+            float e = 0.0f;
+            /* sbr's descriptors have unit energy: anything else is a damaged table */
+            if ((proto_ok(&model->protos[i], g) == 0) || (model->fds[i].m != model->fd_m) ||
+                (sbr_fd_check(&model->fds[i], &e) != SBR_OK) || (in_range(e, 0.99f, 1.01f) == 0)) {
                 return SBR_ERR_CORRUPT;
             }
         }
@@ -426,14 +414,11 @@ static sbr_status_t cast_votes(recog_ctx_t *c, uint32_t pi)
 static int agrees(const recog_hyp_t *h, float cx, float cy, float w, float hh,
                   const sbr_recog_config_t *cfg)
 {
-    const float mx = h->sx / h->sum;
-    const float my = h->sy / h->sum;
-    const float mw = h->sw / h->sum;
-    const float mh = h->sh / h->sum;
     const float f = 1.0f + cfg->size_tol;
     int ok = 0;
-    if ((fabsf(cx - mx) <= (cfg->centre_tol * mw)) && (fabsf(cy - my) <= (cfg->centre_tol * mh)) &&
-        (w <= (mw * f)) && ((w * f) >= mw) && (hh <= (mh * f)) && ((hh * f) >= mh)) {
+    if ((fabsf(cx - h->mx) <= (cfg->centre_tol * h->mw)) &&
+        (fabsf(cy - h->my) <= (cfg->centre_tol * h->mh)) && (w <= (h->mw * f)) &&
+        ((w * f) >= h->mw) && (hh <= (h->mh * f)) && ((hh * f) >= h->mh)) {
         ok = 1;
     }
     return ok;
@@ -467,6 +452,10 @@ static void group_votes(recog_ctx_t *c)
         c->hyps[found].sw += v->weight * v->w;
         c->hyps[found].sh += v->weight * v->h;
         c->hyps[found].sum += v->weight;
+        c->hyps[found].mx = c->hyps[found].sx / c->hyps[found].sum;
+        c->hyps[found].my = c->hyps[found].sy / c->hyps[found].sum;
+        c->hyps[found].mw = c->hyps[found].sw / c->hyps[found].sum;
+        c->hyps[found].mh = c->hyps[found].sh / c->hyps[found].sum;
         v->hyp = found;
     }
 }
@@ -502,15 +491,11 @@ static int voted(const recog_vote_t *votes, uint32_t a, uint32_t b, uint32_t q)
 static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint32_t cls)
 {
     const sbr_model_proto_t *pr = &c->model->protos[q];
-    const float mx = h->sx / h->sum;
-    const float my = h->sy / h->sum;
-    const float mw = h->sw / h->sum;
-    const float mh = h->sh / h->sum;
-    const float s = 0.5f * ((mw / pr->w) + (mh / pr->h)); /* predicted part scale */
-    const float px = mx - (pr->dx * s);
-    const float py = my - (pr->dy * s);
+    const float s = 0.5f * ((h->mw / pr->w) + (h->mh / pr->h)); /* predicted part scale */
+    const float px = h->mx - (pr->dx * s);
+    const float py = h->my - (pr->dy * s);
     const float f = 1.0f + c->cfg->size_tol;
-    const float tol = c->cfg->centre_tol * maxf(mw, mh);
+    const float tol = c->cfg->centre_tol * maxf(h->mw, h->mh);
     float best = 0.0f;
     uint32_t i;
     for (i = 0u; i < c->nparts; i++) {
@@ -617,14 +602,12 @@ static void score_hyps(recog_ctx_t *c)
 /* Box of a hypothesis in view pixels, clamped to the view: x0, y0, x1, y1 (exclusive). */
 static void hyp_box(const recog_hyp_t *h, uint32_t vw, uint32_t vh, float b[4])
 {
-    const float mx = h->sx / h->sum;
-    const float my = h->sy / h->sum;
-    const float hw = 0.5f * (h->sw / h->sum);
-    const float hh = 0.5f * (h->sh / h->sum);
-    b[0] = maxf(0.0f, mx - hw);
-    b[1] = maxf(0.0f, my - hh);
-    b[2] = fminf((float)vw, mx + hw);
-    b[3] = fminf((float)vh, my + hh);
+    const float hw = 0.5f * h->mw;
+    const float hh = 0.5f * h->mh;
+    b[0] = maxf(0.0f, h->mx - hw);
+    b[1] = maxf(0.0f, h->my - hh);
+    b[2] = fminf((float)vw, h->mx + hw);
+    b[3] = fminf((float)vh, h->my + hh);
 }
 
 static float box_iou(const float a[4], const float b[4])
