@@ -64,13 +64,18 @@ configure_build() {
   cmake --build "$BUILD/$name" -j "$JOBS"
 }
 
+# The native build with tests and host tools (the test command, detect and train share it).
+build_native() {
+  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
+}
+
 unity_root() { echo "$BUILD/native/_deps/unity"; }
 
 cmd_test() {
   setup
   mkdir -p "$BUILD"
   local failed=0 summary=()
-  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
+  build_native
   configure_build sanitize -DCMAKE_BUILD_TYPE=Debug -DSBR_SANITIZE=ON -DSBR_BUILD_HOST_TOOLS=OFF \
     -DUNITY_ROOT="$(unity_root)"
   configure_build cortex-m4 -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-cortex-m4f.cmake" \
@@ -134,7 +139,7 @@ cmd_detect() {
   fi
   setup
   mkdir -p "$BUILD" "$out"
-  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
+  build_native
   local tools="$BUILD/native/host_tools"
   log "sbr_detect over $input${range:+ (images $range)}"
   "$tools/sbr_detect" --input "$input" ${range:+--range "$range"} \
@@ -156,7 +161,7 @@ cmd_detect() {
 
 cmd_train() {
   setup
-  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
+  build_native
   log "sbr_train on GTSDB 00000-00399 -> lib/models/sbr_model_gtsdb.c, $BUILD/sbr_gtsdb.sbrm"
   "$BUILD/native/host_tools/sbr_train" --data "$ROOT/../shared/data/gtsdb" --range 0-399 \
       --out-c "$ROOT/lib/models/sbr_model_gtsdb.c" --out-model "$BUILD/sbr_gtsdb.sbrm" "$@"

@@ -58,6 +58,8 @@ sbr_image_t bgr_view(const cv::Mat &m) {
     return v;
 }
 
+const char *const kSuperclassNames[4] = {"prohibitory", "mandatory", "danger", "other"};
+
 int superclass_of(int c) {
     switch (c) {
     case 0: case 1: case 2: case 3: case 4: case 5: case 7: case 8: case 9: case 10: case 15: case 16:

@@ -33,8 +33,10 @@ int image_number(const std::string &path);
 // A BGR888 view of an 8-bit, 3-channel OpenCV image.
 sbr_image_t bgr_view(const cv::Mat &m);
 
-// Superclass of a GTSDB class (0 prohibitory, 1 mandatory, 2 danger, 3 other) and names.
+// Superclass of a GTSDB class (0 prohibitory, 1 mandatory, 2 danger, 3 other; GTSDB's
+// ReadMe), the superclass names, and short class names.
 int superclass_of(int class_id);
+extern const char *const kSuperclassNames[4];
 const char *class_name(int class_id);
 
 }  // namespace sbr_host

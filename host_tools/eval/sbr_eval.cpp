@@ -35,21 +35,14 @@
 #include <string>
 #include <vector>
 
+#include "gtsdb.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-const char *kSuper[4] = {"prohibitory", "mandatory", "danger", "other"};
-
-int superclass_of(int c) {
-    static const std::set<int> prohib = {0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 15, 16};
-    static const std::set<int> mand = {33, 34, 35, 36, 37, 38, 39, 40};
-    static const std::set<int> danger = {11, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31};
-    if (prohib.count(c)) return 0;
-    if (mand.count(c)) return 1;
-    if (danger.count(c)) return 2;
-    return 3;  // 6, 12, 13, 14, 17, 32, 41, 42
-}
+using sbr_host::superclass_of;  // GTSDB's ReadMe superclasses (host_tools/common/gtsdb.hpp)
+const char *const *kSuper = sbr_host::kSuperclassNames;
 
 struct Box {
     int image = 0;

@@ -61,7 +61,6 @@ struct Instance {
     int cls = 0;
     int sign = 0;      // global sign index
     float area = 0;    // part box area, for "largest part"
-    bool outline = false;  // the part's box is the sign's (IoU >= 0.6)
 };
 
 struct Frame {
@@ -182,7 +181,6 @@ int main(int argc, char **argv) {
     // 2. instances and background
     std::vector<Instance> inst;
     std::vector<std::vector<sbr_fd_t>> background(SBR_MODEL_GROUPS);
-    std::vector<std::vector<float>> background_scale(SBR_MODEL_GROUPS);
     std::map<int, int> signs_per_class;
     int nsigns = 0;
     for (size_t i = 0; i < files.size(); ++i) {
@@ -218,21 +216,16 @@ int main(int argc, char **argv) {
                 in.cls = b.class_id;
                 in.sign = sign_ids[k];
                 in.area = float(p.bbox.width) * float(p.bbox.height);
-                in.outline = in.area / (bw * bh) >= 0.6f;
                 inst.push_back(in);
             }
             if (!touches) {
                 background[group_of(p)].push_back(p.fd);
-                background_scale[group_of(p)].push_back(p.fd.scale);
             }
         }
     }
     {
-        std::set<int> outlined, any;
-        for (const auto &in : inst) {
-            any.insert(in.sign);
-            if (in.outline) outlined.insert(in.sign);
-        }
+        std::set<int> any;
+        for (const auto &in : inst) any.insert(in.sign);
         std::fprintf(stderr, "sbr_train: signs with at least one part instance: %zu of %d\n", any.size(), nsigns);
     }
     size_t nbg = 0;
@@ -293,12 +286,7 @@ int main(int argc, char **argv) {
         size_t best_n = 0;
         for (size_t i = 0; i < inst.size(); ++i) {
             if (taken[i]) continue;
-            size_t n = 1;
-            {
-                std::set<int> s{inst[i].sign};
-                for (int j : nb[i]) if (!taken[j]) s.insert(inst[j].sign);
-                n = s.size();
-            }
+            const size_t n = sign_count(int(i)).size();
             if (n > best_n) { best_n = n; best = int(i); }
         }
         if (best < 0 || best_n < size_t(min_support)) break;
@@ -371,16 +359,16 @@ int main(int argc, char **argv) {
             // background matches that would vote for a sign of plausible size
             size_t neg = 0;
             const auto &bg = background[s.group];
-            if (!bg.empty()) {
-                res.resize(bg.size());
-                // match each background part against this prototype (one at a time)
+            uint32_t best = 0;
+            res.resize(bg.size());
+            // The error is symmetric (swapping query and prototype conjugates r and mirrors
+            // the shift; max Re r and |rotation| stay), so the prototype is the query and the
+            // background group the table: one four-lane pass instead of a call per part.
+            if (!bg.empty() && sbr_fd_match_table(&fftp, &mc, &b.fd, bg.data(), uint32_t(bg.size()), work.data(),
+                                                  uint32_t(work.size()), res.data(), &best) == SBR_OK) {
                 for (size_t k = 0; k < bg.size(); ++k) {
-                    const float size = std::max(b.p.w, b.p.h) * background_scale[s.group][k];
-                    if (size < cfg.min_size || size > cfg.max_size) continue;
-                    sbr_fd_match_t r;
-                    if (sbr_fd_match(&fftp, &mc, &bg[k], &b.fd, work.data(), uint32_t(work.size()), &r) == SBR_OK &&
-                        r.error <= vote_error)
-                        ++neg;
+                    const float size = std::max(b.p.w, b.p.h) * bg[k].scale;
+                    if (res[k].error <= vote_error && size >= cfg.min_size && size <= cfg.max_size) ++neg;
                 }
             }
             const float pos = float(pr.signs.size());
