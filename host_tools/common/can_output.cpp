@@ -22,6 +22,12 @@ CanLogWriter::~CanLogWriter() {
 
 static float clampf(float v, float lo, float hi) { return std::min(hi, std::max(lo, v)); }
 
+// km/h of GTSDB's speed-limit classes (0-5, 7, 8); SBR_CAN_SPEED_NONE for the others.
+static uint32_t speed_of_class(uint32_t class_id) {
+    static const uint32_t kmh[9] = {20, 30, 50, 60, 70, 80, SBR_CAN_SPEED_NONE, 100, 120};
+    return class_id < 9 ? kmh[class_id] : SBR_CAN_SPEED_NONE;
+}
+
 int CanLogWriter::write_image(const std::vector<Detection> &dets, float processing_ms,
                               uint32_t regions, bool error_flag) {
     if (!file_) return -1;
@@ -39,7 +45,37 @@ int CanLogWriter::write_image(const std::vector<Detection> &dets, float processi
         c.track_id = SBR_CAN_TRACK_NONE_DET;
         cd.push_back(c);
     }
+    // this image's detections are confirmed and listed first, by decreasing score (ties in
+    // the order given, as the detection frames)
+    std::vector<Detection> by_score(dets);
+    std::stable_sort(by_score.begin(), by_score.end(),
+                     [](const Detection &a, const Detection &b) { return a.score > b.score; });
+    std::vector<Confirmed> fresh;
+    for (const Detection &d : by_score) {
+        Confirmed c;
+        c.class_id = static_cast<uint32_t>(d.class_id);
+        c.score = clampf(d.score, 0.0f, 1.0f);
+        c.track_id = next_track_;
+        c.image = image_;
+        next_track_ = (next_track_ + 1u) % 255u;
+        fresh.push_back(c);
+    }
+    confirmed_.insert(confirmed_.begin(), fresh.begin(), fresh.end());
+    while (!confirmed_.empty() && (confirmed_.size() > 4u || image_ - confirmed_.back().image >= 255u))
+        confirmed_.pop_back();
+    std::vector<sbr_can_confirmed_sign_t> cs;
+    for (const Confirmed &c : confirmed_) {
+        sbr_can_confirmed_sign_t s{};
+        s.class_id = c.class_id;
+        s.track_id = c.track_id;
+        s.speed_kmh = speed_of_class(c.class_id);
+        s.confidence = std::round(100.0f * c.score);
+        s.age_frames = image_ - c.image;
+        cs.push_back(s);
+    }
     sbr_can_cycle_t cyc{};
+    cyc.signs = cs.empty() ? nullptr : cs.data();
+    cyc.sign_count = static_cast<uint32_t>(cs.size());
     cyc.detections = cd.empty() ? nullptr : cd.data();
     cyc.detection_count = static_cast<uint32_t>(cd.size());
     cyc.status.frame_counter = image_;

@@ -22,6 +22,12 @@ struct Detection {
     float score = 0.0f;  // 0..1
 };
 
+// Confirmed signs (SBR_ConfirmedSign): the images are taken as independent stills, so a
+// detection passed to write_image (one at the operating point) is confirmed in its own
+// image; each gets a new track id (0..254, wrapping). The four newest stay listed, newest
+// first (within an image by decreasing score), with their age in images, until they are
+// 255 images old. SpeedLimit carries the km/h of the speed-limit classes 0-5, 7, 8 and
+// 255 otherwise. (A tracker confirming over consecutive frames will replace this rule.)
 class CanLogWriter {
 public:
     // base_time_us: timestamp of the first image; period_us: time between images.
@@ -42,6 +48,13 @@ private:
     sbr_can_sched_config_t cfg_{};
     uint64_t base_ = 0, period_ = 0;
     uint32_t image_ = 0, dropped_ = 0;
+    // Confirmed signs, newest first (at most four are listed, as the DBC allows).
+    struct Confirmed {
+        uint32_t class_id = 0, track_id = 0, image = 0;
+        float score = 0.0f;
+    };
+    std::vector<Confirmed> confirmed_;
+    uint32_t next_track_ = 0;
 };
 
 }  // namespace sbr_host

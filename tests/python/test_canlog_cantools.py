@@ -137,8 +137,24 @@ def main():
     images = list(cycles.items())
     assert len(images) == a.images >= a.min_images, len(images)
     compared = 0
+    confirmed = []  # (class, score, image), newest first: the still-image rule of can_output.hpp
+    speed = {0: 20, 1: 30, 2: 50, 3: 60, 4: 70, 5: 80, 7: 100, 8: 120}
+    signs_compared = 0
     for k, (t, fr) in enumerate(images):
         want = sorted(dets.get(a.first + k, []), key=lambda d: (-d["score"], d["order"]))
+        confirmed = [(w["cls"], w["score"], k) for w in want] + confirmed
+        confirmed = [c for c in confirmed if k - c[2] < 255][:4]
+        signs = [d for fid, d in fr if fid == 0x300]
+        if not confirmed:
+            assert len(signs) == 1 and signs[0]["SBR_Sign_Class"] == 255, signs
+        else:
+            assert len(signs) == len(confirmed), (k, signs, confirmed)
+            for slot, (c, g) in enumerate(zip(confirmed, signs)):
+                assert g["SBR_Sign_Slot"] == slot and g["SBR_Sign_Count"] == len(confirmed)
+                assert g["SBR_Sign_Class"] == c[0] and g["SBR_Sign_AgeFrames"] == k - c[2], (g, c)
+                assert g["SBR_Sign_SpeedLimit"] == speed.get(c[0], 255), g
+                assert abs(g["SBR_Sign_Confidence"] - 100 * c[1]) <= 0.5 + 1e-6, (g, c)
+                signs_compared += 1
         status = [d for fid, d in fr if fid == 0x301]
         got = [d for fid, d in fr if fid == 0x310]
         assert len(status) == 1 and status[0]["SBR_Status_FrameCounter"] == k % 65536
@@ -157,7 +173,8 @@ def main():
             assert abs(g["SBR_Det_Height"] - w["h"]) <= 2.0 + 1e-6, (g, w)
             compared += 1
     print(f"cantools decode: {frames} frames over {len(images)} images decoded, E2E valid, "
-          f"{compared} detections equal within resolution: OK")
+          f"{compared} detections and {signs_compared} confirmed-sign slots equal within "
+          f"resolution: OK")
     assert compared > 0, "no detections were compared"
     return 0
 
