@@ -23,7 +23,7 @@ JOBS="$(nproc 2>/dev/null || echo 2)"
 PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip python3-venv can-utils
           gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
           gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user
-          libfftw3-dev libkissfft-dev cppcheck libopencv-dev)
+          libfftw3-dev libkissfft-dev cppcheck libopencv-dev chromium)
 
 log() { printf '\n== %s\n' "$*"; }
 
@@ -42,16 +42,18 @@ setup() {
   setup_venv
 }
 
-# The pinned Python packages (cantools, python-can) in build/venv, rebuilt when
-# tests/python/requirements.txt changes.
+# The pinned Python packages (dashboard: cantools, python-can; tests: pytest, Playwright)
+# in build/venv, rebuilt when a requirements file changes.
 setup_venv() {
   local venv="$BUILD/venv" req="$ROOT/tests/python/requirements.txt"
-  if [ ! -x "$venv/bin/python" ] || ! cmp -s "$req" "$venv/requirements.installed"; then
+  local want
+  want="$(cat "$req" "$ROOT/dashboard/requirements.txt")"
+  if [ ! -x "$venv/bin/python" ] || [ "$want" != "$(cat "$venv/requirements.installed" 2>/dev/null)" ]; then
     log "python environment: $venv"
     rm -rf "$venv"
     python3 -m venv "$venv"
     "$venv/bin/pip" install -q --disable-pip-version-check -r "$req"
-    cp "$req" "$venv/requirements.installed"
+    printf '%s\n' "$want" > "$venv/requirements.installed"
   fi
 }
 

@@ -1,0 +1,105 @@
+"""sbr dashboard: a live view of sbr's CAN traffic, decoded with the DBC alone.
+
+  python -m sbr_dashboard --log FILE [--fast | --rate R]    replay a candump log
+  python -m sbr_dashboard --socketcan IFACE                 a live SocketCAN interface
+  python -m sbr_dashboard --virtual CHANNEL [--feed-log F]  python-can's virtual bus
+options: --dbc FILE (default dbc/sbr.dbc), --terminal (no web page), --host, --port,
+         --timeout-factor F (default 3), --exit-after-end S (stop S seconds after a log
+         ended; default: keep serving), --once (terminal: print one screen when the log
+         ended, then exit)
+"""
+import argparse
+import os
+import signal
+import sys
+import threading
+import time
+
+from .dbc import DbcError, DbcModel
+from .monitor import Monitor
+from .sources import BusSource, LogSource, SourceError, feed_log_to_bus
+from .terminal import HOME_CLEAR, render
+
+DEFAULT_DBC = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
+    os.path.abspath(__file__)))), "dbc", "sbr.dbc")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="sbr_dashboard", description=__doc__.split("\n")[0])
+    src = ap.add_mutually_exclusive_group(required=True)
+    src.add_argument("--log", help="candump log to replay")
+    src.add_argument("--socketcan", metavar="IFACE", help="live SocketCAN interface, e.g. can0")
+    src.add_argument("--virtual", metavar="CHANNEL", help="python-can virtual bus channel")
+    ap.add_argument("--feed-log", help="with --virtual: play this log onto the bus")
+    ap.add_argument("--fast", action="store_true", help="replay as fast as possible")
+    ap.add_argument("--rate", type=float, default=1.0, help="replay speed factor (default 1)")
+    ap.add_argument("--dbc", default=DEFAULT_DBC)
+    ap.add_argument("--terminal", action="store_true", help="terminal view instead of the page")
+    ap.add_argument("--once", action="store_true", help="terminal: one screen at the end of the log")
+    ap.add_argument("--host", default="127.0.0.1")
+    ap.add_argument("--port", type=int, default=8080, help="0: any free port")
+    ap.add_argument("--timeout-factor", type=float, default=3.0)
+    ap.add_argument("--exit-after-end", type=float, default=None)
+    a = ap.parse_args(argv)
+    if a.rate <= 0 and not a.fast:
+        ap.error("--rate must be > 0 (or use --fast)")
+    try:
+        model = DbcModel(a.dbc)
+    except DbcError as e:
+        print(f"sbr_dashboard: {e}", file=sys.stderr)
+        return 2
+    monitor = Monitor(model, timeout_factor=a.timeout_factor)
+    try:
+        if a.log:
+            source = LogSource(monitor, a.log, rate=0.0 if a.fast else a.rate)
+        elif a.socketcan:
+            source = BusSource(monitor, "socketcan", a.socketcan)
+        else:
+            source = BusSource(monitor, "virtual", a.virtual)
+    except SourceError as e:
+        print(f"sbr_dashboard: {e}", file=sys.stderr)
+        return 2
+    monitor.source = source.name
+    stop = threading.Event()
+    signal.signal(signal.SIGTERM, lambda *_: stop.set())
+
+    server = None
+    if not a.terminal:
+        from .web import WebServer
+        try:
+            server = WebServer(monitor, a.host, a.port)
+        except OSError as e:
+            print(f"sbr_dashboard: cannot listen on {a.host}:{a.port}: {e}", file=sys.stderr)
+            return 2
+        server.start()
+        print(f"sbr_dashboard: open {server.url} in a browser ({source.name}); Ctrl-C stops",
+              flush=True)
+    source.start()
+    if a.virtual and a.feed_log:
+        threading.Thread(target=feed_log_to_bus, daemon=True,
+                         args=(a.feed_log, "virtual", a.virtual, 0.0 if a.fast else a.rate,
+                               stop)).start()
+    ended_at = None
+    try:
+        while not stop.is_set():
+            if a.terminal and not a.once:
+                sys.stdout.write(HOME_CLEAR + render(monitor.snapshot()))
+                sys.stdout.flush()
+            if monitor.source_ended:
+                ended_at = ended_at or time.monotonic()
+                if a.once:
+                    sys.stdout.write(render(monitor.snapshot()))
+                    break
+                if a.exit_after_end is not None and time.monotonic() - ended_at >= a.exit_after_end:
+                    break
+            stop.wait(0.5 if a.terminal else 0.1)
+    except KeyboardInterrupt:
+        pass
+    source.stop()
+    if server:
+        server.stop()
+    return 1 if source.error else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,134 @@
+"""Inputs: a candump log (at recorded speed or as fast as possible), a live SocketCAN
+interface, or python-can's virtual bus. Each runs in a thread of its own and feeds a
+Monitor; `clock()` gives the current source time for timeout supervision."""
+import threading
+import time
+
+import can
+
+
+class SourceError(Exception):
+    pass
+
+
+class Source:
+    name = ""
+
+    def __init__(self, monitor):
+        self.monitor = monitor
+        self.stop_event = threading.Event()
+        self.thread = None
+        self.error = None
+
+    def start(self):
+        self.thread = threading.Thread(target=self._guarded, name=self.name, daemon=True)
+        self.thread.start()
+        ticker = threading.Thread(target=self._tick_loop, name="ticker", daemon=True)
+        ticker.start()
+
+    def stop(self):
+        self.stop_event.set()
+
+    def _guarded(self):
+        try:
+            self.run()
+        except Exception as e:  # a broken source is reported, never a crash
+            self.error = str(e)
+            self.monitor.end_of_source(f"source failed: {e}")
+
+    def _tick_loop(self):
+        while not self.stop_event.wait(0.05):
+            now = self.clock()
+            if now is not None:
+                self.monitor.tick(now)
+
+    def clock(self):
+        return None
+
+    def _feed(self, msg, t=None):
+        self.monitor.feed(msg.timestamp if t is None else t, msg.arbitration_id, msg.data,
+                          is_extended=msg.is_extended_id, is_error=msg.is_error_frame,
+                          is_remote=msg.is_remote_frame)
+
+
+class LogSource(Source):
+    """A candump log (`(sec.usec) ifname ID#DATA` lines), via python-can's reader. With
+    rate 0 it is replayed as fast as possible (source time = the last frame's timestamp);
+    otherwise at `rate` times the recorded speed (source time runs with the wall clock)."""
+
+    def __init__(self, monitor, path, rate=1.0):
+        super().__init__(monitor)
+        self.path, self.rate = path, rate
+        self.name = f"log {path}" + (" (as fast as possible)" if rate == 0 else
+                                     f" ({rate:g}x recorded speed)")
+        self._t0 = self._wall0 = None
+        try:
+            with open(path, "rb"):
+                pass
+        except OSError as e:
+            raise SourceError(f"cannot read {path}: {e}") from e
+
+    def clock(self):
+        if self.rate == 0 or self._t0 is None or self.monitor.source_ended:
+            return None
+        return self._t0 + (time.monotonic() - self._wall0) * self.rate
+
+    def run(self):
+        for msg in can.CanutilsLogReader(self.path):
+            if self.stop_event.is_set():
+                return
+            t = msg.timestamp
+            if self._t0 is None:
+                self._t0, self._wall0 = t, time.monotonic()
+            if self.rate > 0:
+                delay = self._wall0 + (t - self._t0) / self.rate - time.monotonic()
+                if delay > 0 and self.stop_event.wait(delay):
+                    return
+            self._feed(msg, t)
+        self.monitor.end_of_source("end of log")
+
+
+class BusSource(Source):
+    """A live python-can bus: SocketCAN (`interface='socketcan'`) or the virtual bus."""
+
+    def __init__(self, monitor, interface, channel):
+        super().__init__(monitor)
+        self.name = f"{interface} {channel}"
+        try:
+            self.bus = can.Bus(interface=interface, channel=channel)
+        except (OSError, can.CanError, ValueError, ImportError) as e:
+            raise SourceError(f"cannot open {interface} channel {channel}: {e}") from e
+
+    def clock(self):
+        return time.time()
+
+    def run(self):
+        try:
+            while not self.stop_event.is_set():
+                msg = self.bus.recv(timeout=0.1)
+                if msg is not None:
+                    # a receive time from the bus; virtual buses stamp time.time() too
+                    self._feed(msg, msg.timestamp or time.time())
+        finally:
+            self.bus.shutdown()
+
+
+def feed_log_to_bus(path, interface, channel, rate=1.0, stop_event=None):
+    """Play a candump log onto a bus (the ECU side, for demos and tests on the virtual bus),
+    with fresh timestamps, at `rate` times the recorded speed (0: as fast as possible)."""
+    bus = can.Bus(interface=interface, channel=channel)
+    try:
+        t0 = wall0 = None
+        for msg in can.CanutilsLogReader(path):
+            if stop_event is not None and stop_event.is_set():
+                break
+            if t0 is None:
+                t0, wall0 = msg.timestamp, time.monotonic()
+            if rate > 0:
+                delay = wall0 + (msg.timestamp - t0) / rate - time.monotonic()
+                if delay > 0:
+                    time.sleep(delay)
+            bus.send(can.Message(arbitration_id=msg.arbitration_id, data=msg.data,
+                                 is_extended_id=msg.is_extended_id, timestamp=time.time()))
+    finally:
+        bus.shutdown()

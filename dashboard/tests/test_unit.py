@@ -1,0 +1,295 @@
+"""Unit tests of the dashboard: the DBC model, E2E checking, range checks, timeouts, the
+application state, the views and the inputs, with crafted frames."""
+import json
+import random
+import threading
+import time
+import urllib.request
+
+import can
+import pytest
+
+from frames import DBC, Sender, frame, model
+from sbr_dashboard.dbc import Crc8, DbcError, DbcModel
+from sbr_dashboard.monitor import E2EChecker, Monitor, TimeoutMonitor
+from sbr_dashboard.sources import BusSource, LogSource
+from sbr_dashboard.terminal import render
+from sbr_dashboard.web import WebServer
+
+M = model()
+
+
+def feed_all(mon, frames, t):
+    for fid, data in frames:
+        mon.feed(t, fid, data)
+
+
+# -- the DBC model -----------------------------------------------------------------------
+def test_dbc_gives_e2e_and_cycle_times():
+    assert sorted(M.messages) == [0x300, 0x301, 0x310, 0x320]
+    for fid, spec in M.messages.items():
+        assert spec.cycle_ms == 100
+        assert spec.data_id == 0x5B00 | (fid & 0xFF)
+        assert spec.crc_signal.endswith("_CRC") and spec.counter_signal.endswith("_Counter")
+        assert (spec.counter_start, spec.counter_length, spec.counter_max) == (8, 4, 14)
+    assert (M.crc.poly, M.crc.init, M.crc.xorout) == (0x1D, 0xFF, 0xFF)
+
+
+def test_crc_check_value_and_autosar_vectors():
+    crc = M.crc
+    assert crc(b"123456789") == 0x4B
+    # AUTOSAR CRC library, CRC-8 SAE J1850 check values
+    for data, want in [("00000000", 0x59), ("F20183", 0x37), ("0FAA0055", 0x79),
+                       ("00FF5511", 0xB8), ("332255AABBCCDDEEFF", 0xCB), ("926B55", 0x8C),
+                       ("FFFFFFFF", 0x74)]:
+        assert crc(bytes.fromhex(data)) == want, data
+
+
+def test_dbc_with_another_crc_is_refused(tmp_path):
+    text = open(DBC).read()
+    bad = tmp_path / "bad.dbc"
+    bad.write_text(text.replace("check 0x4B", "check 0x4C"))
+    with pytest.raises(DbcError):
+        DbcModel(str(bad))
+    missing = tmp_path / "nocrc.dbc"
+    missing.write_text(text.replace("polynomial 0x1D", "poly 0x1D"))
+    with pytest.raises(DbcError):
+        DbcModel(str(missing))
+    with pytest.raises(DbcError):
+        DbcModel(str(tmp_path / "absent.dbc"))
+
+
+# -- E2E -----------------------------------------------------------------------------------
+def test_frames_written_by_the_c_library_pass():
+    # candump lines written by sbr's C scheduler (sbr_detect --canlog), cycle 0 and 1
+    chk = {fid: E2EChecker(M.messages[fid], M.crc) for fid in M.messages}
+    first = [(0x300, "D800FFFFFF000000"), (0x301, "6C0000005E07C501"),
+             (0x310, "06F00300000000FC"), (0x320, "AD00FF0000000000")]
+    second = [(0x300, "8501FFFFFF000000"), (0x301, "E9010100DB0A7415"),
+              (0x310, "4EE1403C5262B9FC"), (0x320, "F001FF0000000000")]
+    assert [chk[f].check(bytes.fromhex(d)) for f, d in first] == ["first"] * 4
+    assert [chk[f].check(bytes.fromhex(d)) for f, d in second] == ["ok"] * 4
+
+
+def test_every_single_bit_flip_is_a_crc_error():
+    good = frame(M, 0x310, 3, SBR_Det_Class=14, SBR_Det_Confidence=88, SBR_Det_CenterX=600,
+                 SBR_Det_CenterY=300, SBR_Det_Width=40, SBR_Det_Height=44)
+    for bit in range(64):
+        bad = bytearray(good)
+        bad[bit // 8] ^= 1 << (bit % 8)
+        assert E2EChecker(M.messages[0x310], M.crc).check(bytes(bad)) == "crc", bit
+
+
+def test_counter_sequence_results():
+    chk = E2EChecker(M.messages[0x301], M.crc)
+    f = lambda c: frame(M, 0x301, c)
+    assert chk.check(f(13)) == "first"
+    assert chk.check(f(14)) == "ok"
+    assert chk.check(f(0)) == "ok"          # wraps after 14
+    assert chk.check(f(0)) == "repeated"
+    assert chk.check(f(3)) == "skipped"     # 1 and 2 lost; state follows
+    assert chk.check(f(4)) == "ok"
+    assert chk.check(frame(M, 0x301, 15, strict=False)) == "bad_counter"
+    assert chk.check(f(5)[:7]) == "length"
+    # a status payload under another id: its Data ID differs, so the CRC fails
+    assert E2EChecker(M.messages[0x300], M.crc).check(f(6)) == "crc"
+
+
+# -- range, timeouts, state ----------------------------------------------------------------
+def test_out_of_range_values_are_counted_and_not_shown():
+    mon = Monitor(M)
+    s = Sender(M)
+    feed_all(mon, s.cycle(0, dets=[(1, 50, 100, 100)]), 0.0)
+    assert len(mon.snapshot()["detections"]) == 1
+    feed_all(mon, s.cycle(1), 0.1)
+    # confidence raw 63 -> 126 % (range 0..100), valid CRC and counter
+    feed_all(mon, [(0x301, s(0x301, SBR_Status_FrameCounter=2, SBR_Status_DetectionCount=1)),
+                   (0x310, frame(M, 0x310, s.counter[0x310], strict=False, SBR_Det_Class=2,
+                                 SBR_Det_Confidence=126, SBR_Det_TrackId=63))], 0.2)
+    snap = mon.snapshot()
+    det = next(m for m in snap["messages"] if m["name"] == "SBR_Detection")
+    assert det["out_of_range"] == 1 and det["state"] == "range error"
+    assert snap["detections"] == []
+    assert any(e["kind"] == "range" and "SBR_Det_Confidence=126" in e["detail"]
+               for e in snap["events"])
+    assert snap["totals"]["out_of_range"] == 1 and snap["totals"]["e2e_errors"] == 0
+
+
+def test_timeout_after_three_cycles_once_per_silence_and_recovery():
+    tm = TimeoutMonitor(M.messages, factor=3.0)
+    tm.received(0x300, 0.0)
+    assert tm.tick(0.29) == []
+    # 0x300 silent since its frame at 0.0, the others never seen since the start at 0.0
+    assert sorted(tm.tick(0.31)) == [0x300, 0x301, 0x310, 0x320]
+    assert tm.count[0x300] == 1
+    assert tm.tick(1.0) == []     # still the same silence
+    assert tm.received(0x300, 1.05) is True
+    assert tm.tick(1.3) == [] and tm.tick(1.36) == [0x300]
+    assert tm.count[0x300] == 2
+
+
+def test_monitor_timeout_of_a_silent_message_in_source_time():
+    mon = Monitor(M)
+    s = Sender(M)
+    for k in range(5):
+        feed_all(mon, s.cycle(k), 0.1 * k)
+    for k in range(5, 15):  # tracked objects go silent
+        feed_all(mon, [f for f in s.cycle(k) if f[0] != 0x320], 0.1 * k)
+    snap = mon.snapshot()
+    obj = next(m for m in snap["messages"] if m["name"] == "SBR_TrackedObject")
+    assert obj["timeouts"] == 1 and obj["state"] == "timeout"
+    assert snap["totals"]["timeouts"] == 1
+    # the ECU kept counting while its frames were lost: the next one is "skipped" (valid)
+    feed_all(mon, s.cycle(15), 1.5)
+    snap = mon.snapshot()
+    obj = next(m for m in snap["messages"] if m["name"] == "SBR_TrackedObject")
+    assert obj["timeouts"] == 1 and obj["skipped"] == 1 and obj["valid"] == 6
+    assert [(e["message"], e["kind"]) for e in snap["events"][:2]] == \
+        [("SBR_TrackedObject", "recovered"), ("SBR_TrackedObject", "e2e")]
+    feed_all(mon, s.cycle(16), 1.6)
+    obj = next(m for m in mon.snapshot()["messages"] if m["name"] == "SBR_TrackedObject")
+    assert obj["state"] == "ok" and obj["timeouts"] == 1
+
+
+def test_no_timeouts_after_the_log_ended():
+    mon = Monitor(M)
+    s = Sender(M)
+    feed_all(mon, s.cycle(0), 0.0)
+    mon.end_of_source()
+    mon.tick(10.0)
+    assert mon.snapshot()["totals"]["timeouts"] == 0
+
+
+def test_speed_limit_from_confirmed_signs():
+    mon = Monitor(M)
+    s = Sender(M)
+    feed_all(mon, s.cycle(0), 0.0)
+    assert mon.snapshot()["speed_limit"] is None
+    # newest first: a give-way sign (13) then a 70 limit (class 4)
+    feed_all(mon, s.cycle(1, signs=[(13, 255, 80, 0), (4, 70, 90, 3)]), 0.1)
+    snap = mon.snapshot()
+    assert snap["speed_limit"] == 70
+    assert [x["class_name"] for x in snap["signs"]] == ["GiveWay", "SpeedLimit70"]
+    assert snap["signs"][0]["speed"] is None and snap["signs"][0]["track"] == 0
+    # a list without speed signs keeps the limit; the end of restrictions clears it
+    feed_all(mon, s.cycle(2, signs=[(14, 255, 60, 0)]), 0.2)
+    assert mon.snapshot()["speed_limit"] == 70
+    feed_all(mon, s.cycle(3, signs=[(6, 255, 60, 0), (4, 70, 90, 5)]), 0.3)
+    assert mon.snapshot()["speed_limit"] is None
+    feed_all(mon, s.cycle(4, signs=[(8, 120, 77, 0)]), 0.4)
+    assert mon.snapshot()["speed_limit"] == 120
+    # a lost slot: the incomplete list is not shown
+    frames = s.cycle(5, signs=[(2, 50, 70, 0), (3, 60, 70, 0)])
+    feed_all(mon, frames[1:], 0.5)
+    snap = mon.snapshot()
+    assert snap["speed_limit"] == 120 and [x["class_id"] for x in snap["signs"]] == [8]
+
+
+def test_detections_per_image_and_health():
+    mon = Monitor(M)
+    s = Sender(M)
+    feed_all(mon, s.cycle(0, dets=[(14, 90, 500, 300), (2, 40, 100, 200)], proc_ms=40.0), 0.0)
+    snap = mon.snapshot()
+    assert [(d["class_name"], d["confidence"], d["cx"]) for d in snap["detections"]] == \
+        [("Stop", 90, 500), ("SpeedLimit50", 40, 100)]
+    feed_all(mon, s.cycle(1, proc_ms=60.0), 0.1)
+    snap = mon.snapshot()
+    assert snap["detections"] == []
+    h = snap["health"]
+    assert h["status_frames"] == 2 and h["processing_ms"] == pytest.approx(60.0)
+    assert h["processing_ms_mean"] == pytest.approx(50.0) and h["fps"] == pytest.approx(10.0)
+    assert snap["totals"]["valid"] == 9 and snap["totals"]["e2e_errors"] == 0
+
+
+def test_garbage_never_raises_and_every_frame_is_counted():
+    rng = random.Random(7)
+    mon = Monitor(M)
+    n = 3000
+    for k in range(n):
+        fid = rng.choice([0x300, 0x301, 0x310, 0x320, 0x123, 0x7FF])
+        data = bytes(rng.randrange(256) for _ in range(rng.randrange(9)))
+        mon.feed(k * 0.01, fid, data, is_error=rng.random() < 0.01)
+    snap = mon.snapshot()
+    t = snap["totals"]
+    assert snap["frames"] == n
+    assert t["received"] + snap["unknown"] == n
+    assert t["received"] == t["valid"] + t["crc"] + t["repeated"] + t["bad_counter"] + \
+        t["length"] + t["out_of_range"]  # skipped frames are valid too
+    assert t["crc"] > 0 and t["length"] > 0 and snap["unknown"] > 0
+
+
+# -- views and inputs ----------------------------------------------------------------------
+def test_terminal_screen_shows_state():
+    mon = Monitor(M, source="test")
+    s = Sender(M)
+    feed_all(mon, s.cycle(0, signs=[(5, 80, 95, 0)], dets=[(5, 94, 640, 400)]), 0.0)
+    bad = bytearray(s(0x301))
+    bad[3] ^= 0x10
+    mon.feed(0.05, 0x301, bytes(bad))
+    screen = render(mon.snapshot())
+    assert "SPEED LIMIT: 80 km/h" in screen
+    assert "SpeedLimit80 95% (age 0)" in screen
+    assert "SBR_EcuStatus" in screen and "CRC mismatch" in screen
+    row = next(line for line in screen.splitlines() if line.startswith("SBR_EcuStatus"))
+    assert row.split()[1:3] == ["e2e", "error"] and row.split()[4] == "1"
+
+
+def test_web_server_state_and_events():
+    mon = Monitor(M, source="test")
+    s = Sender(M)
+    feed_all(mon, s.cycle(0, signs=[(1, 30, 90, 0)]), 0.0)
+    srv = WebServer(mon, "127.0.0.1", 0)
+    srv.start()
+    try:
+        snap = json.load(urllib.request.urlopen(srv.url + "state.json", timeout=5))
+        assert snap["speed_limit"] == 30
+        page = urllib.request.urlopen(srv.url, timeout=5).read().decode()
+        assert 'id="speed-limit"' in page and "/static/app.js" in page
+        with urllib.request.urlopen(srv.url + "events", timeout=5) as ev:
+            assert ev.headers["Content-Type"] == "text/event-stream"
+            lines = [ev.readline().decode() for _ in range(2)]
+        assert lines[0].startswith("id: ") and lines[1].startswith("data: ")
+        assert json.loads(lines[1][6:])["signs"][0]["class_name"] == "SpeedLimit30"
+        with pytest.raises(urllib.error.HTTPError):
+            urllib.request.urlopen(srv.url + "static/../../dbc.py", timeout=5)
+    finally:
+        srv.stop()
+
+
+def test_log_source_replays_as_fast_as_possible(tmp_path):
+    s = Sender(M)
+    log = tmp_path / "x.log"
+    with open(log, "w") as f:
+        for k in range(20):
+            for fid, data in s.cycle(k, dets=[(4, 80, 300, 200)] if k % 2 else ()):
+                f.write(f"({1700000000 + k // 10}.{(k % 10) * 100000:06d}) can0 "
+                        f"{fid:03X}#{data.hex().upper()}\n")
+    mon = Monitor(M)
+    src = LogSource(mon, str(log), rate=0.0)
+    src.start()
+    src.thread.join(10)
+    snap = mon.snapshot()
+    assert snap["source_ended"] and snap["frames"] == 80
+    assert snap["totals"]["valid"] == 80 and snap["totals"]["e2e_errors"] == 0
+    assert snap["health"]["status"]["FrameCounter"] == 19
+    assert snap["source_time"] == pytest.approx(1.9)
+
+
+def test_virtual_bus_source():
+    mon = Monitor(M)
+    src = BusSource(mon, "virtual", "sbr-test")
+    src.start()
+    tx = can.Bus(interface="virtual", channel="sbr-test")
+    try:
+        s = Sender(M)
+        for fid, data in s.cycle(0, signs=[(7, 100, 99, 0)]):
+            tx.send(can.Message(arbitration_id=fid, data=data, is_extended_id=False))
+        deadline = time.monotonic() + 5
+        while mon.snapshot()["frames"] < 4 and time.monotonic() < deadline:
+            time.sleep(0.02)
+        snap = mon.snapshot()
+        assert snap["frames"] == 4 and snap["speed_limit"] == 100
+    finally:
+        tx.shutdown()
+        src.stop()
+        src.thread.join(2)
