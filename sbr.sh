@@ -6,6 +6,9 @@
 #                                               over a folder of images (default: GTSDB's
 #                                               development split 00400-00599), detections,
 #                                               annotated images, CAN log, summary
+#   ./sbr.sh dashboard [--log FILE | --socketcan IF | --virtual CH] [options]
+#                                               the reference dashboard (dashboard/), default:
+#                                               replay out/sbr_can.log; --help for options
 #   ./sbr.sh train                              relearn the built-in prototype library
 #   ./sbr.sh test                               every test: native, sanitizers, Cortex-M4
 #                                               (qemu), armhf (qemu user), and the gates
@@ -125,7 +128,7 @@ cmd_detect() {
       --input) input="$2"; shift 2 ;;
       --out) out="$2"; shift 2 ;;
       --range) range="$2"; shift 2 ;;
-      -h|--help) sed -n '2,15p' "$0"; return 0 ;;
+      -h|--help) sed -n '2,18p' "$0"; return 0 ;;
       *) echo "unknown option $1" >&2; return 2 ;;
     esac
   done
@@ -169,10 +172,32 @@ cmd_train() {
       --out-c "$ROOT/lib/models/sbr_model_gtsdb.c" --out-model "$BUILD/sbr_gtsdb.sbrm" "$@"
 }
 
+cmd_dashboard() {
+  setup_venv_only
+  local args=("$@")
+  if ! printf '%s\n' "${args[@]}" | grep -qxE -- '--(log|socketcan|virtual|help)|-h'; then
+    [ -f "$ROOT/out/sbr_can.log" ] || { echo "no out/sbr_can.log: run ./sbr.sh detect first, or give --log/--socketcan/--virtual" >&2; return 2; }
+    args=(--log "$ROOT/out/sbr_can.log" "${args[@]}")
+  fi
+  exec "$BUILD/venv/bin/python" "$ROOT/dashboard/sbr-dashboard" "${args[@]}"
+}
+
+# The dashboard needs only python3-venv and the pinned packages.
+setup_venv_only() {
+  if ! python3 -m venv --help > /dev/null 2>&1 || ! dpkg-query -W -f='${Status}' python3-venv 2>/dev/null | grep -q "install ok installed"; then
+    PACKAGES=(python3 python3-venv python3-pip)
+    setup
+  else
+    mkdir -p "$BUILD"
+    setup_venv
+  fi
+}
+
 case "${1:-}" in
+  dashboard) shift; cmd_dashboard "$@" ;;
   test) shift; cmd_test "$@" ;;
   detect) shift; cmd_detect "$@" ;;
   train) shift; cmd_train "$@" ;;
   setup) setup ;;
-  *) sed -n '2,15p' "$0"; exit 2 ;;
+  *) sed -n '2,18p' "$0"; exit 2 ;;
 esac

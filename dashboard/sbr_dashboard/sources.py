@@ -61,7 +61,7 @@ class LogSource(Source):
         self.path, self.rate = path, rate
         self.name = f"log {path}" + (" (as fast as possible)" if rate == 0 else
                                      f" ({rate:g}x recorded speed)")
-        self._t0 = self._wall0 = None
+        self._t0 = self._wall0 = self._next_t = None
         try:
             with open(path, "rb"):
                 pass
@@ -69,15 +69,18 @@ class LogSource(Source):
             raise SourceError(f"cannot read {path}: {e}") from e
 
     def clock(self):
+        # never ahead of the next frame of the log: a replay that runs late (a slow
+        # machine) must not turn into timeouts the recording does not have
         if self.rate == 0 or self._t0 is None or self.monitor.source_ended:
             return None
-        return self._t0 + (time.monotonic() - self._wall0) * self.rate
+        return min(self._t0 + (time.monotonic() - self._wall0) * self.rate, self._next_t)
 
     def run(self):
         for msg in can.CanutilsLogReader(self.path):
             if self.stop_event.is_set():
                 return
             t = msg.timestamp
+            self._next_t = t
             if self._t0 is None:
                 self._t0, self._wall0 = t, time.monotonic()
             if self.rate > 0:

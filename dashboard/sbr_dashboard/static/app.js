@@ -19,7 +19,8 @@ function signIcon(name, speed) {
   if (name.startsWith("RestrictionEnds")) {
     body = `<circle cx="50" cy="50" r="44" fill="#fff" stroke="#333" stroke-width="3"/><line x1="20" y1="80" x2="80" y2="20" stroke="#555" stroke-width="10"/>`;
   } else if (name === "Stop") {
-    body = `<polygon points="30,6 70,6 94,30 94,70 70,94 30,94 6,70 6,30" fill="#c8102e"/>` + text("#fff", 26);
+    body = `<polygon points="30,6 70,6 94,30 94,70 70,94 30,94 6,70 6,30" fill="#c8102e"/>` +
+      `<text x="50" y="59" font-size="26" text-anchor="middle" font-family="sans-serif" font-weight="bold" fill="#fff">STOP</text>`;
   } else if (name === "GiveWay") {
     body = `<polygon points="6,10 94,10 50,92" fill="#fff" stroke="#c8102e" stroke-width="10"/>`;
   } else if (name === "PriorityRoad") {
@@ -107,6 +108,7 @@ function render(s) {
   $("events").innerHTML = s.events.map((e) =>
     `<li class="${e.kind}">${fmt(e.t, 2)} s ${esc(e.message)} <b>${esc(e.kind)}</b> ${esc(e.detail)}</li>`).join("");
   document.body.dataset.version = s.version;
+  document.body.dataset.updates = Number(document.body.dataset.updates || 0) + 1;
   document.body.dataset.ended = s.source_ended ? "1" : "0";
 }
 
