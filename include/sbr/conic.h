@@ -1,0 +1,254 @@
+/**
+ * @file conic.h
+ * @brief Conics (thesis ch. 2.2-2.3, papers A and B): direct least-squares ellipse fit,
+ *        conic classification, ellipse parameters, fit residual and coverage, torchlight
+ *        pose, and ellipse detection from the region/contour stage.
+ *
+ * A conic is a x^2 + 2b xy + c y^2 + 2d x + 2e y + f = 0, i.e. the symmetric matrix
+ * C = [[a, b, d], [b, c, e], [d, e, f]] (up to scale), in image coordinates (x = column,
+ * y = row) unless a function says otherwise.
+ *
+ * Everything is float32; no function allocates, none keeps state.
+ */
+#ifndef SBR_CONIC_H
+#define SBR_CONIC_H
+
+#include "sbr/contour.h"
+#include "sbr/image.h"
+#include "sbr/mser.h"
+#include "sbr/types.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** A conic a x^2 + 2b xy + c y^2 + 2d x + 2e y + f = 0. */
+typedef struct sbr_conic_s {
+    float a, b, c, d, e, f;
+} sbr_conic_t;
+
+/** A point with float coordinates. */
+typedef struct sbr_point2f_s {
+    float x;
+    float y;
+} sbr_point2f_t;
+
+/** An ellipse by its geometry. */
+typedef struct sbr_ellipse_s {
+    float cx, cy;    /**< centre */
+    float semi_major; /**< > 0 */
+    float semi_minor; /**< > 0, <= semi_major */
+    float angle;     /**< direction of the major axis, radians in (-pi/2, pi/2], from +x
+                          towards +y */
+} sbr_ellipse_t;
+
+/** The cases of the thesis's table 2.1 (plus the imaginary parallel lines it merges). */
+typedef enum sbr_conic_class_e {
+    SBR_CONIC_REAL_ELLIPSE = 1,      /**< det(C22) > 0, det(C) != 0, (a + c) det(C) < 0 */
+    SBR_CONIC_IMAGINARY_ELLIPSE = 2, /**< det(C22) > 0, det(C) != 0, (a + c) det(C) > 0 */
+    SBR_CONIC_POINT_ELLIPSE = 3,     /**< det(C22) > 0, det(C) = 0 (a single real point) */
+    SBR_CONIC_PARABOLA = 4,          /**< det(C22) = 0, det(C) != 0 */
+    SBR_CONIC_PARALLEL_LINES = 5,    /**< det(C22) = 0, det(C) = 0, rank 2, real lines */
+    SBR_CONIC_IMAGINARY_PARALLEL_LINES = 6, /**< as above, no real point */
+    SBR_CONIC_DOUBLE_LINE = 7,       /**< det(C22) = 0, rank 1: one line counted twice */
+    SBR_CONIC_HYPERBOLA = 8,         /**< det(C22) < 0, det(C) != 0 */
+    SBR_CONIC_INTERSECTING_LINES = 9 /**< det(C22) < 0, det(C) = 0 */
+} sbr_conic_class_t;
+
+/** Default relative tolerance of sbr_conic_classify(): a determinant counts as zero
+    when |det| <= tol * |C|^n (n = 2 for det(C22), 3 for det(C); |C| the largest
+    absolute entry). */
+#define SBR_CONIC_ZERO_TOL 1e-5f
+
+/**
+ * @brief Classify a conic.
+ * @param tol relative zero tolerance, >= 0 and < 1 (::SBR_CONIC_ZERO_TOL suits float32
+ *            data; 0 for exact arithmetic on constructed matrices).
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a non-finite entry or tol;
+ *         ::SBR_ERR_DEGENERATE for the zero matrix (no conic).
+ */
+sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_class_t *cls);
+
+/**
+ * @brief Centre, semi-axes and orientation of a real ellipse.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (non-finite entry);
+ *         ::SBR_ERR_DEGENERATE when the conic is not a real ellipse (at
+ *         ::SBR_CONIC_ZERO_TOL).
+ */
+sbr_status_t sbr_conic_to_ellipse(const sbr_conic_t *conic, sbr_ellipse_t *ellipse);
+
+/**
+ * @brief The conic of an ellipse, scaled so that f = -1 at the centre's origin shift
+ *        (a, c of order 1 / axis^2).
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (non-finite values, an axis <= 0 or
+ *         semi_minor > semi_major).
+ */
+sbr_status_t sbr_ellipse_to_conic(const sbr_ellipse_t *ellipse, sbr_conic_t *conic);
+
+/**
+ * @brief Direct least-squares ellipse fit (Fitzgibbon's constraint 4ac - b'^2 = 1 with
+ *        b' = 2b, solved the numerically stable way of Halir and Flusser) in float32.
+ *
+ * The points are first moved to their centroid and scaled to unit mean distance, which
+ * keeps the 3 x 3 reduced problem well conditioned in single precision; the conic is
+ * transformed back and returned normalised (largest absolute entry 1).
+ *
+ * @param points  n points (any order; a traced contour or an arc).
+ * @param n       >= 5 (::SBR_ERR_SIZE otherwise).
+ * @param[out] conic   the fitted conic.
+ * @param[out] ellipse its geometry; may be NULL.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n < 5); ::SBR_ERR_RANGE (non-finite or
+ *         |coordinate| > 1e6); ::SBR_ERR_DEGENERATE when the points do not determine an
+ *         ellipse (collinear, fewer than 5 distinct points, or the best conic is not a
+ *         real ellipse, e.g. points of a hyperbola).
+ */
+sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_t *conic,
+                             sbr_ellipse_t *ellipse);
+
+/**
+ * @brief Geometric fit residual: the Sampson distance |Q(p)| / |grad Q(p)| of each point
+ *        (a first-order approximation of its distance to the conic, in pixels).
+ * @param[out] rms     root mean square distance.
+ * @param[out] max_abs largest distance; may be NULL.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n = 0); ::SBR_ERR_RANGE (non-finite).
+ */
+sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_point2f_t *points,
+                                uint32_t n, float *rms, float *max_abs);
+
+/**
+ * @brief Coverage: the fraction of 64 equal sectors of the ellipse (by parametric angle)
+ *        that hold a point within `tol` pixels (Sampson distance) of the curve. 1 for a
+ *        closed contour, about 0.5 for half an arc.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n = 0); ::SBR_ERR_RANGE (non-finite,
+ *         tol <= 0); ::SBR_ERR_DEGENERATE (not a real ellipse).
+ */
+sbr_status_t sbr_ellipse_coverage(const sbr_conic_t *conic, const sbr_point2f_t *points,
+                                  uint32_t n, float tol, float *coverage);
+
+/** Relative pose of a plane lit by a torchlight (paper A): Z = n1 X + n2 Y + Z0 in camera
+    coordinates, beam radius R along the optical axis. */
+typedef struct sbr_torch_pose_s {
+    float n1;        /**< plane slope along X */
+    float n2;        /**< plane slope along Y */
+    float z0_over_r; /**< distance along the optical axis in beam radii */
+    float residual;  /**< rms misfit of the six conic entries, relative to |C| */
+} sbr_torch_pose_t;
+
+/** Largest residual sbr_torch_pose() accepts by default (relative to |C|). */
+#define SBR_TORCH_MAX_RESIDUAL 0.05f
+
+/**
+ * @brief Torchlight pose from the beam's ellipse.
+ *
+ * The model conic (THESIS_NOTES.md) is, up to a scale lambda,
+ * Cp = [[k - n1^2, -n1 n2, f n1], [-n1 n2, k - n2^2, f n2], [f n1, f n2, -f^2]] with
+ * k = (Z0/R)^2, in coordinates centred at the principal point (x right, y down as the
+ * image). The closed form (scale from C33) starts a Gauss-Newton least-squares fit of
+ * (lambda, n1, n2, k) to all six distinct entries of the normalised conic.
+ *
+ * @param conic  the ellipse in principal-point-centred pixel coordinates.
+ * @param focal  focal length in pixels, > 0 and finite.
+ * @param max_residual accepted misfit (relative), > 0; ::SBR_TORCH_MAX_RESIDUAL.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (non-finite input, focal <= 0,
+ *         max_residual <= 0); ::SBR_ERR_DEGENERATE when the conic is not a real ellipse
+ *         or does not fit the model (k <= 0, C33 of the wrong sign, or the residual above
+ *         max_residual; `pose` then holds the estimate and its residual).
+ */
+sbr_status_t sbr_torch_pose(const sbr_conic_t *conic, float focal, float max_residual,
+                            sbr_torch_pose_t *pose);
+
+/** Ellipse detection options. Start from sbr_ellipse_detect_config_default(). */
+typedef struct sbr_ellipse_detect_config_s {
+    /** Regions (MSER on the GRAY8 image). Default: delta 5, areas 40 .. 200000,
+        max_variation 0.5, min_diversity 0.2, both polarities. */
+    sbr_mser_config_t mser;
+    /** Largest rms Sampson distance in pixels of the contour to its fitted ellipse,
+        > 0. Larger: accepts rougher shapes. Default 1.0. */
+    float max_residual;
+    /** Smallest fraction of the ellipse covered by contour points within
+        2 x max_residual, in (0, 1]. Default 0.9 (closed outlines). */
+    float min_coverage;
+    /** Smallest semi-minor axis in pixels, > 0. Default 4. */
+    float min_semi_minor;
+    /** Smallest ratio semi_minor / semi_major, in (0, 1]. Default 0.1. */
+    float min_axis_ratio;
+    /** Contour points are boundary pixel centres; they are moved this many pixels
+        outward along the contour normal before fitting, so the fit follows the region's
+        edge. In [0, 1]. Default 0.5. */
+    float edge_offset;
+    /** Bounds: regions examined and contour points per region. Defaults 1024, 4096. */
+    uint32_t max_regions;
+    uint32_t max_contour_points;
+} sbr_ellipse_detect_config_t;
+
+/** One detected ellipse. */
+typedef struct sbr_ellipse_det_s {
+    sbr_ellipse_t ellipse;
+    sbr_conic_t conic;
+    float residual;    /**< rms Sampson distance, pixels */
+    float coverage;    /**< 0..1 */
+    uint32_t area;     /**< region pixels (of the first region found) */
+    uint32_t merged;   /**< regions merged into this detection (>= 1) */
+    uint8_t polarity;  /**< ::SBR_MSER_DARK or ::SBR_MSER_BRIGHT */
+} sbr_ellipse_det_t;
+
+/** @cond */
+#define SBR_CONIC_R8_(v) ((((size_t)(v)) + 7u) & ~(size_t)7u)
+#define SBR_CONIC_MAX_(a, b) (((a) > (b)) ? (a) : (b))
+/** @endcond */
+
+/**
+ * @brief Workspace bytes of sbr_ellipse_detect() for a width x height image, as a constant
+ *        expression: `delta` and `nodes` as for ::SBR_MSER_WORKSPACE_SIZE (nodes = the
+ *        configuration's mser.max_nodes, or SBR_MSER_WORST_NODES(width, height) for 0),
+ *        `max_regions` and `max_points` as in the configuration. Equal to
+ *        sbr_ellipse_detect_workspace_size() for that configuration.
+ */
+#define SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(width, height, delta, nodes, max_regions, max_points) \
+    (SBR_CONIC_R8_((size_t)(max_regions) * sizeof(sbr_mser_region_t)) +                          \
+     SBR_CONIC_MAX_(SBR_CONIC_R8_(SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes)),          \
+                    SBR_CONIC_R8_(SBR_MSER_MASK_WORKSPACE_SIZE(width, height)) +                  \
+                        SBR_CONIC_R8_((size_t)(width) * (size_t)(height)) +                       \
+                        SBR_CONIC_R8_(SBR_CONTOUR_WORKSPACE_SIZE(width, height)) +                \
+                        SBR_CONIC_R8_((size_t)(max_points) * sizeof(sbr_point_t)) +               \
+                        SBR_CONIC_R8_(4u * sizeof(sbr_contour_t)) +                               \
+                        SBR_CONIC_R8_((size_t)(max_points) * sizeof(sbr_point2f_t))))
+
+/** @brief Defaults as documented above. No-op for NULL. */
+void sbr_ellipse_detect_config_default(sbr_ellipse_detect_config_t *cfg);
+
+/** @brief Check a configuration. ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE. */
+sbr_status_t sbr_ellipse_detect_config_check(const sbr_ellipse_detect_config_t *cfg);
+
+/**
+ * @brief Workspace bytes for sbr_ellipse_detect() on a width x height image; 0 for an
+ *        invalid configuration or size.
+ */
+size_t sbr_ellipse_detect_workspace_size(uint32_t width, uint32_t height,
+                                         const sbr_ellipse_detect_config_t *cfg);
+
+/**
+ * @brief Ellipses of an image: MSER regions of both polarities, the outer contour of each,
+ *        a direct fit, and the residual and coverage tests. Nested level sets of the same
+ *        edge (centres within 1 px, axes within 1.5 px or 3 %) are merged into one
+ *        detection whose geometry is their mean (an anti-aliased edge gives a few such
+ *        regions; their mean follows the edge's mid level).
+ *
+ * @param image GRAY8 view, at least 3 x 3.
+ * @param[out] out     detections, in the order their regions were found.
+ * @param capacity     length of `out`.
+ * @param[out] count   detections written.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad configuration or format);
+ *         errors of sbr_image_check(); ::SBR_ERR_WORKSPACE (too small or not 8-byte
+ *         aligned); ::SBR_ERR_CAPACITY when `out` or an internal bound ran full (the
+ *         detections written are valid).
+ */
+sbr_status_t sbr_ellipse_detect(const sbr_image_t *image, const sbr_ellipse_detect_config_t *cfg,
+                                void *workspace, size_t workspace_size, sbr_ellipse_det_t *out,
+                                uint32_t capacity, uint32_t *count);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* SBR_CONIC_H */

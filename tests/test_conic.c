@@ -1,0 +1,417 @@
+/* Unity tests of conics (include/sbr/conic.h): classification, ellipse geometry, the
+   direct fit, residual and coverage, torchlight pose and ellipse detection. */
+#include "unity.h"
+#include "sbr/conic.h"
+#include "test_support.h"
+
+#include <math.h>
+#include <string.h>
+
+#define PI_F 3.14159265f
+
+void setUp(void) {}
+void tearDown(void) {}
+
+static sbr_conic_t mk(float a, float b, float c, float d, float e, float f)
+{
+    sbr_conic_t q;
+    q.a = a;
+    q.b = b;
+    q.c = c;
+    q.d = d;
+    q.e = e;
+    q.f = f;
+    return q;
+}
+
+/* C' = H^T C H for H = rotation by t, translation (tx, ty), scale s: the same class. */
+static sbr_conic_t moved(sbr_conic_t q, float t, float tx, float ty, float s)
+{
+    const float h[9] = {cosf(t), -sinf(t), tx, sinf(t), cosf(t), ty, 0.0f, 0.0f, 1.0f};
+    const float c[9] = {q.a, q.b, q.d, q.b, q.c, q.e, q.d, q.e, q.f};
+    float ch[9];
+    float r[9];
+    int i;
+    int j;
+    int k;
+    for (i = 0; i < 3; i++) {
+        for (j = 0; j < 3; j++) {
+            ch[i * 3 + j] = 0.0f;
+            for (k = 0; k < 3; k++) {
+                ch[i * 3 + j] += c[i * 3 + k] * h[k * 3 + j];
+            }
+        }
+    }
+    for (i = 0; i < 3; i++) {
+        for (j = 0; j < 3; j++) {
+            r[i * 3 + j] = 0.0f;
+            for (k = 0; k < 3; k++) {
+                r[i * 3 + j] += h[k * 3 + i] * ch[k * 3 + j];
+            }
+        }
+    }
+    return mk(s * r[0], s * r[1], s * r[4], s * r[2], s * r[5], s * r[8]);
+}
+
+static void expect_class(sbr_conic_t q, sbr_conic_class_t want)
+{
+    sbr_conic_class_t got = (sbr_conic_class_t)0;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&q, 0.0f, &got));
+    TEST_ASSERT_EQUAL_INT(want, got);
+    /* the same conic moved (inverse of a translation by (3, -2) after a rotation),
+       scaled by -2.5, at the float tolerance */
+    q = moved(q, 0.6f, 3.0f, -2.0f, -2.5f);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&q, SBR_CONIC_ZERO_TOL, &got));
+    TEST_ASSERT_EQUAL_INT(want, got);
+}
+
+static void test_classify_every_case(void)
+{
+    sbr_conic_class_t cls;
+    sbr_conic_t q;
+    expect_class(mk(0.25f, 0.0f, 1.0f, 0.0f, 0.0f, -1.0f), SBR_CONIC_REAL_ELLIPSE);
+    expect_class(mk(1.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f), SBR_CONIC_IMAGINARY_ELLIPSE);
+    expect_class(mk(1.0f, 0.0f, 2.0f, 0.0f, 0.0f, 0.0f), SBR_CONIC_POINT_ELLIPSE);
+    expect_class(mk(1.0f, 0.0f, 0.0f, 0.0f, -0.5f, 0.0f), SBR_CONIC_PARABOLA);
+    expect_class(mk(1.0f, 0.0f, 0.0f, 0.0f, 0.0f, -1.0f), SBR_CONIC_PARALLEL_LINES);
+    expect_class(mk(1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f), SBR_CONIC_IMAGINARY_PARALLEL_LINES);
+    expect_class(mk(1.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f), SBR_CONIC_DOUBLE_LINE);
+    expect_class(mk(1.0f, 0.0f, -1.0f, 0.0f, 0.0f, -1.0f), SBR_CONIC_HYPERBOLA);
+    expect_class(mk(1.0f, 0.0f, -1.0f, 0.0f, 0.0f, 0.0f), SBR_CONIC_INTERSECTING_LINES);
+    /* the thesis's sign rule with det(C) < 0 and a + c > 0: a real ellipse */
+    q = mk(2.0f, 0.5f, 1.0f, 0.3f, -0.2f, -4.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&q, 0.0f, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_CONIC_REAL_ELLIPSE, cls);
+    /* bad input */
+    q = mk(0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_conic_classify(&q, 0.0f, &cls));
+    q = mk(NAN, 0.0f, 1.0f, 0.0f, 0.0f, -1.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_conic_classify(&q, 0.0f, &cls));
+    q = mk(1.0f, 0.0f, 1.0f, 0.0f, 0.0f, -1.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_conic_classify(&q, -1.0f, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_conic_classify(&q, 1.0f, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_conic_classify(NULL, 0.0f, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_conic_classify(&q, 0.0f, NULL));
+}
+
+static void test_ellipse_conic_round_trip(void)
+{
+    const sbr_ellipse_t el = {320.5f, 240.25f, 120.0f, 45.0f, 0.3f};
+    sbr_conic_t q;
+    sbr_ellipse_t back;
+    sbr_ellipse_t bad = el;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_to_conic(&el, &q));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_to_ellipse(&q, &back));
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, el.cx, back.cx);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, el.cy, back.cy);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, el.semi_major, back.semi_major);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, el.semi_minor, back.semi_minor);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, el.angle, back.angle);
+    /* the angle is folded into (-pi/2, pi/2] */
+    bad.angle = 0.3f + PI_F;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_to_conic(&bad, &q));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_to_ellipse(&q, &back));
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 0.3f, back.angle);
+    bad = el;
+    bad.semi_minor = 130.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_to_conic(&bad, &q));
+    bad.semi_minor = 0.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_to_conic(&bad, &q));
+    q = mk(1.0f, 0.0f, -1.0f, 0.0f, 0.0f, -1.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_conic_to_ellipse(&q, &back));
+    q = mk(1.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_conic_to_ellipse(&q, &back));
+}
+
+static uint32_t sample(const sbr_ellipse_t *el, float t0, float t1, uint32_t n, sbr_point2f_t *p)
+{
+    uint32_t i;
+    const float cs = cosf(el->angle);
+    const float sn = sinf(el->angle);
+    for (i = 0u; i < n; i++) {
+        const float t = t0 + (t1 - t0) * (float)i / (float)n;
+        const float u = el->semi_major * cosf(t);
+        const float v = el->semi_minor * sinf(t);
+        p[i].x = el->cx + u * cs - v * sn;
+        p[i].y = el->cy + u * sn + v * cs;
+    }
+    return n;
+}
+
+static void expect_fit(const sbr_ellipse_t *el, float t0, float t1, uint32_t n, int check_angle)
+{
+    sbr_point2f_t p[200];
+    sbr_conic_t q;
+    sbr_ellipse_t got;
+    float rms = -1.0f;
+    const float tol = 1e-4f * el->semi_major; /* 1e-4 relative to the ellipse's size */
+    sample(el, t0, t1, n, p);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_fit(p, n, &q, &got));
+    TEST_ASSERT_FLOAT_WITHIN(tol, el->cx, got.cx);
+    TEST_ASSERT_FLOAT_WITHIN(tol, el->cy, got.cy);
+    TEST_ASSERT_FLOAT_WITHIN(tol, el->semi_major, got.semi_major);
+    TEST_ASSERT_FLOAT_WITHIN(tol, el->semi_minor, got.semi_minor);
+    if (check_angle) {
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f, el->angle, got.angle);
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_residual(&q, p, n, &rms, NULL));
+    TEST_ASSERT_TRUE(rms < 1e-3f);
+}
+
+static void test_fit_exact_points(void)
+{
+    const sbr_ellipse_t a = {320.5f, 240.25f, 120.0f, 45.0f, 0.3f};
+    const sbr_ellipse_t b = {1000.0f, -700.0f, 9.0f, 3.0f, -1.2f};
+    const sbr_ellipse_t c = {50.0f, 60.0f, 25.0f, 25.0f, 0.0f};
+    const sbr_ellipse_t d = {5000.0f, 4000.0f, 800.0f, 700.0f, 1.5f};
+    expect_fit(&a, 0.0f, 2.0f * PI_F, 60u, 1);
+    expect_fit(&b, 0.0f, 2.0f * PI_F, 40u, 1);
+    expect_fit(&c, 0.0f, 2.0f * PI_F, 36u, 0);
+    expect_fit(&d, 0.0f, 2.0f * PI_F, 200u, 1);
+    expect_fit(&a, 0.2f, 0.2f + PI_F, 50u, 1); /* half an arc */
+    expect_fit(&a, 0.0f, 2.0f * PI_F, 5u, 1);  /* the minimum: five points */
+}
+
+static void test_fit_degenerate_sets(void)
+{
+    sbr_point2f_t p[40];
+    sbr_conic_t q;
+    sbr_ellipse_t el;
+    uint32_t i;
+    /* collinear */
+    for (i = 0u; i < 20u; i++) {
+        p[i].x = 3.0f + 2.0f * (float)i;
+        p[i].y = -1.0f + 0.5f * (float)i;
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_ellipse_fit(p, 20u, &q, &el));
+    /* fewer than 5 */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_ellipse_fit(p, 4u, &q, &el));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_ellipse_fit(p, 0u, &q, &el));
+    /* 12 points but only 3 distinct */
+    for (i = 0u; i < 12u; i++) {
+        p[i].x = (float)(i % 3u) * 10.0f;
+        p[i].y = (float)((i % 3u) * (i % 3u));
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_ellipse_fit(p, 12u, &q, &el));
+    /* all equal */
+    for (i = 0u; i < 12u; i++) {
+        p[i].x = 7.0f;
+        p[i].y = 7.0f;
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_ellipse_fit(p, 12u, &q, &el));
+    /* both branches of the hyperbola x^2 - y^2 = 1 */
+    for (i = 0u; i < 40u; i++) {
+        const float t = -1.5f + 3.0f * (float)(i % 20u) / 19.0f;
+        p[i].x = (i < 20u ? 1.0f : -1.0f) * coshf(t) * 30.0f;
+        p[i].y = sinhf(t) * 30.0f;
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_ellipse_fit(p, 40u, &q, &el));
+    /* hostile values */
+    p[3].x = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_fit(p, 40u, &q, &el));
+    p[3].x = 2e7f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_fit(p, 40u, &q, &el));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_ellipse_fit(NULL, 40u, &q, &el));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_ellipse_fit(p, 40u, NULL, &el));
+}
+
+static void test_residual_and_coverage(void)
+{
+    const sbr_ellipse_t el = {100.0f, 80.0f, 60.0f, 30.0f, 0.5f};
+    sbr_ellipse_t bigger = el;
+    sbr_point2f_t p[128];
+    sbr_conic_t q;
+    float rms = 0.0f;
+    float mx = 0.0f;
+    float cov = 0.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_to_conic(&el, &q));
+    /* points on a confocal-like ellipse 0.5 px outside: distance 0.5 px near the axes */
+    bigger.semi_major += 0.5f;
+    bigger.semi_minor += 0.5f;
+    sample(&bigger, 0.0f, 2.0f * PI_F, 128u, p);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_residual(&q, p, 128u, &rms, &mx));
+    TEST_ASSERT_FLOAT_WITHIN(0.03f, 0.5f, rms);
+    TEST_ASSERT_FLOAT_WITHIN(0.03f, 0.5f, mx);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_coverage(&q, p, 128u, 1.0f, &cov));
+    TEST_ASSERT_EQUAL_FLOAT(1.0f, cov);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_coverage(&q, p, 128u, 0.25f, &cov));
+    TEST_ASSERT_EQUAL_FLOAT(0.0f, cov); /* every point is farther than 0.25 px */
+    sample(&el, 0.0f, PI_F, 128u, p);      /* half the ellipse */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_coverage(&q, p, 128u, 1.0f, &cov));
+    TEST_ASSERT_FLOAT_WITHIN(1.5f / 64.0f, 0.5f, cov);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_conic_residual(&q, p, 0u, &rms, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_coverage(&q, p, 10u, 0.0f, &cov));
+    q = mk(1.0f, 0.0f, -1.0f, 0.0f, 0.0f, -1.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_ellipse_coverage(&q, p, 10u, 1.0f, &cov));
+}
+
+/* The torchlight conic of the thesis for a pose, times `scale`, pixel coordinates. */
+static sbr_conic_t torch_conic(float n1, float n2, float z0r, float f, float scale)
+{
+    const float k = z0r * z0r;
+    return mk(scale * (k - n1 * n1), -scale * n1 * n2, scale * (k - n2 * n2), scale * f * n1,
+              scale * f * n2, -scale * f * f);
+}
+
+static void test_torch_pose_exact_and_from_fitted_points(void)
+{
+    static const float poses[4][3] = {{0.0f, 0.0f, 5.0f}, {0.3f, -0.2f, 4.0f},
+                                      {-0.6f, 0.4f, 8.0f}, {0.8f, 0.7f, 3.0f}};
+    const float f = 500.0f;
+    uint32_t i;
+    for (i = 0u; i < 4u; i++) {
+        const float n1 = poses[i][0];
+        const float n2 = poses[i][1];
+        const float z0r = poses[i][2];
+        sbr_conic_t q = torch_conic(n1, n2, z0r, f, -3.7f);
+        sbr_torch_pose_t pose;
+        sbr_ellipse_t el;
+        sbr_point2f_t p[100];
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_torch_pose(&q, f, SBR_TORCH_MAX_RESIDUAL, &pose));
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f, n1, pose.n1);
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f, n2, pose.n2);
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f * z0r, z0r, pose.z0_over_r);
+        TEST_ASSERT_TRUE(pose.residual < 1e-4f);
+        /* through the image: points of that ellipse, fitted, then the pose */
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_to_ellipse(&q, &el));
+        sample(&el, 0.0f, 2.0f * PI_F, 100u, p);
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_fit(p, 100u, &q, NULL));
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_torch_pose(&q, f, SBR_TORCH_MAX_RESIDUAL, &pose));
+        TEST_ASSERT_FLOAT_WITHIN(0.01f, n1, pose.n1);
+        TEST_ASSERT_FLOAT_WITHIN(0.01f, n2, pose.n2);
+        TEST_ASSERT_FLOAT_WITHIN(0.01f * z0r, z0r, pose.z0_over_r);
+    }
+}
+
+static void test_torch_pose_rejects_what_the_model_cannot_produce(void)
+{
+    /* a centred, elongated, rotated ellipse: the model needs n1 = n2 = 0, i.e. a circle */
+    const sbr_ellipse_t el = {0.0f, 0.0f, 100.0f, 50.0f, 0.7f};
+    sbr_conic_t q;
+    sbr_torch_pose_t pose;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_to_conic(&el, &q));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_torch_pose(&q, 500.0f, SBR_TORCH_MAX_RESIDUAL, &pose));
+    TEST_ASSERT_TRUE(pose.residual > SBR_TORCH_MAX_RESIDUAL);
+    q = mk(1.0f, 0.0f, -1.0f, 0.0f, 0.0f, -1.0f); /* a hyperbola */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_torch_pose(&q, 500.0f, SBR_TORCH_MAX_RESIDUAL, &pose));
+    q = torch_conic(0.1f, 0.1f, 5.0f, 500.0f, 1.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_torch_pose(&q, 0.0f, SBR_TORCH_MAX_RESIDUAL, &pose));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_torch_pose(&q, NAN, SBR_TORCH_MAX_RESIDUAL, &pose));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_torch_pose(&q, 500.0f, 0.0f, &pose));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_torch_pose(&q, 500.0f, SBR_TORCH_MAX_RESIDUAL, NULL));
+}
+
+#define IW 128u
+#define IH 96u
+static uint8_t g_img[IH][IW];
+static uint64_t g_ws[1200000u / 8u];
+
+/* Anti-aliased filled ellipse (4 x 4 supersampling) of grey `v` over the image. */
+static void draw_ellipse(const sbr_ellipse_t *el, uint8_t v)
+{
+    uint32_t x;
+    uint32_t y;
+    const float cs = cosf(el->angle);
+    const float sn = sinf(el->angle);
+    for (y = 0u; y < IH; y++) {
+        for (x = 0u; x < IW; x++) {
+            uint32_t in = 0u;
+            uint32_t s;
+            for (s = 0u; s < 16u; s++) {
+                const float px = (float)x - 0.375f + 0.25f * (float)(s % 4u) - el->cx;
+                const float py = (float)y - 0.375f + 0.25f * (float)(s / 4u) - el->cy;
+                const float u = (px * cs + py * sn) / el->semi_major;
+                const float w = (py * cs - px * sn) / el->semi_minor;
+                in += (u * u + w * w <= 1.0f) ? 1u : 0u;
+            }
+            g_img[y][x] = (uint8_t)(((float)g_img[y][x] * (16.0f - (float)in) + (float)v * (float)in) / 16.0f + 0.5f);
+        }
+    }
+}
+
+static void test_detect_ellipse_in_an_image(void)
+{
+    const sbr_ellipse_t want = {52.3f, 47.6f, 30.0f, 18.0f, 0.4f};
+    sbr_ellipse_detect_config_t cfg;
+    sbr_ellipse_det_t det[8];
+    uint32_t n = 99u;
+    uint32_t i;
+    uint32_t x;
+    uint32_t y;
+    size_t need;
+    const sbr_image_t img = {IW, IH, IW, SBR_PIXEL_GRAY8, &g_img[0][0]};
+    memset(g_img, 200, sizeof g_img);
+    draw_ellipse(&want, 40u);
+    for (y = 30u; y < 60u; y++) { /* a dark square: a region, not an ellipse */
+        for (x = 92u; x < 122u; x++) {
+            g_img[y][x] = 60u;
+        }
+    }
+    sbr_ellipse_detect_config_default(&cfg);
+    cfg.mser.max_nodes = 6000u;
+    need = sbr_ellipse_detect_workspace_size(IW, IH, &cfg);
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(IW, IH, 5u, 6000u, 1024u, 4096u),
+                             (uint32_t)need);
+    TEST_ASSERT_TRUE(need <= sizeof g_ws);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_detect(&img, &cfg, g_ws, need, det, 8u, &n));
+#ifdef CONIC_DEBUG
+    for (i = 0u; i < n; i++) {
+        printf("det %u: %.3f %.3f %.3f %.3f %.4f res %.3f cov %.3f area %u pol %u\n", (unsigned)i,
+               (double)det[i].ellipse.cx, (double)det[i].ellipse.cy, (double)det[i].ellipse.semi_major,
+               (double)det[i].ellipse.semi_minor, (double)det[i].ellipse.angle, (double)det[i].residual,
+               (double)det[i].coverage, (unsigned)det[i].area, (unsigned)det[i].polarity);
+    }
+#endif
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_FLOAT_WITHIN(0.2f, want.cx, det[0].ellipse.cx);
+    TEST_ASSERT_FLOAT_WITHIN(0.2f, want.cy, det[0].ellipse.cy);
+    TEST_ASSERT_FLOAT_WITHIN(0.4f, want.semi_major, det[0].ellipse.semi_major);
+    TEST_ASSERT_FLOAT_WITHIN(0.4f, want.semi_minor, det[0].ellipse.semi_minor);
+    TEST_ASSERT_FLOAT_WITHIN(0.02f, want.angle, det[0].ellipse.angle);
+    TEST_ASSERT_EQUAL_UINT8(SBR_MSER_DARK, det[0].polarity);
+    TEST_ASSERT_TRUE(det[0].coverage >= 0.9f && det[0].residual <= 1.0f);
+    /* bad input */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_ellipse_detect(&img, &cfg, g_ws, need - 8u, det, 8u, &n));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
+                          sbr_ellipse_detect(&img, &cfg, (uint8_t *)g_ws + 4, need, det, 8u, &n));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, sbr_ellipse_detect(&img, &cfg, g_ws, need, det, 0u, &n));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_ellipse_detect(NULL, &cfg, g_ws, need, det, 8u, &n));
+    cfg.min_coverage = 0.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_detect(&img, &cfg, g_ws, need, det, 8u, &n));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_ellipse_detect_workspace_size(IW, IH, &cfg));
+    sbr_ellipse_detect_config_default(&cfg);
+    cfg.mser.max_nodes = 6000u;
+    {
+        const sbr_image_t tiny = {2u, 2u, 2u, SBR_PIXEL_GRAY8, &g_img[0][0]};
+        const sbr_image_t rgb = {IW / 3u, IH, IW, SBR_PIXEL_RGB888, &g_img[0][0]};
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_ellipse_detect(&tiny, &cfg, g_ws, need, det, 8u, &n));
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_detect(&rgb, &cfg, g_ws, need, det, 8u, &n));
+    }
+    /* a flat image and noise: no ellipse, no crash */
+    memset(g_img, 0, sizeof g_img);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_detect(&img, &cfg, g_ws, need, det, 8u, &n));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    {
+        tsup_rng_t rng = {12345u};
+        for (i = 0u; i < IW * IH; i++) {
+            (&g_img[0][0])[i] = (uint8_t)tsup_uniform(&rng, 0.0f, 255.0f);
+        }
+    }
+    n = 99u;
+    TEST_ASSERT_TRUE(sbr_ellipse_detect(&img, &cfg, g_ws, need, det, 8u, &n) >= SBR_ERR_CAPACITY);
+    TEST_ASSERT_TRUE(n <= 8u);
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_classify_every_case);
+    RUN_TEST(test_ellipse_conic_round_trip);
+    RUN_TEST(test_fit_exact_points);
+    RUN_TEST(test_fit_degenerate_sets);
+    RUN_TEST(test_residual_and_coverage);
+    RUN_TEST(test_torch_pose_exact_and_from_fitted_points);
+    RUN_TEST(test_torch_pose_rejects_what_the_model_cannot_produce);
+    RUN_TEST(test_detect_ellipse_in_an_image);
+    return UNITY_END();
+}
