@@ -24,7 +24,12 @@ extern "C" {
 
 /** A conic a x^2 + 2b xy + c y^2 + 2d x + 2e y + f = 0. */
 typedef struct sbr_conic_s {
-    float a, b, c, d, e, f;
+    float a; /**< x^2 */
+    float b; /**< xy (half its coefficient) */
+    float c; /**< y^2 */
+    float d; /**< x (half its coefficient) */
+    float e; /**< y (half its coefficient) */
+    float f; /**< constant */
 } sbr_conic_t;
 
 /** A point with float coordinates. */
@@ -35,7 +40,8 @@ typedef struct sbr_point2f_s {
 
 /** An ellipse by its geometry. */
 typedef struct sbr_ellipse_s {
-    float cx, cy;    /**< centre */
+    float cx;        /**< centre, column */
+    float cy;        /**< centre, row */
     float semi_major; /**< > 0 */
     float semi_minor; /**< > 0, <= semi_major */
     float angle;     /**< direction of the major axis, radians in (-pi/2, pi/2], from +x

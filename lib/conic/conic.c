@@ -142,7 +142,10 @@ sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_c
             const float yc = ((conic->b * conic->d) - (conic->a * conic->e)) / det;
             const float f0 = (conic->d * xc) + (conic->e * yc) + conic->f;
             const float terms = fabsf(conic->d * xc) + fabsf(conic->e * yc) + fabsf(conic->f);
-            const int zero = ((fabsf(f0) <= (tol * terms)) || (terms <= 0.0f)) ? 1 : 0;
+            int zero = 0;
+            if ((fabsf(f0) <= (tol * terms)) || (terms <= 0.0f)) {
+                zero = 1;
+            }
             if (d22 > 0.0f) {
                 if (zero != 0) {
                     *cls = SBR_CONIC_POINT_ELLIPSE;
@@ -245,7 +248,9 @@ static int ellipse_of(const sbr_conic_t *q0, sbr_ellipse_t *el)
                 el->semi_major = sqrtf(-f0 / lmin);
                 el->semi_minor = sqrtf(-f0 / lmax);
                 el->angle = ang;
-                ok = (isfinite(el->semi_major) != 0) ? 1 : 0;
+                if (isfinite(el->semi_major) != 0) {
+                    ok = 1;
+                }
             }
         }
     }
@@ -328,10 +333,10 @@ static uint32_t eig3_real(const float m[9], float roots[3])
     if ((p < 0.0f) && (disc <= 0.0f)) {
         const float r = sqrtf(-p / 3.0f);
         float arg = (-q / 2.0f) / (r * r * r);
-        uint32_t k;
         arg = fminf(1.0f, fmaxf(-1.0f, arg));
         {
             const float phi = acosf(arg);
+            uint32_t k;
             for (k = 0u; k < 3u; ++k) {
                 roots[k] = (2.0f * r * cosf((phi - (2.0f * CONIC_PI * (float)k)) / 3.0f)) - sh;
             }
@@ -352,7 +357,6 @@ static int eigvec3(const float m[9], float lambda, float scale, float v[3])
     float a[9];
     float best = 0.0f;
     uint32_t i;
-    uint32_t it;
     int ok = 0;
     for (i = 0u; i < 9u; ++i) {
         a[i] = m[i];
@@ -375,12 +379,12 @@ static int eigvec3(const float m[9], float lambda, float scale, float v[3])
         }
     }
     if ((best > 0.0f) && (isfinite(best) != 0)) {
+        uint32_t it;
         ok = 1;
         /* two steps of inverse iteration with a small shift */
         for (it = 0u; it < 2u; ++it) {
             float b[9];
             float x[3] = {v[0], v[1], v[2]};
-            float nrm;
             for (i = 0u; i < 9u; ++i) {
                 b[i] = a[i];
             }
@@ -388,7 +392,7 @@ static int eigvec3(const float m[9], float lambda, float scale, float v[3])
             b[4] += 1e-4f * scale;
             b[8] += 1e-4f * scale;
             if (solve_small(b, x, 3u, 1e-30f) != 0) {
-                nrm = sqrtf((x[0] * x[0]) + (x[1] * x[1]) + (x[2] * x[2]));
+                const float nrm = sqrtf((x[0] * x[0]) + (x[1] * x[1]) + (x[2] * x[2]));
                 if ((nrm > 0.0f) && (isfinite(nrm) != 0)) {
                     v[0] = x[0] / nrm;
                     v[1] = x[1] / nrm;
@@ -459,9 +463,13 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
             md += sqrtf((dx * dx) + (dy * dy));
         }
         md /= fn;
-        s = (md > 0.0f) ? (1.0f / md) : 0.0f;
-        /* scatter matrices of D1 = [x^2, xy, y^2] and D2 = [x, y, 1] */
-        for (i = 0u; (i < n) && (s > 0.0f); ++i) {
+        s = 0.0f;
+        if (md > 0.0f) {
+            s = 1.0f / md;
+        }
+        /* scatter matrices of D1 = [x^2, xy, y^2] and D2 = [x, y, 1] (all zero when the
+           points coincide, s = 0) */
+        for (i = 0u; i < n; ++i) {
             const float x = (points[i].x - mx) * s;
             const float y = (points[i].y - my) * s;
             const float d1[3] = {x * x, x * y, y * y};
@@ -480,14 +488,7 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
             st = SBR_ERR_DEGENERATE; /* all points equal, or collinear */
         } else {
             float t[9];
-            float mm[9];
-            float red[9];
-            float roots[3];
             float best_v[3] = {0.0f, 0.0f, 0.0f};
-            float best_l = 0.0f;
-            int found = 0;
-            uint32_t nr;
-            uint32_t r;
             uint32_t c;
             uint32_t k;
             /* T = -S3^-1 S2^T, column by column */
@@ -507,6 +508,13 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
             }
             if (st == SBR_OK) {
                 float scale = 0.0f;
+                float mm[9];
+                float red[9];
+                float roots[3];
+                float best_l = 0.0f;
+                int found = 0;
+                uint32_t nr;
+                uint32_t r;
                 /* M = S1 + S2 T; reduced M = C1^-1 M: rows M3/2, -M2, M1/2 */
                 for (r = 0u; r < 3u; ++r) {
                     for (c = 0u; c < 3u; ++c) {
@@ -674,7 +682,8 @@ sbr_status_t sbr_ellipse_coverage(const sbr_conic_t *conic, const sbr_point2f_t 
                 const float u = ((dx * cs) + (dy * sn)) / el.semi_major;
                 const float v = ((dy * cs) - (dx * sn)) / el.semi_minor;
                 const float t = atan2f(v, u) + CONIC_PI;
-                uint32_t sec = (uint32_t)((t / (2.0f * CONIC_PI)) * (float)COVERAGE_SECTORS);
+                const float fsec = (t / (2.0f * CONIC_PI)) * (float)COVERAGE_SECTORS;
+                uint32_t sec = (uint32_t)fsec;
                 if (sec >= COVERAGE_SECTORS) {
                     sec = COVERAGE_SECTORS - 1u;
                 }
@@ -747,11 +756,7 @@ sbr_status_t sbr_torch_pose(const sbr_conic_t *conic, float focal, float max_res
                       conic->e * focal, conic->f};
         float nrm = 0.0f;
         float p[4];
-        float r[6];
-        float jac[24];
-        float cost;
         uint32_t i;
-        uint32_t it;
         for (i = 0u; i < 6u; ++i) {
             const float w = ((i == 1u) || (i == 3u) || (i == 4u)) ? 2.0f : 1.0f;
             nrm += w * g[i] * g[i];
@@ -765,16 +770,19 @@ sbr_status_t sbr_torch_pose(const sbr_conic_t *conic, float focal, float max_res
         if (fabsf(p[0]) <= 1e-12f) {
             st = SBR_ERR_DEGENERATE;
         } else {
+            float r[6];
+            float jac[24];
+            float cost;
+            uint32_t it;
+            int go = 1;
             p[1] = g[3] / p[0];
             p[2] = g[4] / p[0];
             p[3] = 0.5f * (((g[0] + g[2]) / p[0]) + (p[1] * p[1]) + (p[2] * p[2]));
             cost = torch_residuals(p, g, r, jac);
-            /* Gauss-Newton over all six entries */
-            for (it = 0u; it < 20u; ++it) {
+            /* Gauss-Newton over all six entries, while the cost decreases */
+            for (it = 0u; (it < 20u) && (go != 0); ++it) {
                 float jtj[16] = {0};
                 float jtr[4] = {0};
-                float q[4];
-                float cost2;
                 uint32_t a;
                 uint32_t b;
                 for (i = 0u; i < 6u; ++i) {
@@ -786,28 +794,30 @@ sbr_status_t sbr_torch_pose(const sbr_conic_t *conic, float focal, float max_res
                     }
                 }
                 if (solve_small(jtj, jtr, 4u, 1e-20f) == 0) {
-                    break;
-                }
-                for (a = 0u; a < 4u; ++a) {
-                    q[a] = p[a] + jtr[a];
-                }
-                {
+                    go = 0;
+                } else {
+                    float q[4];
                     float r2[6];
                     float jac2[24];
+                    float cost2;
+                    for (a = 0u; a < 4u; ++a) {
+                        q[a] = p[a] + jtr[a];
+                    }
                     cost2 = torch_residuals(q, g, r2, jac2);
                     if ((isfinite(cost2) == 0) || (cost2 >= cost)) {
-                        break;
+                        go = 0;
+                    } else {
+                        for (a = 0u; a < 4u; ++a) {
+                            p[a] = q[a];
+                        }
+                        for (a = 0u; a < 6u; ++a) {
+                            r[a] = r2[a];
+                        }
+                        for (a = 0u; a < 24u; ++a) {
+                            jac[a] = jac2[a];
+                        }
+                        cost = cost2;
                     }
-                    for (a = 0u; a < 4u; ++a) {
-                        p[a] = q[a];
-                    }
-                    for (a = 0u; a < 6u; ++a) {
-                        r[a] = r2[a];
-                    }
-                    for (a = 0u; a < 24u; ++a) {
-                        jac[a] = jac2[a];
-                    }
-                    cost = cost2;
                 }
             }
             pose->n1 = p[1];
@@ -1005,7 +1015,6 @@ sbr_status_t sbr_ellipse_detect(const sbr_image_t *image, const sbr_ellipse_dete
                                 uint32_t capacity, uint32_t *count)
 {
     sbr_status_t st = SBR_OK;
-    size_t need = 0u;
     if ((image == NULL) || (cfg == NULL) || (out == NULL) || (count == NULL)) {
         st = SBR_ERR_NULL;
     } else {
@@ -1020,7 +1029,7 @@ sbr_status_t sbr_ellipse_detect(const sbr_image_t *image, const sbr_ellipse_dete
         }
     }
     if (st == SBR_OK) {
-        need = sbr_ellipse_detect_workspace_size(image->width, image->height, cfg);
+        const size_t need = sbr_ellipse_detect_workspace_size(image->width, image->height, cfg);
         if ((workspace == NULL) || (need == 0u) || (workspace_size < need) ||
             (sbr_util_aligned(workspace, 8u) == 0)) {
             st = SBR_ERR_WORKSPACE;
@@ -1032,9 +1041,10 @@ sbr_status_t sbr_ellipse_detect(const sbr_image_t *image, const sbr_ellipse_dete
     }
     if (st == SBR_OK) {
         uint8_t *base = (uint8_t *)workspace;
-        sbr_mser_region_t *regions = (sbr_mser_region_t *)(void *)base;
-        uint8_t *shared = base + round8((size_t)cfg->max_regions * sizeof(sbr_mser_region_t));
-        const size_t shared_size = workspace_size - (size_t)(shared - base);
+        sbr_mser_region_t *regions = (sbr_mser_region_t *)workspace;
+        const size_t region_bytes = round8((size_t)cfg->max_regions * sizeof(sbr_mser_region_t));
+        uint8_t *shared = &base[region_bytes];
+        const size_t shared_size = workspace_size - region_bytes;
         uint32_t nreg = 0u;
         uint32_t r;
         int capacity_hit = 0;
@@ -1052,14 +1062,17 @@ sbr_status_t sbr_ellipse_detect(const sbr_image_t *image, const sbr_ellipse_dete
             const sbr_mser_region_t *reg = &regions[r];
             const uint32_t bw = reg->bbox.width;
             const uint32_t bh = reg->bbox.height;
+            const size_t off_mask = round8(SBR_MSER_MASK_WORKSPACE_SIZE(bw, bh));
+            const size_t off_cws = off_mask + round8((size_t)bw * bh);
+            const size_t off_pts = off_cws + round8(SBR_CONTOUR_WORKSPACE_SIZE(bw, bh));
+            const size_t off_cons = off_pts + round8((size_t)cfg->max_contour_points * sizeof(sbr_point_t));
+            const size_t off_fp = off_cons + round8((size_t)DET_MAX_CONTOURS * sizeof(sbr_contour_t));
             uint8_t *mws = shared;
-            uint8_t *mask = mws + round8(SBR_MSER_MASK_WORKSPACE_SIZE(bw, bh));
-            uint8_t *cws = mask + round8((size_t)bw * bh);
-            sbr_point_t *pts = (sbr_point_t *)(void *)(cws + round8(SBR_CONTOUR_WORKSPACE_SIZE(bw, bh)));
-            sbr_contour_t *cons = (sbr_contour_t *)(void *)((uint8_t *)pts +
-                round8((size_t)cfg->max_contour_points * sizeof(sbr_point_t)));
-            sbr_point2f_t *fp = (sbr_point2f_t *)(void *)((uint8_t *)cons +
-                round8((size_t)DET_MAX_CONTOURS * sizeof(sbr_contour_t)));
+            uint8_t *mask = &shared[off_mask];
+            uint8_t *cws = &shared[off_cws];
+            sbr_point_t *pts = (sbr_point_t *)(void *)&shared[off_pts];
+            sbr_contour_t *cons = (sbr_contour_t *)(void *)&shared[off_cons];
+            sbr_point2f_t *fp = (sbr_point2f_t *)(void *)&shared[off_fp];
             const sbr_image_t mview = {bw, bh, bw, SBR_PIXEL_GRAY8, mask};
             uint32_t ncon = 0u;
             sbr_status_t cs;
