@@ -137,7 +137,8 @@ typedef struct sbr_torch_pose_s {
     float n1;        /**< plane slope along X */
     float n2;        /**< plane slope along Y */
     float z0_over_r; /**< distance along the optical axis in beam radii */
-    float residual;  /**< rms misfit of the six conic entries, relative to |C| */
+    float residual;  /**< rms misfit of the nine conic entries (unweighted), relative to
+                          |C| (Frobenius, in focal-normalised coordinates) */
 } sbr_torch_pose_t;
 
 /** Largest residual sbr_torch_pose() accepts by default (relative to |C|). */
@@ -150,7 +151,11 @@ typedef struct sbr_torch_pose_s {
  * Cp = [[k - n1^2, -n1 n2, f n1], [-n1 n2, k - n2^2, f n2], [f n1, f n2, -f^2]] with
  * k = (Z0/R)^2, in coordinates centred at the principal point (x right, y down as the
  * image). The closed form (scale from C33) starts a Gauss-Newton least-squares fit of
- * (lambda, n1, n2, k) to all six distinct entries of the normalised conic.
+ * (lambda, n1, n2, k) to all six distinct entries of the conic in focal-normalised
+ * coordinates (x / f), scaled to unit norm. The entries 13, 23, 33 (the ellipse's centre
+ * and size) weigh 1, the entries 11, 12, 22 (its elongation, poorly conditioned for
+ * distant planes: Z0/R = 10 at f = 500 px elongates a 50 px beam by 0.2 %) weigh 0.1;
+ * the unweighted misfit is the consistency test.
  *
  * @param conic  the ellipse in principal-point-centred pixel coordinates.
  * @param focal  focal length in pixels, > 0 and finite.
@@ -190,7 +195,7 @@ typedef struct sbr_ellipse_detect_config_s {
 /** One detected ellipse. */
 typedef struct sbr_ellipse_det_s {
     sbr_ellipse_t ellipse;
-    sbr_conic_t conic;
+    sbr_conic_t conic;  /**< scaled to a + c = 1 */
     float residual;    /**< rms Sampson distance, pixels */
     float coverage;    /**< 0..1 */
     uint32_t area;     /**< region pixels (of the first region found) */
@@ -237,8 +242,9 @@ size_t sbr_ellipse_detect_workspace_size(uint32_t width, uint32_t height,
  * @brief Ellipses of an image: MSER regions of both polarities, the outer contour of each,
  *        a direct fit, and the residual and coverage tests. Nested level sets of the same
  *        edge (centres within 1 px, axes within 1.5 px or 3 %) are merged into one
- *        detection whose geometry is their mean (an anti-aliased edge gives a few such
- *        regions; their mean follows the edge's mid level).
+ *        detection: the mean of their conics (each scaled to a + c = 1) and its geometry
+ *        (an anti-aliased edge gives a few such regions; their mean follows the edge's mid
+ *        level).
  *
  * @param image GRAY8 view, at least 3 x 3.
  * @param[out] out     detections, in the order their regions were found.

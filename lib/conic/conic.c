@@ -11,7 +11,11 @@
 #define COVERAGE_SECTORS 64u
 /* largest rms Sampson distance of a fit, relative to the points' mean distance from
    their centroid */
-#define FIT_MAX_MISS 0.1f
+/* Torchlight least squares: weight of the quadratic entries (11, 12, 22: the ellipse's
+   elongation, poorly conditioned for distant planes) against the linear and constant
+   ones (13, 23, 33: its centre and size). */
+#define TORCH_WQ 0.1f
+#define FIT_MAX_MISS 0.5f
 
 /* ---------------------------------------------------------------- small linear algebra */
 
@@ -404,6 +408,47 @@ static int eigvec3(const float m[9], float lambda, float scale, float v[3])
     return ok;
 }
 
+/* Do the points lie on a hyperbola? The unconstrained least-squares conic (the smallest
+   eigenvector of the symmetric reduced scatter M) is a hyperbola that misses the points
+   by less than a quarter of the ellipse fit's miss (noisy arcs of an ellipse give
+   comparable misses; points of a hyperbola fit it almost exactly). */
+static int hyperbola_fits_better(const float mm[9], const float t[9], const sbr_point2f_t *points,
+                                 uint32_t n, float mx, float my, float s, float ellipse_miss)
+{
+    float roots[3];
+    float scale = 0.0f;
+    float lmin;
+    float v[3] = {0.0f, 0.0f, 0.0f};
+    uint32_t k;
+    uint32_t nr;
+    int hyp = 0;
+    for (k = 0u; k < 9u; ++k) {
+        scale = fmaxf(scale, fabsf(mm[k]));
+    }
+    nr = eig3_real(mm, roots);
+    lmin = roots[0];
+    for (k = 1u; k < nr; ++k) {
+        lmin = fminf(lmin, roots[k]);
+    }
+    if ((eigvec3(mm, lmin, scale, v) != 0) && (((4.0f * v[0] * v[2]) - (v[1] * v[1])) < 0.0f)) {
+        const float a2[3] = {(t[0] * v[0]) + (t[1] * v[1]) + (t[2] * v[2]),
+                             (t[3] * v[0]) + (t[4] * v[1]) + (t[5] * v[2]),
+                             (t[6] * v[0]) + (t[7] * v[1]) + (t[8] * v[2])};
+        const sbr_conic_t qg = {v[0], 0.5f * v[1], v[2], 0.5f * a2[0], 0.5f * a2[1], a2[2]};
+        float miss = 0.0f;
+        uint32_t i;
+        for (i = 0u; i < n; ++i) {
+            const float dd = sampson(&qg, (points[i].x - mx) * s, (points[i].y - my) * s);
+            miss += dd * dd;
+        }
+        miss = sqrtf(miss / (float)n);
+        if (miss < (0.25f * ellipse_miss)) {
+            hyp = 1;
+        }
+    }
+    return hyp;
+}
+
 sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_t *conic,
                              sbr_ellipse_t *ellipse)
 {
@@ -488,6 +533,7 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
             st = SBR_ERR_DEGENERATE; /* all points equal, or collinear */
         } else {
             float t[9];
+            float mm_keep[9];
             float best_v[3] = {0.0f, 0.0f, 0.0f};
             uint32_t c;
             uint32_t k;
@@ -524,6 +570,9 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
                         }
                         mm[(r * 3u) + c] = acc;
                     }
+                }
+                for (k = 0u; k < 9u; ++k) {
+                    mm_keep[k] = mm[k];
                 }
                 for (c = 0u; c < 3u; ++c) {
                     red[0u + c] = 0.5f * mm[6u + c];
@@ -565,7 +614,8 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
                     miss += dd * dd;
                 }
                 miss = sqrtf(miss / (float)n);
-                if ((ellipse_of(&qn, &en) == 0) || (miss > FIT_MAX_MISS) || (isfinite(miss) == 0)) {
+                if ((ellipse_of(&qn, &en) == 0) || (miss > FIT_MAX_MISS) || (isfinite(miss) == 0) ||
+                    (hyperbola_fits_better(mm_keep, t, points, n, mx, my, s, miss) != 0)) {
                     st = SBR_ERR_DEGENERATE; /* e.g. the points of a hyperbola */
                 } else {
                     const float ss = s * s;
@@ -713,7 +763,7 @@ static float torch_residuals(const float p[4], const float g[6], float r[6], flo
     const float k = p[3];
     const float w = 1.41421356f;
     const float model[6] = {k - (n1 * n1), -n1 * n2, k - (n2 * n2), n1, n2, -1.0f};
-    const float wt[6] = {1.0f, w, 1.0f, w, w, 1.0f};
+    const float wt[6] = {TORCH_WQ, TORCH_WQ * w, TORCH_WQ, w, w, 1.0f};
     const float jr[24] = {model[0], -2.0f * mu * n1, 0.0f, mu,
                           model[1], -mu * n2, -mu * n1, 0.0f,
                           model[2], 0.0f, -2.0f * mu * n2, mu,
@@ -731,6 +781,20 @@ static float torch_residuals(const float p[4], const float g[6], float r[6], flo
         }
     }
     return acc;
+}
+
+/* Unweighted rms misfit of mu * M(n1, n2, k) against g (the consistency measure). */
+static float torch_misfit(const float p[4], const float g[6])
+{
+    const float model[6] = {p[3] - (p[1] * p[1]), -p[1] * p[2], p[3] - (p[2] * p[2]), p[1], p[2], -1.0f};
+    const float wt[6] = {1.0f, 2.0f, 1.0f, 2.0f, 2.0f, 1.0f}; /* off-diagonal entries twice */
+    float acc = 0.0f;
+    uint32_t i;
+    for (i = 0u; i < 6u; ++i) {
+        const float d = (p[0] * model[i]) - g[i];
+        acc += wt[i] * d * d;
+    }
+    return sqrtf(acc / 9.0f);
 }
 
 sbr_status_t sbr_torch_pose(const sbr_conic_t *conic, float focal, float max_residual,
@@ -823,7 +887,7 @@ sbr_status_t sbr_torch_pose(const sbr_conic_t *conic, float focal, float max_res
             pose->n1 = p[1];
             pose->n2 = p[2];
             pose->z0_over_r = (p[3] > 0.0f) ? sqrtf(p[3]) : 0.0f;
-            pose->residual = sqrtf(cost / 6.0f);
+            pose->residual = torch_misfit(p, g);
             if ((p[3] <= 0.0f) || (pose->residual > max_residual) ||
                 (isfinite(pose->residual) == 0)) {
                 st = SBR_ERR_DEGENERATE;
@@ -968,46 +1032,40 @@ static uint32_t same_ellipse(const sbr_ellipse_det_t *dets, uint32_t count, cons
     return found;
 }
 
-/* Merge `det` into `into` (running mean of the geometry over the merged regions). */
+/* Scale a conic to a + c = 1 (positive for an ellipse). */
+static void unit_trace(sbr_conic_t *q)
+{
+    const float tr = q->a + q->c;
+    if (tr != 0.0f) {
+        q->a /= tr;
+        q->b /= tr;
+        q->c /= tr;
+        q->d /= tr;
+        q->e /= tr;
+        q->f /= tr;
+    }
+}
+
+/* Merge `det` into `into`: the running mean of their conics (each scaled to a + c = 1;
+   nested level sets of one edge have nearly equal conics, so the mean is well defined
+   even for near-circles, whose angles are not), the geometry recomputed from it. */
 static void merge_into(sbr_ellipse_det_t *into, const sbr_ellipse_det_t *det)
 {
-    const float k = (float)into->merged;
-    const float w = 1.0f / (k + 1.0f);
-    sbr_ellipse_t *o = &into->ellipse;
-    float da = det->ellipse.angle - o->angle;
-    sbr_conic_t q;
-    if (da > (0.5f * CONIC_PI)) {
-        da -= CONIC_PI;
-    } else if (da < (-0.5f * CONIC_PI)) {
-        da += CONIC_PI;
-    } else {
-        /* same branch */
+    const float w = 1.0f / ((float)into->merged + 1.0f);
+    sbr_conic_t *o = &into->conic;
+    sbr_ellipse_t el;
+    o->a += w * (det->conic.a - o->a);
+    o->b += w * (det->conic.b - o->b);
+    o->c += w * (det->conic.c - o->c);
+    o->d += w * (det->conic.d - o->d);
+    o->e += w * (det->conic.e - o->e);
+    o->f += w * (det->conic.f - o->f);
+    if (ellipse_of(o, &el) != 0) {
+        into->ellipse = el;
     }
-    o->cx += w * (det->ellipse.cx - o->cx);
-    o->cy += w * (det->ellipse.cy - o->cy);
-    o->semi_major += w * (det->ellipse.semi_major - o->semi_major);
-    o->semi_minor += w * (det->ellipse.semi_minor - o->semi_minor);
-    o->angle += w * da;
-    if (o->angle > (0.5f * CONIC_PI)) {
-        o->angle -= CONIC_PI;
-    } else if (o->angle <= (-0.5f * CONIC_PI)) {
-        o->angle += CONIC_PI;
-    } else {
-        /* in range */
-    }
-    o->semi_minor = fminf(o->semi_minor, o->semi_major);
     into->residual += w * (det->residual - into->residual);
     into->coverage += w * (det->coverage - into->coverage);
     into->merged += 1u;
-    if (sbr_ellipse_to_conic(o, &q) == SBR_OK) {
-        const float m = max_abs_entry(&q);
-        into->conic.a = q.a / m;
-        into->conic.b = q.b / m;
-        into->conic.c = q.c / m;
-        into->conic.d = q.d / m;
-        into->conic.e = q.e / m;
-        into->conic.f = q.f / m;
-    }
 }
 
 sbr_status_t sbr_ellipse_detect(const sbr_image_t *image, const sbr_ellipse_detect_config_t *cfg,
@@ -1122,6 +1180,7 @@ sbr_status_t sbr_ellipse_detect(const sbr_image_t *image, const sbr_ellipse_dete
                         det.area = reg->area;
                         det.polarity = reg->polarity;
                         det.merged = 1u;
+                        unit_trace(&det.conic);
                         if (same < *count) {
                             merge_into(&out[same], &det);
                         } else if (*count < capacity) {
