@@ -293,3 +293,22 @@ def test_virtual_bus_source():
         tx.shutdown()
         src.stop()
         src.thread.join(2)
+
+
+def test_tracked_objects_list_per_cycle():
+    mon = Monitor(M)
+    s = Sender(M)
+    frames = [f for f in s.cycle(0) if f[0] != 0x320]
+    frames += [(0x320, s(0x320, SBR_Obj_Index=0, SBR_Obj_TrackId=7, SBR_Obj_PosX=640,
+                         SBR_Obj_PosY=300, SBR_Obj_VelX=-40, SBR_Obj_VelY=8,
+                         SBR_Obj_Certainty=88)),
+               (0x320, s(0x320, SBR_Obj_Index=1, SBR_Obj_TrackId=9, SBR_Obj_PosX=100,
+                         SBR_Obj_PosY=700, SBR_Obj_VelX=0, SBR_Obj_VelY=0,
+                         SBR_Obj_Certainty=40))]
+    feed_all(mon, frames, 0.0)
+    snap = mon.snapshot()
+    assert [(o["track"], o["x"], o["y"], o["vx"], o["vy"], o["certainty"]) for o in snap["objects"]] \
+        == [(7, 640, 300, -40, 8, 88), (9, 100, 700, 0, 0, 40)]
+    assert "tracked objects: #7 (640,300), #9 (100,700)" in render(snap)
+    feed_all(mon, s.cycle(1), 0.1)  # "no object" frame
+    assert mon.snapshot()["objects"] == []
