@@ -354,14 +354,6 @@ static void test_detect_ellipse_in_an_image(void)
                              (uint32_t)need);
     TEST_ASSERT_TRUE(need <= sizeof g_ws);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_detect(&img, &cfg, g_ws, need, det, 8u, &n));
-#ifdef CONIC_DEBUG
-    for (i = 0u; i < n; i++) {
-        printf("det %u: %.3f %.3f %.3f %.3f %.4f res %.3f cov %.3f area %u pol %u\n", (unsigned)i,
-               (double)det[i].ellipse.cx, (double)det[i].ellipse.cy, (double)det[i].ellipse.semi_major,
-               (double)det[i].ellipse.semi_minor, (double)det[i].ellipse.angle, (double)det[i].residual,
-               (double)det[i].coverage, (unsigned)det[i].area, (unsigned)det[i].polarity);
-    }
-#endif
     TEST_ASSERT_EQUAL_UINT32(1u, n);
     TEST_ASSERT_FLOAT_WITHIN(0.2f, want.cx, det[0].ellipse.cx);
     TEST_ASSERT_FLOAT_WITHIN(0.2f, want.cy, det[0].ellipse.cy);

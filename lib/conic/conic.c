@@ -36,6 +36,14 @@ static int conic_finite(const sbr_conic_t *q)
            (isfinite(q->d) != 0) && (isfinite(q->e) != 0) && (isfinite(q->f) != 0);
 }
 
+/* The conic q divided by k (a division per entry: correctly rounded, which matters for
+   conics far from the origin, whose constant term cancels against the others). */
+static sbr_conic_t conic_div(const sbr_conic_t *q, float k)
+{
+    const sbr_conic_t r = {q->a / k, q->b / k, q->c / k, q->d / k, q->e / k, q->f / k};
+    return r;
+}
+
 static float det3(const float m[9])
 {
     return (m[0] * ((m[4] * m[8]) - (m[5] * m[7]))) - (m[1] * ((m[3] * m[8]) - (m[5] * m[6]))) +
@@ -201,16 +209,10 @@ static int ellipse_of(const sbr_conic_t *q0, sbr_ellipse_t *el)
     const float m = fmaxf(fabsf(q0->a), fmaxf(fabsf(q0->b), fabsf(q0->c)));
     int ok = 0;
     if (m > 0.0f) {
-        sbr_conic_t q = {q0->a / m, q0->b / m, q0->c / m, q0->d / m, q0->e / m, q0->f / m};
+        /* quadratic part at unit scale, a + c > 0 */
+        const float k = ((q0->a + q0->c) < 0.0f) ? -m : m;
+        const sbr_conic_t q = conic_div(q0, k);
         const float d22 = (q.a * q.c) - (q.b * q.b);
-        if ((q.a + q.c) < 0.0f) {
-            q.a = -q.a;
-            q.b = -q.b;
-            q.c = -q.c;
-            q.d = -q.d;
-            q.e = -q.e;
-            q.f = -q.f;
-        }
         if (d22 > (SBR_CONIC_ZERO_TOL * 1e-2f)) {
             const float xc = ((q.b * q.e) - (q.c * q.d)) / d22;
             const float yc = ((q.b * q.d) - (q.a * q.e)) / d22;
@@ -408,6 +410,30 @@ static int eigvec3(const float m[9], float lambda, float scale, float v[3])
     return ok;
 }
 
+/* The conic of a solution of the reduced problem: a1 = (a, 2b, c) and a2 = T a1 =
+   (2d, 2e, f). */
+static sbr_conic_t conic_from_reduced(const float t[9], const float v[3])
+{
+    const float a2[3] = {(t[0] * v[0]) + (t[1] * v[1]) + (t[2] * v[2]),
+                         (t[3] * v[0]) + (t[4] * v[1]) + (t[5] * v[2]),
+                         (t[6] * v[0]) + (t[7] * v[1]) + (t[8] * v[2])};
+    const sbr_conic_t q = {v[0], 0.5f * v[1], v[2], 0.5f * a2[0], 0.5f * a2[1], a2[2]};
+    return q;
+}
+
+/* Rms Sampson distance of the points in the fit's normalised frame x' = s (x - mx). */
+static float normalised_miss(const sbr_conic_t *q, const sbr_point2f_t *points, uint32_t n,
+                             float mx, float my, float s)
+{
+    float acc = 0.0f;
+    uint32_t i;
+    for (i = 0u; i < n; ++i) {
+        const float dd = sampson(q, (points[i].x - mx) * s, (points[i].y - my) * s);
+        acc += dd * dd;
+    }
+    return sqrtf(acc / (float)n);
+}
+
 /* Do the points lie on a hyperbola? The unconstrained least-squares conic (the smallest
    eigenvector of the symmetric reduced scatter M) is a hyperbola that misses the points
    by less than a quarter of the ellipse fit's miss (noisy arcs of an ellipse give
@@ -431,18 +457,8 @@ static int hyperbola_fits_better(const float mm[9], const float t[9], const sbr_
         lmin = fminf(lmin, roots[k]);
     }
     if ((eigvec3(mm, lmin, scale, v) != 0) && (((4.0f * v[0] * v[2]) - (v[1] * v[1])) < 0.0f)) {
-        const float a2[3] = {(t[0] * v[0]) + (t[1] * v[1]) + (t[2] * v[2]),
-                             (t[3] * v[0]) + (t[4] * v[1]) + (t[5] * v[2]),
-                             (t[6] * v[0]) + (t[7] * v[1]) + (t[8] * v[2])};
-        const sbr_conic_t qg = {v[0], 0.5f * v[1], v[2], 0.5f * a2[0], 0.5f * a2[1], a2[2]};
-        float miss = 0.0f;
-        uint32_t i;
-        for (i = 0u; i < n; ++i) {
-            const float dd = sampson(&qg, (points[i].x - mx) * s, (points[i].y - my) * s);
-            miss += dd * dd;
-        }
-        miss = sqrtf(miss / (float)n);
-        if (miss < (0.25f * ellipse_miss)) {
+        const sbr_conic_t qg = conic_from_reduced(t, v);
+        if (normalised_miss(&qg, points, n, mx, my, s) < (0.25f * ellipse_miss)) {
             hyp = 1;
         }
     }
@@ -602,18 +618,9 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
             }
             if (st == SBR_OK) {
                 /* conic in normalised coordinates, then back: x' = s (x - mx) */
-                const float a2[3] = {(t[0] * best_v[0]) + (t[1] * best_v[1]) + (t[2] * best_v[2]),
-                                     (t[3] * best_v[0]) + (t[4] * best_v[1]) + (t[5] * best_v[2]),
-                                     (t[6] * best_v[0]) + (t[7] * best_v[1]) + (t[8] * best_v[2])};
-                const sbr_conic_t qn = {best_v[0], 0.5f * best_v[1], best_v[2], 0.5f * a2[0],
-                                        0.5f * a2[1], a2[2]};
+                const sbr_conic_t qn = conic_from_reduced(t, best_v);
+                const float miss = normalised_miss(&qn, points, n, mx, my, s);
                 sbr_ellipse_t en;
-                float miss = 0.0f;
-                for (i = 0u; i < n; ++i) {
-                    const float dd = sampson(&qn, (points[i].x - mx) * s, (points[i].y - my) * s);
-                    miss += dd * dd;
-                }
-                miss = sqrtf(miss / (float)n);
                 if ((ellipse_of(&qn, &en) == 0) || (miss > FIT_MAX_MISS) || (isfinite(miss) == 0) ||
                     (hyperbola_fits_better(mm_keep, t, points, n, mx, my, s, miss) != 0)) {
                     st = SBR_ERR_DEGENERATE; /* e.g. the points of a hyperbola */
@@ -631,12 +638,7 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
                     if ((m <= 0.0f) || (isfinite(m) == 0)) {
                         st = SBR_ERR_DEGENERATE;
                     } else {
-                        conic->a = q.a / m;
-                        conic->b = q.b / m;
-                        conic->c = q.c / m;
-                        conic->d = q.d / m;
-                        conic->e = q.e / m;
-                        conic->f = q.f / m;
+                        *conic = conic_div(&q, m);
                         if (ellipse != NULL) {
                             ellipse->cx = (en.cx / s) + mx;
                             ellipse->cy = (en.cy / s) + my;
@@ -976,27 +978,16 @@ size_t sbr_ellipse_detect_workspace_size(uint32_t width, uint32_t height,
     return total;
 }
 
-/* Contour points as floats, moved `offset` pixels along the outward normal. */
+/* Contour points as floats, moved `offset` pixels along the outward normal. The outward
+   side follows from the contour's orientation (the sign of its shoelace area). */
 static void edge_points(const sbr_point_t *pts, uint32_t n, float offset, sbr_point2f_t *out)
 {
-    float cx = 0.0f;
-    float cy = 0.0f;
-    float side = 0.0f;
+    int64_t area2 = 0;
+    float side = 1.0f; /* normal (ty, -tx) * side points outward */
     uint32_t i;
-    for (i = 0u; i < n; ++i) {
-        cx += (float)pts[i].x;
-        cy += (float)pts[i].y;
+    if ((sbr_contour_area2(pts, n, &area2) == SBR_OK) && (area2 < 0)) {
+        side = -1.0f;
     }
-    cx /= (float)n;
-    cy /= (float)n;
-    for (i = 0u; i < n; ++i) {
-        const sbr_point_t *pa = &pts[(i + n - 2u) % n];
-        const sbr_point_t *pb = &pts[(i + 2u) % n];
-        const float tx = (float)pb->x - (float)pa->x;
-        const float ty = (float)pb->y - (float)pa->y;
-        side += (ty * ((float)pts[i].x - cx)) - (tx * ((float)pts[i].y - cy));
-    }
-    side = (side >= 0.0f) ? 1.0f : -1.0f; /* normal (ty, -tx) * side points outward */
     for (i = 0u; i < n; ++i) {
         const sbr_point_t *pa = &pts[(i + n - 2u) % n];
         const sbr_point_t *pb = &pts[(i + 2u) % n];
@@ -1037,12 +1028,7 @@ static void unit_trace(sbr_conic_t *q)
 {
     const float tr = q->a + q->c;
     if (tr != 0.0f) {
-        q->a /= tr;
-        q->b /= tr;
-        q->c /= tr;
-        q->d /= tr;
-        q->e /= tr;
-        q->f /= tr;
+        *q = conic_div(q, tr);
     }
 }
 
