@@ -30,9 +30,10 @@ PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip python3-
 
 log() { printf '\n== %s\n' "$*"; }
 
-setup() {
+# install_packages P...: the Debian packages of the list that are missing.
+install_packages() {
   local missing=()
-  for p in "${PACKAGES[@]}"; do
+  for p in "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   if [ "${#missing[@]}" -gt 0 ]; then
@@ -42,6 +43,11 @@ setup() {
     $sudo apt-get update -qq
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
   fi
+}
+
+setup() {
+  install_packages "${PACKAGES[@]}"
+  mkdir -p "$BUILD"
   setup_venv
 }
 
@@ -173,24 +179,16 @@ cmd_train() {
 }
 
 cmd_dashboard() {
-  setup_venv_only
+  # the dashboard needs only Python and its pinned packages
+  install_packages python3 python3-venv python3-pip
+  mkdir -p "$BUILD"
+  setup_venv
   local args=("$@")
   if ! printf '%s\n' "${args[@]}" | grep -qxE -- '--(log|socketcan|virtual|help)|-h'; then
     [ -f "$ROOT/out/sbr_can.log" ] || { echo "no out/sbr_can.log: run ./sbr.sh detect first, or give --log/--socketcan/--virtual" >&2; return 2; }
     args=(--log "$ROOT/out/sbr_can.log" "${args[@]}")
   fi
   exec "$BUILD/venv/bin/python" "$ROOT/dashboard/sbr-dashboard" "${args[@]}"
-}
-
-# The dashboard needs only python3-venv and the pinned packages.
-setup_venv_only() {
-  if ! python3 -m venv --help > /dev/null 2>&1 || ! dpkg-query -W -f='${Status}' python3-venv 2>/dev/null | grep -q "install ok installed"; then
-    PACKAGES=(python3 python3-venv python3-pip)
-    setup
-  else
-    mkdir -p "$BUILD"
-    setup_venv
-  fi
 }
 
 case "${1:-}" in

@@ -4,7 +4,8 @@
   python -m sbr_dashboard --socketcan IFACE                 a live SocketCAN interface
   python -m sbr_dashboard --virtual CHANNEL [--feed-log F]  python-can's virtual bus
 options: --dbc FILE (default dbc/sbr.dbc), --terminal (no web page), --host, --port,
-         --timeout-factor F (default 3), --exit-after-end S (stop S seconds after a log
+         --timeout-factor F (default 3), --wait-client (start the input only once a page
+         is connected, so that it sees the whole replay), --exit-after-end S (stop S seconds after a log
          ended; default: keep serving), --once (terminal: print one screen when the log
          ended, then exit)
 """
@@ -40,6 +41,8 @@ def main(argv=None):
     ap.add_argument("--port", type=int, default=8080, help="0: any free port")
     ap.add_argument("--timeout-factor", type=float, default=3.0)
     ap.add_argument("--exit-after-end", type=float, default=None)
+    ap.add_argument("--wait-client", action="store_true",
+                    help="start the input when the first page connects")
     a = ap.parse_args(argv)
     if a.rate <= 0 and not a.fast:
         ap.error("--rate must be > 0 (or use --fast)")
@@ -74,6 +77,16 @@ def main(argv=None):
         server.start()
         print(f"sbr_dashboard: open {server.url} in a browser ({source.name}); Ctrl-C stops",
               flush=True)
+    if server and a.wait_client:
+        print("sbr_dashboard: the input starts when a page connects", flush=True)
+        try:
+            while not server.httpd.client_connected.wait(0.2) and not stop.is_set():
+                pass
+        except KeyboardInterrupt:
+            stop.set()
+        if stop.is_set():
+            server.stop()
+            return 0
     source.start()
     if a.virtual and a.feed_log:
         threading.Thread(target=feed_log_to_bus, daemon=True,

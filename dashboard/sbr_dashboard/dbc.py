@@ -48,6 +48,10 @@ class MessageSpec:
     counter_max: int
     message: object = field(repr=False)  # the cantools message
 
+    def crc_input(self, data):
+        """The bytes the E2E CRC covers: the Data ID (low byte, high byte), then bytes 1..7."""
+        return bytes([self.data_id & 0xFF, self.data_id >> 8]) + bytes(data[1:])
+
 
 _CRC_RE = re.compile(r"polynomial 0x([0-9A-Fa-f]{1,2}), init 0x([0-9A-Fa-f]{1,2}), "
                      r"final XOR 0x([0-9A-Fa-f]{1,2}); check 0x([0-9A-Fa-f]{1,2})")
@@ -108,6 +112,5 @@ class DbcModel:
     def protect(self, frame_id, data):
         """Sender-side E2E of a payload (used by tests and fault injection): the CRC byte
         recomputed over the Data ID and bytes 1..7."""
-        spec = self.messages[frame_id]
-        body = bytes([spec.data_id & 0xFF, spec.data_id >> 8]) + bytes(data[1:8])
-        return bytes([self.crc(body)]) + bytes(data[1:8])
+        body = bytes(data[:8])
+        return bytes([self.crc(self.messages[frame_id].crc_input(body))]) + body[1:]

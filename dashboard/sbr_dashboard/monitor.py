@@ -48,8 +48,7 @@ class E2EChecker:
         spec = self.spec
         if len(data) != spec.length:
             return "length"
-        body = bytes([spec.data_id & 0xFF, spec.data_id >> 8]) + bytes(data[1:])
-        if self.crc(body) != data[0]:
+        if self.crc(spec.crc_input(data)) != data[0]:
             return "crc"
         raw = int.from_bytes(bytes(data), "little")
         counter = (raw >> spec.counter_start) & ((1 << spec.counter_length) - 1)

@@ -51,6 +51,35 @@ class Source:
                           is_remote=msg.is_remote_frame)
 
 
+class LogPacer:
+    """The frames of a candump log (python-can's reader), each released at `rate` times the
+    recorded speed (0: at once). `t0`/`wall0` tie log time to the monotonic clock; `next_t`
+    is the timestamp of the frame being released."""
+
+    def __init__(self, path, rate, stop_event):
+        self.path, self.rate, self.stop_event = path, rate, stop_event
+        self.t0 = self.wall0 = self.next_t = None
+
+    def __iter__(self):
+        for msg in can.CanutilsLogReader(self.path):
+            if self.stop_event.is_set():
+                return
+            self.next_t = msg.timestamp
+            if self.t0 is None:
+                self.t0, self.wall0 = msg.timestamp, time.monotonic()
+            if self.rate > 0:
+                delay = self.wall0 + (msg.timestamp - self.t0) / self.rate - time.monotonic()
+                if delay > 0 and self.stop_event.wait(delay):
+                    return
+            yield msg
+
+    def log_time(self):
+        """Log time now (paced replay): never ahead of the frame being released."""
+        if self.rate == 0 or self.t0 is None:
+            return None
+        return min(self.t0 + (time.monotonic() - self.wall0) * self.rate, self.next_t)
+
+
 class LogSource(Source):
     """A candump log (`(sec.usec) ifname ID#DATA` lines), via python-can's reader. With
     rate 0 it is replayed as fast as possible (source time = the last frame's timestamp);
@@ -61,7 +90,7 @@ class LogSource(Source):
         self.path, self.rate = path, rate
         self.name = f"log {path}" + (" (as fast as possible)" if rate == 0 else
                                      f" ({rate:g}x recorded speed)")
-        self._t0 = self._wall0 = self._next_t = None
+        self.pacer = LogPacer(path, rate, self.stop_event)
         try:
             with open(path, "rb"):
                 pass
@@ -71,24 +100,13 @@ class LogSource(Source):
     def clock(self):
         # never ahead of the next frame of the log: a replay that runs late (a slow
         # machine) must not turn into timeouts the recording does not have
-        if self.rate == 0 or self._t0 is None or self.monitor.source_ended:
-            return None
-        return min(self._t0 + (time.monotonic() - self._wall0) * self.rate, self._next_t)
+        return None if self.monitor.source_ended else self.pacer.log_time()
 
     def run(self):
-        for msg in can.CanutilsLogReader(self.path):
-            if self.stop_event.is_set():
-                return
-            t = msg.timestamp
-            self._next_t = t
-            if self._t0 is None:
-                self._t0, self._wall0 = t, time.monotonic()
-            if self.rate > 0:
-                delay = self._wall0 + (t - self._t0) / self.rate - time.monotonic()
-                if delay > 0 and self.stop_event.wait(delay):
-                    return
-            self._feed(msg, t)
-        self.monitor.end_of_source("end of log")
+        for msg in self.pacer:
+            self._feed(msg, msg.timestamp)
+        if not self.stop_event.is_set():
+            self.monitor.end_of_source("end of log")
 
 
 class BusSource(Source):
@@ -121,16 +139,7 @@ def feed_log_to_bus(path, interface, channel, rate=1.0, stop_event=None):
     with fresh timestamps, at `rate` times the recorded speed (0: as fast as possible)."""
     bus = can.Bus(interface=interface, channel=channel)
     try:
-        t0 = wall0 = None
-        for msg in can.CanutilsLogReader(path):
-            if stop_event is not None and stop_event.is_set():
-                break
-            if t0 is None:
-                t0, wall0 = msg.timestamp, time.monotonic()
-            if rate > 0:
-                delay = wall0 + (msg.timestamp - t0) / rate - time.monotonic()
-                if delay > 0:
-                    time.sleep(delay)
+        for msg in LogPacer(path, rate, stop_event or threading.Event()):
             bus.send(can.Message(arbitration_id=msg.arbitration_id, data=msg.data,
                                  is_extended_id=msg.is_extended_id, timestamp=time.time()))
     finally:

@@ -55,6 +55,7 @@ def make_handler(monitor):
             self.send_header("Cache-Control", "no-store")
             self.send_header("Connection", "keep-alive")
             self.end_headers()
+            self.server.client_connected.set()
             version = -1
             try:
                 while not self.server.stopping.is_set():
@@ -79,6 +80,7 @@ class WebServer:
         self.httpd = ThreadingHTTPServer((host, port), make_handler(monitor))
         self.httpd.daemon_threads = True
         self.httpd.stopping = threading.Event()
+        self.httpd.client_connected = threading.Event()  # a page opened /events
         self.thread = None
 
     @property

@@ -19,37 +19,11 @@ import re
 import shutil
 import subprocess
 import sys
-import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DASHBOARD = os.path.dirname(HERE)
-LINE = re.compile(r"^\((\d+)\.(\d{6})\) (\S+) ([0-9A-F]{3})#([0-9A-F]*)$")
-
-
-def crc8_j1850(data):
-    crc = 0xFF
-    for b in data:
-        crc ^= b
-        for _ in range(8):
-            crc = ((crc << 1) ^ 0x1D) & 0xFF if crc & 0x80 else (crc << 1) & 0xFF
-    return crc ^ 0xFF
-
-
-def read_log(path):
-    out = []
-    with open(path) as f:
-        for raw in f:
-            m = LINE.match(raw.strip())
-            assert m, raw
-            out.append([int(m.group(1)) * 1000000 + int(m.group(2)), m.group(3),
-                        int(m.group(4), 16), bytearray.fromhex(m.group(5))])
-    return out
-
-
-def write_log(path, frames):
-    with open(path, "w") as f:
-        for t, ifname, fid, data in frames:
-            f.write(f"({t // 1000000}.{t % 1000000:06d}) {ifname} {fid:03X}#{bytes(data).hex().upper()}\n")
+sys.path.insert(0, os.path.join(os.path.dirname(DASHBOARD), "tests", "python"))
+from candump import e2e_crc, read_candump as read_log, write_candump as write_log  # noqa: E402
 
 
 def bits(data, start, length):
@@ -63,8 +37,7 @@ def set_bits(data, start, length, value):
 
 
 def protect(fid, data):
-    did = 0x5B00 | (fid & 0xFF)
-    data[0] = crc8_j1850(bytes([did & 0xFF, did >> 8]) + bytes(data[1:8]))
+    data[0] = e2e_crc(fid, data)
     return data
 
 
@@ -141,7 +114,7 @@ class Dashboard:
         self.out = open(os.path.join(work, f"{name}.out"), "w+")
         self.proc = subprocess.Popen(
             [python, os.path.join(DASHBOARD, "sbr-dashboard"), "--log", log, "--rate", str(rate),
-             "--port", "0"], stdout=subprocess.PIPE, stderr=self.out, text=True)
+             "--port", "0", "--wait-client"], stdout=subprocess.PIPE, stderr=self.out, text=True)
         line = self.proc.stdout.readline()
         m = re.search(r"open (http://\S+)", line)
         assert m, f"dashboard did not say where to open: {line!r}"

@@ -21,16 +21,7 @@ import subprocess
 import sys
 import warnings
 
-LINE = re.compile(r"^\((\d+)\.(\d{6})\) (\S+) ([0-9A-F]{3})#([0-9A-F]{0,16})$")
-
-
-def crc8_j1850(data):
-    crc = 0xFF
-    for b in data:
-        crc ^= b
-        for _ in range(8):
-            crc = ((crc << 1) ^ 0x1D) & 0xFF if crc & 0x80 else (crc << 1) & 0xFF
-    return crc ^ 0xFF
+from candump import e2e_crc, read_candump
 
 
 def read_detections(path):
@@ -98,28 +89,23 @@ def main():
     cycles = collections.OrderedDict()
     last_counter = {}
     frames = 0
-    with open(log) as f:
-        for raw in f:
-            m = LINE.match(raw.strip())
-            assert m, f"not a candump line: {raw!r}"
-            t = int(m.group(1)) * 1000000 + int(m.group(2))
-            fid = int(m.group(4), 16)
-            data = bytes.fromhex(m.group(5))
-            assert len(data) == 8
-            data_id = 0x5B00 | (fid & 0xFF)
-            assert db.get_message_by_frame_id(fid).dbc.attributes["SBR_E2E_DataID"].value == data_id
-            assert crc8_j1850(bytes([data_id & 0xFF, data_id >> 8]) + data[1:]) == data[0], raw
-            counter = data[1] & 0x0F
-            assert counter <= 14
-            if fid in last_counter:
-                assert counter == (last_counter[fid] + 1) % 15, (raw, last_counter[fid])
-            last_counter[fid] = counter
-            dec = db.decode_message(fid, data, decode_choices=False)
-            for name, value in dec.items():  # every value inside the DBC's range
-                s = db.get_message_by_frame_id(fid).get_signal_by_name(name)
-                assert s.minimum <= value <= s.maximum, (name, value)
-            cycles.setdefault(t, []).append((fid, dec))
-            frames += 1
+    for t, _, fid, data in read_candump(log):
+        raw = f"{fid:03X}#{data.hex().upper()}"
+        assert len(data) == 8, raw
+        data_id = 0x5B00 | (fid & 0xFF)
+        assert db.get_message_by_frame_id(fid).dbc.attributes["SBR_E2E_DataID"].value == data_id
+        assert e2e_crc(fid, data) == data[0], raw
+        counter = data[1] & 0x0F
+        assert counter <= 14
+        if fid in last_counter:
+            assert counter == (last_counter[fid] + 1) % 15, (raw, last_counter[fid])
+        last_counter[fid] = counter
+        dec = db.decode_message(fid, data, decode_choices=False)
+        for name, value in dec.items():  # every value inside the DBC's range
+            s = db.get_message_by_frame_id(fid).get_signal_by_name(name)
+            assert s.minimum <= value <= s.maximum, (name, value)
+        cycles.setdefault(t, []).append((fid, dec))
+        frames += 1
 
     # 3b. can-utils reads the same log (log2asc shares canplayer's log parser)
     import shutil
