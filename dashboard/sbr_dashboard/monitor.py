@@ -336,7 +336,7 @@ class Monitor:
             signs=self.signs, detections=self.detections, objects=self.objects,
             health=dict(status_frames=self.status_count, fps=round(fps, 2),
                         processing_ms=None if self.status is None else self.status["ProcessingTime"],
-                        processing_ms_mean=round(self._proc_sum / self.status_count, 2)
+                        processing_ms_mean=self._proc_sum / self.status_count
                         if self.status_count else None,
                         status=self.status, flag_counts=dict(self.flag_counts)))
 

@@ -25,9 +25,9 @@ def render(s, width=78):
     objs = ", ".join(f"#{o['track']} ({o['x']:.0f},{o['y']:.0f})" for o in s["objects"]) or "none"
     lines.append(f"tracked objects: {objs}")
     lines.append("-" * width)
-    proc = h["processing_ms"]
-    lines.append(f"ECU: {h['fps']:.1f} images/s  processing {proc if proc is not None else '--'} ms "
-                 f"(mean {h['processing_ms_mean'] if h['processing_ms_mean'] is not None else '--'})  "
+    fmt = lambda v: "--" if v is None else f"{v:.1f}"  # noqa: E731
+    lines.append(f"ECU: {h['fps']:.1f} images/s  processing {fmt(h['processing_ms'])} ms "
+                 f"(mean {fmt(h['processing_ms_mean'])})  "
                  f"frame counter {st.get('FrameCounter', '--')}  regions {st.get('RegionCount', '--')}")
     fc = h["flag_counts"]
     lines.append(f"flags: overload {fc['overload']}  error {fc['error']}  capacity {fc['capacity']}   "

@@ -204,12 +204,15 @@ def main():
         finally:
             dash.stop()
         print("page (clean log):", {k: v[k] for k in v if k not in ("rows", "events")})
+        print("expected from the log:", want)
         assert v["speed_limit"] == f"{want['speed_limit']} km/h", (v["speed_limit"], want)
         assert v["sign_count"] == v["sign_icons"] == want["sign_count"]
         assert v["frames"] == want["frames"] and v["status_frames"] == want["status_frames"]
         assert v["frame_counter"] == str(want["frame_counter"])
-        assert v["proc"] == f"{want['processing_ms']:.1f}"
-        assert v["proc_mean"] == f"{want['processing_mean']:.1f}"
+        # shown with one decimal: equal within half of it (the page and this test sum the
+        # times in different float order, so a mean on a .x5 boundary may round either way)
+        assert abs(float(v["proc"]) - want["processing_ms"]) <= 0.05 + 1e-9, v["proc"]
+        assert abs(float(v["proc_mean"]) - want["processing_mean"]) <= 0.05 + 1e-9, v["proc_mean"]
         assert abs(float(v["fps"]) - 10.0) < 0.05, v["fps"]  # images 100 ms apart in the log
         assert (v["overload"], v["error"], v["capacity"]) == \
             (want["overload"], want["error"], want["capacity"])
