@@ -17,6 +17,7 @@
 #include "sbr/can.h"
 #include "sbr/parts.h"
 #include "sbr/recognizer.h"
+#include "sbr/bicycle.h"
 #include "sbr/conic.h"
 
 /** Library version. */
