@@ -3,6 +3,7 @@
 #include "sbr/bicycle.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "../common/sbr_util.h"
 
@@ -101,8 +102,8 @@ void sbr_bike_model_default(sbr_bike_model_t *model)
 static void advance(const sbr_bike_model_t *m, sbr_bike_state_t *s, float dt)
 {
     const uint32_t steps = (uint32_t)ceilf(dt / BIKE_SUBSTEP);
-    uint32_t k;
     if (steps > 0u) {
+        uint32_t k;
         const float h = dt / (float)steps;
         const float relax = 1.0f - expf(-h / m->roll_tau);
         const float yaw_rate = (s->speed * tanf(s->steer)) / m->wheelbase;
@@ -427,8 +428,8 @@ void sbr_bike_pf_config_default(sbr_bike_pf_config_t *cfg)
         cfg->heading_noise = 0.05f;
         cfg->position_noise = 0.1f;
         cfg->roll_noise = 0.05f;
-        cfg->meas_px = 1.0f;
-        cfg->meas_rel = 0.02f;
+        cfg->meas_px = 0.5f;
+        cfg->meas_rel = 0.015f;
         cfg->gate = 200.0f;
         cfg->max_speed = 12.0f;
         cfg->resample_fraction = 0.5f;
@@ -524,7 +525,8 @@ static bike_feat_t measured(const sbr_bike_pf_t *pf, const sbr_ellipse_t *e)
     /* a young track's particles are sparse in speed and heading: its first updates use
        a wider likelihood (BIKE_WARMUP times the noise at the start, 1 after as many
        frames) so that the cloud narrows over several frames instead of collapsing */
-    const float warm = (pf->age < BIKE_WARMUP) ? ((float)(BIKE_WARMUP - pf->age)) : 1.0f;
+    const uint32_t left = (pf->age < BIKE_WARMUP) ? (BIKE_WARMUP - pf->age) : 1u;
+    const float warm = (float)left;
     const float sigma = (pf->cfg.meas_px + (pf->cfg.meas_rel * e->semi_major)) * warm;
     features(e, m.f);
     m.inv = 1.0f / (sigma * sigma);
@@ -576,7 +578,10 @@ static float meas_cost(const bike_meas_t *m, const float r[BIKE_NFEAT], const fl
         c1 = fminf(r1, BIKE_LL_CAP) + fminf(f0, BIKE_LL_CAP);
     }
     *raw = fminf(u0, u1);
-    *swapped = (c1 < c0) ? 1u : 0u;
+    *swapped = 0u;
+    if (c1 < c0) {
+        *swapped = 1u;
+    }
     return fminf(c0, c1);
 }
 
@@ -640,12 +645,15 @@ static void associate(const sbr_bike_pf_t *pf, const sbr_ellipse_t *el, uint32_t
 {
     wheel_group_t g[SBR_BIKE_MAX_ELLIPSES];
     sbr_wheel_pair_t pairs[BIKE_PAIR_CAP];
-    bike_meas_t cand[SBR_BIKE_MAX_ELLIPSES] = {{0u}};
+    bike_meas_t cand[SBR_BIKE_MAX_ELLIPSES];
     const uint32_t ng = group_ellipses(el, n, g);
-    const uint32_t np0 = pair_groups(g, ng, &pf->cfg.model, pairs, BIKE_PAIR_CAP);
-    const uint32_t np = (np0 < BIKE_PAIR_CAP) ? np0 : BIKE_PAIR_CAP;
+    uint32_t np = pair_groups(g, ng, &pf->cfg.model, pairs, BIKE_PAIR_CAP);
     uint32_t k;
     uint32_t pick;
+    (void)memset(cand, 0, sizeof cand);
+    if (np > BIKE_PAIR_CAP) {
+        np = BIKE_PAIR_CAP;
+    }
     m->kind = 0u;
     for (k = 0u; k < np; ++k) {
         cand[k].kind = 2u;
@@ -797,9 +805,16 @@ static void resample(sbr_bike_pf_t *pf)
     u = step * rng_uniform(&pf->rng);
     cum = expf(pf->cur[0].logw) / total;
     for (i = 0u; i < n; ++i) {
-        while ((u > cum) && (j < (n - 1u))) {
+        int more = 0;
+        if (u > cum) {
+            more = 1;
+        }
+        while ((more != 0) && (j < (n - 1u))) {
             j++;
             cum += expf(pf->cur[j].logw) / total;
+            if (u <= cum) {
+                more = 0;
+            }
         }
         pf->next[i].s = pf->cur[j].s;
         pf->next[i].logw = 0.0f;
