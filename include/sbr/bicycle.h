@@ -248,7 +248,7 @@ sbr_status_t sbr_bike_pf_init(sbr_bike_pf_t *pf, const sbr_bike_pf_config_t *cfg
  * `max_missed` frames without a measurement the track is dropped.
  *
  * Cost: three passes over the particles at most (association, weighting, resampling),
- * each projecting both wheels of every particle; about 5 kB of stack (Cortex-M4 build,
+ * each projecting both wheels of every particle; about 3.6 kB of stack (Cortex-M4 build,
  * -fstack-usage), most of it the candidate list for ::SBR_BIKE_MAX_ELLIPSES ellipses.
  *
  * @param dt seconds since the previous step, 0 <= dt <= 1 (ignored when a track starts).

@@ -545,17 +545,22 @@ static float wheel_d2(const bike_feat_t *m, const float p[BIKE_NFEAT])
     return d2 * m->inv;
 }
 
-/* The measurement a step uses: none, one wheel (either end) or two (either order). */
+/* A candidate measurement: one wheel (either end) or two (either order). */
 typedef struct {
     uint32_t kind; /* 0 none, 1 single, 2 pair */
     bike_feat_t w[2];
+} bike_cand_t;
+
+/* The measurement a step uses, with its ellipses. */
+typedef struct {
+    bike_cand_t c;
     sbr_ellipse_t e[2];
 } bike_meas_t;
 
 /* Cost of a measurement for predicted wheels (features r, f), under its better
    assignment: the sum of the wheels' squared distances, each capped at BIKE_LL_CAP
    (returned), and uncapped (*raw). *swapped: 1 when w[0] is better the front wheel. */
-static float meas_cost(const bike_meas_t *m, const float r[BIKE_NFEAT], const float f[BIKE_NFEAT],
+static float meas_cost(const bike_cand_t *m, const float r[BIKE_NFEAT], const float f[BIKE_NFEAT],
                        float *raw, uint32_t *swapped)
 {
     float c0;
@@ -602,7 +607,7 @@ static int predicted(const sbr_bike_pf_t *pf, const sbr_bike_state_t *s, float r
 /* The candidate with the largest predictive likelihood (the weighted sum over the
    particles of each one's likelihood) among those some particle explains within the
    gate (limit: the gate times the number of wheels). Returns nc when none qualifies. */
-static uint32_t choose(const sbr_bike_pf_t *pf, const bike_meas_t *cand, uint32_t nc)
+static uint32_t choose(const sbr_bike_pf_t *pf, const bike_cand_t *cand, uint32_t nc)
 {
     float score[SBR_BIKE_MAX_ELLIPSES];
     float best_raw[SBR_BIKE_MAX_ELLIPSES];
@@ -645,7 +650,7 @@ static void associate(const sbr_bike_pf_t *pf, const sbr_ellipse_t *el, uint32_t
 {
     wheel_group_t g[SBR_BIKE_MAX_ELLIPSES];
     sbr_wheel_pair_t pairs[BIKE_PAIR_CAP];
-    bike_meas_t cand[SBR_BIKE_MAX_ELLIPSES];
+    bike_cand_t cand[SBR_BIKE_MAX_ELLIPSES];
     const uint32_t ng = group_ellipses(el, n, g);
     uint32_t np = pair_groups(g, ng, &pf->cfg.model, pairs, BIKE_PAIR_CAP);
     uint32_t k;
@@ -654,28 +659,29 @@ static void associate(const sbr_bike_pf_t *pf, const sbr_ellipse_t *el, uint32_t
     if (np > BIKE_PAIR_CAP) {
         np = BIKE_PAIR_CAP;
     }
-    m->kind = 0u;
+    m->c.kind = 0u;
     for (k = 0u; k < np; ++k) {
         cand[k].kind = 2u;
-        cand[k].e[0] = pairs[k].wheel[0];
-        cand[k].e[1] = pairs[k].wheel[1];
         cand[k].w[0] = measured(pf, &pairs[k].wheel[0]);
         cand[k].w[1] = measured(pf, &pairs[k].wheel[1]);
     }
     pick = choose(pf, cand, np);
     if (pick < np) {
-        *m = cand[pick];
+        m->c = cand[pick];
+        m->e[0] = pairs[pick].wheel[0];
+        m->e[1] = pairs[pick].wheel[1];
     } else {
         for (k = 0u; k < ng; ++k) {
+            const sbr_ellipse_t e = group_ellipse(&g[k]);
             cand[k].kind = 1u;
-            cand[k].e[0] = group_ellipse(&g[k]);
-            cand[k].e[1] = cand[k].e[0];
-            cand[k].w[0] = measured(pf, &cand[k].e[0]);
+            cand[k].w[0] = measured(pf, &e);
             cand[k].w[1] = cand[k].w[0];
         }
         pick = choose(pf, cand, ng);
         if (pick < ng) {
-            *m = cand[pick];
+            m->c = cand[pick];
+            m->e[0] = group_ellipse(&g[pick]);
+            m->e[1] = m->e[0];
         }
     }
 }
@@ -691,13 +697,13 @@ static float weigh(sbr_bike_pf_t *pf, const bike_meas_t *m)
     uint32_t i;
     for (i = 0u; i < n; ++i) {
         sbr_bike_particle_t *p = &pf->cur[i];
-        if (m->kind != 0u) {
+        if (m->c.kind != 0u) {
             float r[BIKE_NFEAT];
             float f[BIKE_NFEAT];
             if (predicted(pf, &p->s, r, f) != 0) {
                 float raw;
                 uint32_t sw;
-                p->logw += -0.5f * meas_cost(m, r, f, &raw, &sw);
+                p->logw += -0.5f * meas_cost(&m->c, r, f, &raw, &sw);
             } else {
                 p->logw = BIKE_DEAD_LOGW;
             }
@@ -880,15 +886,15 @@ static void weigh_and_estimate(sbr_bike_pf_t *pf, const bike_meas_t *m, sbr_bike
 {
     res->ess = weigh(pf, m);
     estimate(pf, res);
-    if (m->kind != 0u) {
+    if (m->c.kind != 0u) {
         float r[BIKE_NFEAT];
         float f[BIKE_NFEAT];
         float raw;
         uint32_t sw = 0u;
         if (predicted(pf, &res->mean, r, f) != 0) {
-            (void)meas_cost(m, r, f, &raw, &sw);
+            (void)meas_cost(&m->c, r, f, &raw, &sw);
         }
-        if (m->kind == 2u) {
+        if (m->c.kind == 2u) {
             res->rear = m->e[sw];
             res->front = m->e[1u - sw];
             res->wheels = 3u;
@@ -930,11 +936,11 @@ sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, float dt, const sbr_ellipse_t *
             const uint32_t ng = group_ellipses(ellipses, n, g);
             if (pair_groups(g, ng, &pf->cfg.model, pair, 1u) > 0u) {
                 start_track(pf, &pair[0]);
-                m.kind = 2u;
+                m.c.kind = 2u;
                 m.e[0] = pair[0].wheel[0];
                 m.e[1] = pair[0].wheel[1];
-                m.w[0] = measured(pf, &m.e[0]);
-                m.w[1] = measured(pf, &m.e[1]);
+                m.c.w[0] = measured(pf, &m.e[0]);
+                m.c.w[1] = measured(pf, &m.e[1]);
                 result->flags = SBR_BIKE_TRACKING | SBR_BIKE_STARTED | SBR_BIKE_UPDATED;
                 weigh_and_estimate(pf, &m, result);
             }
@@ -944,7 +950,7 @@ sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, float dt, const sbr_ellipse_t *
             result->flags = SBR_BIKE_TRACKING;
             pf->age = (pf->age < BIKE_WARMUP) ? (pf->age + 1u) : pf->age;
             weigh_and_estimate(pf, &m, result);
-            if (m.kind != 0u) {
+            if (m.c.kind != 0u) {
                 pf->missed = 0u;
                 result->flags |= SBR_BIKE_UPDATED;
             } else {
