@@ -144,7 +144,7 @@ static int wheel_ellipse(const sbr_camera_t *cam, float r, float x, float z, flo
     const float dz = sinf(theta);
     const float cr = cosf(roll);
     const float sr = sinf(roll);
-    /* up in the leaning wheel plane: cos(roll) (0, -1, 0) + sin(roll) left, left = (-dz, 0, dx) */
+    /* up in the leaning wheel plane: the vertical (0, -1, 0) tilted by the roll towards left = (-dz, 0, dx) */
     const float ux = -sr * dz;
     const float uy = -cr;
     const float uz = sr * dx;
