@@ -11,7 +11,7 @@ void setUp(void) {}
 void tearDown(void) {}
 
 #define PF_PARTICLES 500u
-static sbr_bike_particle_t g_ws[2u * PF_PARTICLES];
+static uint32_t g_ws[SBR_BIKE_PF_WORKSPACE_SIZE(PF_PARTICLES) / sizeof(uint32_t)];
 
 static sbr_bike_pf_config_t config(uint32_t seed)
 {

@@ -363,7 +363,7 @@ int run_bike(uint32_t seed, int runs, const std::string &save) {
     const int settled = 38;  // all state errors from frame 38 (1.5 s) on
     sbr_bike_pf_config_t pcfg;
     sbr_bike_pf_config_default(&pcfg);
-    std::vector<sbr_bike_particle_t> pws(2 * pcfg.particles);
+    std::vector<uint32_t> pws(sbr_bike_pf_workspace_size(&pcfg) / sizeof(uint32_t));
     sbr_ellipse_detect_config_t dcfg;
     sbr_ellipse_detect_config_default(&dcfg);
     dcfg.mser.max_nodes = 400000;
@@ -388,7 +388,7 @@ int run_bike(uint32_t seed, int runs, const std::string &save) {
                 std::mt19937 rng(seed * 7919u + uint32_t(run) * 104729u + uint32_t(noise * 10));
                 pcfg.seed = seed + uint32_t(run);
                 sbr_bike_pf_t pf;
-                if (sbr_bike_pf_init(&pf, &pcfg, pws.data(), pws.size() * sizeof(sbr_bike_particle_t)) != SBR_OK)
+                if (sbr_bike_pf_init(&pf, &pcfg, pws.data(), pws.size() * sizeof(uint32_t)) != SBR_OK)
                     return 1;
                 sbr_bike_state_t t = sc.start;
                 for (int k = 0; k < frames; ++k) {

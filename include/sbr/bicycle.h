@@ -133,8 +133,10 @@ typedef struct sbr_bike_particle_s {
     float logw;
 } sbr_bike_particle_t;
 
-/** Workspace bytes for `particles` particles (two generations, for resampling). */
-#define SBR_BIKE_PF_WORKSPACE_SIZE(particles) (2u * (size_t)(particles) * sizeof(sbr_bike_particle_t))
+/** Workspace bytes for `particles` particles: two generations (for resampling) and each
+    particle's predicted wheels (12 floats, projected once per step). */
+#define SBR_BIKE_PF_WORKSPACE_SIZE(particles) \
+    ((size_t)(particles) * ((2u * sizeof(sbr_bike_particle_t)) + (12u * sizeof(float))))
 
 /** Particle filter configuration. Start from sbr_bike_pf_config_default(). */
 typedef struct sbr_bike_pf_config_s {
@@ -180,6 +182,7 @@ typedef struct sbr_bike_pf_s {
     sbr_bike_pf_config_t cfg;
     sbr_bike_particle_t *cur;
     sbr_bike_particle_t *next;
+    float *pred;
     uint32_t rng;
     uint32_t started;
     uint32_t missed;
@@ -247,9 +250,10 @@ sbr_status_t sbr_bike_pf_init(sbr_bike_pf_t *pf, const sbr_bike_pf_config_t *cfg
  * particle whose wheels leave the front of the camera weighs nothing. After
  * `max_missed` frames without a measurement the track is dropped.
  *
- * Cost: three passes over the particles at most (association, weighting, resampling),
- * each projecting both wheels of every particle; about 3.6 kB of stack (Cortex-M4 build,
- * -fstack-usage), most of it the candidate list for ::SBR_BIKE_MAX_ELLIPSES ellipses.
+ * Cost: both wheels of every particle are projected once per step, into the workspace;
+ * association, weighting and resampling then pass over the particles. About 3.6 kB of
+ * stack (Cortex-M4 build, -fstack-usage), most of it the candidate list for
+ * ::SBR_BIKE_MAX_ELLIPSES ellipses.
  *
  * @param dt seconds since the previous step, 0 <= dt <= 1 (ignored when a track starts).
  * @param ellipses the ellipses of this frame (may be NULL when n = 0).

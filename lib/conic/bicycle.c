@@ -491,6 +491,7 @@ sbr_status_t sbr_bike_pf_init(sbr_bike_pf_t *pf, const sbr_bike_pf_config_t *cfg
             pf->cfg = *cfg;
             pf->cur = p;
             pf->next = &p[cfg->particles];
+            pf->pred = (float *)(void *)&p[2u * cfg->particles];
             pf->rng = (cfg->seed != 0u) ? cfg->seed : 0x9e3779b9u;
             pf->started = 0u;
             pf->missed = 0u;
@@ -604,6 +605,30 @@ static int predicted(const sbr_bike_pf_t *pf, const sbr_bike_state_t *s, float r
     return ok;
 }
 
+/* Project every particle's wheels once per step into the workspace's prediction cache
+   (rear then front features; a semi-major axis of -1 marks a particle out of view), so
+   that association and weighting do not project again. */
+static void cache_predictions(sbr_bike_pf_t *pf)
+{
+    uint32_t i;
+    for (i = 0u; i < pf->cfg.particles; ++i) {
+        float *r = &pf->pred[i * (2u * BIKE_NFEAT)];
+        if (predicted(pf, &pf->cur[i].s, r, &r[BIKE_NFEAT]) == 0) {
+            r[2] = -1.0f;
+        }
+    }
+}
+
+/* Particle i's cached features (rear, then front), or NULL when it is out of view. */
+static const float *cached(const sbr_bike_pf_t *pf, uint32_t i)
+{
+    const float *r = &pf->pred[i * (2u * BIKE_NFEAT)];
+    if (r[2] < 0.0f) {
+        r = NULL;
+    }
+    return r;
+}
+
 /* The candidate with the largest predictive likelihood (the weighted sum over the
    particles of each one's likelihood) among those some particle explains within the
    gate (limit: the gate times the number of wheels). Returns nc when none qualifies. */
@@ -623,9 +648,9 @@ static uint32_t choose(const sbr_bike_pf_t *pf, const bike_cand_t *cand, uint32_
         top = fmaxf(top, pf->cur[i].logw);
     }
     for (i = 0u; i < pf->cfg.particles; ++i) {
-        float r[BIKE_NFEAT];
-        float f[BIKE_NFEAT];
-        if (predicted(pf, &pf->cur[i].s, r, f) != 0) {
+        const float *r = cached(pf, i);
+        if (r != NULL) {
+            const float *f = &r[BIKE_NFEAT];
             const float w = expf(pf->cur[i].logw - top);
             for (c = 0u; c < nc; ++c) {
                 float raw;
@@ -698,12 +723,11 @@ static float weigh(sbr_bike_pf_t *pf, const bike_meas_t *m)
     for (i = 0u; i < n; ++i) {
         sbr_bike_particle_t *p = &pf->cur[i];
         if (m->c.kind != 0u) {
-            float r[BIKE_NFEAT];
-            float f[BIKE_NFEAT];
-            if (predicted(pf, &p->s, r, f) != 0) {
+            const float *r = cached(pf, i);
+            if (r != NULL) {
                 float raw;
                 uint32_t sw;
-                p->logw += -0.5f * meas_cost(&m->c, r, f, &raw, &sw);
+                p->logw += -0.5f * meas_cost(&m->c, r, &r[BIKE_NFEAT], &raw, &sw);
             } else {
                 p->logw = BIKE_DEAD_LOGW;
             }
@@ -918,7 +942,7 @@ sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, float dt, const sbr_ellipse_t *
     sbr_status_t st = SBR_OK;
     if ((pf == NULL) || (result == NULL) || ((ellipses == NULL) && (n > 0u))) {
         st = SBR_ERR_NULL;
-    } else if ((pf->magic != BIKE_MAGIC) || (pf->cur == NULL) || (pf->next == NULL) ||
+    } else if ((pf->magic != BIKE_MAGIC) || (pf->cur == NULL) || (pf->next == NULL) || (pf->pred == NULL) ||
                (sbr_bike_pf_config_check(&pf->cfg) != SBR_OK)) {
         st = SBR_ERR_STATE;
     } else if (n > SBR_BIKE_MAX_ELLIPSES) {
@@ -936,6 +960,7 @@ sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, float dt, const sbr_ellipse_t *
             const uint32_t ng = group_ellipses(ellipses, n, g);
             if (pair_groups(g, ng, &pf->cfg.model, pair, 1u) > 0u) {
                 start_track(pf, &pair[0]);
+                cache_predictions(pf);
                 m.c.kind = 2u;
                 m.e[0] = pair[0].wheel[0];
                 m.e[1] = pair[0].wheel[1];
@@ -946,6 +971,7 @@ sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, float dt, const sbr_ellipse_t *
             }
         } else {
             predict_particles(pf, dt);
+            cache_predictions(pf);
             associate(pf, ellipses, n, &m);
             result->flags = SBR_BIKE_TRACKING;
             pf->age = (pf->age < BIKE_WARMUP) ? (pf->age + 1u) : pf->age;
