@@ -10,6 +10,9 @@
 #                                               the reference dashboard (dashboard/), default:
 #                                               replay out/sbr_can.log; --help for options
 #   ./sbr.sh train                              relearn the built-in prototype library
+#   ./sbr.sh track [sbr_track options]          the channel tracker against Kalman and particle
+#                                               filters on KITTI tracking (default 0006-0010)
+#   ./sbr.sh learn-tracker                      relearn the tracker's motion model (0000-0005)
 #   ./sbr.sh test                               every test: native, sanitizers, Cortex-M4
 #                                               (qemu), armhf (qemu user), and the gates
 #   ./sbr.sh setup                              only install what is missing
@@ -178,6 +181,21 @@ cmd_train() {
       --out-c "$ROOT/lib/models/sbr_model_gtsdb.c" --out-model "$BUILD/sbr_gtsdb.sbrm" "$@"
 }
 
+cmd_learn_tracker() {
+  setup
+  build_native
+  log "sbr_track --learn on KITTI tracking 0000-0005 -> lib/models/sbr_track_model_kitti.c, $BUILD/sbr_track_kitti.stm"
+  "$BUILD/native/host_tools/sbr_track" --labels "$ROOT/../shared/data/kitti_tracking/label_02" --learn \
+      --seqs 0000-0005 --noise 0 --miss 0 --clutter 0 \
+      --c-out "$ROOT/lib/models/sbr_track_model_kitti.c" --model-out "$BUILD/sbr_track_kitti.stm" "$@"
+}
+
+cmd_track() {
+  setup
+  build_native
+  "$BUILD/native/host_tools/sbr_track" --labels "$ROOT/../shared/data/kitti_tracking/label_02" "$@"
+}
+
 cmd_dashboard() {
   # the dashboard needs only Python and its pinned packages
   install_packages python3 python3-venv python3-pip
@@ -196,6 +214,8 @@ case "${1:-}" in
   test) shift; cmd_test "$@" ;;
   detect) shift; cmd_detect "$@" ;;
   train) shift; cmd_train "$@" ;;
+  learn-tracker) shift; cmd_learn_tracker "$@" ;;
+  track) shift; cmd_track "$@" ;;
   setup) setup ;;
-  *) sed -n '2,18p' "$0"; exit 2 ;;
+  *) sed -n '2,21p' "$0"; exit 2 ;;
 esac

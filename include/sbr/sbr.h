@@ -19,6 +19,7 @@
 #include "sbr/recognizer.h"
 #include "sbr/bicycle.h"
 #include "sbr/conic.h"
+#include "sbr/tracker.h"
 
 /** Library version. */
 #define SBR_VERSION_MAJOR 0
