@@ -1,5 +1,7 @@
 #include "can_output.hpp"
 
+#include "sign_tracker.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -18,6 +20,11 @@ CanLogWriter::CanLogWriter(const std::string &path, uint64_t base_time_us, uint6
 
 CanLogWriter::~CanLogWriter() {
     if (file_) std::fclose(file_);
+}
+
+bool CanLogWriter::enable_tracking(float width, float height) {
+    tracker_ = std::make_shared<SignTracker>(width, height, static_cast<float>(period_) * 1e-6f);
+    return tracker_->ok();
 }
 
 static float clampf(float v, float lo, float hi) { return std::min(hi, std::max(lo, v)); }
@@ -45,12 +52,34 @@ int CanLogWriter::write_image(const std::vector<Detection> &dets, float processi
         c.track_id = SBR_CAN_TRACK_NONE_DET;
         cd.push_back(c);
     }
+    std::vector<Confirmed> fresh;
+    if (tracker_) {
+        // consecutive frames: a sign is listed once, when its track is confirmed
+        std::vector<SignTracker::Input> in;
+        for (const Detection &d : dets)
+            in.push_back({0.5f * static_cast<float>(d.left + d.right), 0.5f * static_cast<float>(d.top + d.bottom),
+                          d.class_id, clampf(d.score, 0.0f, 1.0f)});
+        std::vector<uint32_t> det_track;
+        std::vector<SignTracker::Track> tracks = tracker_->update(in, det_track);
+        for (size_t i = 0; i < cd.size(); ++i)
+            if (det_track[i] != 0u) cd[i].track_id = det_track[i] % 255u;
+        std::stable_sort(tracks.begin(), tracks.end(),
+                         [](const SignTracker::Track &a, const SignTracker::Track &b) { return a.score > b.score; });
+        for (const SignTracker::Track &t : tracks) {
+            if (!t.new_confirmation) continue;
+            Confirmed c;
+            c.class_id = static_cast<uint32_t>(t.class_id);
+            c.score = clampf(t.score, 0.0f, 1.0f);
+            c.track_id = t.id % 255u;
+            c.image = image_;
+            fresh.push_back(c);
+        }
+    } else {
     // this image's detections are confirmed and listed first, by decreasing score (ties in
     // the order given, as the detection frames)
     std::vector<Detection> by_score(dets);
     std::stable_sort(by_score.begin(), by_score.end(),
                      [](const Detection &a, const Detection &b) { return a.score > b.score; });
-    std::vector<Confirmed> fresh;
     for (const Detection &d : by_score) {
         Confirmed c;
         c.class_id = static_cast<uint32_t>(d.class_id);
@@ -59,6 +88,7 @@ int CanLogWriter::write_image(const std::vector<Detection> &dets, float processi
         c.image = image_;
         next_track_ = (next_track_ + 1u) % 255u;
         fresh.push_back(c);
+    }
     }
     confirmed_.insert(confirmed_.begin(), fresh.begin(), fresh.end());
     while (!confirmed_.empty() && (confirmed_.size() > 4u || image_ - confirmed_.back().image >= 255u))

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,7 +28,12 @@ struct Detection {
 // image; each gets a new track id (0..254, wrapping). The four newest stay listed, newest
 // first (within an image by decreasing score), with their age in images, until they are
 // 255 images old. SpeedLimit carries the km/h of the speed-limit classes 0-5, 7, 8 and
-// 255 otherwise. (A tracker confirming over consecutive frames will replace this rule.)
+// 255 otherwise.
+// With enable_tracking() the images are consecutive frames of one drive instead: the
+// detections go through the channel tracker (SignTracker), a sign is confirmed by its
+// second detection on the same track and listed once per pass with its track's id
+// (id mod 255); detections carry the id of their confirmed track.
+class SignTracker;
 class CanLogWriter {
 public:
     // base_time_us: timestamp of the first image; period_us: time between images.
@@ -35,6 +41,8 @@ public:
                  uint64_t period_us = 100000ull, const char *ifname = "can0");
     ~CanLogWriter();
     bool ok() const { return file_ != nullptr; }
+    // Consecutive frames of width x height: track signs (see above). False on failure.
+    bool enable_tracking(float width, float height);
     // Writes the frames of one image; returns the number of frames, or -1 on error.
     int write_image(const std::vector<Detection> &dets, float processing_ms, uint32_t regions,
                     bool error_flag);
@@ -55,6 +63,7 @@ private:
     };
     std::vector<Confirmed> confirmed_;
     uint32_t next_track_ = 0;
+    std::shared_ptr<SignTracker> tracker_;
 };
 
 }  // namespace sbr_host

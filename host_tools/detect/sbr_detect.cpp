@@ -15,6 +15,9 @@
 //   recogniser's floor is lowered to that): for precision-recall curves and AP.
 // --annotated: each image with its operating-point boxes and class names (JPEG).
 // --canlog: a candump log with the CAN frames of every processed image (dbc/sbr.dbc).
+// --sequence: the images (sorted by name) are consecutive frames of one drive, 10 per
+//   second: the CAN log's confirmed signs come from the channel tracker (each sign once
+//   per pass, with a stable track id) instead of treating every image as a still.
 // --model: a prototype library file (sbr_train --out-model); default: the built-in one.
 // --summary: the summary text (also printed): images, detections, time per frame (median
 //   and 95th percentile, per stage), workspace bytes, capacity hits.
@@ -98,6 +101,7 @@ int main(int argc, char **argv) {
     uint32_t subsample = 1;
     bool use_roi = false, quiet = false;
     int min_parts = -1;
+    bool sequence = false;
     float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f;
     sbr_rect_t roi{};
     for (int i = 1; i < argc; ++i) {
@@ -113,6 +117,7 @@ int main(int argc, char **argv) {
         else if (a == "--threshold") threshold = std::strtof(next().c_str(), nullptr);
         else if (a == "--subsample") subsample = uint32_t(std::atoi(next().c_str()));
         else if (a == "--quiet") quiet = true;
+        else if (a == "--sequence") sequence = true;
         else if (a == "--min-parts") min_parts = std::atoi(next().c_str());
         else if (a == "--vote-error") vote_error = std::strtof(next().c_str(), nullptr);
         else if (a == "--verify-error") verify_error = std::strtof(next().c_str(), nullptr);
@@ -129,7 +134,7 @@ int main(int argc, char **argv) {
                          "usage: %s --input DIR --detections FILE [--annotated DIR] [--canlog FILE]\n"
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
                          "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]\n"
-                         "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S]\n", argv[0]);
+                         "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n", argv[0]);
             return 2;
         }
     }
@@ -240,6 +245,10 @@ int main(int argc, char **argv) {
             for (const auto &d : kept)
                 cd.push_back({int(d.box.x), int(d.box.y), int(d.box.x + d.box.width - 1),
                               int(d.box.y + d.box.height - 1), int(d.class_id), d.score});
+            if (sequence && i == 0 && !can->enable_tracking(float(img.cols), float(img.rows))) {
+                std::fprintf(stderr, "sbr_detect: sign tracker set-up failed\n");
+                return 1;
+            }
             can->write_image(cd, frame_ms, stats.parts_stats.regions, error);
         }
         if (!quiet) progress(i + 1, files.size(), ms_total.empty() ? 0.0 : sum_ms / double(ms_total.size()));
