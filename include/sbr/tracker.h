@@ -174,8 +174,10 @@ typedef struct sbr_track_detection_s {
 /** One target estimate. */
 typedef struct sbr_track_target_s {
     uint32_t id;        /**< stable for the target's life, never reused (starts at 1) */
-    float x, y;         /**< decoded position, pixels */
-    float vx, vy;       /**< decoded velocity, pixels per model period */
+    float x;            /**< decoded position, pixels */
+    float y;
+    float vx;           /**< decoded velocity, pixels per model period */
+    float vy;
     float certainty;    /**< share of the density in the decoded position windows, 0..1 */
     uint32_t hits;      /**< detections used so far */
     uint32_t misses;    /**< consecutive steps without a detection */

@@ -18,7 +18,11 @@
 
 static int trk_finite(float v)
 {
-    return (int)((v == v) && (v < 3.0e38f) && (v > -3.0e38f));
+    int ok = 0;
+    if ((v == v) && (v < 3.0e38f) && (v > -3.0e38f)) {
+        ok = 1;
+    }
+    return ok;
 }
 
 /* cos² kernel B(d) with support w (|d| < w / 2). */
@@ -37,7 +41,8 @@ static void trk_region_weights(const sbr_track_model_t *m, uint32_t axis, float 
 {
     const uint32_t nr = m->regions[axis];
     const float ext = m->extent[axis];
-    const float rs = ext / (float)(nr - 2u);
+    const uint32_t nr2 = nr - 2u;
+    const float rs = ext / (float)nr2;
     float x = pos;
     float sum = 0.0f;
     uint32_t r;
@@ -160,7 +165,8 @@ sbr_status_t sbr_track_model_cv(sbr_track_model_t *model, float width, float hei
                (trk_finite(birth_sigma) == 0) || (birth_sigma <= 0.0f)) {
         st = SBR_ERR_RANGE;
     } else {
-        const float c0 = (float)(vel_count - 1u) * 0.5f;
+        const uint32_t vm1 = vel_count - 1u;
+        const float c0 = (float)vm1 * 0.5f;
         /* at least a third of a channel, so that every row has some spread */
         float as = accel_sigma / vel_spacing;
         float bs = birth_sigma / vel_spacing;
@@ -174,7 +180,7 @@ sbr_status_t sbr_track_model_cv(sbr_track_model_t *model, float width, float hei
         }
         for (r = 0u; r < 6u; r++) {
             for (j = 0u; j < vel_count; j++) {
-                trk_gauss_row(&transition[((size_t)r * vel_count + j) * vel_count], vel_count,
+                trk_gauss_row(&transition[(((size_t)r * vel_count) + j) * vel_count], vel_count,
                               (float)j, as);
             }
             trk_gauss_row(&birth[(size_t)r * vel_count], vel_count, c0, bs);
@@ -287,6 +293,7 @@ typedef struct trk_geo_s {
     uint32_t v;   /* velocity channels */
     float s;      /* spacing */
     float c0;     /* velocity centre channel */
+    float half;   /* window centre channel */
     float kw;     /* detection kernel support */
 } trk_geo_t;
 
@@ -383,9 +390,9 @@ static void trk_predict_axis(const sbr_track_t *trk, const trk_geo_t *g, uint32_
         mp /= tot;
         mv /= tot;
     }
-    shift_f = (mp + (mv * ratio)) - ((float)(g->w - 1u) * 0.5f);
+    shift_f = (mp + (mv * ratio)) - g->half;
     recentre = (int32_t)floorf(shift_f + 0.5f);
-    trk_region_weights(m, axis, *origin + (((float)(g->w - 1u) * 0.5f) * g->s), rw);
+    trk_region_weights(m, axis, *origin + (g->half * g->s), rw);
     (void)memset(out, 0, (size_t)g->w * (size_t)g->v * sizeof(float));
     for (k = 0u; k < g->v; k++) {
         const float sk = (((float)k - g->c0) * ratio) - (float)recentre;
@@ -410,7 +417,8 @@ static void trk_predict_axis(const sbr_track_t *trk, const trk_geo_t *g, uint32_
                             out[((size_t)q * g->v) + k] += c * t0;
                         }
                         if (((q + 1) >= 0) && ((q + 1) < (int32_t)g->w)) {
-                            out[((size_t)(q + 1) * g->v) + k] += c * t1;
+                            const int32_t q1 = q + 1;
+                            out[((size_t)q1 * g->v) + k] += c * t1;
                         }
                     }
                 }
@@ -474,14 +482,14 @@ static void trk_birth_axis(const sbr_track_t *trk, const trk_geo_t *g, uint32_t 
     uint32_t p;
     uint32_t k;
     uint32_t r;
+    (void)memset(prior, 0, sizeof(prior));
     trk_region_weights(m, axis, z, rw);
     for (k = 0u; k < g->v; k++) {
-        prior[k] = 0.0f;
         for (r = 0u; r < m->regions[axis]; r++) {
             prior[k] += rw[r] * tab[((size_t)r * g->v) + k];
         }
     }
-    *origin = z - (((float)(g->w - 1u) * 0.5f) * g->s);
+    *origin = z - (g->half * g->s);
     for (p = 0u; p < g->w; p++) {
         const float l = trk_lik(g, *origin, p, z, 1.0f);
         for (k = 0u; k < g->v; k++) {
@@ -722,7 +730,10 @@ static void trk_emit(const sbr_track_t *trk, sbr_track_target_t *targets, uint32
     uint32_t written = 0u;
     uint32_t group;
     for (group = 0u; group < 2u; group++) {
-        const uint32_t want = (group == 0u) ? SBR_TRACK_CONFIRMED : 0u;
+        uint32_t want = 0u;
+        if (group == 0u) {
+            want = SBR_TRACK_CONFIRMED;
+        }
         uint32_t last = 0u;
         int more = 1;
         while (more != 0) {
@@ -793,7 +804,12 @@ sbr_status_t sbr_track_step(sbr_track_t *trk, float dt, const sbr_track_detectio
         g.w = trk->cfg.window;
         g.v = m->vel_count;
         g.s = m->vel_spacing;
-        g.c0 = (float)(g.v - 1u) * 0.5f;
+        {
+            const uint32_t vm1 = g.v - 1u;
+            const uint32_t wm1 = g.w - 1u;
+            g.c0 = (float)vm1 * 0.5f;
+            g.half = (float)wm1 * 0.5f;
+        }
         /* a whole number (>= 3) of channels: then a detection's kernel is an exact cos²
            channel encoding (its centroid is the detection, whatever its sub-channel
            position) */
