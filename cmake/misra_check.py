@@ -40,7 +40,11 @@ def main():
            "--enable=warning,style,performance,portability", "--inline-suppr",
            "--suppress=missingIncludeSystem", "--error-exitcode=0",
            "-I", "include", "-I", "lib/fft", f"--cppcheck-build-dir={a.work}",
-           "--template={file}:{line}:{id}:{severity}:{message}"] + a.paths
+           "--template={file}:{line}:{id}:{severity}:{message}",
+           # a generated table of 55,815 floats (one constant initialiser and a
+           # 15-line accessor, see MISRA.md) takes cppcheck's MISRA addon past the gate's
+           # time limit; it is left out of this analysis
+           "-i", "lib/models/sbr_track_model_kitti.c"] + a.paths
     run = subprocess.run(cmd, cwd=a.source, capture_output=True, text=True)
     findings = []
     for line in run.stderr.splitlines():
