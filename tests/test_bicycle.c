@@ -22,17 +22,6 @@ static sbr_bike_pf_config_t config(uint32_t seed)
     return cfg;
 }
 
-/* Approximately standard normal: the sum of 12 uniforms minus 6. */
-static float gauss(tsup_rng_t *r)
-{
-    float s = 0.0f;
-    uint32_t i;
-    for (i = 0u; i < 12u; i++) {
-        s += tsup_uniform(r, 0.0f, 1.0f);
-    }
-    return s - 6.0f;
-}
-
 /* Pinhole projection of a point of the camera frame. */
 static void project_point(const sbr_camera_t *cam, float x, float y, float z, sbr_point2f_t *p)
 {
@@ -233,10 +222,10 @@ static float run_crossing(uint32_t seed, sbr_bike_result_t *last, sbr_bike_state
         }
         TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_project(&cfg.camera, &cfg.model, &t, &e[0], &e[1]));
         for (w = 0u; w < 2u; w++) {
-            e[w].cx += 0.5f * gauss(&rng);
-            e[w].cy += 0.5f * gauss(&rng);
-            e[w].semi_major += 0.5f * gauss(&rng);
-            e[w].semi_minor = fminf(e[w].semi_minor + 0.5f * gauss(&rng), e[w].semi_major);
+            e[w].cx += 0.5f * tsup_gauss(&rng);
+            e[w].cy += 0.5f * tsup_gauss(&rng);
+            e[w].semi_major += 0.5f * tsup_gauss(&rng);
+            e[w].semi_minor = fminf(e[w].semi_minor + 0.5f * tsup_gauss(&rng), e[w].semi_major);
         }
         /* hand them over front first: the filter must find out which is which */
         {

@@ -14,6 +14,17 @@ static inline float tsup_uniform(tsup_rng_t *r, float lo, float hi)
     return lo + (hi - lo) * (float)(r->s >> 8) * (1.0f / 16777216.0f);
 }
 
+/* Approximately standard normal: the sum of 12 uniforms minus 6. */
+static inline float tsup_gauss(tsup_rng_t *r)
+{
+    float s = 0.0f;
+    uint32_t i;
+    for (i = 0u; i < 12u; i++) {
+        s += tsup_uniform(r, 0.0f, 1.0f);
+    }
+    return s - 6.0f;
+}
+
 /* Guard tail after an output buffer: filled with a pattern, later checked untouched. */
 #define TSUP_GUARD_BYTES 64u
 #define TSUP_GUARD_BYTE 0xA5u

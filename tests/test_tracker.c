@@ -23,16 +23,6 @@ static uint32_t g_ws[SBR_TRACK_WORKSPACE_SIZE(TARGETS, WINDOW, VEL) / sizeof(uin
 
 static sbr_track_model_t g_model;
 
-static float gauss(tsup_rng_t *r)
-{
-    float s = 0.0f;
-    uint32_t i;
-    for (i = 0u; i < 12u; i++) {
-        s += tsup_uniform(r, 0.0f, 1.0f);
-    }
-    return s - 6.0f;
-}
-
 /* A constant-velocity model on a KITTI-sized image: 1.5 px of velocity change per
    frame, new targets' velocity within about +-10 px per frame. */
 static void make_model(void)
@@ -128,8 +118,8 @@ void test_straight_line_velocity(void)
         const float tx = 200.0f + 6.0f * (float)f;
         const float ty = 300.0f - 2.0f * (float)f;
         sbr_track_detection_t d;
-        d.x = tx + 0.5f * gauss(&rng);
-        d.y = ty + 0.5f * gauss(&rng);
+        d.x = tx + 0.5f * tsup_gauss(&rng);
+        d.y = ty + 0.5f * tsup_gauss(&rng);
         d.certainty = 1.0f;
         TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD, &d, 1u, out, TARGETS, &n));
         TEST_ASSERT_EQUAL_UINT32(1u, n);
@@ -166,8 +156,8 @@ void test_curved_path_through_five_misses(void)
         const int missed = (f >= 20u) && (f < 25u);
         sbr_track_detection_t d;
         const sbr_track_target_t *t;
-        d.x = tx + 0.7f * gauss(&rng);
-        d.y = ty + 0.7f * gauss(&rng);
+        d.x = tx + 0.7f * tsup_gauss(&rng);
+        d.y = ty + 0.7f * tsup_gauss(&rng);
         d.certainty = 1.0f;
         TEST_ASSERT_EQUAL(SBR_OK,
                           sbr_track_step(&trk, PERIOD, &d, missed ? 0u : 1u, out, TARGETS, &n));
@@ -213,11 +203,11 @@ void test_crossing_targets_keep_ids(void)
         const float by = 204.0f - 0.1f * (float)f;
         sbr_track_detection_t d[2];
         const uint32_t first = f % 2u; /* the order of the detections alternates */
-        d[first].x = ax + 0.5f * gauss(&rng);
-        d[first].y = ay + 0.5f * gauss(&rng);
+        d[first].x = ax + 0.5f * tsup_gauss(&rng);
+        d[first].y = ay + 0.5f * tsup_gauss(&rng);
         d[first].certainty = 1.0f;
-        d[1u - first].x = bx + 0.5f * gauss(&rng);
-        d[1u - first].y = by + 0.5f * gauss(&rng);
+        d[1u - first].x = bx + 0.5f * tsup_gauss(&rng);
+        d[1u - first].y = by + 0.5f * tsup_gauss(&rng);
         d[1u - first].certainty = 0.9f;
         TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD, d, 2u, out, TARGETS, &n));
         TEST_ASSERT_EQUAL_UINT32(2u, n);
@@ -394,8 +384,8 @@ void test_kitti_model(void)
         const float tx = 700.0f + 4.0f * (float)f + 0.2f * (float)(f * f);
         const float ty = 190.0f + 0.5f * (float)f;
         sbr_track_detection_t d;
-        d.x = tx + 2.0f * gauss(&rng);
-        d.y = ty + 2.0f * gauss(&rng);
+        d.x = tx + 2.0f * tsup_gauss(&rng);
+        d.y = ty + 2.0f * tsup_gauss(&rng);
         d.certainty = 1.0f;
         TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD, &d, 1u, out, 1u, &n));
         TEST_ASSERT_EQUAL_UINT32(1u, n);

@@ -75,20 +75,20 @@ int CanLogWriter::write_image(const std::vector<Detection> &dets, float processi
             fresh.push_back(c);
         }
     } else {
-    // this image's detections are confirmed and listed first, by decreasing score (ties in
-    // the order given, as the detection frames)
-    std::vector<Detection> by_score(dets);
-    std::stable_sort(by_score.begin(), by_score.end(),
-                     [](const Detection &a, const Detection &b) { return a.score > b.score; });
-    for (const Detection &d : by_score) {
-        Confirmed c;
-        c.class_id = static_cast<uint32_t>(d.class_id);
-        c.score = clampf(d.score, 0.0f, 1.0f);
-        c.track_id = next_track_;
-        c.image = image_;
-        next_track_ = (next_track_ + 1u) % 255u;
-        fresh.push_back(c);
-    }
+        // stills: this image's detections are confirmed and listed first, by decreasing
+        // score (ties in the order given, as the detection frames)
+        std::vector<Detection> by_score(dets);
+        std::stable_sort(by_score.begin(), by_score.end(),
+                         [](const Detection &a, const Detection &b) { return a.score > b.score; });
+        for (const Detection &d : by_score) {
+            Confirmed c;
+            c.class_id = static_cast<uint32_t>(d.class_id);
+            c.score = clampf(d.score, 0.0f, 1.0f);
+            c.track_id = next_track_;
+            c.image = image_;
+            next_track_ = (next_track_ + 1u) % 255u;
+            fresh.push_back(c);
+        }
     }
     confirmed_.insert(confirmed_.begin(), fresh.begin(), fresh.end());
     while (!confirmed_.empty() && (confirmed_.size() > 4u || image_ - confirmed_.back().image >= 255u))

@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -265,7 +266,7 @@ struct Baseline {
 
 struct KfOps {
     double accel, r, vel0;
-    void birth(KfTrack &t, const Det &d) const
+    void birth(KfTrack &t, const Det &d, std::mt19937 &) const
     {
         std::memset(&t, 0, sizeof t);
         t.x[0] = d.x;
@@ -353,14 +354,9 @@ struct PfOps {
     }
     Gauss2 predicted(const PfTrack &t) const
     {
-        double mx = 0, my = 0, sw = 0;
-        for (unsigned i = 0; i < n; ++i) {
-            mx += t.w[i] * t.p[4 * i];
-            my += t.w[i] * t.p[4 * i + 1];
-            sw += t.w[i];
-        }
-        mx /= sw;
-        my /= sw;
+        double mx, my, sw = 0;
+        estimate(t, mx, my);
+        for (unsigned i = 0; i < n; ++i) sw += t.w[i];
         double sxx = 0, sxy = 0, syy = 0;
         for (unsigned i = 0; i < n; ++i) {
             const double dx = t.p[4 * i] - mx, dy = t.p[4 * i + 1] - my;
@@ -398,16 +394,21 @@ struct PfOps {
     }
     void estimate(const PfTrack &t, double &x, double &y) const
     {
-        const Gauss2 g = predicted(t);
-        x = g.mx;
-        y = g.my;
+        double sw = 0;
+        x = y = 0;
+        for (unsigned i = 0; i < n; ++i) {
+            x += t.w[i] * t.p[4 * i];
+            y += t.w[i] * t.p[4 * i + 1];
+            sw += t.w[i];
+        }
+        x /= sw;
+        y /= sw;
     }
 };
 
 template <class F, class Ops>
 std::vector<Hyp> baseline_step(Baseline<F> &b, const Ops &ops, const std::vector<Det> &dets,
-                               double ratio, double width, double height, std::mt19937 &rng,
-                               void (*birth)(const Ops &, F &, const Det &, std::mt19937 &))
+                               double ratio, double width, double height, std::mt19937 &rng)
 {
     for (auto &t : b.tracks) ops.predict(t.f, ratio, rng);
     // association: confirmed tracks first, then tentative ones, Hungarian on the
@@ -470,7 +471,7 @@ std::vector<Hyp> baseline_step(Baseline<F> &b, const Ops &ops, const std::vector
         t.w = dets[j].w;
         t.h = dets[j].h;
         t.type = dets[j].type;
-        birth(ops, t.f, dets[j], rng);
+        ops.birth(t.f, dets[j], rng);
         b.tracks.push_back(std::move(t));
     }
     std::vector<Hyp> out;
@@ -483,8 +484,6 @@ std::vector<Hyp> baseline_step(Baseline<F> &b, const Ops &ops, const std::vector
     return out;
 }
 
-void kf_birth(const KfOps &o, KfTrack &t, const Det &d, std::mt19937 &) { o.birth(t, d); }
-void pf_birth(const PfOps &o, PfTrack &t, const Det &d, std::mt19937 &rng) { o.birth(t, d, rng); }
 
 // ---- CLEAR-MOT ------------------------------------------------------------------------
 
@@ -677,6 +676,42 @@ std::string write_model_c(const ModelData &d, const std::string &path, const std
 // prior) whose displacements fit the velocity range, channel-coded, per region; each
 // middle detection spreads one unit over its candidate triples. A pseudo-count of one
 // constant-velocity row (acceleration 2 channels) regularises rows with little data.
+// The active channels (at most 3 with overlap 3) of one encoding.
+struct Active {
+    uint32_t n = 0;
+    size_t idx[3] = {0, 0, 0};
+    double w[3] = {0, 0, 0};
+};
+
+Active encode_active(const sbr_channel_config_t &cfg, float x, double scale)
+{
+    float enc[SBR_TRACK_MAX_VEL];
+    Active a;
+    if (sbr_channel_encode(&cfg, x, 1.0f, enc, SBR_TRACK_MAX_VEL) != SBR_OK) return a;
+    for (uint32_t k = 0; k < cfg.count && a.n < 3; ++k) {
+        if (enc[k] > 0.0f) {
+            a.idx[a.n] = k;
+            a.w[a.n] = enc[k] * scale;
+            a.n++;
+        }
+    }
+    return a;
+}
+
+// A Gaussian row over V channels around `centre` (channels), summing to 1.
+std::vector<double> gauss_row(size_t V, double centre, double sigma)
+{
+    std::vector<double> g(V);
+    double gs = 0;
+    for (size_t k = 0; k < V; ++k) {
+        const double z = (static_cast<double>(k) - centre) / sigma;
+        g[k] = std::exp(-0.5 * z * z);
+        gs += g[k];
+    }
+    for (double &v : g) v /= gs;
+    return g;
+}
+
 ModelData learn(const std::vector<Seq> &seqs, const std::vector<std::vector<std::vector<Det>>> &dets,
                 uint32_t vel, float spacing, uint32_t rx, uint32_t ry, long &triples, long &pairs)
 {
@@ -692,6 +727,8 @@ ModelData learn(const std::vector<Seq> &seqs, const std::vector<std::vector<std:
     const size_t V = vel;
     std::vector<double> H(SBR_TRACK_MODEL_TRANSITION_LEN(rx, ry, vel), 0.0);
     std::vector<double> B(SBR_TRACK_MODEL_BIRTH_LEN(rx, ry, vel), 0.0);
+    d.trans.resize(H.size());
+    d.birth.resize(B.size());
     sbr_channel_config_t vc{};
     vc.first_centre = -0.5f * static_cast<float>(vel - 1) * spacing;
     vc.spacing = spacing;
@@ -699,159 +736,127 @@ ModelData learn(const std::vector<Seq> &seqs, const std::vector<std::vector<std:
     vc.overlap = 3;
     float vlo = 0, vhi = 0;
     sbr_channel_range(&vc, &vlo, &vhi);
-    triples = pairs = 0;
-    auto regions = [&](int axis, double pos, std::vector<float> &w) {
-        const uint32_t nr = axis ? ry : rx;
-        const double ext = axis ? d.m.extent[1] : d.m.extent[0];
-        sbr_channel_config_t rc{};
-        rc.spacing = static_cast<float>(ext / (nr - 2));
-        rc.first_centre = -0.5f * rc.spacing;
-        rc.count = nr;
-        rc.overlap = 3;
-        w.assign(nr, 0.0f);
-        float p = static_cast<float>(std::min(std::max(pos, 0.0), ext - 1e-3));
-        sbr_channel_encode(&rc, p, 1.0f, w.data(), nr);
-        float s = 0;
-        for (float v : w) s += v;
-        for (float &v : w) v /= s;
+    // the region layout is the tracker's own (sbr_track_region_config)
+    sbr_channel_config_t rc[2]{};
+    sbr_track_region_config(&d.m, 0, &rc[0]);
+    sbr_track_region_config(&d.m, 1, &rc[1]);
+    auto regions = [&](int axis, double pos) {
+        const double ext = d.m.extent[axis];
+        const float p = static_cast<float>(std::min(std::max(pos, 0.0), ext - 1e-3));
+        return encode_active(rc[axis], p, 1.0 / 1.5);  // one encoding sums to 1.5
     };
+    auto velocity = [&](double v) { return encode_active(vc, static_cast<float>(v), 1.0); };
     auto fits = [&](double v) { return v >= vlo && v < vhi; };
-    std::vector<float> e1(V), e2(V), rw;
+    // One triple (a, b, c) on one axis: its region, previous and next velocity channels.
+    struct Coded {
+        Active r, v1, v2;
+        size_t base;
+    };
+    auto code = [&](int axis, const Det &a, const Det &b, const Det &c) {
+        Coded e;
+        e.r = regions(axis, axis ? b.y : b.x);
+        e.v1 = velocity(axis ? b.y - a.y : b.x - a.x);
+        e.v2 = velocity(axis ? c.y - b.y : c.x - b.x);
+        e.base = axis ? rx * V * V : 0;
+        return e;
+    };
     // Soft EM over the unknown associations: the first pass spreads each middle
     // detection's unit evenly over its candidate triples; later passes weight them by the
     // previous pass's transition probability (normalised per middle detection).
-    const double c0 = 0.5 * static_cast<double>(V - 1);
-    d.trans.resize(H.size());
-    d.birth.resize(B.size());
     auto score = [&](const Det &a, const Det &b, const Det &c) {
         double sc = 1.0;
         for (int axis = 0; axis < 2; ++axis) {
-            const double v1 = axis ? b.y - a.y : b.x - a.x;
-            const double v2 = axis ? c.y - b.y : c.x - b.x;
-            regions(axis, axis ? b.y : b.x, rw);
-            std::fill(e1.begin(), e1.end(), 0.0f);
-            std::fill(e2.begin(), e2.end(), 0.0f);
-            sbr_channel_encode(&vc, static_cast<float>(v1), 1.0f, e1.data(), vel);
-            sbr_channel_encode(&vc, static_cast<float>(v2), 1.0f, e2.data(), vel);
-            const size_t base = axis ? rx * V * V : 0;
+            const Coded e = code(axis, a, b, c);
             double t = 0;
-            for (size_t r = 0; r < rw.size(); ++r) {
-                if (rw[r] <= 0) continue;
-                for (size_t j = 0; j < V; ++j) {
-                    if (e1[j] <= 0) continue;
-                    for (size_t k = 0; k < V; ++k)
-                        if (e2[k] > 0) t += rw[r] * e1[j] * e2[k] * d.trans[base + (r * V + j) * V + k];
-                }
-            }
+            for (uint32_t r = 0; r < e.r.n; ++r)
+                for (uint32_t j = 0; j < e.v1.n; ++j)
+                    for (uint32_t k = 0; k < e.v2.n; ++k)
+                        t += e.r.w[r] * e.v1.w[j] * e.v2.w[k] *
+                             d.trans[e.base + (e.r.idx[r] * V + e.v1.idx[j]) * V + e.v2.idx[k]];
             sc *= t;
         }
         return sc;
     };
+    const std::vector<double> birth_tail = gauss_row(V, 0.5 * static_cast<double>(V - 1), 6.0);
     for (int iter = 0; iter < g_em_iters; ++iter) {
-    std::fill(H.begin(), H.end(), 0.0);
-    std::fill(B.begin(), B.end(), 0.0);
-    triples = pairs = 0;
-    for (size_t si = 0; si < seqs.size(); ++si) {
-        const auto &D = dets[si];
-        for (size_t f = 1; f < D.size(); ++f) {
-            for (const Det &b : D[f]) {
-                // pairs: birth prior (velocity on arrival at b)
-                std::vector<const Det *> A;
-                for (const Det &a : D[f - 1])
-                    if (fits(b.x - a.x) && fits(b.y - a.y)) A.push_back(&a);
-                for (const Det *a : A) {
-                    for (int axis = 0; axis < 2; ++axis) {
-                        const double v = axis ? b.y - a->y : b.x - a->x;
-                        regions(axis, axis ? b.y : b.x, rw);
-                        std::fill(e1.begin(), e1.end(), 0.0f);
-                        sbr_channel_encode(&vc, static_cast<float>(v), 1.0f, e1.data(), vel);
-                        const size_t base = axis ? rx * V : 0;
-                        for (size_t r = 0; r < rw.size(); ++r)
-                            for (size_t k = 0; k < V; ++k)
-                                B[base + r * V + k] += rw[r] * e1[k] / static_cast<double>(A.size());
-                    }
-                    pairs++;
-                }
-                if (f + 1 >= D.size() || A.empty()) continue;
-                std::vector<const Det *> C;
-                for (const Det &c : D[f + 1])
-                    if (fits(c.x - b.x) && fits(c.y - b.y)) C.push_back(&c);
-                if (C.empty()) continue;
-                std::vector<double> tw;
-                double tws = 0;
-                for (const Det *a : A)
-                    for (const Det *c : C) {
-                        tw.push_back(iter == 0 ? 1.0 : score(*a, b, *c));
-                        tws += tw.back();
-                    }
-                if (tws <= 0) continue;
-                size_t ti = 0;
-                for (const Det *a : A)
-                    for (const Det *c : C) {
-                        const double w = tw[ti++] / tws;
+        std::fill(H.begin(), H.end(), 0.0);
+        std::fill(B.begin(), B.end(), 0.0);
+        triples = pairs = 0;
+        for (size_t si = 0; si < seqs.size(); ++si) {
+            const auto &D = dets[si];
+            for (size_t f = 1; f < D.size(); ++f) {
+                for (const Det &b : D[f]) {
+                    // pairs: the velocity prior on arrival at b
+                    std::vector<const Det *> A;
+                    for (const Det &a : D[f - 1])
+                        if (fits(b.x - a.x) && fits(b.y - a.y)) A.push_back(&a);
+                    for (const Det *a : A) {
                         for (int axis = 0; axis < 2; ++axis) {
-                            const double v1 = axis ? b.y - a->y : b.x - a->x;
-                            const double v2 = axis ? c->y - b.y : c->x - b.x;
-                            regions(axis, axis ? b.y : b.x, rw);
-                            std::fill(e1.begin(), e1.end(), 0.0f);
-                            std::fill(e2.begin(), e2.end(), 0.0f);
-                            sbr_channel_encode(&vc, static_cast<float>(v1), 1.0f, e1.data(), vel);
-                            sbr_channel_encode(&vc, static_cast<float>(v2), 1.0f, e2.data(), vel);
-                            const size_t base = axis ? rx * V * V : 0;
-                            for (size_t r = 0; r < rw.size(); ++r) {
-                                if (rw[r] <= 0) continue;
-                                for (size_t j = 0; j < V; ++j) {
-                                    if (e1[j] <= 0) continue;
-                                    const double f1 = w * rw[r] * e1[j];
-                                    for (size_t k = 0; k < V; ++k)
-                                        H[base + (r * V + j) * V + k] += f1 * e2[k];
-                                }
-                            }
+                            const Active r = regions(axis, axis ? b.y : b.x);
+                            const Active v = velocity(axis ? b.y - a->y : b.x - a->x);
+                            const size_t base = axis ? rx * V : 0;
+                            for (uint32_t i = 0; i < r.n; ++i)
+                                for (uint32_t k = 0; k < v.n; ++k)
+                                    B[base + r.idx[i] * V + v.idx[k]] +=
+                                        r.w[i] * v.w[k] / static_cast<double>(A.size());
                         }
-                        triples++;
+                        pairs++;
                     }
+                    if (f + 1 >= D.size() || A.empty()) continue;
+                    std::vector<const Det *> C;
+                    for (const Det &c : D[f + 1])
+                        if (fits(c.x - b.x) && fits(c.y - b.y)) C.push_back(&c);
+                    if (C.empty()) continue;
+                    std::vector<double> tw;
+                    double tws = 0;
+                    for (const Det *a : A)
+                        for (const Det *c : C) {
+                            tw.push_back(iter == 0 ? 1.0 : score(*a, b, *c));
+                            tws += tw.back();
+                        }
+                    if (tws <= 0) continue;
+                    size_t ti = 0;
+                    for (const Det *a : A)
+                        for (const Det *c : C) {
+                            const double w = tw[ti++] / tws;
+                            for (int axis = 0; axis < 2; ++axis) {
+                                const Coded e = code(axis, *a, b, *c);
+                                for (uint32_t r = 0; r < e.r.n; ++r)
+                                    for (uint32_t j = 0; j < e.v1.n; ++j)
+                                        for (uint32_t k = 0; k < e.v2.n; ++k)
+                                            H[e.base + (e.r.idx[r] * V + e.v1.idx[j]) * V + e.v2.idx[k]] +=
+                                                w * e.r.w[r] * e.v1.w[j] * e.v2.w[k];
+                            }
+                            triples++;
+                        }
+                }
             }
         }
-    }
-    // normalise rows with a constant-velocity pseudo-count
-    for (size_t row = 0; row < H.size() / V; ++row) {
-        const size_t j = row % V;
-        double sum = 0;
-        std::vector<double> g(V);
-        double gs = 0;
-        for (size_t k = 0; k < V; ++k) {
-            const double z = (static_cast<double>(k) - static_cast<double>(j)) / g_tail_sigma;
-            g[k] = std::exp(-0.5 * z * z);
-            gs += g[k];
+        // rows: the soft counts plus a constant-velocity tail (a share g_tail of the row,
+        // at least one count); entries below 1e-5 are dropped (the prediction skips
+        // zeros) and the row renormalised
+        for (size_t row = 0; row < H.size() / V; ++row) {
+            const std::vector<double> g = gauss_row(V, static_cast<double>(row % V), g_tail_sigma);
+            double hs = 0;
+            for (size_t k = 0; k < V; ++k) hs += H[row * V + k];
+            const double a = std::max(1.0, g_tail * hs);
+            double kept = 0;
+            for (size_t k = 0; k < V; ++k) {
+                double v = (H[row * V + k] + a * g[k]) / (hs + a);
+                if (v < 1e-5) v = 0;
+                d.trans[row * V + k] = static_cast<float>(v);
+                kept += v;
+            }
+            for (size_t k = 0; k < V; ++k) d.trans[row * V + k] = static_cast<float>(d.trans[row * V + k] / kept);
         }
-        double hs = 0;
-        for (size_t k = 0; k < V; ++k) hs += H[row * V + k];
-        const double a = std::max(1.0, g_tail * hs);
-        for (size_t k = 0; k < V; ++k) sum += H[row * V + k] + a * g[k] / gs;
-        // entries below 1e-5 are dropped (the prediction skips zeros), the row renormalised
-        double kept = 0;
-        for (size_t k = 0; k < V; ++k) {
-            double v = (H[row * V + k] + a * g[k] / gs) / sum;
-            if (v < 1e-5) v = 0;
-            d.trans[row * V + k] = static_cast<float>(v);
-            kept += v;
+        // birth rows: the soft counts plus one count of a wide prior around 0
+        for (size_t row = 0; row < B.size() / V; ++row) {
+            double bs = 0;
+            for (size_t k = 0; k < V; ++k) bs += B[row * V + k];
+            for (size_t k = 0; k < V; ++k)
+                d.birth[row * V + k] = static_cast<float>((B[row * V + k] + birth_tail[k]) / (bs + 1.0));
         }
-        for (size_t k = 0; k < V; ++k) d.trans[row * V + k] = static_cast<float>(d.trans[row * V + k] / kept);
     }
-    for (size_t row = 0; row < B.size() / V; ++row) {
-        double sum = 0;
-        std::vector<double> g(V);
-        double gs = 0;
-        for (size_t k = 0; k < V; ++k) {
-            const double z = (static_cast<double>(k) - c0) / 6.0;
-            g[k] = std::exp(-0.5 * z * z);
-            gs += g[k];
-        }
-        for (size_t k = 0; k < V; ++k) sum += B[row * V + k] + g[k] / gs;
-        for (size_t k = 0; k < V; ++k)
-            d.birth[row * V + k] = static_cast<float>((B[row * V + k] + g[k] / gs) / sum);
-    }
-    }  // EM
     d.bind();
     return d;
 }
@@ -958,7 +963,7 @@ std::vector<Result> run_all(const Options &o, const std::vector<Seq> &seqs, cons
             std::mt19937 rng(o.seed);
             for (size_t f = 0; f < dets.size(); ++f) {
                 const auto t0 = std::chrono::steady_clock::now();
-                outs[1][f] = baseline_step(b, kf, dets[f], 1.0, seq.width, seq.height, rng, kf_birth);
+                outs[1][f] = baseline_step(b, kf, dets[f], 1.0, seq.width, seq.height, rng);
                 res[1].ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             }
         }
@@ -968,7 +973,7 @@ std::vector<Result> run_all(const Options &o, const std::vector<Seq> &seqs, cons
             std::mt19937 rng(o.seed);
             for (size_t f = 0; f < dets.size(); ++f) {
                 const auto t0 = std::chrono::steady_clock::now();
-                outs[2][f] = baseline_step(b, pf, dets[f], 1.0, seq.width, seq.height, rng, pf_birth);
+                outs[2][f] = baseline_step(b, pf, dets[f], 1.0, seq.width, seq.height, rng);
                 res[2].ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
             }
         }
@@ -979,8 +984,9 @@ std::vector<Result> run_all(const Options &o, const std::vector<Seq> &seqs, cons
             res[static_cast<size_t>(m)].frames += static_cast<long>(seq.gt.size());
             if (write_out) {
                 const std::string dir = o.out + "/" + res[static_cast<size_t>(m)].method;
-                std::string cmd = "mkdir -p '" + dir + "'";
-                if (std::system(cmd.c_str()) != 0) std::cerr << "sbr_track: cannot create " << dir << "\n";
+                std::error_code ec;
+                std::filesystem::create_directories(dir, ec);
+                if (ec) std::cerr << "sbr_track: cannot create " << dir << ": " << ec.message() << "\n";
                 write_kitti(dir, seq.name, outs[m]);
             }
         }

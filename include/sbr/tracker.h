@@ -59,6 +59,7 @@
 #ifndef SBR_TRACKER_H
 #define SBR_TRACKER_H
 
+#include "sbr/channel.h"
 #include "sbr/types.h"
 
 #ifdef __cplusplus
@@ -197,6 +198,17 @@ void sbr_track_config_default(sbr_track_config_t *cfg);
  *         row that is not a distribution).
  */
 sbr_status_t sbr_track_model_check(const sbr_track_model_t *model);
+
+/**
+ * @brief The region channels of a model's axis as a channel layout (spacing
+ *        extent / (regions - 2), first centre -spacing / 2, overlap 3). The tracker weighs
+ *        a position's regions with sbr_channel_encode() on this layout; learning must use
+ *        the same, so a learned table's regions mean what the tracker reads.
+ * @param axis 0 for x, 1 for y.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (axis, region count or extent).
+ */
+sbr_status_t sbr_track_region_config(const sbr_track_model_t *model, uint32_t axis,
+                                     sbr_channel_config_t *cfg);
 
 /**
  * @brief Make a constant-velocity model: the velocity changes per period by a Gaussian

@@ -16,15 +16,6 @@
 #define TRK_TINY 1e-30f
 #define TRK_ROW_TOL 1e-3f
 
-static int trk_finite(float v)
-{
-    int ok = 0;
-    if ((v == v) && (v < 3.0e38f) && (v > -3.0e38f)) {
-        ok = 1;
-    }
-    return ok;
-}
-
 /* cos² kernel B(d) with support w (|d| < w / 2). */
 static float trk_kernel(float d, float w)
 {
@@ -36,33 +27,56 @@ static float trk_kernel(float d, float w)
     return r;
 }
 
-/* Normalised cos² region weights (3 active) of position `pos` on axis `axis`. */
-static void trk_region_weights(const sbr_track_model_t *m, uint32_t axis, float pos, float *w)
+sbr_status_t sbr_track_region_config(const sbr_track_model_t *model, uint32_t axis,
+                                     sbr_channel_config_t *cfg)
 {
-    const uint32_t nr = m->regions[axis];
-    const float ext = m->extent[axis];
-    const uint32_t nr2 = nr - 2u;
-    const float rs = ext / (float)nr2;
-    float x = pos;
-    float sum = 0.0f;
+    sbr_status_t st = SBR_OK;
+    if ((model == NULL) || (cfg == NULL)) {
+        st = SBR_ERR_NULL;
+    } else if ((axis > 1u) || (model->regions[axis] < 3u) ||
+               (model->regions[axis] > SBR_TRACK_MAX_REGIONS) ||
+               (isfinite(model->extent[axis]) == 0) || (model->extent[axis] < 8.0f)) {
+        st = SBR_ERR_RANGE;
+    } else {
+        const uint32_t nr2 = model->regions[axis] - 2u;
+        cfg->spacing = model->extent[axis] / (float)nr2;
+        cfg->first_centre = -0.5f * cfg->spacing;
+        cfg->count = model->regions[axis];
+        cfg->overlap = 3u;
+    }
+    return st;
+}
+
+/* The active region channels (at most 3) of position `pos` on axis `axis`, weights
+   normalised to sum 1: the channel encoding of the position, clamped into the image. */
+static uint32_t trk_region_weights(const sbr_track_model_t *m, uint32_t axis, float pos,
+                                   uint32_t *idx, float *w)
+{
+    float enc[SBR_TRACK_MAX_REGIONS];
+    sbr_channel_config_t rc;
+    uint32_t n = 0u;
     uint32_t r;
+    float x = pos;
+    (void)memset(&rc, 0, sizeof(rc));
+    (void)sbr_track_region_config(m, axis, &rc);
+    /* the encodable range is [0, extent); its top end is excluded */
     if (x < 0.0f) {
         x = 0.0f;
     }
-    if (x > (ext - 1e-3f)) {
-        x = ext - 1e-3f;
+    if (x > (m->extent[axis] - (1e-3f * rc.spacing))) {
+        x = m->extent[axis] - (1e-3f * rc.spacing);
     }
-    for (r = 0u; r < nr; r++) {
-        const float centre = ((float)r - 0.5f) * rs;
-        const float d = (x - centre) / rs;
-        w[r] = trk_kernel(d, 3.0f);
-        sum += w[r];
-    }
-    if (sum > 0.0f) {
-        for (r = 0u; r < nr; r++) {
-            w[r] /= sum;
+    if (sbr_channel_encode(&rc, x, 1.0f, enc, SBR_TRACK_MAX_REGIONS) == SBR_OK) {
+        for (r = 0u; r < rc.count; r++) {
+            if ((enc[r] > 0.0f) && (n < 3u)) {
+                idx[n] = r;
+                /* one encoding sums to overlap / 2 = 1.5 */
+                w[n] = enc[r] / 1.5f;
+                n++;
+            }
         }
     }
+    return n;
 }
 
 static const float *trk_table(const sbr_track_model_t *m, uint32_t axis, int birth)
@@ -90,7 +104,7 @@ static sbr_status_t trk_rows_ok(const float *t, size_t rows, uint32_t len)
         uint32_t k;
         for (k = 0u; k < len; k++) {
             const float v = t[(i * len) + k];
-            if ((trk_finite(v) == 0) || (v < 0.0f)) {
+            if ((isfinite(v) == 0) || (v < 0.0f)) {
                 st = SBR_ERR_CORRUPT;
             } else {
                 sum += v;
@@ -103,25 +117,39 @@ static sbr_status_t trk_rows_ok(const float *t, size_t rows, uint32_t len)
     return st;
 }
 
-sbr_status_t sbr_track_model_check(const sbr_track_model_t *model)
+/* A model's header (everything but the table contents): used by sbr_track_model_check()
+   and, on every step, by the instance check (the tables are checked once, at init). */
+static sbr_status_t trk_model_header(const sbr_track_model_t *model)
 {
     sbr_status_t st = SBR_OK;
-    if (model == NULL) {
-        st = SBR_ERR_NULL;
-    } else if ((model->transition == NULL) || (model->birth == NULL)) {
+    if ((model->transition == NULL) || (model->birth == NULL)) {
         st = SBR_ERR_NULL;
     } else if ((model->regions[0] < 3u) || (model->regions[0] > SBR_TRACK_MAX_REGIONS) ||
                (model->regions[1] < 3u) || (model->regions[1] > SBR_TRACK_MAX_REGIONS) ||
                (model->vel_count < 5u) || (model->vel_count > SBR_TRACK_MAX_VEL) ||
                ((model->vel_count % 2u) == 0u)) {
         st = SBR_ERR_SIZE;
-    } else if ((model->order != SBR_TRACK_ORDER) || (trk_finite(model->period) == 0) ||
-               (model->period <= 0.0f) || (trk_finite(model->extent[0]) == 0) ||
-               (trk_finite(model->extent[1]) == 0) || (model->extent[0] < 8.0f) ||
-               (model->extent[1] < 8.0f) || (trk_finite(model->vel_spacing) == 0) ||
+    } else if ((model->order != SBR_TRACK_ORDER) || (isfinite(model->period) == 0) ||
+               (model->period <= 0.0f) || (isfinite(model->extent[0]) == 0) ||
+               (isfinite(model->extent[1]) == 0) || (model->extent[0] < 8.0f) ||
+               (model->extent[1] < 8.0f) || (isfinite(model->vel_spacing) == 0) ||
                (model->vel_spacing <= 0.0f)) {
         st = SBR_ERR_RANGE;
     } else {
+        st = SBR_OK;
+    }
+    return st;
+}
+
+sbr_status_t sbr_track_model_check(const sbr_track_model_t *model)
+{
+    sbr_status_t st = SBR_OK;
+    if (model == NULL) {
+        st = SBR_ERR_NULL;
+    } else {
+        st = trk_model_header(model);
+    }
+    if (st == SBR_OK) {
         const uint32_t v = model->vel_count;
         const size_t rows = (size_t)model->regions[0] + (size_t)model->regions[1];
         st = trk_rows_ok(model->transition, rows * (size_t)v, v);
@@ -158,11 +186,11 @@ sbr_status_t sbr_track_model_cv(sbr_track_model_t *model, float width, float hei
                (transition_len < SBR_TRACK_MODEL_TRANSITION_LEN(3u, 3u, vel_count)) ||
                (birth_len < SBR_TRACK_MODEL_BIRTH_LEN(3u, 3u, vel_count))) {
         st = SBR_ERR_SIZE;
-    } else if ((trk_finite(width) == 0) || (trk_finite(height) == 0) || (width < 8.0f) ||
-               (height < 8.0f) || (trk_finite(period) == 0) || (period <= 0.0f) ||
-               (trk_finite(vel_spacing) == 0) || (vel_spacing <= 0.0f) ||
-               (trk_finite(accel_sigma) == 0) || (accel_sigma <= 0.0f) ||
-               (trk_finite(birth_sigma) == 0) || (birth_sigma <= 0.0f)) {
+    } else if ((isfinite(width) == 0) || (isfinite(height) == 0) || (width < 8.0f) ||
+               (height < 8.0f) || (isfinite(period) == 0) || (period <= 0.0f) ||
+               (isfinite(vel_spacing) == 0) || (vel_spacing <= 0.0f) ||
+               (isfinite(accel_sigma) == 0) || (accel_sigma <= 0.0f) ||
+               (isfinite(birth_sigma) == 0) || (birth_sigma <= 0.0f)) {
         st = SBR_ERR_RANGE;
     } else {
         const uint32_t vm1 = vel_count - 1u;
@@ -220,8 +248,8 @@ static sbr_status_t trk_config_scalars(const sbr_track_config_t *cfg)
         (cfg->window < 7u) || (cfg->window > SBR_TRACK_MAX_WINDOW) ||
         ((cfg->window % 2u) == 0u)) {
         st = SBR_ERR_SIZE;
-    } else if ((trk_finite(cfg->meas_sigma) == 0) || (cfg->meas_sigma <= 0.0f) ||
-               (trk_finite(cfg->gate) == 0) || (cfg->gate <= 0.0f) || (cfg->confirm_hits < 1u) ||
+    } else if ((isfinite(cfg->meas_sigma) == 0) || (cfg->meas_sigma <= 0.0f) ||
+               (isfinite(cfg->gate) == 0) || (cfg->gate <= 0.0f) || (cfg->confirm_hits < 1u) ||
                (cfg->confirm_hits > 16u) || (cfg->max_misses > 255u)) {
         st = SBR_ERR_RANGE;
     } else {
@@ -321,20 +349,19 @@ static float trk_marginal(const float *d, const trk_geo_t *g, float *m)
 }
 
 /* Mean and variance (in pixels) of a position marginal. */
-static void trk_moments(const float *m, uint32_t len, const trk_geo_t *g, float origin,
-                        float *mean, float *var)
+static void trk_moments(const float *m, const trk_geo_t *g, float origin, float *mean, float *var)
 {
     float sw = 0.0f;
     float s1 = 0.0f;
     float s2 = 0.0f;
     uint32_t p;
-    for (p = 0u; p < len; p++) {
+    for (p = 0u; p < g->w; p++) {
         sw += m[p];
         s1 += m[p] * (float)p;
     }
     if (sw > TRK_TINY) {
         s1 /= sw;
-        for (p = 0u; p < len; p++) {
+        for (p = 0u; p < g->w; p++) {
             const float d = (float)p - s1;
             s2 += m[p] * d * d;
         }
@@ -368,7 +395,9 @@ static void trk_predict_axis(const sbr_track_t *trk, const trk_geo_t *g, uint32_
     const float *tab = trk_table(m, axis, 0);
     const size_t vv = (size_t)g->v * (size_t)g->v;
     float *out = trk->scratch;
-    float rw[SBR_TRACK_MAX_REGIONS];
+    uint32_t ridx[3];
+    float rw[3];
+    uint32_t nr;
     float mp = 0.0f;
     float mv = 0.0f;
     float tot = 0.0f;
@@ -392,7 +421,7 @@ static void trk_predict_axis(const sbr_track_t *trk, const trk_geo_t *g, uint32_
     }
     shift_f = (mp + (mv * ratio)) - g->half;
     recentre = (int32_t)floorf(shift_f + 0.5f);
-    trk_region_weights(m, axis, *origin + (g->half * g->s), rw);
+    nr = trk_region_weights(m, axis, *origin + (g->half * g->s), ridx, rw);
     (void)memset(out, 0, (size_t)g->w * (size_t)g->v * sizeof(float));
     for (k = 0u; k < g->v; k++) {
         const float sk = (((float)k - g->c0) * ratio) - (float)recentre;
@@ -401,10 +430,8 @@ static void trk_predict_axis(const sbr_track_t *trk, const trk_geo_t *g, uint32_
         const int32_t sh = (int32_t)fl;
         for (j = 0u; j < g->v; j++) {
             float t = 0.0f;
-            for (r = 0u; r < m->regions[axis]; r++) {
-                if (rw[r] > 0.0f) {
-                    t += rw[r] * tab[((size_t)r * vv) + ((size_t)j * g->v) + k];
-                }
+            for (r = 0u; r < nr; r++) {
+                t += rw[r] * tab[((size_t)ridx[r] * vv) + ((size_t)j * g->v) + k];
             }
             if (t > 0.0f) {
                 const float t0 = t * (1.0f - f);
@@ -477,16 +504,18 @@ static void trk_birth_axis(const sbr_track_t *trk, const trk_geo_t *g, uint32_t 
 {
     const sbr_track_model_t *m = trk->cfg.model;
     const float *tab = trk_table(m, axis, 1);
-    float rw[SBR_TRACK_MAX_REGIONS];
+    uint32_t ridx[3];
+    float rw[3];
+    uint32_t nr;
     float prior[SBR_TRACK_MAX_VEL];
     uint32_t p;
     uint32_t k;
     uint32_t r;
     (void)memset(prior, 0, sizeof(prior));
-    trk_region_weights(m, axis, z, rw);
+    nr = trk_region_weights(m, axis, z, ridx, rw);
     for (k = 0u; k < g->v; k++) {
-        for (r = 0u; r < m->regions[axis]; r++) {
-            prior[k] += rw[r] * tab[((size_t)r * g->v) + k];
+        for (r = 0u; r < nr; r++) {
+            prior[k] += rw[r] * tab[((size_t)ridx[r] * g->v) + k];
         }
     }
     *origin = z - (g->half * g->s);
@@ -527,22 +556,45 @@ static float trk_local_mean(const float *m, uint32_t len, float c, uint32_t r)
     return res;
 }
 
-/* Decode position and velocity of one axis: the strongest valid 3-channel window
-   (sbr_channel_decode()) locates the mode, the mean of its neighbourhood (the
-   detection kernel's half width plus one channel) refines it. */
+/* Decode one channel vector, in channel units: the strongest valid 3-channel window
+   (sbr_channel_decode()) locates the mode, the mean of its neighbourhood (`radius`
+   channels each side) refines it; without a valid window, the mean of the whole vector.
+   `cert` gets the window's sum (clamped to 1; 0 without a window). */
+static float trk_decode_vec(const float *vec, uint32_t len, uint32_t radius, float *cert)
+{
+    sbr_channel_config_t cc;
+    sbr_channel_mode_t mode;
+    uint32_t cnt = 0u;
+    float res;
+    cc.first_centre = 0.0f;
+    cc.spacing = 1.0f;
+    cc.count = len;
+    cc.overlap = 3u;
+    *cert = 0.0f;
+    (void)sbr_channel_decode(&cc, vec, len, 0.0f, &mode, 1u, &cnt);
+    if (cnt == 1u) {
+        res = trk_local_mean(vec, len, mode.value, radius);
+        *cert = mode.certainty;
+        if (*cert > 1.0f) {
+            *cert = 1.0f;
+        }
+    } else {
+        res = trk_local_mean(vec, len, (float)(len / 2u), len);
+    }
+    return res;
+}
+
+/* Decode position and velocity of one axis from its position and velocity marginals;
+   the position's neighbourhood is the detection kernel's half width plus one channel. */
 static void trk_decode_axis(const trk_geo_t *g, const float *d, float origin, float *pos,
                             float *vel, float *cert)
 {
     float m[SBR_TRACK_MAX_WINDOW];
     float mv[SBR_TRACK_MAX_VEL];
-    sbr_channel_config_t cc;
-    sbr_channel_mode_t mode;
     const uint32_t r = (uint32_t)ceilf((0.5f * g->kw) / g->s) + 1u;
-    uint32_t cnt = 0u;
+    float vcert = 0.0f;
     uint32_t p;
     uint32_t k;
-    float var = 0.0f;
-    float mean = 0.0f;
     (void)trk_marginal(d, g, m);
     for (k = 0u; k < g->v; k++) {
         mv[k] = 0.0f;
@@ -552,28 +604,8 @@ static void trk_decode_axis(const trk_geo_t *g, const float *d, float origin, fl
             mv[k] += d[((size_t)p * g->v) + k];
         }
     }
-    cc.first_centre = 0.0f;
-    cc.spacing = 1.0f;
-    cc.count = g->w;
-    cc.overlap = 3u;
-    trk_moments(m, g->w, g, origin, pos, &var);
-    *cert = 0.0f;
-    (void)sbr_channel_decode(&cc, m, g->w, 0.0f, &mode, 1u, &cnt);
-    if (cnt == 1u) {
-        *pos = origin + (trk_local_mean(m, g->w, mode.value, r) * g->s);
-        *cert = mode.certainty;
-        if (*cert > 1.0f) {
-            *cert = 1.0f;
-        }
-    }
-    cc.count = g->v;
-    trk_moments(mv, g->v, g, -g->c0 * g->s, &mean, &var);
-    *vel = mean;
-    cnt = 0u;
-    (void)sbr_channel_decode(&cc, mv, g->v, 0.0f, &mode, 1u, &cnt);
-    if (cnt == 1u) {
-        *vel = (trk_local_mean(mv, g->v, mode.value, 3u) - g->c0) * g->s;
-    }
+    *pos = origin + (trk_decode_vec(m, g->w, r, cert) * g->s);
+    *vel = (trk_decode_vec(mv, g->v, 3u, &vcert) - g->c0) * g->s;
 }
 
 /* ---- the step --------------------------------------------------------------------- */
@@ -585,18 +617,11 @@ static sbr_status_t trk_check_instance(const sbr_track_t *trk)
         (trk->cand_cost == NULL) || (trk->cand_det == NULL) || (trk->cfg.model == NULL) ||
         (trk->next_id == 0u)) {
         st = SBR_ERR_STATE;
-    } else if (trk_config_scalars(&trk->cfg) != SBR_OK) {
+    } else if ((trk_config_scalars(&trk->cfg) != SBR_OK) ||
+               (trk_model_header(trk->cfg.model) != SBR_OK)) {
         st = SBR_ERR_STATE;
     } else {
-        const sbr_track_model_t *m = trk->cfg.model;
-        if ((m->order != SBR_TRACK_ORDER) || (m->vel_count < 5u) ||
-            (m->vel_count > SBR_TRACK_MAX_VEL) || (m->regions[0] < 3u) ||
-            (m->regions[1] < 3u) || (m->regions[0] > SBR_TRACK_MAX_REGIONS) ||
-            (m->regions[1] > SBR_TRACK_MAX_REGIONS) || (trk_finite(m->period) == 0) ||
-            (m->period <= 0.0f) || (trk_finite(m->vel_spacing) == 0) ||
-            (m->vel_spacing <= 0.0f)) {
-            st = SBR_ERR_STATE;
-        }
+        st = SBR_OK;
     }
     return st;
 }
@@ -611,13 +636,13 @@ static sbr_status_t trk_check_inputs(const sbr_track_t *trk, float dt,
         st = SBR_ERR_SIZE;
     } else if ((n > 0u) && (dets == NULL)) {
         st = SBR_ERR_NULL;
-    } else if ((trk_finite(dt) == 0) || (dt <= 0.0f) || (dt > (8.0f * m->period))) {
+    } else if ((isfinite(dt) == 0) || (dt <= 0.0f) || (dt > (8.0f * m->period))) {
         st = SBR_ERR_RANGE;
     } else {
         for (i = 0u; (i < n) && (st == SBR_OK); i++) {
             const sbr_track_detection_t *q = &dets[i];
-            if ((trk_finite(q->x) == 0) || (trk_finite(q->y) == 0) ||
-                (trk_finite(q->certainty) == 0) || (q->x < 0.0f) || (q->y < 0.0f) ||
+            if ((isfinite(q->x) == 0) || (isfinite(q->y) == 0) ||
+                (isfinite(q->certainty) == 0) || (q->x < 0.0f) || (q->y < 0.0f) ||
                 (q->x >= m->extent[0]) || (q->y >= m->extent[1]) || (q->certainty <= 0.0f) ||
                 (q->certainty > 1.0f)) {
                 st = SBR_ERR_RANGE;
@@ -643,7 +668,7 @@ static void trk_candidates(sbr_track_t *trk, const trk_geo_t *g, uint32_t t,
     uint32_t nc = 0u;
     for (a = 0u; a < 2u; a++) {
         (void)trk_marginal(trk_dens(trk, g, t, a), g, m[a]);
-        trk_moments(m[a], g->w, g, trk->slot[t].origin[a], &mean[a], &var[a]);
+        trk_moments(m[a], g, trk->slot[t].origin[a], &mean[a], &var[a]);
     }
     for (i = 0u; i < n; i++) {
         const float z[2] = {dets[i].x, dets[i].y};
