@@ -55,7 +55,6 @@ static uint32_t trk_region_weights(const sbr_track_model_t *m, uint32_t axis, fl
     float enc[SBR_TRACK_MAX_REGIONS];
     sbr_channel_config_t rc;
     uint32_t n = 0u;
-    uint32_t r;
     float x = pos;
     (void)memset(&rc, 0, sizeof(rc));
     (void)sbr_track_region_config(m, axis, &rc);
@@ -67,6 +66,7 @@ static uint32_t trk_region_weights(const sbr_track_model_t *m, uint32_t axis, fl
         x = m->extent[axis] - (1e-3f * rc.spacing);
     }
     if (sbr_channel_encode(&rc, x, 1.0f, enc, SBR_TRACK_MAX_REGIONS) == SBR_OK) {
+        uint32_t r;
         for (r = 0u; r < rc.count; r++) {
             if ((enc[r] > 0.0f) && (n < 3u)) {
                 idx[n] = r;
@@ -579,7 +579,8 @@ static float trk_decode_vec(const float *vec, uint32_t len, uint32_t radius, flo
             *cert = 1.0f;
         }
     } else {
-        res = trk_local_mean(vec, len, (float)(len / 2u), len);
+        const uint32_t mid = len / 2u;
+        res = trk_local_mean(vec, len, (float)mid, len);
     }
     return res;
 }
