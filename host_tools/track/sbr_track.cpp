@@ -861,6 +861,32 @@ ModelData learn(const std::vector<Seq> &seqs, const std::vector<std::vector<std:
     return d;
 }
 
+// A synthetic sequence for the time per frame with `n` targets at once: targets on an
+// 8-column grid over a KITTI-sized image, each moving at a constant velocity of up to
+// 3 px per frame and turning back at its cell's edge (so they never meet).
+Seq synthetic_seq(unsigned n, int frames, unsigned seed)
+{
+    Seq s;
+    s.name = "synthetic";
+    s.frames = frames;
+    s.gt.assign(static_cast<size_t>(frames), {});
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-3.0, 3.0);
+    const unsigned cols = 8, rows = (n + cols - 1) / cols;
+    const double cw = s.width / cols, ch = s.height / rows;
+    for (unsigned i = 0; i < n; ++i) {
+        const double x0 = (i % cols + 0.5) * cw, y0 = (i / cols + 0.5) * ch;
+        const double vx = u(rng), vy = u(rng) * ch / cw;
+        for (int f = 0; f < frames; ++f) {
+            // a triangle wave within +-0.3 of the cell around its centre
+            auto tri = [](double t, double a) { const double p = std::fmod(std::fabs(t), 4 * a); return p < 2 * a ? p - a : 3 * a - p; };
+            s.gt[static_cast<size_t>(f)].push_back(
+                Obj{static_cast<int>(i), "Car", x0 + tri(vx * f + 0.3 * cw, 0.3 * cw), y0 + tri(vy * f + 0.3 * ch, 0.3 * ch), 40, 30});
+        }
+    }
+    return s;
+}
+
 // ---- runs ---------------------------------------------------------------------------------
 
 struct Options {
@@ -869,6 +895,7 @@ struct Options {
     unsigned seed = 1, particles = 500;
     bool csv = false, learn = false, table = false;
     double kf_accel = 3.0, vel0 = 8.0;
+    unsigned bench = 0;  // > 0: time per frame with this many targets (synthetic)
     double cv_model = 0.0;  // > 0: the channel tracker uses a constant-velocity model (ablation)
     uint32_t window = 41;
     uint32_t vel_count = 61;
@@ -998,6 +1025,7 @@ void usage()
 {
     std::cerr << "usage: sbr_track --labels DIR [--seqs LIST] [--noise PX] [--miss P] [--clutter N]\n"
                  "                 [--seed S] [--csv] [--out DIR] [--model FILE] [--table]\n"
+                 "       sbr_track --labels DIR --bench-targets N [--noise PX]   (time with N <= 32 targets)\n"
                  "       sbr_track --labels DIR --learn [--seqs 0000-0005] --model-out FILE [--c-out FILE]\n"
                  "LIST: comma-separated sequence numbers or ranges, e.g. 0006-0010 or 1,3,5\n";
 }
@@ -1037,6 +1065,7 @@ int main(int argc, char **argv)
         else if (a == "--table") o.table = true;
         else if (a == "--particles") o.particles = static_cast<unsigned>(std::atoi(next().c_str()));
         else if (a == "--accel") o.kf_accel = std::atof(next().c_str());
+        else if (a == "--bench-targets") o.bench = static_cast<unsigned>(std::atoi(next().c_str()));
         else if (a == "--cv-model") o.cv_model = std::atof(next().c_str());
         else if (a == "--window") o.window = static_cast<uint32_t>(std::atoi(next().c_str()));
         else if (a == "--classes") { o.classes.clear(); for (auto &c : split(next(), ',')) o.classes.insert(c); }
@@ -1049,7 +1078,15 @@ int main(int argc, char **argv)
     }
     if (o.learn && !seqs_given) o.seqs = "0000-0005";
     std::vector<Seq> seqs;
-    for (const auto &name : parse_seqs(o.seqs)) {
+    if (o.bench > 0) {
+        if (o.bench > 32) {
+            usage();
+            return 2;
+        }
+        seqs.push_back(synthetic_seq(o.bench, 300, o.seed));
+        o.seqs = "synthetic";
+    }
+    for (const auto &name : o.bench > 0 ? std::vector<std::string>{} : parse_seqs(o.seqs)) {
         Seq s;
         if (!load_seq(o.labels, name, o.classes, s)) {
             std::cerr << "sbr_track: cannot read " << o.labels << "/" << name << ".txt\n";
