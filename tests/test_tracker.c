@@ -357,7 +357,7 @@ void test_bad_input(void)
 
 /* The generated model learned from KITTI: a valid model; a car driving along the image
    with it is tracked. */
-static uint32_t g_ws_kitti[SBR_TRACK_WORKSPACE_SIZE(1u, 41u, 61u) / sizeof(uint32_t) + 1u];
+static uint32_t g_ws_kitti[SBR_TRACK_WORKSPACE_SIZE(1u, 25u, 41u) / sizeof(uint32_t) + 1u];
 
 void test_kitti_model(void)
 {
@@ -373,11 +373,11 @@ void test_kitti_model(void)
     TEST_ASSERT_EQUAL(SBR_OK, sbr_track_model_check(&m));
     TEST_ASSERT_EQUAL_UINT32(SBR_TRACK_ORDER, m.order);
     TEST_ASSERT_EQUAL_FLOAT(1242.0f, m.extent[0]);
-    TEST_ASSERT_EQUAL_UINT32(61u, m.vel_count);
+    TEST_ASSERT_EQUAL_UINT32(41u, m.vel_count);
     sbr_track_config_default(&cfg);
     cfg.model = &m;
     cfg.max_targets = 1u;
-    cfg.window = 41u;
+    cfg.window = 25u;
     TEST_ASSERT_EQUAL(SBR_OK, sbr_track_init(&trk, &cfg, g_ws_kitti, sizeof(g_ws_kitti)));
     for (f = 0u; f < 25u; f++) {
         /* a car overtaken on the right: moving right and down, speeding up */

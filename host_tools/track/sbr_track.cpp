@@ -897,9 +897,9 @@ struct Options {
     double kf_accel = 3.0, vel0 = 8.0;
     unsigned bench = 0;  // > 0: time per frame with this many targets (synthetic)
     double cv_model = 0.0;  // > 0: the channel tracker uses a constant-velocity model (ablation)
-    uint32_t window = 41;
-    uint32_t vel_count = 61;
-    float vel_spacing = 2.5f;
+    uint32_t window = 25;
+    uint32_t vel_count = 41;
+    float vel_spacing = 3.5f;
     std::set<std::string> classes{"Car", "Cyclist"};
 };
 
