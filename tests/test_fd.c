@@ -5,6 +5,7 @@
 
 #include <math.h>
 #include <string.h>
+#include "../lib/common/sbr_util.h" /* the matcher's atan2 (private) */
 
 #define NPTS 40u
 #define PI_F 3.14159265f
@@ -328,6 +329,102 @@ static void test_table_lanes_equal_single_matches(void)
                                                             SBR_FD_TABLE_WORK_LEN(64), res, &best));
 }
 
+/* The matcher's polynomial atan2 against libm's over all four quadrants, the axes and
+   the signed zeros: within 6e-7 rad, and in (-pi, pi]. */
+static void test_fast_atan2_accuracy(void)
+{
+    float worst = 0.0f;
+    uint32_t i;
+    for (i = 0u; i < 3600u; i++) {
+        const float a = ((float)i * (2.0f * 3.14159265f)) / 3600.0f;
+        uint32_t k;
+        for (k = 0u; k < 3u; k++) {
+            const float rad = (k == 0u) ? 1.0f : ((k == 1u) ? 1.0e-20f : 3.0e20f);
+            const float y = rad * sinf(a);
+            const float x = rad * cosf(a);
+            const float got = sbr_util_atan2f(y, x);
+            float d = fabsf(got - atan2f(y, x));
+            if (d > 3.14159265f) {
+                d = fabsf(d - (2.0f * 3.14159265f)); /* +pi against -pi at y = -0 */
+            }
+            worst = (d > worst) ? d : worst;
+            TEST_ASSERT_TRUE((got > -3.1415930f) && (got <= 3.1415930f));
+        }
+    }
+    TEST_ASSERT_TRUE(worst < 6.0e-7f);
+    TEST_ASSERT_EQUAL_FLOAT(0.0f, sbr_util_atan2f(0.0f, 0.0f));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 3.14159265f, sbr_util_atan2f(0.0f, -1.0f));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 3.14159265f, sbr_util_atan2f(-0.0f, -1.0f));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, -1.57079633f, sbr_util_atan2f(-2.0f, 0.0f));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.78539816f, sbr_util_atan2f(5.0f, 5.0f));
+}
+
+/* The lane path finds corrupted prototypes from the correlation they produce (a non-finite
+   coefficient makes every lag non-finite) and their headers up front; the status is that of
+   the first bad prototype in table order, in both modes. */
+static void test_table_lanes_refuse_corrupt_prototypes(void)
+{
+    sbr_fd_t protos[8];
+    sbr_fd_t q;
+    sbr_fd_match_t res[8];
+    uint32_t best = 0u;
+    uint32_t c;
+    uint32_t i;
+    sbr_fd_match_config_t cfgs[2];
+    cfgs[0] = g_inv;
+    cfgs[1] = g_cov;
+    transform(10.0f * DEG, 1.5f, 0.0f, 0.0f, 0u);
+    q = fd_of(g_tmp, NPTS);
+    for (c = 0u; c < 2u; c++) {
+        const sbr_fd_match_config_t *cfg = &cfgs[c];
+        for (i = 0u; i < 8u; i++) {
+            protos[i] = q;
+        }
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_table(&g_fft_p, cfg, &q, protos, 8u, g_wide,
+                                                         SBR_FD_TABLE_WORK_LEN(64), res, &best));
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f, 0.0f, res[7].error);
+        /* NaN in a full block */
+        protos[2].c[3].re = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, cfg, &q, protos, 8u, g_wide,
+                                                                SBR_FD_TABLE_WORK_LEN(64), res, &best));
+        /* every coefficient NaN (no lag is ever a peak) */
+        for (i = 0u; i <= (2u * M); i++) {
+            protos[2].c[i].re = NAN;
+            protos[2].c[i].im = NAN;
+        }
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, cfg, &q, protos, 8u, g_wide,
+                                                                SBR_FD_TABLE_WORK_LEN(64), res, &best));
+        /* -infinity in the second block, the first block clean */
+        protos[2] = q;
+        protos[5].c[M - 1u].im = -INFINITY;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, cfg, &q, protos, 8u, g_wide,
+                                                                SBR_FD_TABLE_WORK_LEN(64), res, &best));
+        /* a bad header before the bad coefficient decides the status ... */
+        protos[4].m = M + 1u;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_match_table(&g_fft_p, cfg, &q, protos, 8u, g_wide,
+                                                               SBR_FD_TABLE_WORK_LEN(64), res, &best));
+        /* ... and a bad coefficient (5) before a bad header (6) decides it */
+        protos[4] = q;
+        protos[6].m = M + 1u;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, cfg, &q, protos, 8u, g_wide,
+                                                                SBR_FD_TABLE_WORK_LEN(64), res, &best));
+        protos[5] = q;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_fd_match_table(&g_fft_p, cfg, &q, protos, 8u, g_wide,
+                                                               SBR_FD_TABLE_WORK_LEN(64), res, &best));
+        protos[6] = q;
+        protos[6].scale = 0.0f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, cfg, &q, protos, 8u, g_wide,
+                                                                SBR_FD_TABLE_WORK_LEN(64), res, &best));
+        protos[6].scale = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, cfg, &q, protos, 8u, g_wide,
+                                                                SBR_FD_TABLE_WORK_LEN(64), res, &best));
+        protos[6] = q;
+        protos[7].m = 0u;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, cfg, &q, protos, 8u, g_wide,
+                                                                SBR_FD_TABLE_WORK_LEN(64), res, &best));
+    }
+}
+
 static void test_degenerate_input_gets_status(void)
 {
     sbr_fd_t fd;
@@ -439,6 +536,8 @@ int main(void)
     RUN_TEST(test_smooth);
     RUN_TEST(test_table);
     RUN_TEST(test_table_lanes_equal_single_matches);
+    RUN_TEST(test_table_lanes_refuse_corrupt_prototypes);
+    RUN_TEST(test_fast_atan2_accuracy);
     RUN_TEST(test_degenerate_input_gets_status);
     RUN_TEST(test_check_reports_energy);
     return UNITY_END();

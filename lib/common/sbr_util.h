@@ -4,6 +4,8 @@
 
 #include "sbr/types.h"
 
+#include <math.h>
+
 /* Do the byte ranges [a, a + na) and [b, b + nb) share a byte? Compared as integers:
    relational comparison of pointers into different objects is undefined in C
    (MISRA.md, 11.4). */
@@ -27,6 +29,47 @@ static inline int sbr_util_aligned(const void *p, uint32_t align)
         ok = 1;
     }
     return ok;
+}
+
+/* atan2(y, x) in (-pi, pi] for finite arguments, to within 6e-7 rad (a degree-13 odd
+   near-minimax polynomial of atan on [0, 1], 3.3e-7 rad, plus float rounding), several
+   times faster than libm's atan2f. y = -0 counts as positive (the result for x < 0 is
+   +pi); (0, 0) gives 0. */
+static inline float sbr_util_atan2f(float y, float x)
+{
+    const float ax = fabsf(x);
+    const float ay = fabsf(y);
+    float mn = ax;
+    float mx = ay;
+    float a = 0.0f;
+    float t;
+    float r;
+
+    if (ax > ay) {
+        mn = ay;
+        mx = ax;
+    }
+    if (mx > 0.0f) {
+        a = mn / mx;
+    }
+    t = a * a;
+    r = (0.00681178128f * t) - 0.0336041852f;
+    r = (r * t) + 0.0796236328f;
+    r = (r * t) - 0.1323334f;
+    r = (r * t) + 0.198078151f;
+    r = (r * t) - 0.33317368f;
+    r = (r * t) + 0.999996112f;
+    r *= a;
+    if (ay > ax) {
+        r = 1.57079633f - r;
+    }
+    if (x < 0.0f) {
+        r = 3.14159265f - r;
+    }
+    if (y < 0.0f) {
+        r = -r;
+    }
+    return r;
 }
 
 #endif /* SBR_UTIL_H */

@@ -2,6 +2,8 @@
 
 #include <math.h>
 
+#include "../common/sbr_util.h"
+
 #define SBR_PI_F 3.14159265f
 #define SBR_TWO_PI_F 6.28318531f
 
@@ -357,6 +359,21 @@ static sbr_status_t check_match_args(const sbr_fft_t *fft, const sbr_fd_match_co
     return SBR_OK;
 }
 
+/* The header of a prototype: sbr_fd_check()'s M and scale conditions, and the query's M.
+   (Its coefficients are checked by sbr_fd_check() in check_proto(), or by the lane path
+   through the finiteness of the correlation they produce.) */
+static sbr_status_t check_proto_header(const sbr_fd_t *query, const sbr_fd_t *proto)
+{
+    if ((proto->m == 0u) || (proto->m > SBR_FD_MAX_M) || (isfinite(proto->scale) == 0) ||
+        (proto->scale <= 0.0f)) {
+        return SBR_ERR_RANGE;
+    }
+    if (proto->m != query->m) {
+        return SBR_ERR_SIZE;
+    }
+    return SBR_OK;
+}
+
 /* A prototype must be a valid descriptor with the query's M. */
 static sbr_status_t check_proto(const sbr_fd_t *query, const sbr_fd_t *proto)
 {
@@ -364,10 +381,7 @@ static sbr_status_t check_proto(const sbr_fd_t *query, const sbr_fd_t *proto)
     if (st != SBR_OK) {
         return st;
     }
-    if (proto->m != query->m) {
-        return SBR_ERR_SIZE;
-    }
-    return SBR_OK;
+    return check_proto_header(query, proto);
 }
 
 /* Where conj(Q(n)) C(n), n = -M..M (k = n + M), goes: element `scale * place(n mod P)` of
@@ -480,7 +494,7 @@ static void finish_match(uint32_t size, const sbr_fd_match_config_t *cfg,
             }
             rr = corr_at(query, proto, (float)best + d, size);
             vv = objective(cfg->mode, rr);
-            rot = atan2f(rr.im, rr.re);
+            rot = sbr_util_atan2f(rr.im, rr.re);
             if ((vv >= val) && ((bounded == 0) || (fabsf(rot) <= cfg->max_rotation))) {
                 r = rr;
                 val = vv;
@@ -495,7 +509,7 @@ static void finish_match(uint32_t size, const sbr_fd_match_config_t *cfg,
     if (result->error > 4.0f) {
         result->error = 4.0f;
     }
-    rot = -atan2f(r.im, r.re);
+    rot = -sbr_util_atan2f(r.im, r.re);
     if (rot <= -SBR_PI_F) {
         rot += SBR_TWO_PI_F;
     }
@@ -605,11 +619,74 @@ static void lanes_butterfly(float *ar, float *ai, float *br, float *bi, sbr_comp
     }
 }
 
+/* The first two radix-2 stages of the decimation-in-time transform on each group of four:
+   their twiddles are 1 and i (the inverse transform's e^{+i pi / 2}), so no multiplies.
+   Written as whole-lane groups (loads, sums, differences, stores) that compilers keep in
+   vector registers. */
+static void lanes_first_stages(uint32_t size, float *re, float *im)
+{
+    uint32_t g;
+
+    for (g = 0u; g < size; g += 4u) {
+        float *r = &re[g * FD_LANES];
+        float *m = &im[g * FD_LANES];
+        float ar[FD_LANES];
+        float ai[FD_LANES];
+        float br[FD_LANES];
+        float bi[FD_LANES];
+        float cr[FD_LANES];
+        float ci[FD_LANES];
+        float dr[FD_LANES];
+        float di[FD_LANES];
+        uint32_t b;
+        /* stage 1: (x0 +- x1), (x2 +- x3) */
+        for (b = 0u; b < FD_LANES; b++) {
+            ar[b] = r[b] + r[FD_LANES + b];
+            ai[b] = m[b] + m[FD_LANES + b];
+            br[b] = r[b] - r[FD_LANES + b];
+            bi[b] = m[b] - m[FD_LANES + b];
+            cr[b] = r[(2u * FD_LANES) + b] + r[(3u * FD_LANES) + b];
+            ci[b] = m[(2u * FD_LANES) + b] + m[(3u * FD_LANES) + b];
+            dr[b] = r[(2u * FD_LANES) + b] - r[(3u * FD_LANES) + b];
+            di[b] = m[(2u * FD_LANES) + b] - m[(3u * FD_LANES) + b];
+        }
+        /* stage 2: a +- c, b +- i d */
+        for (b = 0u; b < FD_LANES; b++) {
+            r[b] = ar[b] + cr[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            m[b] = ai[b] + ci[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            r[FD_LANES + b] = br[b] - di[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            m[FD_LANES + b] = bi[b] + dr[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            r[(2u * FD_LANES) + b] = ar[b] - cr[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            m[(2u * FD_LANES) + b] = ai[b] - ci[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            r[(3u * FD_LANES) + b] = br[b] + di[b];
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            m[(3u * FD_LANES) + b] = bi[b] - dr[b];
+        }
+    }
+}
+
+/* In-place inverse transform (unscaled) of FD_LANES bit-reversed inputs, size >= 4: the
+   first two stages without multiplies, then radix-2 stages. (Fusing pairs of the later
+   stages into radix-4 steps was measured slower on x86-64: the compiler spills them.) */
 static void lanes_transform(uint32_t size, const sbr_complex_t *tw, float *re, float *im)
 {
     uint32_t half;
 
-    for (half = 1u; half < size; half *= 2u) {
+    lanes_first_stages(size, re, im);
+    for (half = 4u; half < size; half *= 2u) {
         const uint32_t tstep = size / (2u * half);
         uint32_t j;
         for (j = 0u; j < half; j++) {
@@ -623,43 +700,95 @@ static void lanes_transform(uint32_t size, const sbr_complex_t *tw, float *re, f
     }
 }
 
-/* Grid peak of each lane (first index of the largest value, as the scalar search): the
-   maxima of all lanes in whole-vector steps, then the first index that holds each
-   maximum (the same float operations give the same values). */
+/* One pass over the transformed lanes: the grid peak of each lane (first lag of the
+   largest objective value, as the scalar search) and a check value that is finite and
+   >= 0 iff the lane's prototype coefficients are finite. IEEE arithmetic never turns an
+   infinity or a NaN back into a finite value and every output of the transform depends
+   on every input, so one non-finite coefficient makes every |r|^2 non-finite: in the
+   invariant mode the largest |r|^2 is the check (infinite, or never above its start value
+   when all are NaN); in the covariant mode the sum of |r|^2 over the lags. (The query is
+   finite with unit energy, so a prototype of finite energy cannot overflow either.)
+   The invariant search is whole-lane compare-and-select steps, which map to SIMD. */
 static void lanes_peaks(uint32_t size, int inv, float cb, const float *re, const float *im,
-                        uint32_t best[FD_LANES])
+                        uint32_t best[FD_LANES], float check[FD_LANES])
 {
     float bv[FD_LANES];
+    float bl[FD_LANES];
     uint32_t l;
     uint32_t b;
 
     for (b = 0u; b < FD_LANES; b++) {
         bv[b] = FD_OUTSIDE;
+        bl[b] = 0.0f;
+        check[b] = 0.0f;
     }
     if (inv != 0) {
         for (l = 0u; l < size; l++) {
             const float *lr = &re[l * FD_LANES];
             const float *li = &im[l * FD_LANES];
+            const float fl = (float)l;
+            float v[FD_LANES];
+            /* separate whole-lane steps: each maps to one vector operation */
             for (b = 0u; b < FD_LANES; b++) {
-                const float v = (lr[b] * lr[b]) + (li[b] * li[b]);
-                bv[b] = (v > bv[b]) ? v : bv[b];
+                v[b] = (lr[b] * lr[b]) + (li[b] * li[b]);
             }
+            for (b = 0u; b < FD_LANES; b++) {
+                bl[b] = (v[b] > bv[b]) ? fl : bl[b];
+            }
+            for (b = 0u; b < FD_LANES; b++) {
+                bv[b] = (v[b] > bv[b]) ? v[b] : bv[b];
+            }
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            check[b] = bv[b];
         }
     } else {
         for (l = 0u; l < size; l++) {
+            const float fl = (float)l;
             for (b = 0u; b < FD_LANES; b++) {
-                const float v = peak_value(0, cb, re[(l * FD_LANES) + b], im[(l * FD_LANES) + b]);
-                bv[b] = (v > bv[b]) ? v : bv[b];
+                const float xr = re[(l * FD_LANES) + b];
+                const float xi = im[(l * FD_LANES) + b];
+                const float v = peak_value(0, cb, xr, xi);
+                if (v > bv[b]) {
+                    bv[b] = v;
+                    bl[b] = fl;
+                }
+                check[b] += (xr * xr) + (xi * xi);
             }
         }
     }
     for (b = 0u; b < FD_LANES; b++) {
-        l = 0u;
-        while ((l < (size - 1u)) &&
-               (peak_value(inv, cb, re[(l * FD_LANES) + b], im[(l * FD_LANES) + b]) != bv[b])) {
-            l++;
+        best[b] = (uint32_t)bl[b];
+    }
+}
+
+/* conj(Q(n)) C(n) of four consecutive prototypes (FD_LANES = 4): per coefficient, the
+   four prototypes' values are loaded one by one (straight-line code, which compilers pack
+   into one vector on SIMD hosts) and the products are stored as whole-lane groups,
+   instead of 2 x 4 scattered single stores. */
+static void lanes_products(const sbr_fd_t *query, const sbr_fd_t *protos, const uint32_t *pos,
+                           float *re, float *im)
+{
+    const uint32_t n = (2u * query->m) + 1u;
+    uint32_t k;
+    for (k = 0u; k < n; k++) {
+        const float qr = query->c[k].re;
+        const float qi = query->c[k].im;
+        const sbr_complex_t c0 = protos[0].c[k];
+        const sbr_complex_t c1 = protos[1].c[k];
+        const sbr_complex_t c2 = protos[2].c[k];
+        const sbr_complex_t c3 = protos[3].c[k];
+        const float cr[FD_LANES] = {c0.re, c1.re, c2.re, c3.re};
+        const float ci[FD_LANES] = {c0.im, c1.im, c2.im, c3.im};
+        float *r = &re[pos[k]];
+        float *m = &im[pos[k]];
+        uint32_t b;
+        for (b = 0u; b < FD_LANES; b++) {
+            r[b] = (qr * cr[b]) + (qi * ci[b]);
         }
-        best[b] = l;
+        for (b = 0u; b < FD_LANES; b++) {
+            m[b] = (qr * ci[b]) - (qi * cr[b]);
+        }
     }
 }
 
@@ -686,6 +815,7 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
     const int inv = mode_invariant(cfg);
     const float cb = rotation_cos_bound(cfg);
     uint32_t best[FD_LANES];
+    float check[FD_LANES];
     uint32_t pos[(2u * SBR_FD_MAX_M) + 1u];
     uint32_t j;
     uint32_t i0;
@@ -698,10 +828,22 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
     }
     for (i0 = 0u; i0 < count; i0 += FD_LANES) {
         uint32_t lanes = count - i0;
+        uint32_t valid;
+        sbr_status_t header = SBR_OK;
         uint32_t b;
         uint32_t k;
         if (lanes > FD_LANES) {
             lanes = FD_LANES;
+        }
+        /* prototypes up to the first bad header take part; its error is returned after
+           the coefficients of those before it are checked, so the first bad prototype in
+           table order decides the status */
+        valid = 0u;
+        while ((valid < lanes) && (header == SBR_OK)) {
+            header = check_proto_header(query, &protos[i0 + valid]);
+            if (header == SBR_OK) {
+                valid++;
+            }
         }
         /* only the gap n = M+1 .. P-M-1 stays zero after the products are placed */
         for (k = query->m + 1u; k < (size - query->m); k++) {
@@ -711,25 +853,35 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
                 im[at + b] = 0.0f;
             }
         }
-        /* unused lanes of the last block: zero input, results discarded */
-        for (b = lanes; b < FD_LANES; b++) {
+        /* unused lanes: zero input, results discarded */
+        for (b = valid; b < FD_LANES; b++) {
             for (k = 0u; k < size; k++) {
                 re[(k * FD_LANES) + b] = 0.0f;
                 im[(k * FD_LANES) + b] = 0.0f;
             }
         }
-        for (b = 0u; b < lanes; b++) {
-            const sbr_status_t st = check_proto(query, &protos[i0 + b]);
-            if (st != SBR_OK) {
-                return st;
+        if (valid == FD_LANES) {
+            lanes_products(query, &protos[i0], pos, re, im);
+        } else {
+            for (b = 0u; b < valid; b++) {
+                write_products(query, &protos[i0 + b], pos, &re[b], &im[b]);
             }
-            write_products(query, &protos[i0 + b], pos, &re[b], &im[b]);
         }
         lanes_transform(size, tw, re, im);
-        lanes_peaks(size, inv, cb, re, im, best);
-        for (b = 0u; b < lanes; b++) {
+        lanes_peaks(size, inv, cb, re, im, best, check);
+        for (b = 0u; b < valid; b++) {
+            if ((isfinite(check[b]) == 0) || (check[b] < 0.0f)) {
+                return SBR_ERR_RANGE;
+            }
+        }
+        if (header != SBR_OK) {
+            return header;
+        }
+        for (b = 0u; b < valid; b++) {
             sbr_complex_t around[3];
-            const uint32_t at[3] = {(best[b] + size - 1u) % size, best[b], (best[b] + 1u) % size};
+            /* size is a power of two (a valid FFT instance) */
+            const uint32_t at[3] = {(best[b] + size - 1u) & (size - 1u), best[b],
+                                    (best[b] + 1u) & (size - 1u)};
             for (k = 0u; k < 3u; k++) {
                 around[k].re = re[(at[k] * FD_LANES) + b];
                 around[k].im = im[(at[k] * FD_LANES) + b];
