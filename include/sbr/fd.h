@@ -173,8 +173,11 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
  *                      SBR_FD_TABLE_WORK_LEN(P) the faster four-lane path is used.
  * @param[out] results  one result per prototype (`count` entries).
  * @param[out] best     index of the prototype with the smallest error.
- * @return as sbr_fd_match(); ::SBR_ERR_SIZE for count 0. On an error in one prototype the
- *         call stops and returns that error.
+ * @return as sbr_fd_match(); ::SBR_ERR_SIZE for count 0. An invalid prototype (the
+ *         conditions of sbr_fd_check(), or another M) stops the call with the status of
+ *         the first invalid one in table order; results before it may have been written.
+ *         (The four-lane path checks coefficients through the correlation they produce: a
+ *         non-finite coefficient makes it non-finite at every lag.)
  */
 sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                 const sbr_fd_t *query, const sbr_fd_t *protos, uint32_t count,
