@@ -31,10 +31,10 @@ static inline int sbr_util_aligned(const void *p, uint32_t align)
     return ok;
 }
 
-/* atan2(y, x) in (-pi, pi] for finite arguments, to within 6e-7 rad (a degree-13 odd
-   near-minimax polynomial of atan on [0, 1], 3.3e-7 rad, plus float rounding), several
-   times faster than libm's atan2f. y = -0 counts as positive (the result for x < 0 is
-   +pi); (0, 0) gives 0. */
+/* The angle of the point (x, y) in (-pi, pi] for finite arguments, to within 6e-7 rad
+   (a degree-13 odd near-minimax polynomial of atan on [0, 1], 3.3e-7 rad, plus float
+   rounding), several times faster than libm's atan2f. y = -0 counts as positive (the
+   result for x < 0 is +pi); (0, 0) gives 0. */
 static inline float sbr_util_atan2f(float y, float x)
 {
     const float ax = fabsf(x);
