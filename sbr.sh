@@ -9,7 +9,8 @@
 #   ./sbr.sh dashboard [--log FILE | --socketcan IF | --virtual CH] [options]
 #                                               the reference dashboard (dashboard/), default:
 #                                               replay out/sbr_can.log; --help for options
-#   ./sbr.sh train                              relearn the built-in prototype library
+#   ./sbr.sh train                              relearn the built-in prototype library and
+#                                               its class stage (pictogram classifier)
 #   ./sbr.sh track [sbr_track options]          the channel tracker against Kalman and particle
 #                                               filters on KITTI tracking (default 0006-0010)
 #   ./sbr.sh learn-tracker                      relearn the tracker's motion model (0000-0005)
@@ -179,6 +180,12 @@ cmd_train() {
   log "sbr_train on GTSDB 00000-00399 -> lib/models/sbr_model_gtsdb.c, $BUILD/sbr_gtsdb.sbrm"
   "$BUILD/native/host_tools/sbr_train" --data "$ROOT/../shared/data/gtsdb" --range 0-399 \
       --out-c "$ROOT/lib/models/sbr_model_gtsdb.c" --out-model "$BUILD/sbr_gtsdb.sbrm" "$@"
+  # the class stage learns from the new library's candidates: rebuild with it first
+  cmake --build "$BUILD/native" -j "$JOBS" --target sbr_train_picto
+  log "sbr_train_picto on GTSDB 00000-00399 -> lib/models/sbr_picto_gtsdb.c, $BUILD/sbr_picto_gtsdb.sbrp"
+  "$BUILD/native/host_tools/sbr_train_picto" --data "$ROOT/../shared/data/gtsdb" --range 0-399 \
+      --out-c "$ROOT/lib/models/sbr_picto_gtsdb.c" --out "$BUILD/sbr_picto_gtsdb.sbrp"
+  cmake --build "$BUILD/native" -j "$JOBS"
 }
 
 cmd_learn_tracker() {

@@ -80,6 +80,7 @@ static void test_config(void)
     g_cfg.max_votes = 2048u;
     g_cfg.max_hypotheses = 128u;
     g_cfg.max_model_protos = MAXP;
+    g_cfg.min_parts = 2u; /* the models here have no class stage */
 }
 
 /* Learn the model from the parts of one sign of radius r at (cx, cy): every part centred
@@ -321,11 +322,110 @@ static void test_bad_input(void)
     g_model.group_first[SBR_MODEL_GROUPS] = (uint16_t)(g_model.proto_count + 1u);
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
     g_model.group_first[SBR_MODEL_GROUPS] = (uint16_t)g_model.proto_count;
-    g_model.version = 2u;
+    g_model.version = 99u;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
     g_model.version = SBR_MODEL_VERSION;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_model_check(NULL));
+}
+
+/* A class stage relabels and rescores the part model's detection: a classifier that
+   always says class 3 with probability e^4 / (e^4 + 43) gives that class and score; one
+   that always says "no sign" leaves nothing; a corrupted one is refused. */
+static void test_class_stage(void)
+{
+    static float w2[SBR_PICTO_OUTPUTS * (SBR_PICTO_FEATURES + 1u)];
+    const sbr_image_t v = view();
+    uint32_t n = 0u;
+    (void)memset(w2, 0, sizeof w2);
+    w2[(3u * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 4.0f;
+    g_model.picto.version = SBR_PICTO_VERSION;
+    g_model.picto.features = SBR_PICTO_FEATURES;
+    g_model.picto.hidden = 0u;
+    g_model.picto.threshold = 0.5f;
+    g_model.picto.w1 = NULL;
+    g_model.picto.w2 = w2;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
+    draw_sign(112.0f, 50.0f, 18.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, NULL));
+    TEST_ASSERT_TRUE(n >= 1u);
+    TEST_ASSERT_EQUAL_UINT32(3u, g_dets[0].class_id);
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, expf(4.0f) / (expf(4.0f) + 43.0f), g_dets[0].score);
+    /* share among the 43 sign classes: e^4 / (e^4 + 42) */
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, expf(4.0f) / (expf(4.0f) + 42.0f), g_dets[0].class_share);
+    TEST_ASSERT_FLOAT_WITHIN(3.0f, 112.5f, (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+    w2[(3u * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 0.0f;
+    w2[(SBR_PICTO_BACKGROUND * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 8.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, NULL));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    w2[5] = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws,
+                                                            g_dets, 16u, &n, NULL));
+    (void)memset(&g_model.picto, 0, sizeof g_model.picto);
+}
+
+/* Hostile frames with the built-in library and class stage: a status or detections that
+   are well-formed (inside the frame, valid class, score in [min_score, 1]), never a
+   crash. */
+static void test_hostile_frames_builtin(void)
+{
+    sbr_model_t m;
+    sbr_recog_config_t c = g_cfg;
+    sbr_image_t v = view();
+    uint32_t n = 0u;
+    uint32_t i;
+    uint32_t x;
+    uint32_t y;
+    uint32_t k;
+    uint32_t state = 12345u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
+    c.max_model_protos = 1024u;
+    c.min_parts = 1u;
+    c.max_hypotheses = 64u;
+    TEST_ASSERT_TRUE(sbr_recog_workspace_size(W, H, &c) <= sizeof g_ws);
+    /* 1 x 1 */
+    v.width = 1u;
+    v.height = 1u;
+    TEST_ASSERT_TRUE(sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL) <= SBR_OK);
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    /* a huge (corrupted) stride is refused before any pixel is read */
+    v = view();
+    v.stride = 0xFFFFFFF0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, 16u,
+                                                          &n, NULL));
+    v.stride = SBR_IMAGE_MAX_STRIDE + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, 16u,
+                                                          &n, NULL));
+    v = view();
+    for (k = 0u; k < 3u; k++) {
+        for (y = 0u; y < H; y++) {
+            for (x = 0u; x < W; x++) {
+                for (i = 0u; i < 3u; i++) {
+                    if (k == 0u) {
+                        g_rgb[y][x][i] = 0u;
+                    } else if (k == 1u) {
+                        g_rgb[y][x][i] = 255u;
+                    } else {
+                        state = (state * 1664525u) + 1013904223u;
+                        g_rgb[y][x][i] = (uint8_t)(state >> 24);
+                    }
+                }
+            }
+        }
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, 16u, &n,
+                                                       NULL));
+        if (k < 2u) {
+            TEST_ASSERT_EQUAL_UINT32(0u, n); /* flat frames have no regions */
+        }
+        for (i = 0u; i < n; i++) {
+            TEST_ASSERT_TRUE(g_dets[i].class_id < SBR_RECOG_CLASSES);
+            TEST_ASSERT_TRUE((g_dets[i].score >= c.min_score) && (g_dets[i].score <= 1.0f));
+            TEST_ASSERT_TRUE(g_dets[i].box.x + g_dets[i].box.width <= W);
+            TEST_ASSERT_TRUE(g_dets[i].box.y + g_dets[i].box.height <= H);
+        }
+    }
 }
 
 /* The built-in library is consistent and fits the default configuration; the macro bound
@@ -344,6 +444,8 @@ static void test_builtin_model_and_sizes(void)
     TEST_ASSERT_EQUAL_UINT32(d.parts.fd_m, m->fd_m);
     TEST_ASSERT_TRUE(m->proto_count <= d.max_model_protos);
     TEST_ASSERT_TRUE(m->class_first[SBR_RECOG_CLASSES] > 0u);
+    TEST_ASSERT_EQUAL_UINT32(SBR_PICTO_VERSION, m->picto.version); /* with its class stage */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m->picto));
     for (s = 1u; s <= 4u; s *= 2u) {
         d.parts.subsample = s;
         TEST_ASSERT_TRUE(sbr_recog_workspace_size(1360u, 800u, &d) > 0u);
@@ -362,5 +464,7 @@ int main(void)
     RUN_TEST(test_capacity);
     RUN_TEST(test_bad_input);
     RUN_TEST(test_builtin_model_and_sizes);
+    RUN_TEST(test_class_stage);
+    RUN_TEST(test_hostile_frames_builtin);
     return UNITY_END();
 }

@@ -31,6 +31,11 @@ bool get(const std::string &s, size_t &off, T &v) {
     return true;
 }
 
+size_t picto_w1_len(uint32_t hidden) { return size_t(hidden) * (SBR_PICTO_FEATURES + 1u); }
+size_t picto_w2_len(uint32_t hidden) {
+    return size_t(SBR_PICTO_OUTPUTS) * ((hidden > 0 ? hidden : SBR_PICTO_FEATURES) + 1u);
+}
+
 // A float as a C literal that reads back to the same value.
 std::string flit(float v) {
     char b[48];
@@ -45,6 +50,12 @@ void Model::bind() {
     view.protos = protos.data();
     view.cascade = cascade.data();
     view.proto_count = static_cast<uint32_t>(protos.size());
+    if (has_picto) {
+        picto.bind();
+        view.picto = picto.view;
+    } else {
+        view.picto = sbr_picto_model_t{};
+    }
 }
 
 std::string save_model(const Model &m, const std::string &path) {
@@ -62,6 +73,12 @@ std::string save_model(const Model &m, const std::string &path) {
     for (const auto &f : m.fds) put(s, f);
     for (const auto &p : m.protos) put(s, p);
     for (auto c : m.cascade) put(s, c);
+    put(s, m.has_picto ? m.picto.hidden + 1u : 0u);
+    if (m.has_picto) {
+        put(s, m.picto.threshold);
+        for (float w : m.picto.w1) put(s, w);
+        for (float w : m.picto.w2) put(s, w);
+    }
     put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
     std::ofstream f(path, std::ios::binary);
     if (!f) return "cannot write " + path;
@@ -90,14 +107,31 @@ std::string load_model(const std::string &path, Model &m) {
     for (auto &c : v.class_first) ok = ok && get(s, off, c);
     if (!ok || v.version != SBR_MODEL_VERSION) return path + ": unsupported header";
     if (np > 65535u || nc > 65535u * SBR_RECOG_CLASSES) return path + ": bad counts";
-    const size_t need = off + np * (sizeof(sbr_fd_t) + sizeof(sbr_model_proto_t)) + nc * 2u + 4u;
-    if (need != s.size()) return path + ": size does not match its counts";
+    const size_t need = off + np * (sizeof(sbr_fd_t) + sizeof(sbr_model_proto_t)) + nc * 2u + 8u;
+    if (need > s.size()) return path + ": size does not match its counts";
     m.fds.resize(np);
     m.protos.resize(np);
     m.cascade.resize(nc);
     for (auto &x : m.fds) get(s, off, x);
     for (auto &x : m.protos) get(s, off, x);
     for (auto &x : m.cascade) get(s, off, x);
+    uint32_t picto = 0;
+    get(s, off, picto);
+    m.has_picto = picto != 0;
+    if (m.has_picto) {
+        const uint32_t hidden = picto - 1u;
+        if (hidden > SBR_PICTO_HIDDEN_MAX) return path + ": bad class stage header";
+        m.picto.hidden = hidden;
+        m.picto.w1.resize(picto_w1_len(hidden));
+        m.picto.w2.resize(picto_w2_len(hidden));
+    }
+    if (off + 4u * (m.picto.w1.size() + m.picto.w2.size() + 1u) * (m.has_picto ? 1u : 0u) + 4u != s.size())
+        return path + ": size does not match its counts";
+    if (m.has_picto) {
+        get(s, off, m.picto.threshold);
+        for (auto &w : m.picto.w1) get(s, off, w);
+        for (auto &w : m.picto.w2) get(s, off, w);
+    }
     m.view = v;
     m.bind();
     const sbr_status_t st = sbr_model_check(&m.view);
@@ -146,7 +180,94 @@ std::string write_model_c(const Model &m, const std::string &path, const std::st
       << "    for (i = 0u; i <= SBR_MODEL_GROUPS; i++) {\n        out->group_first[i] = model_group_first[i];\n    }\n"
       << "    for (i = 0u; i <= SBR_RECOG_CLASSES; i++) {\n        out->class_first[i] = model_class_first[i];\n    }\n"
       << "    out->cascade = model_cascade;\n    out->vote_error = " << flit(v.vote_error)
-      << ";\n    out->score_threshold = " << flit(v.score_threshold) << ";\n    return SBR_OK;\n}\n";
+      << ";\n    out->score_threshold = " << flit(v.score_threshold) << ";\n"
+      << "    return sbr_picto_gtsdb(&out->picto); /* the class stage trained with it */\n}\n";
+    std::ofstream f(path);
+    if (!f) return "cannot write " + path;
+    f << o.str();
+    return f ? "" : "write failed: " + path;
+}
+
+void Picto::bind() {
+    view.version = SBR_PICTO_VERSION;
+    view.features = SBR_PICTO_FEATURES;
+    view.hidden = hidden;
+    view.threshold = threshold;
+    view.w1 = hidden > 0 ? w1.data() : nullptr;
+    view.w2 = w2.data();
+}
+
+
+std::string save_picto(const Picto &p, const std::string &path) {
+    if (p.w1.size() != picto_w1_len(p.hidden) || p.w2.size() != picto_w2_len(p.hidden))
+        return "classifier sizes do not match its hidden layer";
+    std::string s = "SBRP";
+    put(s, uint32_t(SBR_PICTO_VERSION));
+    put(s, uint32_t(SBR_PICTO_FEATURES));
+    put(s, p.hidden);
+    put(s, p.threshold);
+    for (float w : p.w1) put(s, w);
+    for (float w : p.w2) put(s, w);
+    put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
+    std::ofstream f(path, std::ios::binary);
+    if (!f) return "cannot write " + path;
+    f.write(s.data(), static_cast<std::streamsize>(s.size()));
+    return f ? "" : "write failed: " + path;
+}
+
+std::string load_picto(const std::string &path, Picto &p) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return "cannot read " + path;
+    std::stringstream ss;
+    ss << f.rdbuf();
+    const std::string s = ss.str();
+    if (s.size() < 24 || s.compare(0, 4, "SBRP") != 0) return path + ": not an sbr classifier file";
+    uint32_t stored = 0;
+    std::memcpy(&stored, s.data() + s.size() - 4, 4);
+    if (crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size() - 4) != stored)
+        return path + ": CRC mismatch (corrupted file)";
+    size_t off = 4;
+    uint32_t version = 0, features = 0, hidden = 0;
+    get(s, off, version);
+    get(s, off, features);
+    get(s, off, hidden);
+    get(s, off, p.threshold);
+    if (version != SBR_PICTO_VERSION || features != SBR_PICTO_FEATURES || hidden > SBR_PICTO_HIDDEN_MAX)
+        return path + ": unsupported header";
+    if (off + 4 * (picto_w1_len(hidden) + picto_w2_len(hidden)) + 4 != s.size())
+        return path + ": size does not match its header";
+    p.hidden = hidden;
+    p.w1.resize(picto_w1_len(hidden));
+    p.w2.resize(picto_w2_len(hidden));
+    for (auto &w : p.w1) get(s, off, w);
+    for (auto &w : p.w2) get(s, off, w);
+    p.bind();
+    const sbr_status_t st = sbr_picto_check(&p.view);
+    if (st != SBR_OK) return path + ": classifier check failed: " + sbr_status_str(st);
+    return "";
+}
+
+std::string write_picto_c(const Picto &p, const std::string &path, const std::string &header) {
+    if (p.w1.size() != picto_w1_len(p.hidden) || p.w2.size() != picto_w2_len(p.hidden))
+        return "classifier sizes do not match its hidden layer";
+    std::ostringstream o;
+    o << "/*\n";
+    std::istringstream hs(header);
+    for (std::string line; std::getline(hs, line);) o << (line.empty() ? " *" : " * " + line) << "\n";
+    o << " */\n#include \"sbr/pictogram.h\"\n\n";
+    o << "sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)\n{\n";
+    auto table = [&](const char *name, const std::vector<float> &w) {
+        o << "    static const float " << name << "[" << w.size() << "] = {";
+        for (size_t i = 0; i < w.size(); ++i) o << (i % 6 ? " " : "\n        ") << flit(w[i]) << ",";
+        o << "\n    };\n";
+    };
+    if (p.hidden > 0) table("picto_w1", p.w1);
+    table("picto_w2", p.w2);
+    o << "    if (out == NULL) {\n        return SBR_ERR_NULL;\n    }\n"
+      << "    out->version = SBR_PICTO_VERSION;\n    out->features = SBR_PICTO_FEATURES;\n"
+      << "    out->hidden = " << p.hidden << "u;\n    out->threshold = " << flit(p.threshold) << ";\n"
+      << "    out->w1 = " << (p.hidden > 0 ? "picto_w1" : "NULL") << ";\n    out->w2 = picto_w2;\n"
+      << "    return SBR_OK;\n}\n";
     std::ofstream f(path);
     if (!f) return "cannot write " + path;
     f << o.str();

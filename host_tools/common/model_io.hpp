@@ -4,7 +4,10 @@
 //   "SBRM" | u32 version | u32 fd_n | u32 fd_m | u32 proto_count | u32 cascade_count |
 //   f32 vote_error | f32 score_threshold | u16 group_first[9] | u16 class_first[44] |
 //   sbr_fd_t fds[proto_count] | sbr_model_proto_t protos[proto_count] |
-//   u16 cascade[cascade_count] | u32 CRC-32 (IEEE) of every byte before it.
+//   u16 cascade[cascade_count] | u32 picto (0: no class stage, else hidden + 1) |
+//   [f32 threshold |
+//   [f32 w1[hidden * (features + 1)] | f32 w2[outputs * (hidden or features, + 1)]] |
+//   u32 CRC-32 (IEEE) of every byte before it.
 // A loaded model is checked with sbr_model_check() as well.
 #pragma once
 
@@ -13,16 +16,32 @@
 #include <vector>
 
 extern "C" {
+#include "sbr/pictogram.h"
 #include "sbr/recognizer.h"
 }
 
 namespace sbr_host {
+
+// Owns the weights a sbr_picto_model_t points into (the class stage, pictogram.h).
+// File form (.sbrp), little-endian: "SBRP" | u32 version | u32 features | u32 hidden |
+//   f32 threshold |
+//   f32 w1[hidden * (features + 1)] | f32 w2[outputs * (hidden or features, + 1)] |
+//   u32 CRC-32 (IEEE) of every byte before it. Checked with sbr_picto_check() as well.
+struct Picto {
+    uint32_t hidden = 0;
+    float threshold = 0.5f;
+    std::vector<float> w1, w2;
+    sbr_picto_model_t view{};  // pointers refreshed by bind()
+    void bind();
+};
 
 // Owns the arrays a sbr_model_t points into.
 struct Model {
     std::vector<sbr_fd_t> fds;
     std::vector<sbr_model_proto_t> protos;
     std::vector<uint16_t> cascade;
+    bool has_picto = false;
+    Picto picto;  // the class stage, when has_picto
     sbr_model_t view{};  // pointers refreshed by bind()
     void bind();
 };
@@ -33,5 +52,10 @@ std::string load_model(const std::string &path, Model &m);
 // The generated C source (const tables and sbr_model_gtsdb(), which fills a caller's struct); `header` lines go into the
 // file's leading comment.
 std::string write_model_c(const Model &m, const std::string &path, const std::string &header);
+
+std::string save_picto(const Picto &p, const std::string &path);
+std::string load_picto(const std::string &path, Picto &p);
+// The generated C source: const tables and sbr_picto_gtsdb().
+std::string write_picto_c(const Picto &p, const std::string &path, const std::string &header);
 
 }  // namespace sbr_host

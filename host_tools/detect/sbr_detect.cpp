@@ -1,14 +1,15 @@
 // sbr_detect: runs sbr's recogniser over a folder of recorded images.
 //
 //   sbr_detect --input DIR --detections FILE [--annotated DIR] [--canlog FILE]
-//              [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]
+//              [--all-detections FILE] [--summary FILE] [--model FILE] [--picto FILE]
+//              [--no-picto] [--range A-B]
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S]
 //
 // --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
 //   accepted too). --range A-B keeps images numbered A..B.
 // --detections: one line per detection at the operating point (score >= --threshold,
-//   default the model's, chosen on its training images), exactly
+//   default the class stage's operating point, or the part model's without one), exactly
 //   `NNNNN.jpg;left;top;right;bottom;class_id;score` (GTSDB's format, inclusive pixel box,
 //   plus a score 0..1).
 // --all-detections: the same format with every detection down to score 0.05 (the
@@ -19,6 +20,8 @@
 //   second: the CAN log's confirmed signs come from the channel tracker (each sign once
 //   per pass, with a stable track id) instead of treating every image as a still.
 // --model: a prototype library file (sbr_train --out-model); default: the built-in one.
+// --picto: a class-stage file (sbr_train_picto --out) used with the library instead of
+//   its own; --no-picto: no class stage (part evidence alone scores and classifies).
 // --summary: the summary text (also printed): images, detections, time per frame (median
 //   and 95th percentile, per stage), workspace bytes, capacity hits.
 // --min-parts, --vote-error, --verify-error, --min-score override the recogniser's options
@@ -95,7 +98,8 @@ void annotate(cv::Mat &img, const std::vector<sbr_detection_t> &dets) {
 }  // namespace
 
 int main(int argc, char **argv) {
-    std::string input, det_path, all_path, annotated, canlog, model_path, summary_path;
+    std::string input, det_path, all_path, annotated, canlog, model_path, summary_path, picto_path;
+    bool no_picto = false;
     int r0 = -1, r1 = -1;
     float threshold = -1.0f;
     uint32_t subsample = 1;
@@ -113,6 +117,8 @@ int main(int argc, char **argv) {
         else if (a == "--annotated") annotated = next();
         else if (a == "--canlog") canlog = next();
         else if (a == "--model") model_path = next();
+        else if (a == "--picto") picto_path = next();
+        else if (a == "--no-picto") no_picto = true;
         else if (a == "--summary") summary_path = next();
         else if (a == "--threshold") threshold = std::strtof(next().c_str(), nullptr);
         else if (a == "--subsample") subsample = uint32_t(std::atoi(next().c_str()));
@@ -151,7 +157,19 @@ int main(int argc, char **argv) {
         if (!e.empty()) { std::fprintf(stderr, "sbr_detect: %s\n", e.c_str()); return 1; }
         model = &loaded.view;
     }
-    if (threshold < 0.0f) threshold = model->score_threshold;
+    Picto picto;
+    sbr_model_t with_picto = *model;
+    if (!picto_path.empty()) {
+        const std::string e = load_picto(picto_path, picto);
+        if (!e.empty()) { std::fprintf(stderr, "sbr_detect: %s\n", e.c_str()); return 1; }
+        with_picto.picto = picto.view;
+        model = &with_picto;
+    } else if (no_picto) {
+        with_picto.picto = sbr_picto_model_t{};
+        model = &with_picto;
+    }
+    // the operating point: the class stage's, or the part model's without one
+    if (threshold < 0.0f) threshold = model->picto.version != 0 ? model->picto.threshold : model->score_threshold;
     sbr_recog_config_t cfg;
     sbr_recog_config_default(&cfg);
     cfg.parts.subsample = subsample;
@@ -188,7 +206,7 @@ int main(int argc, char **argv) {
     std::vector<double> ms_total;
     std::vector<std::vector<double>> ms_stage(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
-    size_t capacity_kind[4] = {0, 0, 0, 0};
+    size_t capacity_kind[5] = {0, 0, 0, 0, 0};
     uint64_t parts_total = 0;
     double sum_ms = 0;
     for (size_t i = 0; i < files.size(); ++i) {
@@ -225,7 +243,7 @@ int main(int argc, char **argv) {
             for (unsigned s = 0; s < SBR_RECOG_STAGES; ++s) ms_stage[s].push_back(stats.stage_ticks[s] / 1000.0);
             parts_total += stats.parts;
             if (stats.capacity_hit != 0 || st == SBR_ERR_CAPACITY) ++capacity_frames;
-            for (unsigned b = 0; b < 4; ++b) capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
+            for (unsigned b = 0; b < 5; ++b) capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
             for (uint32_t k = 0; k < n; ++k) {
                 const auto &d = dets[k];
                 char line[160];
@@ -256,11 +274,14 @@ int main(int argc, char **argv) {
 
     std::ostringstream s;
     const char *stage_names[SBR_RECOG_STAGES] = {"parts (maps, MSER, contours, FDs)", "matching and votes",
-                                                 "grouping", "evidence and cascade", "NMS"};
+                                                 "grouping", "evidence and cascade", "NMS on part scores",
+                                                 "class stage (pictograms)"};
     s << "sbr_detect summary\n";
     s << "input: " << dir << " (" << files.size() << " images, " << failed << " failed)\n";
     s << "model: " << (model_path.empty() ? "built-in (lib/models/sbr_model_gtsdb.c)" : model_path) << ", "
-      << model->proto_count << " prototypes, operating point score >= " << threshold << "\n";
+      << model->proto_count << " prototypes, class stage "
+      << (model->picto.version != 0 ? (picto_path.empty() ? "built-in (lib/models/sbr_picto_gtsdb.c)" : picto_path) : "none")
+      << ", operating point score >= " << threshold << "\n";
     s << "detections: " << ndet << " at the operating point";
     if (all.is_open()) s << ", " << nall << " in all";
     s << "\nparts per frame (mean): " << (ms_total.empty() ? 0 : parts_total / ms_total.size()) << "\n";
@@ -276,7 +297,7 @@ int main(int argc, char **argv) {
     s << "workspace: " << ws_bytes << " bytes (" << (use_roi ? "ROI" : "frame") << ", subsample " << subsample << ")\n";
     s << "frames with an internal bound reached: " << capacity_frames << " (parts " << capacity_kind[0]
       << ", votes " << capacity_kind[1] << ", hypotheses " << capacity_kind[2] << ", MSER " << capacity_kind[3]
-      << ")\n";
+      << ", candidates " << capacity_kind[4] << ")\n";
     if (can) s << "CAN log: " << canlog << " (" << can->frames_written() << " frames)\n";
     if (!annotated.empty()) s << "annotated images: " << annotated << "\n";
     std::fputs(s.str().c_str(), stdout);

@@ -18,6 +18,9 @@ extern "C" {
 
 /** Largest supported width or height (coordinates fit in int16_t with a margin). */
 #define SBR_IMAGE_MAX_DIM 16384u
+/** Largest supported stride in bytes (4 bytes x the largest width): row offsets of any
+    valid view fit in 32 bits, so a corrupted stride cannot wrap address arithmetic. */
+#define SBR_IMAGE_MAX_STRIDE (4u * SBR_IMAGE_MAX_DIM)
 
 /** Pixel formats. */
 typedef enum sbr_pixel_format_e {
@@ -30,7 +33,8 @@ typedef enum sbr_pixel_format_e {
 typedef struct sbr_image_s {
     uint32_t width;            /**< pixels per row, 1 .. ::SBR_IMAGE_MAX_DIM */
     uint32_t height;           /**< rows, 1 .. ::SBR_IMAGE_MAX_DIM */
-    uint32_t stride;           /**< bytes from one row to the next, >= width * bytes/pixel */
+    uint32_t stride;           /**< bytes from one row to the next, >= width * bytes/pixel,
+                                    <= ::SBR_IMAGE_MAX_STRIDE */
     sbr_pixel_format_t format; /**< pixel format */
     const uint8_t *data;       /**< first pixel (borrowed, not owned) */
 } sbr_image_t;
@@ -51,7 +55,8 @@ uint32_t sbr_image_bytes_per_pixel(sbr_pixel_format_t format);
 /**
  * @brief Validate a view.
  * @return ::SBR_OK; ::SBR_ERR_NULL (view or data NULL); ::SBR_ERR_SIZE (zero or too large
- *         width/height); ::SBR_ERR_RANGE (unknown format); ::SBR_ERR_ALIGN (stride smaller
+ *         width/height); ::SBR_ERR_RANGE (unknown format); ::SBR_ERR_ALIGN (stride above
+ *         ::SBR_IMAGE_MAX_STRIDE or smaller
  *         than a row).
  */
 sbr_status_t sbr_image_check(const sbr_image_t *img);

@@ -36,9 +36,15 @@
  *    scale within a factor 1 + `size_tol`, same group) with the looser `verify_error`;
  *    each one found adds its weight. A hypothesis needs `min_parts` distinct supporting
  *    prototypes.
- * 5. Score = S / (S + 1) for the evidence S of the class (0..1, monotonic). Detections
- *    below `min_score` are dropped; overlapping ones (IoU > `nms_iou`) are suppressed,
+ * 5. Part score = 1 - prod(1 - w) over the supporting weights w (0..1). Hypotheses below
+ *    the part-score floor are dropped; overlapping ones (IoU > `nms_iou`) are suppressed,
  *    the higher score kept.
+ * 6. Class stage (when the model has one, sbr_model_t::picto): the surviving hypotheses
+ *    (at most `max_candidates`, best part score first) are the candidates; the pictogram
+ *    classifier (pictogram.h) looks at each box and gives the class (its most probable
+ *    sign class) and the score (that probability; "no sign" takes the rest). Detections
+ *    below `min_score` are dropped and suppression runs again on the new scores.
+ *    Without a class stage the part score and part evidence's class are reported.
  *
  * Everything lives in the caller's workspace (sbr_recog_workspace_size()); the model is
  * only read. No heap, no statics.
@@ -47,6 +53,7 @@
 #define SBR_RECOGNIZER_H
 
 #include "sbr/parts.h"
+#include "sbr/pictogram.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -61,7 +68,7 @@ extern "C" {
 /** Groups: map kind (0..3) x polarity (dark, bright). */
 #define SBR_MODEL_GROUPS 8u
 /** Model format version (the generated table and the file form). */
-#define SBR_MODEL_VERSION 1u
+#define SBR_MODEL_VERSION 2u
 
 /** One prototype part (see the file comment). */
 typedef struct sbr_model_proto_s {
@@ -95,6 +102,9 @@ typedef struct sbr_model_s {
     const uint16_t *cascade;   /**< class_first[SBR_RECOG_CLASSES] entries */
     float vote_error;          /**< vote threshold it was trained with */
     float score_threshold;     /**< operating point chosen on the training images */
+    /** The class stage (pictogram.h) trained with this library; picto.version = 0: none
+        (detections are scored and classified by part evidence alone). */
+    sbr_picto_model_t picto;
 } sbr_model_t;
 
 /**
@@ -147,11 +157,22 @@ typedef struct sbr_recog_config_s {
     float size_tol;
     /** Cascade prototypes checked per hypothesis. Default 8; 0 = no verification. */
     uint32_t cascade_depth;
-    /** Distinct prototypes a detection needs (votes and verified parts). Default 2. More:
-        fewer false detections, fewer single-contour signs. */
+    /** Distinct prototypes a hypothesis needs (votes and verified parts). Default 1 (the
+        class stage rejects clutter; without a class stage, 2 gives far fewer false
+        detections at the cost of single-contour signs). */
     uint32_t min_parts;
-    /** Score floor of reported detections, [0, 1). Default 0.3 (below the usual operating
-        point, so evaluations can draw precision-recall curves). */
+    /** With a class stage: the part-score floor of a candidate, [0, 1). Default 0 (every
+        hypothesis is a candidate). Larger: less class-stage work, lower recall. */
+    float candidate_score;
+    /** With a class stage: candidates classified per frame, best part score first
+        (bounds its work: each costs one pictogram, see pictogram.h). Default 256 (a
+        1360 x 800 GTSDB frame has about 580 hypotheses after suppression). Larger: more
+        recall on signs with weak part evidence, more time.
+        Running out is flagged in sbr_recog_stats_t::capacity_hit (bit 4). */
+    uint32_t max_candidates;
+    /** Score floor of reported detections, [0, 1): the class stage's probability, or the
+        part score without one. Default 0.3 (below the usual operating point, so
+        evaluations can draw precision-recall curves). */
     float min_score;
     /** Non-maximum suppression IoU, (0, 1]. Default 0.3. */
     float nms_iou;
@@ -169,8 +190,9 @@ typedef enum sbr_recog_stage_e {
     SBR_RECOG_STAGE_VOTES = 1,  /**< prototype matching and voting */
     SBR_RECOG_STAGE_GROUP = 2,  /**< sorting and grouping votes into hypotheses */
     SBR_RECOG_STAGE_VERIFY = 3, /**< class evidence and cascade verification */
-    SBR_RECOG_STAGE_NMS = 4,    /**< non-maximum suppression and output */
-    SBR_RECOG_STAGES = 5
+    SBR_RECOG_STAGE_NMS = 4,    /**< non-maximum suppression on part evidence */
+    SBR_RECOG_STAGE_CLASS = 5,  /**< class stage (pictograms), suppression, output */
+    SBR_RECOG_STAGES = 6
 } sbr_recog_stage_t;
 
 /** One detection. */
@@ -190,8 +212,10 @@ typedef struct sbr_recog_stats_s {
     uint32_t votes;           /**< votes cast */
     uint32_t hypotheses;      /**< hypotheses formed */
     uint32_t verified;        /**< parts found by cascade verification */
-    uint32_t rejected;        /**< hypotheses below min_parts or min_score */
-    uint32_t capacity_hit;    /**< bit 0 parts, bit 1 votes, bit 2 hypotheses, bit 3 MSER */
+    uint32_t rejected;        /**< hypotheses below min_parts or a score floor */
+    uint32_t classified;      /**< candidates the class stage examined */
+    uint32_t capacity_hit;    /**< bit 0 parts, bit 1 votes, bit 2 hypotheses, bit 3 MSER,
+                                   bit 4 candidates */
     uint32_t stage_ticks[SBR_RECOG_STAGES]; /**< clock ticks per ::sbr_recog_stage_t
                                                  (0 without a clock) */
 } sbr_recog_stats_t;
@@ -218,7 +242,8 @@ size_t sbr_recog_workspace_size(uint32_t width, uint32_t height, const sbr_recog
     (SBR_MSER_WORKSPACE_SIZE((width) / (s), (height) / (s), 5u, 68000u) + \
      ((size_t)(width) / (s)) * ((size_t)(height) / (s)) + 2048u * 40u + \
      160u * 160u * 5u + 162u * 162u + 2048u * 12u + 128u * 8u + 4096u * sizeof(sbr_part_t) + \
-     1024u * sizeof(sbr_fd_match_t) + 160u * 8u + 16384u * 32u + 4096u * 56u + 512u)
+     1024u * sizeof(sbr_fd_match_t) + 160u * 8u + 16384u * 32u + 4096u * 56u + 512u + \
+     SBR_PICTO_WORKSPACE_SIZE + (SBR_PICTO_FEATURES + SBR_PICTO_OUTPUTS) * 4u + 8u)
 
 /**
  * @brief Detect signs.

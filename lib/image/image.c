@@ -34,7 +34,7 @@ sbr_status_t sbr_image_check(const sbr_image_t *img)
     if (bpp == 0u) {
         return SBR_ERR_RANGE;
     }
-    if (img->stride < (img->width * bpp)) {
+    if ((img->stride < (img->width * bpp)) || (img->stride > SBR_IMAGE_MAX_STRIDE)) {
         return SBR_ERR_ALIGN;
     }
     return SBR_OK;

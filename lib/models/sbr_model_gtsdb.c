@@ -649,7 +649,7 @@ sbr_status_t sbr_model_gtsdb(sbr_model_t *out)
     if (out == NULL) {
         return SBR_ERR_NULL;
     }
-    out->version = 1u;
+    out->version = 2u;
     out->fd_n = 128u;
     out->fd_m = 12u;
     out->proto_count = 290u;
@@ -664,5 +664,5 @@ sbr_status_t sbr_model_gtsdb(sbr_model_t *out)
     out->cascade = model_cascade;
     out->vote_error = 1.199999973e-01f;
     out->score_threshold = 2.958554626e-01f;
-    return SBR_OK;
+    return sbr_picto_gtsdb(&out->picto); /* the class stage trained with it */
 }

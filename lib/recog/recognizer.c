@@ -51,8 +51,14 @@ typedef struct recog_layout_s {
     size_t work;
     size_t votes;
     size_t hyps;
+    size_t picto;
     size_t total;
 } recog_layout_t;
+
+/* The class stage's share of the workspace: its scratch, a feature vector, the
+   probabilities. */
+#define RECOG_PICTO_BYTES \
+    (SBR_PICTO_WORKSPACE_SIZE + ((SBR_PICTO_FEATURES + SBR_PICTO_OUTPUTS) * sizeof(float)))
 
 void sbr_recog_config_default(sbr_recog_config_t *cfg)
 {
@@ -75,7 +81,9 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->centre_tol = 0.2f;
         cfg->size_tol = 0.3f;
         cfg->cascade_depth = 8u;
-        cfg->min_parts = 2u;
+        cfg->min_parts = 1u;
+        cfg->candidate_score = 0.0f;
+        cfg->max_candidates = 256u;
         cfg->min_score = 0.3f;
         cfg->nms_iou = 0.3f;
         cfg->clock = NULL;
@@ -108,7 +116,8 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (cfg->max_parts > 1000000u) || (cfg->max_votes == 0u) || (cfg->max_votes > 4000000u) ||
         (cfg->max_hypotheses == 0u) || (cfg->max_hypotheses > 1000000u) ||
         (cfg->max_model_protos == 0u) || (cfg->max_model_protos > 65535u) ||
-        (cfg->cascade_depth > 65535u) || (cfg->min_parts > 65535u)) {
+        (cfg->cascade_depth > 65535u) || (cfg->min_parts > 65535u) ||
+        (cfg->max_candidates > 1000000u)) {
         return SBR_ERR_RANGE;
     }
     if ((in_range(cfg->vote_error, 0.0f, 4.0f) == 0) ||
@@ -119,6 +128,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (in_range(cfg->centre_tol, 1.0e-6f, 10.0f) == 0) ||
         (in_range(cfg->size_tol, 0.0f, 10.0f) == 0) ||
         (in_range(cfg->min_score, 0.0f, 0.999999f) == 0) ||
+        (in_range(cfg->candidate_score, 0.0f, 0.999999f) == 0) ||
         (in_range(cfg->nms_iou, 1.0e-6f, 1.0f) == 0)) {
         return SBR_ERR_RANGE;
     }
@@ -198,6 +208,9 @@ sbr_status_t sbr_model_check(const sbr_model_t *model)
             return SBR_ERR_CORRUPT;
         }
     }
+    if ((model->picto.version != 0u) && (sbr_picto_check(&model->picto) != SBR_OK)) {
+        return SBR_ERR_CORRUPT;
+    }
     return SBR_OK;
 }
 
@@ -214,7 +227,8 @@ static int recog_layout(uint32_t width, uint32_t height, const sbr_recog_config_
                                                                     matcher's four-lane scratch */
     l->votes = RECOG_ALIGN((size_t)cfg->max_votes * sizeof(recog_vote_t));
     l->hyps = RECOG_ALIGN((size_t)cfg->max_hypotheses * sizeof(recog_hyp_t));
-    l->total = l->parts_ws + l->parts + l->results + l->work + l->votes + l->hyps;
+    l->picto = RECOG_ALIGN(RECOG_PICTO_BYTES);
+    l->total = l->parts_ws + l->parts + l->results + l->work + l->votes + l->hyps + l->picto;
     return 1;
 }
 
@@ -333,6 +347,8 @@ typedef struct recog_ctx_s {
     recog_hyp_t *hyps;
     uint32_t nhyps;
     float vote_error;
+    float score_floor; /* part-evidence floor: min_score, or candidate_score before the
+                          class stage */
     sbr_recog_stats_t st;
 } recog_ctx_t;
 
@@ -589,7 +605,7 @@ static void score_hyps(recog_ctx_t *c)
         } else {
             c->hyps[h].share = 0.0f;
         }
-        if ((nprotos >= c->cfg->min_parts) && (c->hyps[h].score >= c->cfg->min_score)) {
+        if ((nprotos >= c->cfg->min_parts) && (c->hyps[h].score >= c->score_floor)) {
             c->hyps[h].keep = 1u;
         } else {
             c->hyps[h].keep = 0u;
@@ -625,6 +641,79 @@ static float box_iou(const float a[4], const float b[4])
     return iou;
 }
 
+/* Move the kept hypotheses to the front, sorted best first; returns their count. */
+static uint32_t compact_sorted(recog_ctx_t *c)
+{
+    uint32_t kept = 0u;
+    uint32_t i;
+    for (i = 0u; i < c->nhyps; i++) {
+        if (c->hyps[i].keep != 0u) {
+            c->hyps[kept] = c->hyps[i];
+            kept++;
+        }
+    }
+    heap_sort((uint8_t *)(void *)c->hyps, kept, sizeof(recog_hyp_t), hyp_before, 0);
+    c->nhyps = kept;
+    return kept;
+}
+
+/* Greedy non-maximum suppression over the first n (sorted) hypotheses: one overlapping
+   a better kept one by more than nms_iou, or with an empty box, is dropped. */
+static void suppress(recog_ctx_t *c, uint32_t n, uint32_t vw, uint32_t vh)
+{
+    uint32_t i;
+    for (i = 0u; i < n; i++) {
+        float bi[4];
+        uint32_t j;
+        int suppressed = 0;
+        hyp_box(&c->hyps[i], vw, vh, bi);
+        for (j = 0u; (j < i) && (suppressed == 0); j++) {
+            if (c->hyps[j].keep != 0u) {
+                float bj[4];
+                hyp_box(&c->hyps[j], vw, vh, bj);
+                if (box_iou(bi, bj) > c->cfg->nms_iou) {
+                    suppressed = 1;
+                }
+            }
+        }
+        if ((suppressed != 0) || (bi[2] <= bi[0]) || (bi[3] <= bi[1])) {
+            c->hyps[i].keep = 0u;
+        }
+    }
+}
+
+/* The class stage on one hypothesis: class = the classifier's most probable sign class,
+   score = its probability, share = that class's share of the sign classes' probability.
+   Returns 0 when the box cannot be sampled. */
+static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
+                        float *feat, float *prob, void *pws)
+{
+    float box[4];
+    float signs = 0.0f;
+    uint32_t best = 0u;
+    uint32_t k;
+    box[0] = h->mx - (0.5f * h->mw);
+    box[1] = h->my - (0.5f * h->mh);
+    box[2] = h->mx + (0.5f * h->mw);
+    box[3] = h->my + (0.5f * h->mh);
+    if ((sbr_picto_features(view, box, feat, SBR_PICTO_FEATURES, pws, SBR_PICTO_WORKSPACE_SIZE) !=
+         SBR_OK) ||
+        (sbr_picto_classify(pm, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, pws,
+                            SBR_PICTO_WORKSPACE_SIZE) != SBR_OK)) {
+        return 0;
+    }
+    for (k = 0u; k < SBR_PICTO_BACKGROUND; k++) {
+        signs += prob[k];
+        if (prob[k] > prob[best]) {
+            best = k;
+        }
+    }
+    h->class_id = (uint16_t)best;
+    h->score = prob[best];
+    h->share = (signs > 0.0f) ? (prob[best] / signs) : 0.0f;
+    return 1;
+}
+
 sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
                               const sbr_recog_config_t *cfg, const sbr_model_t *model,
                               void *workspace, size_t workspace_size, sbr_detection_t *dets,
@@ -639,6 +728,7 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
     uint32_t oy = 0u;
     uint32_t i;
     uint32_t out = 0u;
+    uint32_t kept;
     uint32_t t0 = 0u;
     int full = 0;
     sbr_status_t st;
@@ -689,6 +779,7 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
     c.cfg = cfg;
     c.model = model;
     c.vote_error = (cfg->vote_error > 0.0f) ? cfg->vote_error : model->vote_error;
+    c.score_floor = (model->picto.version != 0u) ? cfg->candidate_score : cfg->min_score;
     (void)sbr_fd_match_config_default(&c.mcfg);
     c.mcfg.mode = SBR_FD_ROTATION_COVARIANT;
     c.mcfg.max_rotation = cfg->max_rotation;
@@ -741,49 +832,67 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
     score_hyps(&c);
     stage_end(&c, (uint32_t)SBR_RECOG_STAGE_VERIFY, &t0);
 
-    /* 5. non-maximum suppression, best first */
-    {
-        uint32_t kept = 0u;
-        for (i = 0u; i < c.nhyps; i++) {
-            if (c.hyps[i].keep != 0u) {
-                c.hyps[kept] = c.hyps[i];
-                kept++;
+    /* 5. non-maximum suppression on part evidence, best first */
+    kept = compact_sorted(&c);
+    suppress(&c, kept, view.width, view.height);
+    stage_end(&c, (uint32_t)SBR_RECOG_STAGE_NMS, &t0);
+
+    /* 6. class stage: the pictogram classifier scores and classifies the survivors, then
+       suppression again on the new scores */
+    if (model->picto.version != 0u) {
+        uint32_t examined = 0u;
+        float *feat = (float *)(void *)&base[l.total - l.picto];
+        float *prob = &feat[SBR_PICTO_FEATURES];
+        void *pws = (void *)&prob[SBR_PICTO_OUTPUTS];
+        for (i = 0u; i < kept; i++) {
+            recog_hyp_t *h = &c.hyps[i];
+            if (h->keep == 0u) {
+                continue;
+            }
+            h->keep = 0u;
+            if (examined >= cfg->max_candidates) {
+                c.st.capacity_hit |= 16u;
+                continue;
+            }
+            examined++;
+            if (classify_hyp(h, &view, &model->picto, feat, prob, pws) == 0) {
+                continue;
+            }
+            if (h->score >= cfg->min_score) {
+                h->keep = 1u;
+            } else {
+                c.st.rejected++;
             }
         }
-        heap_sort((uint8_t *)(void *)c.hyps, kept, sizeof(recog_hyp_t), hyp_before, 0);
-        for (i = 0u; i < kept; i++) {
-            float bi[4];
-            uint32_t j;
-            int suppressed = 0;
+        c.st.classified = examined;
+        kept = compact_sorted(&c);
+        suppress(&c, kept, view.width, view.height);
+    }
+    stage_end(&c, (uint32_t)SBR_RECOG_STAGE_CLASS, &t0);
+
+    /* 7. output, best first */
+    for (i = 0u; i < kept; i++) {
+        float bi[4];
+        if (c.hyps[i].keep == 0u) {
+            continue;
+        }
+        if (out >= capacity) {
+            full = 1;
+        } else {
+            sbr_detection_t *d = &dets[out];
             hyp_box(&c.hyps[i], view.width, view.height, bi);
-            for (j = 0u; (j < i) && (suppressed == 0); j++) {
-                if (c.hyps[j].keep != 0u) {
-                    float bj[4];
-                    hyp_box(&c.hyps[j], view.width, view.height, bj);
-                    if (box_iou(bi, bj) > cfg->nms_iou) {
-                        suppressed = 1;
-                    }
-                }
-            }
-            if ((suppressed != 0) || (bi[2] <= bi[0]) || (bi[3] <= bi[1])) {
-                c.hyps[i].keep = 0u;
-            } else if (out >= capacity) {
-                full = 1;
-            } else {
-                sbr_detection_t *d = &dets[out];
-                d->box.x = ox + (uint32_t)bi[0];
-                d->box.y = oy + (uint32_t)bi[1];
-                d->box.width = (uint32_t)(bi[2] + 0.5f) - (uint32_t)bi[0];
-                d->box.height = (uint32_t)(bi[3] + 0.5f) - (uint32_t)bi[1];
-                d->score = c.hyps[i].score;
-                d->class_share = c.hyps[i].share;
-                d->class_id = c.hyps[i].class_id;
-                d->parts = c.hyps[i].parts;
-                out++;
-            }
+            d->box.x = ox + (uint32_t)bi[0];
+            d->box.y = oy + (uint32_t)bi[1];
+            d->box.width = (uint32_t)(bi[2] + 0.5f) - (uint32_t)bi[0];
+            d->box.height = (uint32_t)(bi[3] + 0.5f) - (uint32_t)bi[1];
+            d->score = c.hyps[i].score;
+            d->class_share = c.hyps[i].share;
+            d->class_id = c.hyps[i].class_id;
+            d->parts = c.hyps[i].parts;
+            out++;
         }
     }
-    stage_end(&c, (uint32_t)SBR_RECOG_STAGE_NMS, &t0);
+
     *count = out;
     if (stats != NULL) {
         *stats = c.st;

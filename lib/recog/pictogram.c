@@ -1,0 +1,349 @@
+/* The recogniser's class stage: features of a candidate box and their classifier
+   (pictogram.h). */
+#include "sbr/pictogram.h"
+
+#include "../common/sbr_util.h"
+
+#include <math.h>
+#include <string.h>
+
+#define PS SBR_PICTO_SIZE
+#define CELLS SBR_PICTO_CELLS
+#define CELL (PS / CELLS)
+#define ORIENT 8u
+#define THUMB SBR_PICTO_THUMB
+#define THUMB_CELL (PS / THUMB)
+#define CCELLS 4u
+#define CCELL (PS / CCELLS)
+#define F_HOG 0u
+#define F_THUMB (CELLS * CELLS * ORIENT)
+#define F_COLOUR (F_THUMB + (THUMB * THUMB))
+
+/* 1/sqrt(2): the diagonal axes. */
+#define DIAG 0.70710678f
+
+static float clampf(float v, float lo, float hi)
+{
+    float r = v;
+    if (r < lo) {
+        r = lo;
+    }
+    if (r > hi) {
+        r = hi;
+    }
+    return r;
+}
+
+static int finite4(const float b[4])
+{
+    int ok = 1;
+    uint32_t i;
+    for (i = 0u; i < 4u; i++) {
+        if (isfinite(b[i]) == 0) {
+            ok = 0;
+        }
+    }
+    return ok;
+}
+
+/* Bilinear sample of the three channels at (x, y) in pixel-centre coordinates, clamped
+   to the image; out in R, G, B order. */
+static void sample_rgb(const sbr_image_t *img, float x, float y, float out[3])
+{
+    const float xm = (float)(img->width - 1u);
+    const float ym = (float)(img->height - 1u);
+    const float xc = clampf(x, 0.0f, xm);
+    const float yc = clampf(y, 0.0f, ym);
+    uint32_t x0 = (uint32_t)xc;
+    uint32_t y0 = (uint32_t)yc;
+    uint32_t x1;
+    uint32_t y1;
+    float fx;
+    float fy;
+    uint32_t c;
+    if (x0 >= (img->width - 1u)) {
+        x0 = img->width - 1u;
+    }
+    if (y0 >= (img->height - 1u)) {
+        y0 = img->height - 1u;
+    }
+    x1 = (x0 + 1u < img->width) ? (x0 + 1u) : x0;
+    y1 = (y0 + 1u < img->height) ? (y0 + 1u) : y0;
+    fx = xc - (float)x0;
+    fy = yc - (float)y0;
+    for (c = 0u; c < 3u; c++) {
+        const uint32_t ch = (img->format == SBR_PIXEL_BGR888) ? (2u - c) : c;
+        const uint8_t *r0 = &img->data[(size_t)y0 * img->stride];
+        const uint8_t *r1 = &img->data[(size_t)y1 * img->stride];
+        const float a = (float)r0[(x0 * 3u) + ch];
+        const float b = (float)r0[(x1 * 3u) + ch];
+        const float d = (float)r1[(x0 * 3u) + ch];
+        const float e = (float)r1[(x1 * 3u) + ch];
+        const float top = a + (fx * (b - a));
+        const float bot = d + (fx * (e - d));
+        out[c] = top + (fy * (bot - top));
+    }
+}
+
+sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
+{
+    size_t n1;
+    size_t n2;
+    size_t i;
+    if (model == NULL) {
+        return SBR_ERR_NULL;
+    }
+    if ((model->version != SBR_PICTO_VERSION) || (model->features != SBR_PICTO_FEATURES) ||
+        (model->hidden > SBR_PICTO_HIDDEN_MAX) || (model->w2 == NULL) ||
+        ((model->hidden > 0u) && (model->w1 == NULL)) || (model->threshold <= 0.0f) ||
+        (model->threshold >= 1.0f) || (isfinite(model->threshold) == 0)) {
+        return SBR_ERR_CORRUPT;
+    }
+    n1 = (size_t)model->hidden * (SBR_PICTO_FEATURES + 1u);
+    n2 = (size_t)SBR_PICTO_OUTPUTS *
+         (((model->hidden > 0u) ? model->hidden : SBR_PICTO_FEATURES) + 1u);
+    for (i = 0u; i < n1; i++) {
+        if (isfinite(model->w1[i]) == 0) {
+            return SBR_ERR_CORRUPT;
+        }
+    }
+    for (i = 0u; i < n2; i++) {
+        if (isfinite(model->w2[i]) == 0) {
+            return SBR_ERR_CORRUPT;
+        }
+    }
+    return SBR_OK;
+}
+
+/* Resample the box into grey (g) and chromaticity (cr, cb) patches. */
+static void resample(const sbr_image_t *img, const float box[4], float *g, float *cr, float *cb)
+{
+    const float sx = (box[2] - box[0]) / (float)PS;
+    const float sy = (box[3] - box[1]) / (float)PS;
+    const uint32_t nx = (uint32_t)clampf(ceilf(sx), 1.0f, 4.0f);
+    const uint32_t ny = (uint32_t)clampf(ceilf(sy), 1.0f, 4.0f);
+    const float inv = 1.0f / (float)(nx * ny);
+    uint32_t v;
+    for (v = 0u; v < PS; v++) {
+        uint32_t u;
+        for (u = 0u; u < PS; u++) {
+            float acc[3] = {0.0f, 0.0f, 0.0f};
+            float sum;
+            uint32_t j;
+            for (j = 0u; j < ny; j++) {
+                const float y = box[1] + (sy * ((float)v + (((float)j + 0.5f) / (float)ny))) - 0.5f;
+                uint32_t i;
+                for (i = 0u; i < nx; i++) {
+                    const float x =
+                        box[0] + (sx * ((float)u + (((float)i + 0.5f) / (float)nx))) - 0.5f;
+                    float px[3];
+                    sample_rgb(img, x, y, px);
+                    acc[0] += px[0];
+                    acc[1] += px[1];
+                    acc[2] += px[2];
+                }
+            }
+            acc[0] *= inv;
+            acc[1] *= inv;
+            acc[2] *= inv;
+            sum = acc[0] + acc[1] + acc[2];
+            g[(v * PS) + u] = sum * (1.0f / 3.0f);
+            cr[(v * PS) + u] = acc[0] / (sum + 30.0f);
+            cb[(v * PS) + u] = acc[2] / (sum + 30.0f);
+        }
+    }
+}
+
+/* Normalise a vector segment to unit L2 norm (left alone when it is all zero). */
+static void unit_norm(float *f, uint32_t n)
+{
+    float ss = 0.0f;
+    uint32_t i;
+    for (i = 0u; i < n; i++) {
+        ss += f[i] * f[i];
+    }
+    if (ss > 1e-12f) {
+        const float s = 1.0f / sqrtf(ss);
+        for (i = 0u; i < n; i++) {
+            f[i] *= s;
+        }
+    }
+}
+
+sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], float *feat,
+                                uint32_t len, void *workspace, size_t workspace_size)
+{
+    float *g;
+    float *cr;
+    float *cb;
+    float mean = 0.0f;
+    float var = 0.0f;
+    float inv_sd;
+    float bw;
+    float bh;
+    uint32_t i;
+    uint32_t u;
+    uint32_t v;
+    sbr_status_t st;
+
+    if ((img == NULL) || (box == NULL) || (feat == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = sbr_image_check(img);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((img->format != SBR_PIXEL_RGB888) && (img->format != SBR_PIXEL_BGR888)) {
+        return SBR_ERR_RANGE;
+    }
+    if (len < SBR_PICTO_FEATURES) {
+        return SBR_ERR_SIZE;
+    }
+    if ((workspace == NULL) || (workspace_size < SBR_PICTO_WORKSPACE_SIZE) ||
+        (sbr_util_aligned(workspace, 4u) == 0)) {
+        return SBR_ERR_WORKSPACE;
+    }
+    if (finite4(box) == 0) {
+        return SBR_ERR_RANGE;
+    }
+    bw = box[2] - box[0];
+    bh = box[3] - box[1];
+    if ((bw < 2.0f) || (bh < 2.0f) || (box[0] < -bw) || (box[1] < -bh) ||
+        (box[2] > ((float)img->width + bw)) || (box[3] > ((float)img->height + bh))) {
+        return SBR_ERR_RANGE;
+    }
+    g = (float *)workspace;
+    cr = &g[PS * PS];
+    cb = &cr[PS * PS];
+    resample(img, box, g, cr, cb);
+
+    /* contrast-normalised grey */
+    for (i = 0u; i < (PS * PS); i++) {
+        mean += g[i];
+    }
+    mean /= (float)(PS * PS);
+    for (i = 0u; i < (PS * PS); i++) {
+        const float d = g[i] - mean;
+        var += d * d;
+    }
+    var /= (float)(PS * PS);
+    inv_sd = 1.0f / sqrtf(var + 4.0f);
+    for (i = 0u; i < (PS * PS); i++) {
+        g[i] = (g[i] - mean) * inv_sd;
+    }
+    (void)memset(feat, 0, SBR_PICTO_FEATURES * sizeof(float));
+
+    /* orientation histograms: the gradient projected on 0, 45, 90 and 135 degrees */
+    for (v = 0u; v < PS; v++) {
+        const uint32_t vm = (v > 0u) ? (v - 1u) : v;
+        const uint32_t vp = (v + 1u < PS) ? (v + 1u) : v;
+        for (u = 0u; u < PS; u++) {
+            const uint32_t um = (u > 0u) ? (u - 1u) : u;
+            const uint32_t up = (u + 1u < PS) ? (u + 1u) : u;
+            const float gx = g[(v * PS) + up] - g[(v * PS) + um];
+            const float gy = g[(vp * PS) + u] - g[(vm * PS) + u];
+            float proj[4];
+            float *cell = &feat[F_HOG + ((((v / CELL) * CELLS) + (u / CELL)) * ORIENT)];
+            uint32_t k;
+            proj[0] = gx;
+            proj[1] = DIAG * (gx + gy);
+            proj[2] = gy;
+            proj[3] = DIAG * (gy - gx);
+            for (k = 0u; k < 4u; k++) {
+                if (proj[k] > 0.0f) {
+                    cell[k] += proj[k];
+                } else {
+                    cell[k + 4u] -= proj[k];
+                }
+            }
+        }
+    }
+    unit_norm(&feat[F_HOG], CELLS * CELLS * ORIENT);
+
+    /* grey thumbnail and colour per cell */
+    for (v = 0u; v < PS; v++) {
+        for (u = 0u; u < PS; u++) {
+            const uint32_t p = (v * PS) + u;
+            const uint32_t c = ((v / CCELL) * CCELLS) + (u / CCELL);
+            feat[F_THUMB + (((v / THUMB_CELL) * THUMB) + (u / THUMB_CELL))] += g[p];
+            feat[F_COLOUR + (2u * c)] += cr[p];
+            feat[F_COLOUR + (2u * c) + 1u] += cb[p];
+        }
+    }
+    for (i = 0u; i < (THUMB * THUMB); i++) {
+        feat[F_THUMB + i] *= 1.0f / (float)(THUMB_CELL * THUMB_CELL);
+    }
+    for (i = 0u; i < (2u * CCELLS * CCELLS); i++) {
+        feat[F_COLOUR + i] *= 1.0f / (float)(CCELL * CCELL);
+    }
+    return SBR_OK;
+}
+
+sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *feat, uint32_t len,
+                                float *prob, uint32_t nprob, void *workspace,
+                                size_t workspace_size)
+{
+    const float *in = feat;
+    uint32_t nin = SBR_PICTO_FEATURES;
+    float mx;
+    float sum = 0.0f;
+    uint32_t i;
+
+    if ((model == NULL) || (feat == NULL) || (prob == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    if ((len < SBR_PICTO_FEATURES) || (nprob < SBR_PICTO_OUTPUTS)) {
+        return SBR_ERR_SIZE;
+    }
+    if ((model->version != SBR_PICTO_VERSION) || (model->features != SBR_PICTO_FEATURES) ||
+        (model->hidden > SBR_PICTO_HIDDEN_MAX) || (model->w2 == NULL) ||
+        ((model->hidden > 0u) && (model->w1 == NULL))) {
+        return SBR_ERR_CORRUPT;
+    }
+    if ((workspace == NULL) || (workspace_size < SBR_PICTO_WORKSPACE_SIZE) ||
+        (sbr_util_aligned(workspace, 4u) == 0)) {
+        return SBR_ERR_WORKSPACE;
+    }
+    for (i = 0u; i < SBR_PICTO_FEATURES; i++) {
+        if (isfinite(feat[i]) == 0) {
+            return SBR_ERR_RANGE;
+        }
+    }
+    if (model->hidden > 0u) {
+        float *a = (float *)workspace;
+        for (i = 0u; i < model->hidden; i++) {
+            const float *w = &model->w1[(size_t)i * (SBR_PICTO_FEATURES + 1u)];
+            float s = w[SBR_PICTO_FEATURES];
+            uint32_t k;
+            for (k = 0u; k < SBR_PICTO_FEATURES; k++) {
+                s += w[k] * feat[k];
+            }
+            a[i] = (s > 0.0f) ? s : 0.0f;
+        }
+        in = a;
+        nin = model->hidden;
+    }
+    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+        const float *w = &model->w2[(size_t)i * (nin + 1u)];
+        float s = w[nin];
+        uint32_t k;
+        for (k = 0u; k < nin; k++) {
+            s += w[k] * in[k];
+        }
+        prob[i] = s;
+    }
+    mx = prob[0];
+    for (i = 1u; i < SBR_PICTO_OUTPUTS; i++) {
+        if (prob[i] > mx) {
+            mx = prob[i];
+        }
+    }
+    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+        prob[i] = expf(prob[i] - mx);
+        sum += prob[i];
+    }
+    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+        prob[i] /= sum;
+    }
+    return SBR_OK;
+}

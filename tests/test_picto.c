@@ -1,0 +1,317 @@
+/* Unity tests of the class stage's features and classifier (include/sbr/pictogram.h):
+   feature values on constructed patches, RGB/BGR and scale agreement, softmax values of
+   hand-made classifiers, the built-in classifier's consistency, and bad input. */
+#include "unity.h"
+#include "sbr/pictogram.h"
+
+#include <math.h>
+#include <string.h>
+
+#define W 128u
+#define H 96u
+#define F SBR_PICTO_FEATURES
+#define HOG_LEN (SBR_PICTO_CELLS * SBR_PICTO_CELLS * 8u)
+#define THUMB_AT HOG_LEN
+#define COLOUR_AT (HOG_LEN + (SBR_PICTO_THUMB * SBR_PICTO_THUMB))
+
+static uint8_t g_rgb[H][W][3];
+static uint8_t g_bgr[H][W][3];
+static uint64_t g_ws[SBR_PICTO_WORKSPACE_SIZE / 8u + 1u];
+static float g_f[F];
+static float g_g[F];
+static float g_w1[4u * (F + 1u)];
+static float g_w2[SBR_PICTO_OUTPUTS * (F + 1u)];
+
+void setUp(void) {}
+void tearDown(void) {}
+
+static sbr_image_t view(uint8_t (*px)[W][3], sbr_pixel_format_t fmt)
+{
+    sbr_image_t v;
+    v.width = W;
+    v.height = H;
+    v.stride = 3u * W;
+    v.format = fmt;
+    v.data = &px[0][0][0];
+    return v;
+}
+
+static void fill(uint8_t r, uint8_t g, uint8_t b)
+{
+    uint32_t x;
+    uint32_t y;
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            g_rgb[y][x][0] = r;
+            g_rgb[y][x][1] = g;
+            g_rgb[y][x][2] = b;
+        }
+    }
+}
+
+/* Dark left half, bright right half inside [x0, x0 + s) x [y0, y0 + s), at scale k. */
+static void step_edge(uint32_t x0, uint32_t y0, uint32_t s)
+{
+    uint32_t x;
+    uint32_t y;
+    fill(128u, 128u, 128u);
+    for (y = y0; y < y0 + s; y++) {
+        for (x = x0; x < x0 + s; x++) {
+            const uint8_t v = (x < x0 + (s / 2u)) ? 40u : 220u;
+            g_rgb[y][x][0] = v;
+            g_rgb[y][x][1] = v;
+            g_rgb[y][x][2] = v;
+        }
+    }
+}
+
+static sbr_status_t feats(const sbr_image_t *v, float x0, float y0, float x1, float y1, float *f)
+{
+    const float box[4] = {x0, y0, x1, y1};
+    return sbr_picto_features(v, box, f, F, g_ws, sizeof g_ws);
+}
+
+/* A uniform patch has no edges, a zero contrast-normalised thumbnail and the colour's
+   chromaticity r / (r + g + b + 30) in every cell. */
+static void test_uniform_patch(void)
+{
+    const sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
+    uint32_t i;
+    fill(200u, 50u, 50u);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, feats(&v, 10.0f, 10.0f, 58.0f, 58.0f, g_f));
+    for (i = 0u; i < COLOUR_AT; i++) {
+        TEST_ASSERT_FLOAT_WITHIN(1e-5f, 0.0f, g_f[i]);
+    }
+    for (i = 0u; i < 16u; i++) {
+        TEST_ASSERT_FLOAT_WITHIN(1e-5f, 200.0f / 330.0f, g_f[COLOUR_AT + (2u * i)]);
+        TEST_ASSERT_FLOAT_WITHIN(1e-5f, 50.0f / 330.0f, g_f[COLOUR_AT + (2u * i) + 1u]);
+    }
+}
+
+/* A vertical dark-to-bright edge: all edge energy in the "gradient points right" bin
+   (0) of the cells on the edge, none in the opposite bin (4); the histogram has unit
+   norm; the thumbnail is negative left and positive right. */
+static void test_step_edge(void)
+{
+    const sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
+    float ss = 0.0f;
+    float bin0 = 0.0f;
+    uint32_t c;
+    uint32_t i;
+    step_edge(16u, 16u, 48u);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, feats(&v, 16.0f, 16.0f, 64.0f, 64.0f, g_f));
+    for (i = 0u; i < HOG_LEN; i++) {
+        TEST_ASSERT_TRUE(g_f[i] >= 0.0f);
+        ss += g_f[i] * g_f[i];
+    }
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 1.0f, ss);
+    for (c = 0u; c < SBR_PICTO_CELLS * SBR_PICTO_CELLS; c++) {
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, g_f[(c * 8u) + 4u]); /* never bright-to-dark */
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, g_f[(c * 8u) + 2u]); /* no vertical gradient */
+        bin0 += g_f[c * 8u];
+    }
+    TEST_ASSERT_TRUE(bin0 > 1.0f);
+    /* middle cells carry the edge, border columns none */
+    TEST_ASSERT_TRUE(g_f[((SBR_PICTO_CELLS / 2u) * 8u)] > 0.1f);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, g_f[0]);
+    TEST_ASSERT_TRUE(g_f[THUMB_AT] < -0.9f);
+    TEST_ASSERT_TRUE(g_f[THUMB_AT + SBR_PICTO_THUMB - 1u] > 0.9f);
+}
+
+/* The same pixels as RGB and as BGR give the same features; the same pattern at twice
+   the size gives nearly the same features (area sampling). */
+static void test_format_and_scale(void)
+{
+    sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
+    const sbr_image_t vb = view(g_bgr, SBR_PIXEL_BGR888);
+    uint32_t x;
+    uint32_t y;
+    uint32_t i;
+    float d = 0.0f;
+    float n = 0.0f;
+    fill(90u, 100u, 160u);
+    for (y = 20u; y < 44u; y++) {
+        for (x = 20u; x < 44u; x++) {
+            const uint32_t r = ((x - 32u) * (x - 32u)) + ((y - 32u) * (y - 32u));
+            g_rgb[y][x][0] = (r < 100u) ? 230u : 30u;
+            g_rgb[y][x][1] = (r < 100u) ? 30u : 40u;
+            g_rgb[y][x][2] = (r < 40u) ? 200u : 20u;
+        }
+    }
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            g_bgr[y][x][0] = g_rgb[y][x][2];
+            g_bgr[y][x][1] = g_rgb[y][x][1];
+            g_bgr[y][x][2] = g_rgb[y][x][0];
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, feats(&v, 20.0f, 20.0f, 44.0f, 44.0f, g_f));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, feats(&vb, 20.0f, 20.0f, 44.0f, 44.0f, g_g));
+    TEST_ASSERT_EQUAL_MEMORY(g_f, g_g, sizeof g_f);
+    /* twice as large: each pixel becomes 2 x 2 */
+    for (y = 0u; y < 48u; y++) {
+        for (x = 0u; x < 48u; x++) {
+            (void)memcpy(g_bgr[y + 40u][x + 70u], g_rgb[20u + (y / 2u)][20u + (x / 2u)], 3u);
+        }
+    }
+    v = view(g_bgr, SBR_PIXEL_RGB888);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, feats(&v, 70.0f, 40.0f, 118.0f, 88.0f, g_g));
+    for (i = 0u; i < F; i++) {
+        d += (g_f[i] - g_g[i]) * (g_f[i] - g_g[i]);
+        n += g_f[i] * g_f[i];
+    }
+    TEST_ASSERT_TRUE(d < 0.05f * n);
+}
+
+/* Linear classifier with biases only: the softmax of the biases. A hidden layer of one
+   rectified unit: computed by hand. */
+static void test_classify_values(void)
+{
+    sbr_picto_model_t m;
+    float p[SBR_PICTO_OUTPUTS];
+    float sum = 0.0f;
+    uint32_t i;
+    (void)memset(g_w2, 0, sizeof g_w2);
+    (void)memset(g_f, 0, sizeof g_f);
+    m.version = SBR_PICTO_VERSION;
+    m.features = F;
+    m.hidden = 0u;
+    m.threshold = 0.5f;
+    m.w1 = NULL;
+    m.w2 = g_w2;
+    g_w2[(5u * (F + 1u)) + F] = logf(2.0f); /* class 5: twice the weight of the others */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+        sum += p[i];
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, ((i == 5u) ? 2.0f : 1.0f) / 45.0f, p[i]);
+    }
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, sum);
+    /* hidden: a = max(0, 2 f0 - 1); logit of class 7 = 3 a */
+    (void)memset(g_w1, 0, sizeof g_w1);
+    (void)memset(g_w2, 0, sizeof g_w2);
+    g_w1[0] = 2.0f;
+    g_w1[F] = -1.0f;
+    g_w2[7u * 2u] = 3.0f;
+    m.hidden = 1u;
+    m.w1 = g_w1;
+    g_f[0] = 1.0f; /* a = 1, logit 3 */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, expf(3.0f) / (expf(3.0f) + 43.0f), p[7]);
+    g_f[0] = 0.25f; /* a = 0: uniform */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f / 44.0f, p[7]);
+}
+
+/* The built-in classifier passes its check; corrupted copies do not. */
+static void test_builtin_and_corrupt(void)
+{
+    sbr_picto_model_t m;
+    sbr_picto_model_t bad;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_gtsdb(NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gtsdb(&m));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+    TEST_ASSERT_TRUE(m.hidden <= SBR_PICTO_HIDDEN_MAX);
+    bad = m;
+    bad.version = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));
+    bad = m;
+    bad.features = F + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));
+    bad = m;
+    bad.threshold = 1.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));
+    bad.threshold = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));
+    bad = m;
+    bad.hidden = SBR_PICTO_HIDDEN_MAX + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));
+    bad = m;
+    bad.w2 = NULL;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));
+    (void)memset(g_w2, 0, sizeof g_w2);
+    bad.hidden = 0u;
+    bad.w1 = NULL;
+    bad.w2 = g_w2;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&bad));
+    g_w2[100] = INFINITY;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));
+    g_w2[100] = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_check(NULL));
+}
+
+/* Bad input: a status, never a crash. */
+static void test_bad_input(void)
+{
+    sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
+    sbr_picto_model_t m;
+    float p[SBR_PICTO_OUTPUTS];
+    float box[4] = {10.0f, 10.0f, 40.0f, 40.0f};
+    fill(100u, 100u, 100u);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gtsdb(&m));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_features(NULL, box, g_f, F, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_features(&v, NULL, g_f, F, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_features(&v, box, NULL, F, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_features(&v, box, g_f, F - 1u, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_picto_features(&v, box, g_f, F, NULL, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_picto_features(&v, box, g_f, F, g_ws, 16u));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
+                          sbr_picto_features(&v, box, g_f, F, (uint8_t *)g_ws + 2, sizeof g_ws - 8u));
+    box[2] = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_features(&v, box, g_f, F, g_ws, sizeof g_ws));
+    box[2] = 11.0f; /* 1 px wide */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_features(&v, box, g_f, F, g_ws, sizeof g_ws));
+    box[0] = 1000.0f; /* far outside, inverted */
+    box[2] = 1040.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_features(&v, box, g_f, F, g_ws, sizeof g_ws));
+    /* partly outside (by less than its size): border pixels repeat */
+    box[0] = -10.0f;
+    box[1] = -10.0f;
+    box[2] = 20.0f;
+    box[3] = 20.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_features(&v, box, g_f, F, g_ws, sizeof g_ws));
+    v.format = SBR_PIXEL_GRAY8;
+    v.stride = W;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_features(&v, box, g_f, F, g_ws, sizeof g_ws));
+    v = view(g_rgb, SBR_PIXEL_RGB888);
+    v.stride = 3u * W - 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, sbr_picto_features(&v, box, g_f, F, g_ws, sizeof g_ws));
+    v = view(g_rgb, SBR_PIXEL_RGB888);
+    v.width = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_features(&v, box, g_f, F, g_ws, sizeof g_ws));
+    /* a 1 x 1 image: every sample is that pixel */
+    v = view(g_rgb, SBR_PIXEL_RGB888);
+    v.width = 1u;
+    v.height = 1u;
+    box[0] = 0.0f;
+    box[1] = 0.0f;
+    box[2] = 2.0f;
+    box[3] = 2.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_features(&v, box, g_f, F, g_ws, sizeof g_ws));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, g_f[0]);
+    /* classifier */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_classify(NULL, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_classify(&m, NULL, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_classify(&m, g_f, F, NULL, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_classify(&m, g_f, F - 1u, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_classify(&m, g_f, F, p, 43u, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, 8u));
+    g_f[3] = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    g_f[3] = 0.0f;
+    m.version = 7u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_uniform_patch);
+    RUN_TEST(test_step_edge);
+    RUN_TEST(test_format_and_scale);
+    RUN_TEST(test_classify_values);
+    RUN_TEST(test_builtin_and_corrupt);
+    RUN_TEST(test_bad_input);
+    return UNITY_END();
+}
