@@ -19,10 +19,15 @@
 #define F_THUMB (CELLS * CELLS * ORIENT)
 #define F_COLOUR (F_THUMB + (THUMB * THUMB))
 
+/* Pixel counts of a thumbnail cell and a colour cell. */
+#define THUMB_AREA ((float)SBR_PICTO_SIZE * (float)SBR_PICTO_SIZE / \
+                    ((float)SBR_PICTO_THUMB * (float)SBR_PICTO_THUMB))
+#define CCELL_AREA ((float)SBR_PICTO_SIZE * (float)SBR_PICTO_SIZE / ((float)CCELLS * (float)CCELLS))
+
 /* 1/sqrt(2): the diagonal axes. */
 #define DIAG 0.70710678f
 
-static float clampf(float v, float lo, float hi)
+static float picto_clampf(float v, float lo, float hi)
 {
     float r = v;
     if (r < lo) {
@@ -46,14 +51,33 @@ static int finite4(const float b[4])
     return ok;
 }
 
+/* Neighbours of a patch row or column, repeated at the patch border. */
+static uint32_t nb_lo(uint32_t i)
+{
+    uint32_t r = i;
+    if (i > 0u) {
+        r = i - 1u;
+    }
+    return r;
+}
+
+static uint32_t nb_hi(uint32_t i)
+{
+    uint32_t r = i;
+    if ((i + 1u) < PS) {
+        r = i + 1u;
+    }
+    return r;
+}
+
 /* Bilinear sample of the three channels at (x, y) in pixel-centre coordinates, clamped
    to the image; out in R, G, B order. */
 static void sample_rgb(const sbr_image_t *img, float x, float y, float out[3])
 {
-    const float xm = (float)(img->width - 1u);
-    const float ym = (float)(img->height - 1u);
-    const float xc = clampf(x, 0.0f, xm);
-    const float yc = clampf(y, 0.0f, ym);
+    const float xm = (float)img->width - 1.0f;
+    const float ym = (float)img->height - 1.0f;
+    const float xc = picto_clampf(x, 0.0f, xm);
+    const float yc = picto_clampf(y, 0.0f, ym);
     uint32_t x0 = (uint32_t)xc;
     uint32_t y0 = (uint32_t)yc;
     uint32_t x1;
@@ -67,12 +91,21 @@ static void sample_rgb(const sbr_image_t *img, float x, float y, float out[3])
     if (y0 >= (img->height - 1u)) {
         y0 = img->height - 1u;
     }
-    x1 = (x0 + 1u < img->width) ? (x0 + 1u) : x0;
-    y1 = (y0 + 1u < img->height) ? (y0 + 1u) : y0;
+    x1 = x0;
+    if ((x0 + 1u) < img->width) {
+        x1 = x0 + 1u;
+    }
+    y1 = y0;
+    if ((y0 + 1u) < img->height) {
+        y1 = y0 + 1u;
+    }
     fx = xc - (float)x0;
     fy = yc - (float)y0;
     for (c = 0u; c < 3u; c++) {
-        const uint32_t ch = (img->format == SBR_PIXEL_BGR888) ? (2u - c) : c;
+        uint32_t ch = c;
+        if (img->format == SBR_PIXEL_BGR888) {
+            ch = 2u - c;
+        }
         const uint8_t *r0 = &img->data[(size_t)y0 * img->stride];
         const uint8_t *r1 = &img->data[(size_t)y1 * img->stride];
         const float a = (float)r0[(x0 * 3u) + ch];
@@ -116,13 +149,13 @@ sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
 }
 
 /* Resample the box into grey (g) and chromaticity (cr, cb) patches. */
-static void resample(const sbr_image_t *img, const float box[4], float *g, float *cr, float *cb)
+static void picto_resample(const sbr_image_t *img, const float box[4], float *g, float *cr, float *cb)
 {
     const float sx = (box[2] - box[0]) / (float)PS;
     const float sy = (box[3] - box[1]) / (float)PS;
-    const uint32_t nx = (uint32_t)clampf(ceilf(sx), 1.0f, 4.0f);
-    const uint32_t ny = (uint32_t)clampf(ceilf(sy), 1.0f, 4.0f);
-    const float inv = 1.0f / (float)(nx * ny);
+    const uint32_t nx = (uint32_t)picto_clampf(ceilf(sx), 1.0f, 4.0f);
+    const uint32_t ny = (uint32_t)picto_clampf(ceilf(sy), 1.0f, 4.0f);
+    const float inv = 1.0f / ((float)nx * (float)ny);
     uint32_t v;
     for (v = 0u; v < PS; v++) {
         uint32_t u;
@@ -215,18 +248,18 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
     g = (float *)workspace;
     cr = &g[PS * PS];
     cb = &cr[PS * PS];
-    resample(img, box, g, cr, cb);
+    picto_resample(img, box, g, cr, cb);
 
     /* contrast-normalised grey */
     for (i = 0u; i < (PS * PS); i++) {
         mean += g[i];
     }
-    mean /= (float)(PS * PS);
+    mean /= ((float)PS * (float)PS);
     for (i = 0u; i < (PS * PS); i++) {
         const float d = g[i] - mean;
         var += d * d;
     }
-    var /= (float)(PS * PS);
+    var /= ((float)PS * (float)PS);
     inv_sd = 1.0f / sqrtf(var + 4.0f);
     for (i = 0u; i < (PS * PS); i++) {
         g[i] = (g[i] - mean) * inv_sd;
@@ -235,11 +268,11 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
 
     /* orientation histograms: the gradient projected on 0, 45, 90 and 135 degrees */
     for (v = 0u; v < PS; v++) {
-        const uint32_t vm = (v > 0u) ? (v - 1u) : v;
-        const uint32_t vp = (v + 1u < PS) ? (v + 1u) : v;
+        const uint32_t vm = nb_lo(v);
+        const uint32_t vp = nb_hi(v);
         for (u = 0u; u < PS; u++) {
-            const uint32_t um = (u > 0u) ? (u - 1u) : u;
-            const uint32_t up = (u + 1u < PS) ? (u + 1u) : u;
+            const uint32_t um = nb_lo(u);
+            const uint32_t up = nb_hi(u);
             const float gx = g[(v * PS) + up] - g[(v * PS) + um];
             const float gy = g[(vp * PS) + u] - g[(vm * PS) + u];
             float proj[4];
@@ -271,10 +304,10 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
         }
     }
     for (i = 0u; i < (THUMB * THUMB); i++) {
-        feat[F_THUMB + i] *= 1.0f / (float)(THUMB_CELL * THUMB_CELL);
+        feat[F_THUMB + i] *= 1.0f / (THUMB_AREA);
     }
     for (i = 0u; i < (2u * CCELLS * CCELLS); i++) {
-        feat[F_COLOUR + i] *= 1.0f / (float)(CCELL * CCELL);
+        feat[F_COLOUR + i] *= 1.0f / (CCELL_AREA);
     }
     return SBR_OK;
 }
@@ -324,7 +357,7 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
         nin = model->hidden;
     }
     for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
-        const float *w = &model->w2[(size_t)i * (nin + 1u)];
+        const float *w = &model->w2[(size_t)i * ((size_t)nin + 1u)];
         float s = w[nin];
         uint32_t k;
         for (k = 0u; k < nin; k++) {

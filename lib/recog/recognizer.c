@@ -872,7 +872,6 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
 
     /* 7. output, best first */
     for (i = 0u; i < kept; i++) {
-        float bi[4];
         if (c.hyps[i].keep == 0u) {
             continue;
         }
@@ -880,6 +879,7 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
             full = 1;
         } else {
             sbr_detection_t *d = &dets[out];
+            float bi[4];
             hyp_box(&c.hyps[i], view.width, view.height, bi);
             d->box.x = ox + (uint32_t)bi[0];
             d->box.y = oy + (uint32_t)bi[1];
