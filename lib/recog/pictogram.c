@@ -24,7 +24,7 @@
                     ((float)SBR_PICTO_THUMB * (float)SBR_PICTO_THUMB))
 #define CCELL_AREA ((float)SBR_PICTO_SIZE * (float)SBR_PICTO_SIZE / ((float)CCELLS * (float)CCELLS))
 
-/* 1/sqrt(2): the diagonal axes. */
+/* One over the square root of two: the diagonal axes. */
 #define DIAG 0.70710678f
 
 static float picto_clampf(float v, float lo, float hi)
