@@ -100,10 +100,10 @@ int main(int argc, char **argv) {
         std::stringstream ss(scenes);
         for (std::string t; std::getline(ss, t, ',');) nums.push_back(std::atoi(t.c_str()));
     }
-    char name[64];
     for (int num : nums) {
-        std::snprintf(name, sizeof name, "%s/%05d.jpg", dir.c_str(), num);
-        cv::Mat img = cv::imread(name, cv::IMREAD_COLOR);
+        char file[16];
+        std::snprintf(file, sizeof file, "%05d.jpg", num);
+        cv::Mat img = cv::imread(dir + "/" + file, cv::IMREAD_COLOR);
         if (img.empty() || !gt.count(num)) { std::printf("FAIL %05d: no image or no annotation\n", num); ++failures; continue; }
         const auto dets = run.detect(img, thr);
         for (const auto &g : gt.at(num)) {
