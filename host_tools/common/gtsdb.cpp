@@ -10,6 +10,38 @@ namespace fs = std::filesystem;
 
 namespace sbr_host {
 
+PixBox gt_pixbox(const GtBox &g) {
+    return {double(g.left), double(g.top), g.right + 1.0, g.bottom + 1.0};
+}
+
+PixBox rect_pixbox(const sbr_rect_t &r) {
+    return {double(r.x), double(r.y), double(r.x) + r.width, double(r.y) + r.height};
+}
+
+double box_iou(const PixBox &a, const PixBox &b) {
+    const double iw = std::min(a.x1, b.x1) - std::max(a.x0, b.x0);
+    const double ih = std::min(a.y1, b.y1) - std::max(a.y0, b.y0);
+    if (iw <= 0 || ih <= 0) return 0.0;
+    const double in = iw * ih;
+    return in / ((a.x1 - a.x0) * (a.y1 - a.y0) + (b.x1 - b.x0) * (b.y1 - b.y0) - in);
+}
+
+bool parse_detection_line(const std::string &line, DetLine &d) {
+    std::stringstream ss(line);
+    std::string f[7];
+    int k = 0;
+    while (k < 7 && std::getline(ss, f[k], ';')) ++k;
+    if (k < 6) return false;
+    d.image = std::atoi(f[0].c_str());
+    d.left = std::atof(f[1].c_str());
+    d.top = std::atof(f[2].c_str());
+    d.right = std::atof(f[3].c_str());
+    d.bottom = std::atof(f[4].c_str());
+    d.class_id = std::atoi(f[5].c_str());
+    d.score = k >= 7 ? std::atof(f[6].c_str()) : 1.0;
+    return true;
+}
+
 std::map<int, std::vector<GtBox>> read_gt(const std::string &path) {
     std::map<int, std::vector<GtBox>> gt;
     std::ifstream f(path);

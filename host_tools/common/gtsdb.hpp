@@ -18,6 +18,28 @@ struct GtBox {
     int class_id = 0;
 };
 
+// A box [x0, x1) x [y0, y1) in pixels. GTSDB's files give inclusive pixel ranges: their
+// right and bottom get + 1.
+struct PixBox {
+    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+PixBox gt_pixbox(const GtBox &g);
+PixBox rect_pixbox(const sbr_rect_t &r);
+// Intersection over union; 0 for disjoint or empty boxes.
+double box_iou(const PixBox &a, const PixBox &b);
+
+// One line of a detection file, "NNNNN.ext;left;top;right;bottom;class[;score]"
+// (GTSDB's format, inclusive pixels; score 1 when absent), as sbr_detect writes it.
+struct DetLine {
+    int image = 0;
+    double left = 0, top = 0, right = 0, bottom = 0;
+    int class_id = 0;
+    double score = 1.0;
+    PixBox box() const { return {left, top, right + 1.0, bottom + 1.0}; }
+};
+// False when the line has fewer than six fields.
+bool parse_detection_line(const std::string &line, DetLine &d);
+
 // gt.txt lines "NNNNN.ppm;l;t;r;b;class", keyed by image number. Empty map if unreadable.
 std::map<int, std::vector<GtBox>> read_gt(const std::string &path);
 

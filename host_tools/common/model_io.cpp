@@ -36,6 +36,16 @@ size_t picto_w2_len(uint32_t hidden) {
     return size_t(SBR_PICTO_OUTPUTS) * ((hidden > 0 ? hidden : SBR_PICTO_FEATURES) + 1u);
 }
 
+// `header` as the generated file's leading C comment.
+std::string comment_block(const std::string &header) {
+    std::ostringstream o;
+    o << "/*\n";
+    std::istringstream hs(header);
+    for (std::string line; std::getline(hs, line);) o << (line.empty() ? " *" : " * " + line) << "\n";
+    o << " */\n";
+    return o.str();
+}
+
 // A float as a C literal that reads back to the same value.
 std::string flit(float v) {
     char b[48];
@@ -142,10 +152,7 @@ std::string load_model(const std::string &path, Model &m) {
 std::string write_model_c(const Model &m, const std::string &path, const std::string &header) {
     std::ostringstream o;
     const sbr_model_t &v = m.view;
-    o << "/*\n";
-    std::istringstream hs(header);
-    for (std::string line; std::getline(hs, line);) o << (line.empty() ? " *" : " * " + line) << "\n";
-    o << " */\n#include \"sbr/recognizer.h\"\n\n";
+    o << comment_block(header) << "#include \"sbr/recognizer.h\"\n\n";
     // The tables are block-scope const objects of the one function that uses them
     // (MISRA C:2012 8.9); they live in flash, the caller's struct only points at them.
     o << "sbr_status_t sbr_model_gtsdb(sbr_model_t *out)\n{\n";
@@ -251,10 +258,7 @@ std::string write_picto_c(const Picto &p, const std::string &path, const std::st
     if (p.w1.size() != picto_w1_len(p.hidden) || p.w2.size() != picto_w2_len(p.hidden))
         return "classifier sizes do not match its hidden layer";
     std::ostringstream o;
-    o << "/*\n";
-    std::istringstream hs(header);
-    for (std::string line; std::getline(hs, line);) o << (line.empty() ? " *" : " * " + line) << "\n";
-    o << " */\n#include \"sbr/pictogram.h\"\n\n";
+    o << comment_block(header) << "#include \"sbr/pictogram.h\"\n\n";
     o << "sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)\n{\n";
     auto table = [&](const char *name, const std::vector<float> &w) {
         o << "    static const float " << name << "[" << w.size() << "] = {";

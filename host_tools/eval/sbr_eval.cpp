@@ -57,20 +57,16 @@ bool read_boxes(const std::string &path, std::vector<Box> &out) {
     std::string line;
     while (std::getline(in, line)) {
         if (line.empty() || line[0] == '#') continue;
-        std::stringstream ss(line);
-        std::string f[7];
-        int k = 0;
-        while (k < 7 && std::getline(ss, f[k], ';')) ++k;
-        if (k < 6) {
+        sbr_host::DetLine d;
+        if (!sbr_host::parse_detection_line(line, d)) {
             std::fprintf(stderr, "sbr_eval: bad line in %s: %s\n", path.c_str(), line.c_str());
             return false;
         }
         Box b;
-        b.image = std::atoi(f[0].c_str());
-        b.l = std::atof(f[1].c_str()); b.t = std::atof(f[2].c_str());
-        b.r = std::atof(f[3].c_str()); b.b = std::atof(f[4].c_str());
-        b.cls = std::atoi(f[5].c_str());
-        b.score = k >= 7 ? std::atof(f[6].c_str()) : 1.0;
+        b.image = d.image;
+        b.l = d.left; b.t = d.top; b.r = d.right; b.b = d.bottom;
+        b.cls = d.class_id;
+        b.score = d.score;
         out.push_back(b);
     }
     return true;
@@ -78,12 +74,7 @@ bool read_boxes(const std::string &path, std::vector<Box> &out) {
 
 // GTSDB boxes are inclusive pixel ranges.
 double iou(const Box &a, const Box &b) {
-    const double iw = std::min(a.r, b.r) - std::max(a.l, b.l) + 1.0;
-    const double ih = std::min(a.b, b.b) - std::max(a.t, b.t) + 1.0;
-    if (iw <= 0 || ih <= 0) return 0.0;
-    const double inter = iw * ih;
-    const double ua = (a.r - a.l + 1.0) * (a.b - a.t + 1.0) + (b.r - b.l + 1.0) * (b.b - b.t + 1.0) - inter;
-    return inter / ua;
+    return sbr_host::box_iou({a.l, a.t, a.r + 1.0, a.b + 1.0}, {b.l, b.t, b.r + 1.0, b.b + 1.0});
 }
 
 struct Prf { long tp = 0, fp = 0, fn = 0; };
@@ -286,6 +277,12 @@ int main(int argc, char **argv) {
     }
     std::printf("class level (same class id): TP %ld, FP %ld, FN %ld, precision %.4f, recall %.4f, F1 %.4f\n",
                 total.tp, total.fp, total.fn, prec(total), rec(total), f1(total));
+    {
+        size_t found_any = 0;
+        for (char h : hit_any) found_any += h != 0;
+        std::printf("any class (box only): %zu of %zu ground-truth boxes matched, recall %.4f\n", found_any, gts.size(),
+                    gts.empty() ? 0.0 : double(found_any) / double(gts.size()));
+    }
     std::printf("%-6s %6s %6s %6s %10s %8s %8s\n", "class", "TP", "FP", "FN", "precision", "recall", "F1");
     for (auto &kv : cp)
         std::printf("%-6d %6ld %6ld %6ld %10.4f %8.4f %8.4f\n", kv.first, kv.second.tp, kv.second.fp, kv.second.fn,

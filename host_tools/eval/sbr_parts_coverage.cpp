@@ -27,16 +27,6 @@ using namespace sbr_host;
 
 namespace {
 
-double box_iou(const sbr_rect_t &a, const GtBox &g) {
-    const double ax0 = a.x, ay0 = a.y, ax1 = a.x + static_cast<double>(a.width),
-                 ay1 = a.y + static_cast<double>(a.height);
-    const double gx0 = g.left, gy0 = g.top, gx1 = g.right + 1.0, gy1 = g.bottom + 1.0;
-    const double iw = std::max(0.0, std::min(ax1, gx1) - std::max(ax0, gx0));
-    const double ih = std::max(0.0, std::min(ay1, gy1) - std::max(ay0, gy0));
-    const double in = iw * ih;
-    return in / ((ax1 - ax0) * (ay1 - ay0) + (gx1 - gx0) * (gy1 - gy0) - in);
-}
-
 void usage(const char *argv0) {
     std::fprintf(stderr,
                  "usage: %s --data DIR [--range A-B] [--delta D] [--variation V] [--diversity X]\n"
@@ -116,7 +106,7 @@ int main(int argc, char **argv) {
             double best = 0.0;
             int map = -1;
             for (uint32_t k = 0; k < count; ++k) {
-                const double o = box_iou(parts[k].bbox, g);
+                const double o = box_iou(rect_pixbox(parts[k].bbox), gt_pixbox(g));
                 if (o > best) { best = o; map = parts[k].map; }
             }
             const int sc = superclass_of(g.class_id);

@@ -54,19 +54,11 @@ struct Run {
     }
 };
 
-float iou(const sbr_detection_t &d, int l, int t, int r, int b) {
-    const float ix = std::min<float>(float(r + 1), float(d.box.x + d.box.width)) - std::max<float>(float(l), float(d.box.x));
-    const float iy = std::min<float>(float(b + 1), float(d.box.y + d.box.height)) - std::max<float>(float(t), float(d.box.y));
-    if (ix <= 0 || iy <= 0) return 0;
-    const float in = ix * iy;
-    return in / (float(r - l + 1) * float(b - t + 1) + float(d.box.width) * float(d.box.height) - in);
-}
-
 bool found(const std::vector<sbr_detection_t> &dets, int cls, int l, int t, int r, int b, float *best_iou) {
     *best_iou = 0;
     bool ok = false;
     for (const auto &d : dets) {
-        const float o = iou(d, l, t, r, b);
+        const float o = float(box_iou(rect_pixbox(d.box), {double(l), double(t), r + 1.0, b + 1.0}));
         if (int(d.class_id) == cls) *best_iou = std::max(*best_iou, o);
         ok = ok || (int(d.class_id) == cls && o >= 0.5f);
     }

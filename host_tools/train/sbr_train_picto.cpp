@@ -4,7 +4,7 @@
 //   sbr_train_picto [--data DIR] [--range A-B] [--model FILE.sbrm] [--candidates FILE]
 //                   [--hidden H] [--epochs E] [--jitter J] [--lr L] [--seed S] [--threshold T]
 //                   [--out-c FILE] [--out FILE]
-//                   [--eval-range A-B --eval-candidates FILE]
+//                   [--eval-range A-B]
 //
 // Defaults: --data ../shared/data/gtsdb, --range 0-399 (the training split; the
 // development split 400-599 is never read for training), --hidden 128, --epochs 20,
@@ -26,9 +26,9 @@
 // they count as much as all signs together.
 //
 // --eval-range: a diagnostic on other images (normally the development split): class
-// accuracy on their annotated boxes, and on their candidate boxes (--eval-candidates)
-// class-level precision/recall/F1 after non-maximum suppression by the classifier's
-// score. Nothing from it feeds back into the trained weights.
+// accuracy on their annotated boxes and the most frequent confusions. Nothing from it
+// feeds back into the trained weights. (Detection figures come from sbr_detect and
+// sbr_eval.)
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -63,33 +63,15 @@ namespace {
 constexpr int kF = int(SBR_PICTO_FEATURES);
 constexpr int kK = int(SBR_PICTO_OUTPUTS);
 
-struct Box { float x0, y0, x1, y1; };
+using Box = PixBox;
 
-float iou(const Box &a, const Box &b) {
-    const float iw = std::min(a.x1, b.x1) - std::max(a.x0, b.x0);
-    const float ih = std::min(a.y1, b.y1) - std::max(a.y0, b.y0);
-    if (iw <= 0 || ih <= 0) return 0;
-    const float in = iw * ih;
-    return in / ((a.x1 - a.x0) * (a.y1 - a.y0) + (b.x1 - b.x0) * (b.y1 - b.y0) - in);
-}
-
-Box gt_box(const GtBox &g) { return {float(g.left), float(g.top), float(g.right + 1), float(g.bottom + 1)}; }
-
-// Detection-format file: NNNNN.ext;l;t;r;b;class;score (inclusive pixel box, as sbr_detect writes).
+// Boxes of a detection file (sbr_detect's format), keyed by image number.
 std::map<int, std::vector<Box>> read_boxes(const std::string &path) {
     std::map<int, std::vector<Box>> out;
     std::ifstream f(path);
-    for (std::string line; std::getline(f, line);) {
-        std::replace(line.begin(), line.end(), ';', ' ');
-        std::istringstream is(line);
-        std::string name;
-        Box b;
-        if (is >> name >> b.x0 >> b.y0 >> b.x1 >> b.y1) {
-            b.x1 += 1.0f;  // inclusive pixels, as GTSDB writes them
-            b.y1 += 1.0f;
-            out[image_number(name)].push_back(b);
-        }
-    }
+    DetLine d;
+    for (std::string line; std::getline(f, line);)
+        if (parse_detection_line(line, d)) out[d.image].push_back(d.box());
     return out;
 }
 
@@ -110,15 +92,14 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     sbr_recog_detect(&v, nullptr, &rc, &parts_only, ws.data(), ws.size() * 8, dets.data(), uint32_t(dets.size()), &n, nullptr);
     std::vector<Box> out;
     for (uint32_t i = 0; i < n; ++i)
-        out.push_back({float(dets[i].box.x), float(dets[i].box.y), float(dets[i].box.x + dets[i].box.width),
-                       float(dets[i].box.y + dets[i].box.height)});
+        out.push_back(rect_pixbox(dets[i].box));
     return out;
 }
 
 bool features(const sbr_image_t &v, const Box &b, std::vector<float> &f) {
     alignas(8) static thread_local float ws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
     f.assign(kF, 0.0f);
-    const float box[4] = {b.x0, b.y0, b.x1, b.y1};
+    const float box[4] = {float(b.x0), float(b.y0), float(b.x1), float(b.y1)};
     return sbr_picto_features(&v, box, f.data(), kF, ws, sizeof ws) == SBR_OK;
 }
 
@@ -233,7 +214,7 @@ void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, i
 }  // namespace
 
 int main(int argc, char **argv) {
-    std::string data = "../shared/data/gtsdb", cand_path, eval_cand_path, out_c, out_file, model_path;
+    std::string data = "../shared/data/gtsdb", cand_path, out_c, out_file, model_path;
     int r0 = 0, r1 = 399, e0 = -1, e1 = -1, hidden = 128, epochs = 20, jitter = 20;
     float lr = 0.01f, threshold = 0.5f;
     unsigned seed = 1;
@@ -246,7 +227,6 @@ int main(int argc, char **argv) {
         } else if (a == "--eval-range") {
             if (std::sscanf(next().c_str(), "%d-%d", &e0, &e1) != 2) { std::fprintf(stderr, "--eval-range wants A-B\n"); return 2; }
         } else if (a == "--candidates") cand_path = next();
-        else if (a == "--eval-candidates") eval_cand_path = next();
         else if (a == "--model") model_path = next();
         else if (a == "--hidden") hidden = std::atoi(next().c_str());
         else if (a == "--epochs") epochs = std::atoi(next().c_str());
@@ -300,17 +280,17 @@ int main(int argc, char **argv) {
             std::vector<Box> gts;
             std::vector<int> cls;
             if (gt.count(num))
-                for (const auto &g : gt.at(num)) { gts.push_back(gt_box(g)); cls.push_back(g.class_id); }
+                for (const auto &g : gt.at(num)) { gts.push_back(gt_pixbox(g)); cls.push_back(g.class_id); }
             std::vector<Sample> local;
             std::vector<float> f;
             for (size_t g = 0; g < gts.size(); ++g) {
                 const Box &b = gts[g];
-                const float w = b.x1 - b.x0, h = b.y1 - b.y0;
+                const float w = float(b.x1 - b.x0), h = float(b.y1 - b.y0);
                 for (int j = 0; j <= jitter; ++j) {
                     Box q = b;
                     if (j > 0) {
-                        const float cx = 0.5f * (b.x0 + b.x1) + 0.08f * w * U(rng);
-                        const float cy = 0.5f * (b.y0 + b.y1) + 0.08f * h * U(rng);
+                        const float cx = 0.5f * float(b.x0 + b.x1) + 0.08f * w * U(rng);
+                        const float cy = 0.5f * float(b.y0 + b.y1) + 0.08f * h * U(rng);
                         const float s = 1.0f + 0.08f * U(rng);
                         const float hw = 0.5f * w * s * (1.0f + 0.04f * U(rng)), hh = 0.5f * h * s * (1.0f + 0.04f * U(rng));
                         q = {cx - hw, cy - hh, cx + hw, cy + hh};
@@ -326,7 +306,8 @@ int main(int argc, char **argv) {
                                    1.0 / shrink, cv::INTER_AREA);
                         const sbr_image_t sv = bgr_view(small);
                         const float fx = float(small.cols) / float(mx1 - mx0), fy = float(small.rows) / float(my1 - my0);
-                        const Box qs = {(q.x0 - mx0) * fx, (q.y0 - my0) * fy, (q.x1 - mx0) * fx, (q.y1 - my0) * fy};
+                        const Box qs = {(float(q.x0) - float(mx0)) * fx, (float(q.y0) - float(my0)) * fy,
+                                        (float(q.x1) - float(mx0)) * fx, (float(q.y1) - float(my0)) * fy};
                         if (features(sv, qs, f)) local.push_back({f, cls[g]});
                     } else if (features(v, q, f)) {
                         local.push_back({f, cls[g]});
@@ -339,7 +320,7 @@ int main(int argc, char **argv) {
                 float best = 0;
                 int bc = -1;
                 for (size_t g = 0; g < gts.size(); ++g) {
-                    const float o = iou(c, gts[g]);
+                    const float o = float(box_iou(c, gts[g]));
                     if (o > best) { best = o; bc = cls[g]; }
                 }
                 int label = -1;
@@ -430,49 +411,27 @@ int main(int argc, char **argv) {
     }
 
     if (e0 >= 0) {
-        // diagnostic on other images, with the core's classifier
-        const auto ecand = eval_cand_path.empty() ? std::map<int, std::vector<Box>>{} : read_boxes(eval_cand_path);
+        // diagnostic on other images (normally the development split), with the core's
+        // classifier: the class of every annotated box
         int n_gt = 0, n_ok = 0;
-        struct Det { float score; int cls; int img; Box b; };
-        std::vector<Det> dets;
-        std::map<int, std::vector<std::pair<Box, int>>> egt;
         std::map<std::pair<int, int>, int> conf;
         alignas(8) static float cws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
         std::vector<float> f, p(kK);
         for (const auto &file : list_images(dir)) {
             const int num = image_number(file);
-            if (num < e0 || num > e1) continue;
+            if (num < e0 || num > e1 || !gt.count(num)) continue;
             cv::Mat img = cv::imread(file, cv::IMREAD_COLOR);
             if (img.empty()) continue;
             const sbr_image_t v = bgr_view(img);
-            if (gt.count(num))
-                for (const auto &g : gt.at(num)) {
-                    egt[num].push_back({gt_box(g), g.class_id});
-                    ++n_gt;
-                    if (!features(v, gt_box(g), f)) continue;
-                    sbr_picto_classify(&out.view, f.data(), kF, p.data(), kK, cws, sizeof cws);
-                    int best = 0;
-                    for (int c = 1; c < kK - 1; ++c) if (p[c] > p[best]) best = c;
-                    n_ok += best == g.class_id;
-                    if (best != g.class_id) conf[{g.class_id, best}]++;
-                }
-            if (!ecand.count(num)) continue;
-            std::vector<Det> local;
-            for (const Box &c : ecand.at(num)) {
-                if (!features(v, c, f)) continue;
-                sbr_picto_classify(&out.view, f.data(), kK > 0 ? kF : 0, p.data(), kK, cws, sizeof cws);
-                int best = 0;
-                for (int c2 = 1; c2 < kK - 1; ++c2) if (p[c2] > p[best]) best = c2;
-                local.push_back({p[best], best, num, c});
+            for (const auto &g : gt.at(num)) {
+                ++n_gt;
+                if (!features(v, gt_pixbox(g), f) ||
+                    sbr_picto_classify(&out.view, f.data(), kF, p.data(), kK, cws, sizeof cws) != SBR_OK)
+                    continue;
+                const int best = int(std::max_element(p.begin(), p.end() - 1) - p.begin());
+                n_ok += best == g.class_id;
+                if (best != g.class_id) conf[{g.class_id, best}]++;
             }
-            std::sort(local.begin(), local.end(), [](const Det &a, const Det &b) { return a.score > b.score; });
-            std::vector<Det> kept;
-            for (const Det &d : local) {
-                bool sup = false;
-                for (const Det &k : kept) sup = sup || iou(d.b, k.b) > 0.3f;
-                if (!sup && d.score > 0.05f) kept.push_back(d);
-            }
-            dets.insert(dets.end(), kept.begin(), kept.end());
         }
         std::printf("eval: class accuracy on annotated boxes %d / %d = %.4f\n", n_ok, n_gt, n_gt ? double(n_ok) / n_gt : 0.0);
         std::vector<std::pair<int, std::pair<int, int>>> cl;
@@ -480,28 +439,6 @@ int main(int argc, char **argv) {
         std::sort(cl.rbegin(), cl.rend());
         for (size_t i = 0; i < std::min<size_t>(8, cl.size()); ++i)
             std::printf("  true %d -> %d: %d\n", cl[i].second.first, cl[i].second.second, cl[i].first);
-        if (!dets.empty()) {
-            std::sort(dets.begin(), dets.end(), [](const Det &a, const Det &b) { return a.score > b.score; });
-            std::map<int, std::vector<char>> used;
-            for (const auto &g : egt) used[g.first].assign(g.second.size(), 0);
-            int tp = 0, fp = 0, stp = 0;
-            double bf1 = 0, bt = 0, bp = 0, br = 0;
-            std::map<int, std::vector<char>> sused = used;
-            for (size_t i = 0; i < dets.size(); ++i) {
-                const Det &d = dets[i];
-                bool hit = false;
-                auto &g = egt[d.img];
-                for (size_t k = 0; k < g.size() && !hit; ++k)
-                    if (!used[d.img][k] && g[k].second == d.cls && iou(d.b, g[k].first) >= 0.5f) { used[d.img][k] = 1; hit = true; }
-                for (size_t k = 0; k < g.size(); ++k)
-                    if (!sused[d.img][k] && iou(d.b, g[k].first) >= 0.5f) { sused[d.img][k] = 1; ++stp; break; }
-                hit ? ++tp : ++fp;
-                const double pr = double(tp) / (tp + fp), rc = double(tp) / n_gt, f1 = pr + rc > 0 ? 2 * pr * rc / (pr + rc) : 0;
-                if (f1 > bf1) { bf1 = f1; bt = d.score; bp = pr; br = rc; }
-            }
-            std::printf("eval: candidates: class-level best F1 %.4f at score %.3f (P %.4f R %.4f); any-class recall at all scores %.4f\n",
-                        bf1, bt, bp, br, double(stp) / n_gt);
-        }
     }
     return 0;
 }

@@ -118,6 +118,19 @@ static void sample_rgb(const sbr_image_t *img, float x, float y, float out[3])
     }
 }
 
+/* Version, sizes and tables present (what every call needs; the weights' finiteness is
+   sbr_picto_check()'s, once per model). */
+static int header_ok(const sbr_picto_model_t *model)
+{
+    int ok = 0;
+    if ((model->version == SBR_PICTO_VERSION) && (model->features == SBR_PICTO_FEATURES) &&
+        (model->hidden <= SBR_PICTO_HIDDEN_MAX) && (model->w2 != NULL) &&
+        ((model->hidden == 0u) || (model->w1 != NULL))) {
+        ok = 1;
+    }
+    return ok;
+}
+
 sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
 {
     size_t n1;
@@ -126,9 +139,7 @@ sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
     if (model == NULL) {
         return SBR_ERR_NULL;
     }
-    if ((model->version != SBR_PICTO_VERSION) || (model->features != SBR_PICTO_FEATURES) ||
-        (model->hidden > SBR_PICTO_HIDDEN_MAX) || (model->w2 == NULL) ||
-        ((model->hidden > 0u) && (model->w1 == NULL)) || (model->threshold <= 0.0f) ||
+    if ((header_ok(model) == 0) || (model->threshold <= 0.0f) ||
         (model->threshold >= 1.0f) || (isfinite(model->threshold) == 0)) {
         return SBR_ERR_CORRUPT;
     }
@@ -328,9 +339,7 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
     if ((len < SBR_PICTO_FEATURES) || (nprob < SBR_PICTO_OUTPUTS)) {
         return SBR_ERR_SIZE;
     }
-    if ((model->version != SBR_PICTO_VERSION) || (model->features != SBR_PICTO_FEATURES) ||
-        (model->hidden > SBR_PICTO_HIDDEN_MAX) || (model->w2 == NULL) ||
-        ((model->hidden > 0u) && (model->w1 == NULL))) {
+    if (header_ok(model) == 0) {
         return SBR_ERR_CORRUPT;
     }
     if ((workspace == NULL) || (workspace_size < SBR_PICTO_WORKSPACE_SIZE) ||
