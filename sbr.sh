@@ -94,9 +94,9 @@ cmd_test() {
   configure_build sanitize -DCMAKE_BUILD_TYPE=Debug -DSBR_SANITIZE=ON -DSBR_BUILD_HOST_TOOLS=OFF \
     -DUNITY_ROOT="$(unity_root)"
   configure_build cortex-m4 -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-cortex-m4f.cmake" \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUNITY_ROOT="$(unity_root)"
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUNITY_ROOT="$(unity_root)" -DSBR_HOST_TESTS_DIR="$BUILD/native/tests"
   configure_build armhf -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-armhf-linux.cmake" \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUNITY_ROOT="$(unity_root)"
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUNITY_ROOT="$(unity_root)" -DSBR_HOST_TESTS_DIR="$BUILD/native/tests"
   configure_build cortex-m7 -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-cortex-m7.cmake" \
     -DCMAKE_BUILD_TYPE=MinSizeRel
 

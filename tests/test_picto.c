@@ -21,6 +21,7 @@ static float g_f[F];
 static float g_g[F];
 static float g_w1[4u * (F + 1u)];
 static float g_w2[SBR_PICTO_OUTPUTS * (F + 1u)];
+static float g_w3[SBR_PICTO_BOX_OUTPUTS * (F + 1u)];
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -179,6 +180,7 @@ static void test_classify_values(void)
     m.threshold = 0.5f;
     m.w1 = NULL;
     m.w2 = g_w2;
+    m.w3 = NULL;
     g_w2[(5u * (F + 1u)) + F] = logf(2.0f); /* class 5: twice the weight of the others */
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
@@ -239,6 +241,91 @@ static void test_builtin_and_corrupt(void)
     g_w2[100] = NAN;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_check(NULL));
+}
+
+/* Box regression: hand-made rows move and scale the box by the stated amounts, clamped
+   to SBR_PICTO_MAX_SHIFT and SBR_PICTO_MAX_LOG_SCALE; the hidden layer feeds it; without
+   w3 the box stays; non-finite weights are refused by the check. */
+static void test_refine_values(void)
+{
+    sbr_picto_model_t m;
+    const float box[4] = {10.0f, 20.0f, 50.0f, 40.0f}; /* centre (30, 30), 40 x 20 */
+    float r[4];
+    (void)memset(g_w2, 0, sizeof g_w2);
+    (void)memset(g_w3, 0, sizeof g_w3);
+    (void)memset(g_f, 0, sizeof g_f);
+    m.version = SBR_PICTO_VERSION;
+    m.features = F;
+    m.hidden = 0u;
+    m.threshold = 0.5f;
+    m.w1 = NULL;
+    m.w2 = g_w2;
+    m.w3 = NULL;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_refine(&m, g_f, F, box, r, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_FLOAT(10.0f, r[0]);
+    TEST_ASSERT_EQUAL_FLOAT(20.0f, r[1]);
+    TEST_ASSERT_EQUAL_FLOAT(50.0f, r[2]);
+    TEST_ASSERT_EQUAL_FLOAT(40.0f, r[3]);
+    /* dx = 0.1 + 0.2 f0, dy = -0.25, log w = ln 1.5, log h = 0 */
+    g_w3[F] = 0.1f;
+    g_w3[0] = 0.2f;
+    g_w3[(F + 1u) + F] = -0.25f;
+    g_w3[(2u * (F + 1u)) + F] = logf(1.5f);
+    m.w3 = g_w3;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+    g_f[0] = 0.5f; /* dx = 0.2: centre x 30 + 0.2 * 40 = 38, width 60 */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_refine(&m, g_f, F, box, r, g_ws, sizeof g_ws));
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 8.0f, r[0]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 68.0f, r[2]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 15.0f, r[1]); /* centre y 30 - 0.25 * 20 = 25, height 20 */
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 35.0f, r[3]);
+    /* clamped: dx = 10 moves by half the width at most, log w = -5 scales by e^-0.7 */
+    g_w3[F] = 10.0f;
+    g_w3[0] = 0.0f;
+    g_w3[(2u * (F + 1u)) + F] = -5.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_refine(&m, g_f, F, box, r, g_ws, sizeof g_ws));
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 50.0f - (20.0f * expf(-SBR_PICTO_MAX_LOG_SCALE)), r[0]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 50.0f + (20.0f * expf(-SBR_PICTO_MAX_LOG_SCALE)), r[2]);
+    /* in place, through a hidden unit a = max(0, f0 - 0.25) = 0.25, dx = 0.4 a = 0.1 */
+    (void)memset(g_w1, 0, sizeof g_w1);
+    (void)memset(g_w3, 0, sizeof g_w3);
+    g_w1[0] = 1.0f;
+    g_w1[F] = -0.25f;
+    g_w3[0] = 0.4f;
+    m.hidden = 1u;
+    m.w1 = g_w1;
+    r[0] = box[0];
+    r[1] = box[1];
+    r[2] = box[2];
+    r[3] = box[3];
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_refine(&m, g_f, F, r, r, g_ws, sizeof g_ws));
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 14.0f, r[0]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 54.0f, r[2]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 20.0f, r[1]);
+    /* bad input */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_refine(NULL, g_f, F, box, r, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_refine(&m, NULL, F, box, r, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_refine(&m, g_f, F, NULL, r, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_refine(&m, g_f, F, box, NULL, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_refine(&m, g_f, F - 1u, box, r, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_picto_refine(&m, g_f, F, box, r, g_ws, 4u));
+    r[0] = 50.0f; /* empty box */
+    r[1] = 20.0f;
+    r[2] = 10.0f;
+    r[3] = 40.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_refine(&m, g_f, F, r, r, g_ws, sizeof g_ws));
+    r[2] = INFINITY;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_refine(&m, g_f, F, r, r, g_ws, sizeof g_ws));
+    g_f[1] = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_refine(&m, g_f, F, box, r, g_ws, sizeof g_ws));
+    g_f[1] = 0.0f;
+    m.version = SBR_PICTO_VERSION - 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_refine(&m, g_f, F, box, r, g_ws, sizeof g_ws));
+    m.version = SBR_PICTO_VERSION;
+    g_w3[2] = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m));
+    g_w3[2] = 0.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
 }
 
 /* Bad input: a status, never a crash. */
@@ -312,6 +399,7 @@ int main(void)
     RUN_TEST(test_format_and_scale);
     RUN_TEST(test_classify_values);
     RUN_TEST(test_builtin_and_corrupt);
+    RUN_TEST(test_refine_values);
     RUN_TEST(test_bad_input);
     return UNITY_END();
 }

@@ -345,6 +345,7 @@ static void test_class_stage(void)
     g_model.picto.threshold = 0.5f;
     g_model.picto.w1 = NULL;
     g_model.picto.w2 = w2;
+    g_model.picto.w3 = NULL;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
     draw_sign(112.0f, 50.0f, 18.0f);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
@@ -355,6 +356,49 @@ static void test_class_stage(void)
     /* share among the 43 sign classes: e^4 / (e^4 + 42) */
     TEST_ASSERT_FLOAT_WITHIN(1e-4f, expf(4.0f) / (expf(4.0f) + 42.0f), g_dets[0].class_share);
     TEST_ASSERT_FLOAT_WITHIN(3.0f, 112.5f, (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+    /* a box regression that always says "the sign is 10 % of the width to the right":
+       each refinement step moves the box by that much and classifies it again */
+    {
+        static float w3[SBR_PICTO_BOX_OUTPUTS * (SBR_PICTO_FEATURES + 1u)];
+        sbr_recog_config_t rc = g_cfg;
+        sbr_recog_stats_t st;
+        float cx0;
+        float w0;
+        uint32_t steps;
+        (void)memset(w3, 0, sizeof w3);
+        w3[SBR_PICTO_FEATURES] = 0.1f;
+        g_model.picto.w3 = w3;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
+        rc.refine_steps = 0u;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets, 16u,
+                                                       &n, &st));
+        TEST_ASSERT_TRUE(n >= 1u);
+        TEST_ASSERT_EQUAL_UINT32(0u, st.refined);
+        cx0 = (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width);
+        w0 = (float)g_dets[0].box.width;
+        TEST_ASSERT_FLOAT_WITHIN(3.0f, 112.5f, cx0);
+        for (steps = 1u; steps <= 2u; steps++) {
+            rc.refine_steps = steps;
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                           16u, &n, &st));
+            TEST_ASSERT_TRUE(n >= 1u);
+            TEST_ASSERT_TRUE(st.refined >= steps);
+            TEST_ASSERT_EQUAL_UINT32(3u, g_dets[0].class_id);
+            TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.1f * w0 * (float)steps),
+                                     (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+            TEST_ASSERT_FLOAT_WITHIN(1.01f, w0, (float)g_dets[0].box.width);
+        }
+        /* refine only likely signs: with a floor above the sign classes' probability
+           nothing moves */
+        rc.refine_score = 1.0f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets, 16u,
+                                                       &n, &st));
+        TEST_ASSERT_EQUAL_UINT32(0u, st.refined);
+        rc.refine_steps = SBR_RECOG_MAX_REFINE + 1u;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                              16u, &n, &st));
+        g_model.picto.w3 = NULL;
+    }
     w2[(3u * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 0.0f;
     w2[(SBR_PICTO_BACKGROUND * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 8.0f;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,

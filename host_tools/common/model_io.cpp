@@ -35,6 +35,32 @@ size_t picto_w1_len(uint32_t hidden) { return size_t(hidden) * (SBR_PICTO_FEATUR
 size_t picto_w2_len(uint32_t hidden) {
     return size_t(SBR_PICTO_OUTPUTS) * ((hidden > 0 ? hidden : SBR_PICTO_FEATURES) + 1u);
 }
+size_t picto_w3_len(uint32_t hidden) {
+    return size_t(SBR_PICTO_BOX_OUTPUTS) * ((hidden > 0 ? hidden : SBR_PICTO_FEATURES) + 1u);
+}
+bool picto_sizes_ok(const Picto &p) {
+    return p.w1.size() == picto_w1_len(p.hidden) && p.w2.size() == picto_w2_len(p.hidden) &&
+           (p.w3.empty() || p.w3.size() == picto_w3_len(p.hidden));
+}
+// The class stage's weights after its header (threshold and box flag written already).
+void put_picto_weights(std::string &s, const Picto &p) {
+    for (float w : p.w1) put(s, w);
+    for (float w : p.w2) put(s, w);
+    for (float w : p.w3) put(s, w);
+}
+// Sizes the weight arrays for `hidden` and `box`; reads them when they fit in s exactly
+// (up to the trailing CRC). Returns false when the size does not match.
+bool get_picto_weights(const std::string &s, size_t &off, uint32_t hidden, uint32_t box, Picto &p) {
+    p.hidden = hidden;
+    p.w1.assign(picto_w1_len(hidden), 0.0f);
+    p.w2.assign(picto_w2_len(hidden), 0.0f);
+    p.w3.assign(box != 0 ? picto_w3_len(hidden) : 0u, 0.0f);
+    if (off + 4u * (p.w1.size() + p.w2.size() + p.w3.size()) + 4u != s.size()) return false;
+    for (auto &w : p.w1) get(s, off, w);
+    for (auto &w : p.w2) get(s, off, w);
+    for (auto &w : p.w3) get(s, off, w);
+    return true;
+}
 
 // `header` as the generated file's leading C comment.
 std::string comment_block(const std::string &header) {
@@ -85,9 +111,10 @@ std::string save_model(const Model &m, const std::string &path) {
     for (auto c : m.cascade) put(s, c);
     put(s, m.has_picto ? m.picto.hidden + 1u : 0u);
     if (m.has_picto) {
+        if (!picto_sizes_ok(m.picto)) return "classifier sizes do not match its hidden layer";
         put(s, m.picto.threshold);
-        for (float w : m.picto.w1) put(s, w);
-        for (float w : m.picto.w2) put(s, w);
+        put(s, uint32_t(m.picto.w3.empty() ? 0u : 1u));
+        put_picto_weights(s, m.picto);
     }
     put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
     std::ofstream f(path, std::ios::binary);
@@ -130,17 +157,12 @@ std::string load_model(const std::string &path, Model &m) {
     m.has_picto = picto != 0;
     if (m.has_picto) {
         const uint32_t hidden = picto - 1u;
-        if (hidden > SBR_PICTO_HIDDEN_MAX) return path + ": bad class stage header";
-        m.picto.hidden = hidden;
-        m.picto.w1.resize(picto_w1_len(hidden));
-        m.picto.w2.resize(picto_w2_len(hidden));
-    }
-    if (off + 4u * (m.picto.w1.size() + m.picto.w2.size() + 1u) * (m.has_picto ? 1u : 0u) + 4u != s.size())
+        uint32_t box = 0;
+        if (hidden > SBR_PICTO_HIDDEN_MAX || !get(s, off, m.picto.threshold) || !get(s, off, box) || box > 1u)
+            return path + ": bad class stage header";
+        if (!get_picto_weights(s, off, hidden, box, m.picto)) return path + ": size does not match its counts";
+    } else if (off + 4u != s.size()) {
         return path + ": size does not match its counts";
-    if (m.has_picto) {
-        get(s, off, m.picto.threshold);
-        for (auto &w : m.picto.w1) get(s, off, w);
-        for (auto &w : m.picto.w2) get(s, off, w);
     }
     m.view = v;
     m.bind();
@@ -202,19 +224,19 @@ void Picto::bind() {
     view.threshold = threshold;
     view.w1 = hidden > 0 ? w1.data() : nullptr;
     view.w2 = w2.data();
+    view.w3 = w3.empty() ? nullptr : w3.data();
 }
 
 
 std::string save_picto(const Picto &p, const std::string &path) {
-    if (p.w1.size() != picto_w1_len(p.hidden) || p.w2.size() != picto_w2_len(p.hidden))
-        return "classifier sizes do not match its hidden layer";
+    if (!picto_sizes_ok(p)) return "classifier sizes do not match its hidden layer";
     std::string s = "SBRP";
     put(s, uint32_t(SBR_PICTO_VERSION));
     put(s, uint32_t(SBR_PICTO_FEATURES));
     put(s, p.hidden);
     put(s, p.threshold);
-    for (float w : p.w1) put(s, w);
-    for (float w : p.w2) put(s, w);
+    put(s, uint32_t(p.w3.empty() ? 0u : 1u));
+    put_picto_weights(s, p);
     put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
     std::ofstream f(path, std::ios::binary);
     if (!f) return "cannot write " + path;
@@ -234,20 +256,15 @@ std::string load_picto(const std::string &path, Picto &p) {
     if (crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size() - 4) != stored)
         return path + ": CRC mismatch (corrupted file)";
     size_t off = 4;
-    uint32_t version = 0, features = 0, hidden = 0;
+    uint32_t version = 0, features = 0, hidden = 0, box = 0;
     get(s, off, version);
     get(s, off, features);
     get(s, off, hidden);
     get(s, off, p.threshold);
-    if (version != SBR_PICTO_VERSION || features != SBR_PICTO_FEATURES || hidden > SBR_PICTO_HIDDEN_MAX)
+    if (!get(s, off, box) || version != SBR_PICTO_VERSION || features != SBR_PICTO_FEATURES ||
+        hidden > SBR_PICTO_HIDDEN_MAX || box > 1u)
         return path + ": unsupported header";
-    if (off + 4 * (picto_w1_len(hidden) + picto_w2_len(hidden)) + 4 != s.size())
-        return path + ": size does not match its header";
-    p.hidden = hidden;
-    p.w1.resize(picto_w1_len(hidden));
-    p.w2.resize(picto_w2_len(hidden));
-    for (auto &w : p.w1) get(s, off, w);
-    for (auto &w : p.w2) get(s, off, w);
+    if (!get_picto_weights(s, off, hidden, box, p)) return path + ": size does not match its header";
     p.bind();
     const sbr_status_t st = sbr_picto_check(&p.view);
     if (st != SBR_OK) return path + ": classifier check failed: " + sbr_status_str(st);
@@ -255,8 +272,7 @@ std::string load_picto(const std::string &path, Picto &p) {
 }
 
 std::string write_picto_c(const Picto &p, const std::string &path, const std::string &header) {
-    if (p.w1.size() != picto_w1_len(p.hidden) || p.w2.size() != picto_w2_len(p.hidden))
-        return "classifier sizes do not match its hidden layer";
+    if (!picto_sizes_ok(p)) return "classifier sizes do not match its hidden layer";
     std::ostringstream o;
     o << comment_block(header) << "#include \"sbr/pictogram.h\"\n\n";
     o << "sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)\n{\n";
@@ -267,10 +283,12 @@ std::string write_picto_c(const Picto &p, const std::string &path, const std::st
     };
     if (p.hidden > 0) table("picto_w1", p.w1);
     table("picto_w2", p.w2);
+    if (!p.w3.empty()) table("picto_w3", p.w3);
     o << "    if (out == NULL) {\n        return SBR_ERR_NULL;\n    }\n"
       << "    out->version = SBR_PICTO_VERSION;\n    out->features = SBR_PICTO_FEATURES;\n"
       << "    out->hidden = " << p.hidden << "u;\n    out->threshold = " << flit(p.threshold) << ";\n"
       << "    out->w1 = " << (p.hidden > 0 ? "picto_w1" : "NULL") << ";\n    out->w2 = picto_w2;\n"
+      << "    out->w3 = " << (p.w3.empty() ? "NULL" : "picto_w3") << ";\n"
       << "    return SBR_OK;\n}\n";
     std::ofstream f(path);
     if (!f) return "cannot write " + path;

@@ -5,8 +5,9 @@
 //   f32 vote_error | f32 score_threshold | u16 group_first[9] | u16 class_first[44] |
 //   sbr_fd_t fds[proto_count] | sbr_model_proto_t protos[proto_count] |
 //   u16 cascade[cascade_count] | u32 picto (0: no class stage, else hidden + 1) |
-//   [f32 threshold |
-//   [f32 w1[hidden * (features + 1)] | f32 w2[outputs * (hidden or features, + 1)]] |
+//   [f32 threshold | u32 box (1: with box regression) |
+//    f32 w1[hidden * (features + 1)] | f32 w2[outputs * (hidden or features, + 1)] |
+//    f32 w3[4 * (hidden or features, + 1)] when box] |
 //   u32 CRC-32 (IEEE) of every byte before it.
 // A loaded model is checked with sbr_model_check() as well.
 #pragma once
@@ -24,13 +25,14 @@ namespace sbr_host {
 
 // Owns the weights a sbr_picto_model_t points into (the class stage, pictogram.h).
 // File form (.sbrp), little-endian: "SBRP" | u32 version | u32 features | u32 hidden |
-//   f32 threshold |
+//   f32 threshold | u32 box (1: with box regression) |
 //   f32 w1[hidden * (features + 1)] | f32 w2[outputs * (hidden or features, + 1)] |
+//   f32 w3[4 * (hidden or features, + 1)] when box |
 //   u32 CRC-32 (IEEE) of every byte before it. Checked with sbr_picto_check() as well.
 struct Picto {
     uint32_t hidden = 0;
     float threshold = 0.5f;
-    std::vector<float> w1, w2;
+    std::vector<float> w1, w2, w3;  // w3 empty: no box regression
     sbr_picto_model_t view{};  // pointers refreshed by bind()
     void bind();
 };

@@ -4,7 +4,7 @@
 //              [--all-detections FILE] [--summary FILE] [--model FILE] [--picto FILE]
 //              [--no-picto] [--range A-B]
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]
-//              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S]
+//              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
 //
 // --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
 //   accepted too). --range A-B keeps images numbered A..B.
@@ -24,7 +24,7 @@
 //   its own; --no-picto: no class stage (part evidence alone scores and classifies).
 // --summary: the summary text (also printed): images, detections, time per frame (median
 //   and 95th percentile, per stage), workspace bytes, capacity hits.
-// --min-parts, --vote-error, --verify-error, --min-score override the recogniser's options
+// --min-parts, --vote-error, --verify-error, --min-score, --refine-steps override the recogniser's options
 //   of those names (include/sbr/recognizer.h), for tuning and regression.
 // Time is measured per frame on one core (the tool is single-threaded).
 #include <opencv2/imgcodecs.hpp>
@@ -104,7 +104,7 @@ int main(int argc, char **argv) {
     float threshold = -1.0f;
     uint32_t subsample = 1;
     bool use_roi = false, quiet = false;
-    int min_parts = -1;
+    int min_parts = -1, refine_steps = -1;
     bool sequence = false;
     float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f;
     sbr_rect_t roi{};
@@ -125,6 +125,7 @@ int main(int argc, char **argv) {
         else if (a == "--quiet") quiet = true;
         else if (a == "--sequence") sequence = true;
         else if (a == "--min-parts") min_parts = std::atoi(next().c_str());
+        else if (a == "--refine-steps") refine_steps = std::atoi(next().c_str());
         else if (a == "--vote-error") vote_error = std::strtof(next().c_str(), nullptr);
         else if (a == "--verify-error") verify_error = std::strtof(next().c_str(), nullptr);
         else if (a == "--min-score") min_score = std::strtof(next().c_str(), nullptr);
@@ -177,6 +178,7 @@ int main(int argc, char **argv) {
     if (!all_path.empty()) cfg.min_score = std::min(cfg.min_score, 0.05f);  // the curve's tail
     if (min_score >= 0.0f) cfg.min_score = min_score;
     if (min_parts >= 0) cfg.min_parts = uint32_t(min_parts);
+    if (refine_steps >= 0) cfg.refine_steps = uint32_t(refine_steps);
     if (vote_error >= 0.0f) cfg.vote_error = vote_error;
     if (verify_error >= 0.0f) cfg.verify_error = verify_error;
     cfg.clock = host_clock;

@@ -3,13 +3,15 @@
 //
 //   sbr_train_picto [--data DIR] [--range A-B] [--model FILE.sbrm] [--candidates FILE]
 //                   [--hidden H] [--epochs E] [--jitter J] [--lr L] [--seed S] [--threshold T]
-//                   [--out-c FILE] [--out FILE]
+//                   [--bg-fraction F] [--no-box] [--rounds R] [--out-c FILE] [--out FILE]
 //                   [--eval-range A-B]
 //
 // Defaults: --data ../shared/data/gtsdb, --range 0-399 (the training split; the
 // development split 400-599 is never read for training), --hidden 128, --epochs 20,
 // --jitter 20 (copies per annotated sign), --lr 0.01, --seed 1, --threshold 0.5 (the
-// operating point stored with it: the class more probable than everything else together).
+// operating point stored with it: the class more probable than everything else together),
+// --bg-fraction 0.3 (share of the background samples each epoch sees, a fresh draw each
+// epoch), box regression on (--no-box: a classifier without it).
 //
 // Training samples:
 //  - every annotated sign's box, and jittered copies of it (shifts up to 8 % of its size,
@@ -19,10 +21,17 @@
 //  - the recogniser's candidate boxes on the training images (its part model with
 //    min_parts 1 and no score floor, or the boxes of --candidates, a detection file):
 //    IoU >= 0.55 with a sign -> that sign's class; IoU < 0.3 with every sign -> background;
-//    in between -> not used.
+//    in between -> used for the box regression only.
+// Rounds (--rounds, default 2): from the second round on, the whole recogniser runs on the
+// training images with the previous round's class stage (boxes refined, score >= 0.05) and
+// its detections are added, labelled like the candidates: its own false detections (often
+// refined onto sign-like clutter) become background samples. Then it trains anew.
+// Box regression: every box near a sign (the jittered copies, the candidates at IoU >= 0.3)
+// learns where that sign's box is (sbr_picto_refine()), smooth-L1 loss in units of 0.1.
 // Features: sbr_picto_features() (the core's own code). Standardised, then a layer of
-// rectified units (--hidden, 0 = none) and a softmax, trained by minibatch SGD with
-// momentum (deterministic: fixed seed, one thread). Background samples are weighted so
+// rectified units (--hidden, 0 = none), a softmax and the box outputs, trained by
+// minibatch SGD with momentum (deterministic: fixed seed; two threads share each minibatch
+// and their gradients are added in a fixed order). Background samples are weighted so
 // they count as much as all signs together.
 //
 // --eval-range: a diagnostic on other images (normally the development split): class
@@ -75,21 +84,49 @@ std::map<int, std::vector<Box>> read_boxes(const std::string &path) {
     return out;
 }
 
-struct Sample { std::vector<float> f; int label; };
+// One training box: its features, its class (or -1: box regression only) and, for boxes
+// near a sign, where that sign's box is relative to it (the regression target).
+struct Sample {
+    std::vector<float> f;
+    int label;
+    bool has_box = false;
+    float t[4] = {0, 0, 0, 0};
+    bool hard = false;  // a detection of an earlier round: weighted like a sign, always seen
+};
 
-// Candidate boxes of one image from the recogniser's part model.
-std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model, std::vector<uint64_t> &ws) {
+// Regression target of box b for the sign box g: centre shift in units of b's width and
+// height, log size ratios (pictogram.h, sbr_picto_refine()).
+void box_target(const Box &b, const Box &g, float t[4]) {
+    const float bw = float(b.x1 - b.x0), bh = float(b.y1 - b.y0);
+    t[0] = float(0.5 * (g.x0 + g.x1) - 0.5 * (b.x0 + b.x1)) / bw;
+    t[1] = float(0.5 * (g.y0 + g.y1) - 0.5 * (b.y0 + b.y1)) / bh;
+    t[2] = std::log(float(g.x1 - g.x0) / bw);
+    t[3] = std::log(float(g.y1 - g.y0) / bh);
+}
+
+// Targets are learned in units of kTargetScale (about the spread of the jitter), and the
+// output rows scaled back when the weights are written.
+constexpr float kTargetScale = 0.1f;
+constexpr int kR = int(SBR_PICTO_BOX_OUTPUTS);
+
+// Boxes of one image from the recogniser: without `picto`, its part model's candidates
+// (min_parts 1, no score floor); with it, the detections of the whole recogniser with
+// that class stage (boxes refined, score >= kMineScore).
+constexpr float kMineScore = 0.05f;
+std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model, const sbr_picto_model_t *picto,
+                                  std::vector<uint64_t> &ws) {
     sbr_recog_config_t rc;
     sbr_recog_config_default(&rc);
     rc.min_parts = 1;
-    rc.min_score = 0.0f;
-    sbr_model_t parts_only = model;
-    parts_only.picto.version = 0;
+    rc.min_score = picto != nullptr ? kMineScore : 0.0f;
+    sbr_model_t m = model;
+    if (picto != nullptr) m.picto = *picto;
+    else m.picto.version = 0;
     const size_t need = sbr_recog_workspace_size(v.width, v.height, &rc);
     if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
     std::vector<sbr_detection_t> dets(4096);
     uint32_t n = 0;
-    sbr_recog_detect(&v, nullptr, &rc, &parts_only, ws.data(), ws.size() * 8, dets.data(), uint32_t(dets.size()), &n, nullptr);
+    sbr_recog_detect(&v, nullptr, &rc, &m, ws.data(), ws.size() * 8, dets.data(), uint32_t(dets.size()), &n, nullptr);
     std::vector<Box> out;
     for (uint32_t i = 0; i < n; ++i)
         out.push_back(rect_pixbox(dets[i].box));
@@ -106,11 +143,12 @@ bool features(const sbr_image_t &v, const Box &b, std::vector<float> &f) {
 // The network in training form.
 struct Net {
     int h = 0;
-    std::vector<float> w1, w2;  // h x (F+1), K x (nin+1)
+    std::vector<float> w1, w2, w3;  // h x (F+1), K x (nin+1), 4 x (nin+1)
     int nin() const { return h > 0 ? h : kF; }
 };
 
-void forward(const Net &n, const float *x, std::vector<float> &a, std::vector<float> &p) {
+// Class probabilities p and box outputs r (in target units) of x; a = hidden units.
+void forward(const Net &n, const float *x, std::vector<float> &a, std::vector<float> &p, float r[kR]) {
     const float *in = x;
     if (n.h > 0) {
         a.resize(n.h);
@@ -123,21 +161,89 @@ void forward(const Net &n, const float *x, std::vector<float> &a, std::vector<fl
         in = a.data();
     }
     const int ni = n.nin();
+    auto row = [&](const std::vector<float> &w, int c) {
+        const float *wc = &w[size_t(c) * (ni + 1)];
+        float s = wc[ni];
+        for (int k = 0; k < ni; ++k) s += wc[k] * in[k];
+        return s;
+    };
     p.resize(kK);
     float mx = -1e30f;
     for (int c = 0; c < kK; ++c) {
-        const float *w = &n.w2[size_t(c) * (ni + 1)];
-        float s = w[ni];
-        for (int k = 0; k < ni; ++k) s += w[k] * in[k];
-        p[c] = s;
-        mx = std::max(mx, s);
+        p[c] = row(n.w2, c);
+        mx = std::max(mx, p[c]);
     }
     float sum = 0;
     for (int c = 0; c < kK; ++c) { p[c] = std::exp(p[c] - mx); sum += p[c]; }
     for (int c = 0; c < kK; ++c) p[c] /= sum;
+    for (int c = 0; c < kR; ++c) r[c] = row(n.w3, c);
 }
 
-void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, int epochs, unsigned seed, float lr0) {
+// Gradients of one slice of a minibatch, summed into g (w1, w2, w3 layout one after the
+// other); returns the slice's weighted loss.
+struct Grad {
+    std::vector<float> g;
+    double loss = 0, weight = 0;
+};
+
+void backprop(const Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, const size_t *idx,
+              size_t count, Grad &out) {
+    const int ni = n.nin();
+    const size_t o2 = n.w1.size(), o3 = o2 + n.w2.size();
+    std::fill(out.g.begin(), out.g.end(), 0.0f);
+    out.loss = 0;
+    out.weight = 0;
+    std::vector<float> a, p, da(std::max(1, n.h));
+    for (size_t bi = 0; bi < count; ++bi) {
+        const Sample &x = s[idx[bi]];
+        const float w = sw[idx[bi]];
+        float r[kR];
+        forward(n, x.f.data(), a, p, r);
+        const float *in = n.h > 0 ? a.data() : x.f.data();
+        if (n.h > 0) std::fill(da.begin(), da.end(), 0.0f);
+        auto add_row = [&](size_t off, const std::vector<float> &wm, int c, float d) {
+            float *g = &out.g[off + size_t(c) * (ni + 1)];
+            const float *wc = &wm[size_t(c) * (ni + 1)];
+            for (int k = 0; k < ni; ++k) g[k] += d * in[k];
+            g[ni] += d;
+            if (n.h > 0)
+                for (int k = 0; k < ni; ++k) da[k] += d * wc[k];
+        };
+        if (x.label >= 0) {
+            out.loss -= w * std::log(std::max(p[x.label], 1e-12f));
+            out.weight += w;
+            for (int c = 0; c < kK; ++c) {
+                const float d = w * (p[c] - (c == x.label ? 1.0f : 0.0f));
+                if (d != 0.0f) add_row(o2, n.w2, c, d);
+            }
+        }
+        if (x.has_box) {
+            // smooth L1 (Huber, 1 target unit) on each box output
+            for (int c = 0; c < kR; ++c) {
+                const float e = r[c] - x.t[c] / kTargetScale;
+                const float d = std::max(-1.0f, std::min(1.0f, e));
+                out.loss += std::fabs(e) < 1.0f ? 0.5 * e * e : std::fabs(e) - 0.5;
+                add_row(o3, n.w3, c, d);
+            }
+            if (x.label < 0) out.weight += 1.0;
+        }
+        if (n.h > 0) {
+            for (int j = 0; j < n.h; ++j) {
+                if (a[j] <= 0.0f || da[j] == 0.0f) continue;
+                float *g = &out.g[size_t(j) * (kF + 1)];
+                const float d = da[j];
+                for (int k = 0; k < kF; ++k) g[k] += d * x.f[k];
+                g[kF] += d;
+            }
+        }
+    }
+}
+
+// Minibatch SGD with momentum and cosine decay. Each epoch sees every sign sample and a
+// fresh `bg_fraction` of the background ones (weighted up to match). Two threads share
+// each minibatch and their gradients are added in a fixed order: deterministic.
+void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, int epochs, unsigned seed, float lr0,
+           float bg_fraction) {
     std::mt19937 rng(seed);
     const int ni = n.nin();
     std::normal_distribution<float> nd(0.0f, 1.0f);
@@ -148,62 +254,50 @@ void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, i
             for (int k = 0; k < kF; ++k) n.w1[size_t(j) * (kF + 1) + k] = nd(rng) * sc;
     }
     n.w2.assign(size_t(kK) * (ni + 1), 0.0f);
+    n.w3.assign(size_t(kR) * (ni + 1), 0.0f);
     if (n.h > 0) {
         const float sc = std::sqrt(1.0f / float(ni));
         for (int c = 0; c < kK; ++c)
             for (int k = 0; k < ni; ++k) n.w2[size_t(c) * (ni + 1) + k] = nd(rng) * sc;
     }
-    std::vector<float> v1(n.w1.size(), 0.0f), v2(n.w2.size(), 0.0f), g1(n.w1.size()), g2(n.w2.size());
-    std::vector<size_t> order(s.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    const size_t nw = n.w1.size() + n.w2.size() + n.w3.size();
+    std::vector<float> vel(nw, 0.0f);
+    std::vector<size_t> fg, bg;
+    for (size_t i = 0; i < s.size(); ++i)
+        (s[i].label == int(SBR_PICTO_BACKGROUND) && !s[i].hard ? bg : fg).push_back(i);
+    std::vector<float> w = sw;
+    for (size_t i : bg) w[i] /= bg_fraction;  // the hard ones are in fg: every epoch
     const size_t batch = 64;
     const float decay = 1e-4f, mom = 0.9f;
-    std::vector<float> a, p, da(std::max(1, n.h));
+    Grad part[2];
+    for (auto &g : part) g.g.assign(nw, 0.0f);
+    std::vector<size_t> order;
     for (int e = 0; e < epochs; ++e) {
         const float lr = lr0 * 0.5f * (1.0f + std::cos(3.14159265f * float(e) / float(epochs)));
+        std::shuffle(bg.begin(), bg.end(), rng);
+        order = fg;
+        order.insert(order.end(), bg.begin(), bg.begin() + std::ptrdiff_t(double(bg.size()) * bg_fraction));
         std::shuffle(order.begin(), order.end(), rng);
         double loss = 0, wsum = 0;
         for (size_t b0 = 0; b0 < order.size(); b0 += batch) {
-            std::fill(g1.begin(), g1.end(), 0.0f);
-            std::fill(g2.begin(), g2.end(), 0.0f);
-            float bw = 0;
-            for (size_t bi = b0; bi < std::min(order.size(), b0 + batch); ++bi) {
-                const Sample &x = s[order[bi]];
-                const float w = sw[order[bi]];
-                forward(n, x.f.data(), a, p);
-                loss -= w * std::log(std::max(p[x.label], 1e-12f));
-                wsum += w;
-                bw += w;
-                const float *in = n.h > 0 ? a.data() : x.f.data();
-                if (n.h > 0) std::fill(da.begin(), da.end(), 0.0f);
-                for (int c = 0; c < kK; ++c) {
-                    const float d = w * (p[c] - (c == x.label ? 1.0f : 0.0f));
-                    if (d == 0.0f) continue;
-                    float *g = &g2[size_t(c) * (ni + 1)];
-                    const float *wc = &n.w2[size_t(c) * (ni + 1)];
-                    for (int k = 0; k < ni; ++k) g[k] += d * in[k];
-                    g[ni] += d;
-                    if (n.h > 0)
-                        for (int k = 0; k < ni; ++k) da[k] += d * wc[k];
+            const size_t cnt = std::min(order.size(), b0 + batch) - b0, half = cnt / 2;
+            std::thread t1([&]() { backprop(n, s, w, &order[b0], half, part[0]); });
+            backprop(n, s, w, &order[b0 + half], cnt - half, part[1]);
+            t1.join();
+            const double bw = part[0].weight + part[1].weight;
+            loss += part[0].loss + part[1].loss;
+            wsum += bw;
+            const float inv = 1.0f / float(std::max(bw, 1e-6));
+            float *wts[3] = {n.w1.data(), n.w2.data(), n.w3.data()};
+            const size_t len[3] = {n.w1.size(), n.w2.size(), n.w3.size()};
+            size_t off = 0;
+            for (int m = 0; m < 3; ++m) {
+                for (size_t i = 0; i < len[m]; ++i) {
+                    const float g = (part[0].g[off + i] + part[1].g[off + i]) * inv;
+                    vel[off + i] = mom * vel[off + i] - lr * (g + decay * wts[m][i]);
+                    wts[m][i] += vel[off + i];
                 }
-                if (n.h > 0) {
-                    for (int j = 0; j < n.h; ++j) {
-                        if (a[j] <= 0.0f) continue;
-                        float *g = &g1[size_t(j) * (kF + 1)];
-                        const float d = da[j];
-                        for (int k = 0; k < kF; ++k) g[k] += d * x.f[k];
-                        g[kF] += d;
-                    }
-                }
-            }
-            const float inv = 1.0f / std::max(bw, 1e-6f);
-            for (size_t i = 0; i < n.w2.size(); ++i) {
-                v2[i] = mom * v2[i] - lr * (g2[i] * inv + decay * n.w2[i]);
-                n.w2[i] += v2[i];
-            }
-            for (size_t i = 0; i < n.w1.size(); ++i) {
-                v1[i] = mom * v1[i] - lr * (g1[i] * inv + decay * n.w1[i]);
-                n.w1[i] += v1[i];
+                off += len[m];
             }
         }
         if (e % 5 == 4 || e + 1 == epochs)
@@ -216,7 +310,9 @@ void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, i
 int main(int argc, char **argv) {
     std::string data = "../shared/data/gtsdb", cand_path, out_c, out_file, model_path;
     int r0 = 0, r1 = 399, e0 = -1, e1 = -1, hidden = 128, epochs = 20, jitter = 20;
-    float lr = 0.01f, threshold = 0.5f;
+    float lr = 0.01f, threshold = 0.5f, bg_fraction = 0.3f;
+    int rounds = 2;
+    bool box = true;
     unsigned seed = 1;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -233,13 +329,17 @@ int main(int argc, char **argv) {
         else if (a == "--jitter") jitter = std::atoi(next().c_str());
         else if (a == "--threshold") threshold = std::strtof(next().c_str(), nullptr);
         else if (a == "--lr") lr = std::strtof(next().c_str(), nullptr);
+        else if (a == "--bg-fraction") bg_fraction = std::strtof(next().c_str(), nullptr);
+        else if (a == "--no-box") box = false;
+        else if (a == "--rounds") rounds = std::atoi(next().c_str());
         else if (a == "--seed") seed = unsigned(std::atoi(next().c_str()));
         else if (a == "--out-c") out_c = next();
         else if (a == "--out") out_file = next();
         else { std::fprintf(stderr, "sbr_train_picto: unknown option %s (see the file's header)\n", a.c_str()); return 2; }
     }
-    if (hidden < 0 || hidden > int(SBR_PICTO_HIDDEN_MAX) || epochs < 1) {
-        std::fprintf(stderr, "sbr_train_picto: --hidden 0..%u, --epochs >= 1\n", SBR_PICTO_HIDDEN_MAX);
+    if (hidden < 0 || hidden > int(SBR_PICTO_HIDDEN_MAX) || epochs < 1 || rounds < 1 || !(bg_fraction > 0.0f && bg_fraction <= 1.0f)) {
+        std::fprintf(stderr, "sbr_train_picto: --hidden 0..%u, --epochs >= 1, --rounds >= 1, --bg-fraction in (0, 1]\n",
+                     SBR_PICTO_HIDDEN_MAX);
         return 2;
     }
     const auto t0 = std::chrono::steady_clock::now();
@@ -267,6 +367,10 @@ int main(int argc, char **argv) {
     std::vector<Sample> samples;
     std::mutex mu;
     std::atomic<size_t> next{0};
+    // first round: annotated boxes, jittered copies and the part model's candidates;
+    // later rounds (mine != nullptr): only the whole recogniser's detections with the
+    // previous round's class stage, so its own mistakes become training samples
+    const sbr_picto_model_t *mine = nullptr;
     auto work = [&]() {
         std::vector<uint64_t> ws;
         std::mt19937 rng;
@@ -283,7 +387,7 @@ int main(int argc, char **argv) {
                 for (const auto &g : gt.at(num)) { gts.push_back(gt_pixbox(g)); cls.push_back(g.class_id); }
             std::vector<Sample> local;
             std::vector<float> f;
-            for (size_t g = 0; g < gts.size(); ++g) {
+            for (size_t g = 0; g < gts.size() && mine == nullptr; ++g) {
                 const Box &b = gts[g];
                 const float w = float(b.x1 - b.x0), h = float(b.y1 - b.y0);
                 for (int j = 0; j <= jitter; ++j) {
@@ -309,45 +413,69 @@ int main(int argc, char **argv) {
                         const Box qs = {(float(q.x0) - float(mx0)) * fx, (float(q.y0) - float(my0)) * fy,
                                         (float(q.x1) - float(mx0)) * fx, (float(q.y1) - float(my0)) * fy};
                         if (features(sv, qs, f)) local.push_back({f, cls[g]});
+                        else continue;
                     } else if (features(v, q, f)) {
                         local.push_back({f, cls[g]});
+                    } else {
+                        continue;
+                    }
+                    if (box) {
+                        local.back().has_box = true;
+                        box_target(q, b, local.back().t);
                     }
                 }
             }
-            const std::vector<Box> cands = cand_path.empty() ? recog_candidates(v, *pm, ws)
+            const std::vector<Box> cands = cand_path.empty() || mine != nullptr ? recog_candidates(v, *pm, mine, ws)
                                                              : (cand_file.count(num) ? cand_file.at(num) : std::vector<Box>{});
             for (const Box &c : cands) {
                 float best = 0;
-                int bc = -1;
+                size_t bg = 0;
                 for (size_t g = 0; g < gts.size(); ++g) {
                     const float o = float(box_iou(c, gts[g]));
-                    if (o > best) { best = o; bc = cls[g]; }
+                    if (o > best) { best = o; bg = g; }
                 }
-                int label = -1;
-                if (best >= 0.55f) label = bc;
-                else if (best < 0.3f) label = int(SBR_PICTO_BACKGROUND);
-                if (label >= 0 && features(v, c, f)) local.push_back({f, label});
+                if (best < 0.3f) {
+                    if (features(v, c, f)) local.push_back({f, int(SBR_PICTO_BACKGROUND)});
+                } else if ((best >= 0.55f || box) && features(v, c, f)) {
+                    // near a sign: its class when close enough, and where the sign is
+                    local.push_back({f, best >= 0.55f ? cls[bg] : -1});
+                    if (box) {
+                        local.back().has_box = true;
+                        box_target(c, gts[bg], local.back().t);
+                    }
+                }
             }
             std::lock_guard<std::mutex> lk(mu);
             for (auto &s : local) samples.push_back(std::move(s));
         }
     };
-    {
+    auto collect = [&]() {
+        next = 0;
         const unsigned nt = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
         std::vector<std::thread> th;
         for (unsigned t = 0; t < nt; ++t) th.emplace_back(work);
         for (auto &t : th) t.join();
-    }
-    // deterministic order whatever the threads did
-    std::sort(samples.begin(), samples.end(), [](const Sample &a, const Sample &b) {
-        if (a.label != b.label) return a.label < b.label;
-        return a.f < b.f;
-    });
-    size_t nbg = 0;
-    for (const auto &s : samples) nbg += s.label == int(SBR_PICTO_BACKGROUND);
-    const size_t nfg = samples.size() - nbg;
-    std::fprintf(stderr, "sbr_train_picto: %zu sign samples, %zu background samples from %zu images (%.1f s)\n", nfg, nbg,
-                 files.size(), secs());
+        // deterministic order whatever the threads did
+        std::sort(samples.begin(), samples.end(), [](const Sample &a, const Sample &b) {
+            if (a.label != b.label) return a.label < b.label;
+            return a.f < b.f;
+        });
+    };
+    size_t nbg = 0, nreg = 0, nfg = 0;
+    auto count = [&]() {
+        nbg = nreg = 0;
+        for (const auto &s : samples) {
+            nbg += s.label == int(SBR_PICTO_BACKGROUND);
+            nreg += s.label < 0;
+        }
+        nfg = samples.size() - nbg - nreg;
+        std::fprintf(stderr,
+                     "sbr_train_picto: %zu sign samples, %zu background samples, %zu boxes for the box regression only, "
+                     "from %zu images (%.1f s)\n",
+                     nfg, nbg, nreg, files.size(), secs());
+    };
+    collect();
+    count();
     if (nfg == 0 || nbg == 0) { std::fprintf(stderr, "sbr_train_picto: nothing to learn from\n"); return 1; }
 
     // standardise
@@ -360,45 +488,78 @@ int main(int argc, char **argv) {
     for (auto &d : sd) d = std::sqrt(d / float(samples.size())) + 1e-3f;
     for (auto &s : samples)
         for (int k = 0; k < kF; ++k) s.f[k] = (s.f[k] - mean[k]) / sd[k];
-    std::vector<float> sw(samples.size(), 1.0f);
-    const float wbg = float(nfg) / float(nbg);
-    for (size_t i = 0; i < samples.size(); ++i)
-        if (samples[i].label == int(SBR_PICTO_BACKGROUND)) sw[i] = wbg;
-
-    Net net;
-    net.h = hidden;
-    train(net, samples, sw, epochs, seed, lr);
-    std::fprintf(stderr, "sbr_train_picto: trained (%.1f s)\n", secs());
-
-    // fold the standardisation into the first layer
-    Picto out;
-    out.hidden = uint32_t(hidden);
-    out.threshold = threshold;
-    {
-        std::vector<float> &w = hidden > 0 ? net.w1 : net.w2;
-        const int rows = hidden > 0 ? hidden : kK;
-        for (int r = 0; r < rows; ++r) {
-            float *row = &w[size_t(r) * (kF + 1)];
-            float bias = row[kF];
-            for (int k = 0; k < kF; ++k) {
-                row[k] /= sd[k];
-                bias -= row[k] * mean[k];
+    // train; fold the standardisation into the layer that reads the features and the
+    // target units into the box rows
+    auto fit = [&](Picto &out) {
+        std::vector<float> sw(samples.size(), 1.0f);
+        const float wbg = float(nfg) / float(nbg);
+        for (size_t i = 0; i < samples.size(); ++i)
+            if (samples[i].label == int(SBR_PICTO_BACKGROUND) && !samples[i].hard) sw[i] = wbg;
+        Net net;
+        net.h = hidden;
+        train(net, samples, sw, epochs, seed, lr, bg_fraction);
+        std::fprintf(stderr, "sbr_train_picto: trained (%.1f s)\n", secs());
+        out.hidden = uint32_t(hidden);
+        out.threshold = threshold;
+        auto fold = [&](std::vector<float> &w) {
+            for (size_t r = 0; r < w.size() / (kF + 1); ++r) {
+                float *row = &w[r * (kF + 1)];
+                float bias = row[kF];
+                for (int k = 0; k < kF; ++k) {
+                    row[k] /= sd[k];
+                    bias -= row[k] * mean[k];
+                }
+                row[kF] = bias;
             }
-            row[kF] = bias;
+        };
+        if (hidden > 0) {
+            fold(net.w1);
+        } else {
+            fold(net.w2);
+            fold(net.w3);
         }
+        for (auto &x : net.w3) x *= kTargetScale;
+        out.w1 = net.w1;
+        out.w2 = net.w2;
+        out.w3.clear();
+        if (box) out.w3 = net.w3;
+        out.bind();
+        return sbr_picto_check(&out.view) == SBR_OK;
+    };
+    Picto out;
+    for (int round = 1; round <= rounds; ++round) {
+        if (round > 1) {
+            // the recogniser's detections with this class stage on the training images
+            std::vector<Sample> first;
+            first.swap(samples);
+            mine = &out.view;
+            collect();
+            mine = nullptr;
+            std::fprintf(stderr, "sbr_train_picto: round %d: %zu detections of round %d added\n", round,
+                         samples.size(), round - 1);
+            for (auto &x : samples) {
+                for (int k = 0; k < kF; ++k) x.f[k] = (x.f[k] - mean[k]) / sd[k];
+                x.hard = true;
+            }
+            for (auto &x : first) samples.push_back(std::move(x));
+            std::sort(samples.begin(), samples.end(), [](const Sample &a, const Sample &b) {
+                if (a.label != b.label) return a.label < b.label;
+                return a.f < b.f;
+            });
+            count();
+        }
+        if (!fit(out)) { std::fprintf(stderr, "sbr_train_picto: trained weights fail the check\n"); return 1; }
     }
-    out.w1 = net.w1;
-    out.w2 = net.w2;
-    out.bind();
-    if (sbr_picto_check(&out.view) != SBR_OK) { std::fprintf(stderr, "sbr_train_picto: trained weights fail the check\n"); return 1; }
 
     char head[512];
     std::snprintf(head, sizeof head,
                   "Class stage (pictogram classifier) of sbr's recogniser. GENERATED by sbr_train_picto - do not edit.\n"
                   "Regenerate: ./sbr.sh train   (runs sbr_train_picto --range %d-%d --hidden %d --epochs %d --jitter %d\n"
-                  "            --seed %u --out-c lib/models/sbr_picto_gtsdb.c on GTSDB)\n"
-                  "Training: GTSDB images %05d-%05d, %zu sign samples, %zu background samples.",
-                  r0, r1, hidden, epochs, jitter, seed, r0, r1, nfg, nbg);
+                  "            --bg-fraction %g%s --rounds %d --seed %u --out-c lib/models/sbr_picto_gtsdb.c on GTSDB)\n"
+                  "Training: GTSDB images %05d-%05d, %zu sign samples, %zu background samples,\n"
+                  "%zu boxes for the box regression only.",
+                  r0, r1, hidden, epochs, jitter, double(bg_fraction), box ? "" : " --no-box", rounds, seed, r0, r1, nfg, nbg,
+                  nreg);
     if (!out_c.empty()) {
         const std::string e = write_picto_c(out, out_c, head);
         if (!e.empty()) { std::fprintf(stderr, "sbr_train_picto: %s\n", e.c_str()); return 1; }

@@ -42,7 +42,10 @@
  * 6. Class stage (when the model has one, sbr_model_t::picto): the surviving hypotheses
  *    (at most `max_candidates`, best part score first) are the candidates; the pictogram
  *    classifier (pictogram.h) looks at each box and gives the class (its most probable
- *    sign class) and the score (that probability; "no sign" takes the rest). Detections
+ *    sign class) and the score (that probability; "no sign" takes the rest). When the
+ *    classifier has a box regression, a candidate that is at least `refine_score` likely
+ *    a sign is moved to the box the regression predicts and classified again there
+ *    (`refine_steps` times at most); class, score and box are the last ones. Detections
  *    below `min_score` are dropped and suppression runs again on the new scores.
  *    Without a class stage the part score and part evidence's class are reported.
  *
@@ -61,6 +64,8 @@ extern "C" {
 
 /** Classes of the German Traffic Sign Detection Benchmark (ids 0..42). */
 #define SBR_RECOG_CLASSES 43u
+/** Largest sbr_recog_config_t::refine_steps. */
+#define SBR_RECOG_MAX_REFINE 4u
 /** Classes a prototype can be shared by. */
 #define SBR_MODEL_PROTO_CLASSES 4u
 /** "No class" in sbr_model_proto_t::class_id. */
@@ -68,7 +73,7 @@ extern "C" {
 /** Groups: map kind (0..3) x polarity (dark, bright). */
 #define SBR_MODEL_GROUPS 8u
 /** Model format version (the generated table and the file form). */
-#define SBR_MODEL_VERSION 2u
+#define SBR_MODEL_VERSION 3u
 
 /** One prototype part (see the file comment). */
 typedef struct sbr_model_proto_s {
@@ -170,6 +175,15 @@ typedef struct sbr_recog_config_s {
         recall on signs with weak part evidence, more time.
         Running out is flagged in sbr_recog_stats_t::capacity_hit (bit 4). */
     uint32_t max_candidates;
+    /** With a class stage whose classifier has a box regression (sbr_picto_model_t::w3):
+        how often a candidate's box is moved to where the classifier places the sign and
+        classified again, 0 .. ::SBR_RECOG_MAX_REFINE. Default 1. 0: boxes stay where the
+        part model put them. Each step costs one more pictogram and the regression. */
+    uint32_t refine_steps;
+    /** Refine only while the sign classes together are at least this probable, [0, 1].
+        Default 0.1 (most candidates are clearly background and are not refined). Lower:
+        more work, a little more recall on badly placed boxes. */
+    float refine_score;
     /** Score floor of reported detections, [0, 1): the class stage's probability, or the
         part score without one. Default 0.3 (below the usual operating point, so
         evaluations can draw precision-recall curves). */
@@ -214,6 +228,7 @@ typedef struct sbr_recog_stats_s {
     uint32_t verified;        /**< parts found by cascade verification */
     uint32_t rejected;        /**< hypotheses below min_parts or a score floor */
     uint32_t classified;      /**< candidates the class stage examined */
+    uint32_t refined;         /**< box refinements the class stage applied */
     uint32_t capacity_hit;    /**< bit 0 parts, bit 1 votes, bit 2 hypotheses, bit 3 MSER,
                                    bit 4 candidates */
     uint32_t stage_ticks[SBR_RECOG_STAGES]; /**< clock ticks per ::sbr_recog_stage_t

@@ -649,7 +649,7 @@ sbr_status_t sbr_model_gtsdb(sbr_model_t *out)
     if (out == NULL) {
         return SBR_ERR_NULL;
     }
-    out->version = 2u;
+    out->version = 3u;
     out->fd_n = 128u;
     out->fd_m = 12u;
     out->proto_count = 290u;

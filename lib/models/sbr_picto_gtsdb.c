@@ -10887,5 +10887,6 @@ sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)
     out->threshold = 5.000000000e-01f;
     out->w1 = picto_w1;
     out->w2 = picto_w2;
+    out->w3 = NULL;
     return SBR_OK;
 }

@@ -131,11 +131,26 @@ static int header_ok(const sbr_picto_model_t *model)
     return ok;
 }
 
+/* Rows x columns of the last layer's inputs plus bias. */
+static size_t last_cols(const sbr_picto_model_t *model)
+{
+    return (size_t)((model->hidden > 0u) ? model->hidden : SBR_PICTO_FEATURES) + 1u;
+}
+
+static int all_finite(const float *w, size_t n)
+{
+    int ok = 1;
+    size_t i;
+    for (i = 0u; (i < n) && (ok != 0); i++) {
+        if (isfinite(w[i]) == 0) {
+            ok = 0;
+        }
+    }
+    return ok;
+}
+
 sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
 {
-    size_t n1;
-    size_t n2;
-    size_t i;
     if (model == NULL) {
         return SBR_ERR_NULL;
     }
@@ -143,18 +158,13 @@ sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
         (model->threshold >= 1.0f) || (isfinite(model->threshold) == 0)) {
         return SBR_ERR_CORRUPT;
     }
-    n1 = (size_t)model->hidden * (SBR_PICTO_FEATURES + 1u);
-    n2 = (size_t)SBR_PICTO_OUTPUTS *
-         (((model->hidden > 0u) ? model->hidden : SBR_PICTO_FEATURES) + 1u);
-    for (i = 0u; i < n1; i++) {
-        if (isfinite(model->w1[i]) == 0) {
-            return SBR_ERR_CORRUPT;
-        }
+    if ((all_finite(model->w1, (size_t)model->hidden * (SBR_PICTO_FEATURES + 1u)) == 0) ||
+        (all_finite(model->w2, (size_t)SBR_PICTO_OUTPUTS * last_cols(model)) == 0)) {
+        return SBR_ERR_CORRUPT;
     }
-    for (i = 0u; i < n2; i++) {
-        if (isfinite(model->w2[i]) == 0) {
-            return SBR_ERR_CORRUPT;
-        }
+    if ((model->w3 != NULL) &&
+        (all_finite(model->w3, (size_t)SBR_PICTO_BOX_OUTPUTS * last_cols(model)) == 0)) {
+        return SBR_ERR_CORRUPT;
     }
     return SBR_OK;
 }
@@ -323,20 +333,12 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
     return SBR_OK;
 }
 
-sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *feat, uint32_t len,
-                                float *prob, uint32_t nprob, void *workspace,
-                                size_t workspace_size)
+/* Checks shared by sbr_picto_classify() and sbr_picto_refine(). */
+static sbr_status_t run_check(const sbr_picto_model_t *model, const float *feat, uint32_t len,
+                              const void *workspace, size_t workspace_size)
 {
-    const float *in = feat;
-    uint32_t nin = SBR_PICTO_FEATURES;
-    float mx;
-    float sum = 0.0f;
     uint32_t i;
-
-    if ((model == NULL) || (feat == NULL) || (prob == NULL)) {
-        return SBR_ERR_NULL;
-    }
-    if ((len < SBR_PICTO_FEATURES) || (nprob < SBR_PICTO_OUTPUTS)) {
+    if (len < SBR_PICTO_FEATURES) {
         return SBR_ERR_SIZE;
     }
     if (header_ok(model) == 0) {
@@ -351,8 +353,16 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
             return SBR_ERR_RANGE;
         }
     }
+    return SBR_OK;
+}
+
+/* The last layer's inputs: the rectified hidden units (in the workspace), or the features
+   themselves without a hidden layer. */
+static const float *last_inputs(const sbr_picto_model_t *model, const float *feat, float *a)
+{
+    const float *in = feat;
+    uint32_t i;
     if (model->hidden > 0u) {
-        float *a = (float *)workspace;
         for (i = 0u; i < model->hidden; i++) {
             const float *w = &model->w1[(size_t)i * (SBR_PICTO_FEATURES + 1u)];
             float s = w[SBR_PICTO_FEATURES];
@@ -363,17 +373,46 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
             a[i] = (s > 0.0f) ? s : 0.0f;
         }
         in = a;
-        nin = model->hidden;
     }
-    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
-        const float *w = &model->w2[(size_t)i * ((size_t)nin + 1u)];
-        float s = w[nin];
-        uint32_t k;
-        for (k = 0u; k < nin; k++) {
-            s += w[k] * in[k];
+    return in;
+}
+
+/* out[r] = w[r] . [in; 1] for `rows` rows of `cols` (inputs + bias). */
+static void affine(const float *w, const float *in, size_t cols, uint32_t rows, float *out)
+{
+    uint32_t r;
+    for (r = 0u; r < rows; r++) {
+        const float *wr = &w[(size_t)r * cols];
+        float s = wr[cols - 1u];
+        size_t k;
+        for (k = 0u; k < (cols - 1u); k++) {
+            s += wr[k] * in[k];
         }
-        prob[i] = s;
+        out[r] = s;
     }
+}
+
+sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *feat, uint32_t len,
+                                float *prob, uint32_t nprob, void *workspace,
+                                size_t workspace_size)
+{
+    float mx;
+    float sum = 0.0f;
+    uint32_t i;
+    sbr_status_t st;
+
+    if ((model == NULL) || (feat == NULL) || (prob == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    if (nprob < SBR_PICTO_OUTPUTS) {
+        return SBR_ERR_SIZE;
+    }
+    st = run_check(model, feat, len, workspace, workspace_size);
+    if (st != SBR_OK) {
+        return st;
+    }
+    affine(model->w2, last_inputs(model, feat, (float *)workspace), last_cols(model),
+           SBR_PICTO_OUTPUTS, prob);
     mx = prob[0];
     for (i = 1u; i < SBR_PICTO_OUTPUTS; i++) {
         if (prob[i] > mx) {
@@ -387,5 +426,45 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
     for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
         prob[i] /= sum;
     }
+    return SBR_OK;
+}
+
+sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat, uint32_t len,
+                              const float box[4], float refined[4], void *workspace,
+                              size_t workspace_size)
+{
+    float d[SBR_PICTO_BOX_OUTPUTS];
+    float cx;
+    float cy;
+    float hw;
+    float hh;
+    sbr_status_t st;
+
+    if ((model == NULL) || (feat == NULL) || (box == NULL) || (refined == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = run_check(model, feat, len, workspace, workspace_size);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((finite4(box) == 0) || (box[2] <= box[0]) || (box[3] <= box[1])) {
+        return SBR_ERR_RANGE;
+    }
+    cx = 0.5f * (box[0] + box[2]);
+    cy = 0.5f * (box[1] + box[3]);
+    hw = 0.5f * (box[2] - box[0]);
+    hh = 0.5f * (box[3] - box[1]);
+    if (model->w3 != NULL) {
+        affine(model->w3, last_inputs(model, feat, (float *)workspace), last_cols(model),
+               SBR_PICTO_BOX_OUTPUTS, d);
+        cx += 2.0f * hw * picto_clampf(d[0], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);
+        cy += 2.0f * hh * picto_clampf(d[1], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);
+        hw *= expf(picto_clampf(d[2], -SBR_PICTO_MAX_LOG_SCALE, SBR_PICTO_MAX_LOG_SCALE));
+        hh *= expf(picto_clampf(d[3], -SBR_PICTO_MAX_LOG_SCALE, SBR_PICTO_MAX_LOG_SCALE));
+    }
+    refined[0] = cx - hw;
+    refined[1] = cy - hh;
+    refined[2] = cx + hw;
+    refined[3] = cy + hh;
     return SBR_OK;
 }

@@ -84,6 +84,8 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->min_parts = 1u;
         cfg->candidate_score = 0.0f;
         cfg->max_candidates = 256u;
+        cfg->refine_steps = 1u;
+        cfg->refine_score = 0.1f;
         cfg->min_score = 0.3f;
         cfg->nms_iou = 0.3f;
         cfg->clock = NULL;
@@ -117,7 +119,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (cfg->max_hypotheses == 0u) || (cfg->max_hypotheses > 1000000u) ||
         (cfg->max_model_protos == 0u) || (cfg->max_model_protos > 65535u) ||
         (cfg->cascade_depth > 65535u) || (cfg->min_parts > 65535u) ||
-        (cfg->max_candidates > 1000000u)) {
+        (cfg->max_candidates > 1000000u) || (cfg->refine_steps > SBR_RECOG_MAX_REFINE)) {
         return SBR_ERR_RANGE;
     }
     if ((in_range(cfg->vote_error, 0.0f, 4.0f) == 0) ||
@@ -129,6 +131,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (in_range(cfg->size_tol, 0.0f, 10.0f) == 0) ||
         (in_range(cfg->min_score, 0.0f, 0.999999f) == 0) ||
         (in_range(cfg->candidate_score, 0.0f, 0.999999f) == 0) ||
+        (in_range(cfg->refine_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->nms_iou, 1.0e-6f, 1.0f) == 0)) {
         return SBR_ERR_RANGE;
     }
@@ -682,26 +685,14 @@ static void suppress(recog_ctx_t *c, uint32_t n, uint32_t vw, uint32_t vh)
     }
 }
 
-/* The class stage on one hypothesis: class = the classifier's most probable sign class,
-   score = its probability, share = that class's share of the sign classes' probability.
-   Returns 0 when the box cannot be sampled. */
-static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
-                        float *feat, float *prob, void *pws)
+/* Class and score of one classified box: class = the most probable sign class, score = its
+   probability, share = its share of the sign classes' probability. Returns the sign
+   classes' total probability. */
+static float take_class(recog_hyp_t *h, const float *prob)
 {
-    float box[4];
     float signs = 0.0f;
     uint32_t best = 0u;
     uint32_t k;
-    box[0] = h->mx - (0.5f * h->mw);
-    box[1] = h->my - (0.5f * h->mh);
-    box[2] = h->mx + (0.5f * h->mw);
-    box[3] = h->my + (0.5f * h->mh);
-    if ((sbr_picto_features(view, box, feat, SBR_PICTO_FEATURES, pws, SBR_PICTO_WORKSPACE_SIZE) !=
-         SBR_OK) ||
-        (sbr_picto_classify(pm, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, pws,
-                            SBR_PICTO_WORKSPACE_SIZE) != SBR_OK)) {
-        return 0;
-    }
     for (k = 0u; k < SBR_PICTO_BACKGROUND; k++) {
         signs += prob[k];
         if (prob[k] > prob[best]) {
@@ -711,6 +702,69 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     h->class_id = (uint16_t)best;
     h->score = prob[best];
     h->share = (signs > 0.0f) ? (prob[best] / signs) : 0.0f;
+    return signs;
+}
+
+/* The class stage's buffers in the workspace. */
+typedef struct recog_picto_buf_s {
+    float *feat;
+    float *prob;
+    void *ws;
+} recog_picto_buf_t;
+
+/* Features and class probabilities of one box; 0 when it cannot be sampled. */
+static int picto_box(const sbr_image_t *view, const sbr_picto_model_t *pm, const float box[4],
+                     const recog_picto_buf_t *b)
+{
+    int ok = 0;
+    if ((sbr_picto_features(view, box, b->feat, SBR_PICTO_FEATURES, b->ws,
+                            SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
+        (sbr_picto_classify(pm, b->feat, SBR_PICTO_FEATURES, b->prob, SBR_PICTO_OUTPUTS, b->ws,
+                            SBR_PICTO_WORKSPACE_SIZE) == SBR_OK)) {
+        ok = 1;
+    }
+    return ok;
+}
+
+/* The class stage on one hypothesis: classify its box; while the signs are at least
+   refine_score probable (at most refine_steps times), move the box by the classifier's
+   box regression and classify again there. Returns 0 when the box cannot be sampled;
+   counts refinements in *refined. */
+static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
+                        const sbr_recog_config_t *cfg, const recog_picto_buf_t *b,
+                        uint32_t *refined)
+{
+    float box[4];
+    float signs;
+    uint32_t step = 0u;
+    box[0] = h->mx - (0.5f * h->mw);
+    box[1] = h->my - (0.5f * h->mh);
+    box[2] = h->mx + (0.5f * h->mw);
+    box[3] = h->my + (0.5f * h->mh);
+    if (picto_box(view, pm, box, b) == 0) {
+        return 0;
+    }
+    signs = take_class(h, b->prob);
+    while ((pm->w3 != NULL) && (step < cfg->refine_steps) && (signs >= cfg->refine_score)) {
+        float nb[4];
+        step++;
+        if ((sbr_picto_refine(pm, b->feat, SBR_PICTO_FEATURES, box, nb, b->ws,
+                              SBR_PICTO_WORKSPACE_SIZE) != SBR_OK) ||
+            (picto_box(view, pm, nb, b) == 0)) {
+            step = cfg->refine_steps; /* the box left the image: keep the last one */
+        } else {
+            (*refined)++;
+            box[0] = nb[0];
+            box[1] = nb[1];
+            box[2] = nb[2];
+            box[3] = nb[3];
+            h->mx = 0.5f * (box[0] + box[2]);
+            h->my = 0.5f * (box[1] + box[3]);
+            h->mw = box[2] - box[0];
+            h->mh = box[3] - box[1];
+            signs = take_class(h, b->prob);
+        }
+    }
     return 1;
 }
 
@@ -841,9 +895,10 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
        suppression again on the new scores */
     if (model->picto.version != 0u) {
         uint32_t examined = 0u;
-        float *feat = (float *)(void *)&base[l.total - l.picto];
-        float *prob = &feat[SBR_PICTO_FEATURES];
-        void *pws = (void *)&prob[SBR_PICTO_OUTPUTS];
+        recog_picto_buf_t pb;
+        pb.feat = (float *)(void *)&base[l.total - l.picto];
+        pb.prob = &pb.feat[SBR_PICTO_FEATURES];
+        pb.ws = (void *)&pb.prob[SBR_PICTO_OUTPUTS];
         for (i = 0u; i < kept; i++) {
             recog_hyp_t *h = &c.hyps[i];
             if (h->keep == 0u) {
@@ -855,7 +910,7 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
                 continue;
             }
             examined++;
-            if (classify_hyp(h, &view, &model->picto, feat, prob, pws) == 0) {
+            if (classify_hyp(h, &view, &model->picto, cfg, &pb, &c.st.refined) == 0) {
                 continue;
             }
             if (h->score >= cfg->min_score) {

@@ -1,0 +1,150 @@
+/* The whole recogniser with the built-in library and class stage on one small synthetic
+   street scene (drawn with integer arithmetic, so every target renders the same pixels):
+   a prohibitory-like sign, a mandatory-like blue disc, a danger-like triangle on a noisy
+   gradient. The test checks that it runs within the stated workspace and that its
+   detections are well-formed, and prints them one per line:
+
+     SBRDET class x y width height score_ppm share_ppm parts
+
+   cmake/compare_scene.py runs this program on the host and on the emulated Cortex-M4 and
+   requires the same detections (the tolerance is documented there). */
+#include "unity.h"
+#include "sbr/recognizer.h"
+
+#include <string.h>
+
+#define W 160u
+#define H 96u
+#define CAP 64u
+
+static uint8_t g_rgb[H][W][3];
+static uint64_t g_ws[700000u / 8u];
+static sbr_detection_t g_dets[CAP];
+
+void setUp(void) {}
+void tearDown(void) {}
+
+static void put(uint32_t x, uint32_t y, uint8_t r, uint8_t g, uint8_t b)
+{
+    g_rgb[y][x][0] = r;
+    g_rgb[y][x][1] = g;
+    g_rgb[y][x][2] = b;
+}
+
+static int32_t sq(int32_t v)
+{
+    return v * v;
+}
+
+static void draw_scene(void)
+{
+    uint32_t state = 2024u;
+    uint32_t x;
+    uint32_t y;
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            const int32_t px = (int32_t)x;
+            const int32_t py = (int32_t)y;
+            const int32_t d1 = sq(px - 40) + sq(py - 46);           /* prohibitory, r 18 */
+            const int32_t d2 = sq(px - 92) + sq(py - 38);           /* mandatory, r 14 */
+            const int32_t ty = py - 34;                              /* triangle, apex up */
+            const int32_t tx = (px > 132) ? (px - 132) : (132 - px);
+            uint32_t base;
+            state = (state * 1664525u) + 1013904223u;
+            base = 90u + ((y * 60u) / H) + ((state >> 28) & 7u);
+            put(x, y, (uint8_t)base, (uint8_t)(base + 10u), (uint8_t)(base - 5u));
+            if (d1 <= sq(18)) {
+                if ((px >= 31) && (px <= 49) && (py >= 43) && (py <= 49)) {
+                    put(x, y, 25u, 25u, 25u); /* a dark bar */
+                } else if (d1 <= sq(12)) {
+                    put(x, y, 235u, 235u, 230u);
+                } else {
+                    put(x, y, 200u, 25u, 35u);
+                }
+            } else if (d2 <= sq(14)) {
+                if ((((py >= 36) && (py <= 40)) && (px >= 84) && (px <= 100)) ||
+                    ((px >= 96) && (px <= 102) && ((sq(py - 38) * 4) <= sq(102 - px)))) {
+                    put(x, y, 240u, 240u, 240u); /* an arrow */
+                } else {
+                    put(x, y, 20u, 60u, 170u);
+                }
+            } else if ((ty >= 0) && (ty <= 30) && ((2 * tx) <= ty)) {
+                if ((ty >= 8) && (ty <= 25) && ((2 * tx) <= (ty - 9))) {
+                    put(x, y, 240u, 240u, 235u);
+                } else {
+                    put(x, y, 205u, 30u, 30u);
+                }
+            } else {
+                /* background */
+            }
+        }
+    }
+}
+
+static void print_detection(const sbr_detection_t *d)
+{
+    UnityPrint("SBRDET ");
+    UnityPrintNumberUnsigned(d->class_id);
+    UnityPrint(" ");
+    UnityPrintNumberUnsigned(d->box.x);
+    UnityPrint(" ");
+    UnityPrintNumberUnsigned(d->box.y);
+    UnityPrint(" ");
+    UnityPrintNumberUnsigned(d->box.width);
+    UnityPrint(" ");
+    UnityPrintNumberUnsigned(d->box.height);
+    UnityPrint(" ");
+    UnityPrintNumberUnsigned((UNITY_UINT)((d->score * 1.0e6f) + 0.5f));
+    UnityPrint(" ");
+    UnityPrintNumberUnsigned((UNITY_UINT)((d->class_share * 1.0e6f) + 0.5f));
+    UnityPrint(" ");
+    UnityPrintNumberUnsigned(d->parts);
+    UNITY_PRINT_EOL();
+}
+
+/* Every classified candidate is reported (min_score 0), so the comparison covers the
+   part model, the class stage and the box refinement, not only the final few. */
+static void test_scene(void)
+{
+    sbr_model_t m;
+    sbr_recog_config_t c;
+    sbr_recog_stats_t st;
+    sbr_image_t v;
+    uint32_t n = 0u;
+    uint32_t i;
+    draw_scene();
+    v.width = W;
+    v.height = H;
+    v.stride = 3u * W;
+    v.format = SBR_PIXEL_RGB888;
+    v.data = &g_rgb[0][0][0];
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
+    sbr_recog_config_default(&c);
+    c.parts.max_side = 48u;
+    c.parts.max_regions = 256u;
+    c.parts.max_contour = 512u;
+    c.parts.mser.max_nodes = 4000u;
+    c.max_parts = 128u;
+    c.max_votes = 2048u;
+    c.max_hypotheses = 64u;
+    c.min_score = 0.0f;
+    TEST_ASSERT_TRUE(sbr_recog_workspace_size(W, H, &c) <= sizeof g_ws);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_TRUE(n >= 1u); /* something to compare */
+    TEST_ASSERT_TRUE(st.classified >= n);
+    for (i = 0u; i < n; i++) {
+        TEST_ASSERT_TRUE(g_dets[i].class_id < SBR_RECOG_CLASSES);
+        TEST_ASSERT_TRUE((g_dets[i].score >= 0.0f) && (g_dets[i].score <= 1.0f));
+        TEST_ASSERT_TRUE((i == 0u) || (g_dets[i].score <= g_dets[i - 1u].score));
+        TEST_ASSERT_TRUE(g_dets[i].box.x + g_dets[i].box.width <= W);
+        TEST_ASSERT_TRUE(g_dets[i].box.y + g_dets[i].box.height <= H);
+        print_detection(&g_dets[i]);
+    }
+}
+
+int main(void)
+{
+    UNITY_BEGIN();
+    RUN_TEST(test_scene);
+    return UNITY_END();
+}
