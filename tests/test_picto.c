@@ -13,6 +13,8 @@
 #define HOG_LEN (SBR_PICTO_CELLS * SBR_PICTO_CELLS * 8u)
 #define THUMB_AT HOG_LEN
 #define COLOUR_AT (HOG_LEN + (SBR_PICTO_THUMB * SBR_PICTO_THUMB))
+#define CENTRE_AT (COLOUR_AT + 32u)
+#define CC SBR_PICTO_CENTRE_CELLS
 
 static uint8_t g_rgb[H][W][3];
 static uint8_t g_bgr[H][W][3];
@@ -72,8 +74,8 @@ static sbr_status_t feats(const sbr_image_t *v, float x0, float y0, float x1, fl
     return sbr_picto_features(v, box, f, F, g_ws, sizeof g_ws);
 }
 
-/* A uniform patch has no edges, a zero contrast-normalised thumbnail and the colour's
-   chromaticity r / (r + g + b + 30) in every cell. */
+/* A uniform patch has no edges (coarse or fine), a zero contrast-normalised thumbnail and
+   the colour's chromaticity r / (r + g + b + 30) in every cell. */
 static void test_uniform_patch(void)
 {
     const sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
@@ -86,6 +88,10 @@ static void test_uniform_patch(void)
     for (i = 0u; i < 16u; i++) {
         TEST_ASSERT_FLOAT_WITHIN(1e-5f, 200.0f / 330.0f, g_f[COLOUR_AT + (2u * i)]);
         TEST_ASSERT_FLOAT_WITHIN(1e-5f, 50.0f / 330.0f, g_f[COLOUR_AT + (2u * i) + 1u]);
+    }
+    TEST_ASSERT_EQUAL_UINT32(F, CENTRE_AT + (CC * CC * 8u));
+    for (i = CENTRE_AT; i < F; i++) {
+        TEST_ASSERT_FLOAT_WITHIN(1e-5f, 0.0f, g_f[i]);
     }
 }
 
@@ -117,6 +123,22 @@ static void test_step_edge(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, g_f[0]);
     TEST_ASSERT_TRUE(g_f[THUMB_AT] < -0.9f);
     TEST_ASSERT_TRUE(g_f[THUMB_AT + SBR_PICTO_THUMB - 1u] > 0.9f);
+    /* the middle half's finer cells (3 px over patch columns 6..17): the edge between
+       columns 11 and 12 lies in cell columns 1 and 2 only, pointing right; unit norm */
+    ss = 0.0f;
+    for (i = CENTRE_AT; i < F; i++) {
+        ss += g_f[i] * g_f[i];
+    }
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 1.0f, ss);
+    for (c = 0u; c < CC; c++) {
+        const float *row = &g_f[CENTRE_AT + (c * CC * 8u)];
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, row[0]);            /* cell column 0 */
+        TEST_ASSERT_TRUE(row[8u] > 0.1f);                         /* cell column 1 */
+        TEST_ASSERT_TRUE(row[16u] > 0.1f);                        /* cell column 2 */
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, row[24u]);          /* cell column 3 */
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, row[8u + 4u]);      /* never bright-to-dark */
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, row[16u + 2u]);     /* no vertical gradient */
+    }
 }
 
 /* The same pixels as RGB and as BGR give the same features; the same pattern at twice
@@ -214,6 +236,7 @@ static void test_builtin_and_corrupt(void)
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gtsdb(&m));
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
     TEST_ASSERT_TRUE(m.hidden <= SBR_PICTO_HIDDEN_MAX);
+    TEST_ASSERT_NOT_NULL(m.w3); /* it carries its box regression */
     bad = m;
     bad.version = 0u;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));

@@ -209,6 +209,7 @@ int main(int argc, char **argv) {
     std::vector<std::vector<double>> ms_stage(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
     size_t capacity_kind[5] = {0, 0, 0, 0, 0};
+    size_t classified = 0, refined = 0, frames_run = 0;
     uint64_t parts_total = 0;
     double sum_ms = 0;
     for (size_t i = 0; i < files.size(); ++i) {
@@ -246,6 +247,9 @@ int main(int argc, char **argv) {
             parts_total += stats.parts;
             if (stats.capacity_hit != 0 || st == SBR_ERR_CAPACITY) ++capacity_frames;
             for (unsigned b = 0; b < 5; ++b) capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
+            classified += stats.classified;
+            refined += stats.refined;
+            ++frames_run;
             for (uint32_t k = 0; k < n; ++k) {
                 const auto &d = dets[k];
                 char line[160];
@@ -300,6 +304,12 @@ int main(int argc, char **argv) {
     s << "frames with an internal bound reached: " << capacity_frames << " (parts " << capacity_kind[0]
       << ", votes " << capacity_kind[1] << ", hypotheses " << capacity_kind[2] << ", MSER " << capacity_kind[3]
       << ", candidates " << capacity_kind[4] << ")\n";
+    if (frames_run > 0 && classified > 0) {
+        char cbuf[160];
+        std::snprintf(cbuf, sizeof cbuf, "class stage per frame (mean): %.1f candidates classified, %.1f boxes refined\n",
+                      double(classified) / double(frames_run), double(refined) / double(frames_run));
+        s << cbuf;
+    }
     if (can) s << "CAN log: " << canlog << " (" << can->frames_written() << " frames)\n";
     if (!annotated.empty()) s << "annotated images: " << annotated << "\n";
     std::fputs(s.str().c_str(), stdout);

@@ -14,7 +14,10 @@
  *      contrast-normalised grey patch projected on 4 axes, positive and negative parts
  *      apart), L2-normalised over the patch: the shape of the pictogram's boundaries;
  *    - the contrast-normalised grey patch at 8 x 8: the pictogram's mask;
- *    - red and blue chromaticity per cell (4 x 4 x 2): the sign's colour layout.
+ *    - red and blue chromaticity per cell (4 x 4 x 2): the sign's colour layout;
+ *    - finer edge orientation histograms of the middle half of the patch (4 x 4 cells of
+ *      3 px, 8 directions, L2-normalised on their own): the pictogram's detail (the
+ *      digits of a speed limit are only a few pixels wide).
  * 3. A classifier learned by `sbr_train_picto` (a layer of rectified units, or none, then a
  *    softmax) gives the probability of each GTSDB class and of "no sign"
  *    (::SBR_PICTO_BACKGROUND).
@@ -42,16 +45,20 @@ extern "C" {
 #define SBR_PICTO_CELLS 6u
 /** Grey thumbnail side. */
 #define SBR_PICTO_THUMB 12u
-/** Feature vector length: cells^2 x 8 orientations + thumb^2 grey + 4 x 4 x 2 colours. */
+/** Cells per side of the middle half's finer orientation histograms. */
+#define SBR_PICTO_CENTRE_CELLS 4u
+/** Feature vector length: cells^2 x 8 orientations + thumb^2 grey + 4 x 4 x 2 colours +
+    centre cells^2 x 8 orientations. */
 #define SBR_PICTO_FEATURES \
-    ((SBR_PICTO_CELLS * SBR_PICTO_CELLS * 8u) + (SBR_PICTO_THUMB * SBR_PICTO_THUMB) + 32u)
+    ((SBR_PICTO_CELLS * SBR_PICTO_CELLS * 8u) + (SBR_PICTO_THUMB * SBR_PICTO_THUMB) + 32u + \
+     (SBR_PICTO_CENTRE_CELLS * SBR_PICTO_CENTRE_CELLS * 8u))
 /** Classifier outputs: GTSDB classes 0..42 and background. */
 #define SBR_PICTO_OUTPUTS 44u
 /** The background output's index. */
 #define SBR_PICTO_BACKGROUND 43u
 /** Largest hidden layer. */
 #define SBR_PICTO_HIDDEN_MAX 256u
-/** Classifier format version (2: with the optional box regression w3). */
+/** Classifier format version (2: centre histograms and the optional box regression w3). */
 #define SBR_PICTO_VERSION 2u
 /** Box-regression outputs: centre shift in x and y (fractions of the box's width and
     height), natural log of the width and height ratios. */

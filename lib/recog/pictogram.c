@@ -18,6 +18,11 @@
 #define F_HOG 0u
 #define F_THUMB (CELLS * CELLS * ORIENT)
 #define F_COLOUR (F_THUMB + (THUMB * THUMB))
+#define F_CENTRE (F_COLOUR + (2u * CCELLS * CCELLS))
+/* The middle half of the patch, [PS / 4, 3 PS / 4), in cells of CENTRE_CELL pixels. */
+#define CENTRE_CELLS SBR_PICTO_CENTRE_CELLS
+#define CENTRE_LO (PS / 4u)
+#define CENTRE_CELL ((PS / 2u) / CENTRE_CELLS)
 
 /* Pixel counts of a thumbnail cell and a colour cell. */
 #define THUMB_AREA ((float)SBR_PICTO_SIZE * (float)SBR_PICTO_SIZE / \
@@ -298,21 +303,29 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
             const float gy = g[(vp * PS) + u] - g[(vm * PS) + u];
             float proj[4];
             float *cell = &feat[F_HOG + ((((v / CELL) * CELLS) + (u / CELL)) * ORIENT)];
+            float *fine = NULL;
             uint32_t k;
+            if ((u >= CENTRE_LO) && (v >= CENTRE_LO) && (u < (PS - CENTRE_LO)) &&
+                (v < (PS - CENTRE_LO))) {
+                fine = &feat[F_CENTRE + ((((((v - CENTRE_LO) / CENTRE_CELL) * CENTRE_CELLS) +
+                                           ((u - CENTRE_LO) / CENTRE_CELL))) * ORIENT)];
+            }
             proj[0] = gx;
             proj[1] = DIAG * (gx + gy);
             proj[2] = gy;
             proj[3] = DIAG * (gy - gx);
             for (k = 0u; k < 4u; k++) {
-                if (proj[k] > 0.0f) {
-                    cell[k] += proj[k];
-                } else {
-                    cell[k + 4u] -= proj[k];
+                const uint32_t bin = (proj[k] > 0.0f) ? k : (k + 4u);
+                const float mag = (proj[k] > 0.0f) ? proj[k] : -proj[k];
+                cell[bin] += mag;
+                if (fine != NULL) {
+                    fine[bin] += mag;
                 }
             }
         }
     }
     unit_norm(&feat[F_HOG], CELLS * CELLS * ORIENT);
+    unit_norm(&feat[F_CENTRE], CENTRE_CELLS * CENTRE_CELLS * ORIENT);
 
     /* grey thumbnail and colour per cell */
     for (v = 0u; v < PS; v++) {
@@ -361,8 +374,8 @@ static sbr_status_t run_check(const sbr_picto_model_t *model, const float *feat,
 static const float *last_inputs(const sbr_picto_model_t *model, const float *feat, float *a)
 {
     const float *in = feat;
-    uint32_t i;
     if (model->hidden > 0u) {
+        uint32_t i;
         for (i = 0u; i < model->hidden; i++) {
             const float *w = &model->w1[(size_t)i * (SBR_PICTO_FEATURES + 1u)];
             float s = w[SBR_PICTO_FEATURES];
@@ -433,7 +446,6 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
                               const float box[4], float refined[4], void *workspace,
                               size_t workspace_size)
 {
-    float d[SBR_PICTO_BOX_OUTPUTS];
     float cx;
     float cy;
     float hw;
@@ -455,6 +467,7 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
     hw = 0.5f * (box[2] - box[0]);
     hh = 0.5f * (box[3] - box[1]);
     if (model->w3 != NULL) {
+        float d[SBR_PICTO_BOX_OUTPUTS];
         affine(model->w3, last_inputs(model, feat, (float *)workspace), last_cols(model),
                SBR_PICTO_BOX_OUTPUTS, d);
         cx += 2.0f * hw * picto_clampf(d[0], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);

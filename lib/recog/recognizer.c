@@ -714,7 +714,7 @@ typedef struct recog_picto_buf_s {
 
 /* Features and class probabilities of one box; 0 when it cannot be sampled. */
 static int picto_box(const sbr_image_t *view, const sbr_picto_model_t *pm, const float box[4],
-                     const recog_picto_buf_t *b)
+                     recog_picto_buf_t *b)
 {
     int ok = 0;
     if ((sbr_picto_features(view, box, b->feat, SBR_PICTO_FEATURES, b->ws,
@@ -728,15 +728,17 @@ static int picto_box(const sbr_image_t *view, const sbr_picto_model_t *pm, const
 
 /* The class stage on one hypothesis: classify its box; while the signs are at least
    refine_score probable (at most refine_steps times), move the box by the classifier's
-   box regression and classify again there. Returns 0 when the box cannot be sampled;
-   counts refinements in *refined. */
+   box regression and classify again there. A move is kept only when the new box's class
+   is at least as probable as the last one's (a regression that slides off the sign onto
+   its neighbour or clutter is undone, and the refinement stops). Returns 0 when the box
+   cannot be sampled; counts kept refinements in *refined. */
 static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
-                        const sbr_recog_config_t *cfg, const recog_picto_buf_t *b,
+                        const sbr_recog_config_t *cfg, recog_picto_buf_t *b,
                         uint32_t *refined)
 {
     float box[4];
-    float signs;
     uint32_t step = 0u;
+    uint32_t steps = 0u;
     box[0] = h->mx - (0.5f * h->mw);
     box[1] = h->my - (0.5f * h->mh);
     box[2] = h->mx + (0.5f * h->mw);
@@ -744,25 +746,36 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     if (picto_box(view, pm, box, b) == 0) {
         return 0;
     }
-    signs = take_class(h, b->prob);
-    while ((pm->w3 != NULL) && (step < cfg->refine_steps) && (signs >= cfg->refine_score)) {
+    if ((take_class(h, b->prob) >= cfg->refine_score) && (pm->w3 != NULL)) {
+        steps = cfg->refine_steps;
+    }
+    while (step < steps) {
         float nb[4];
+        recog_hyp_t moved = *h;
         step++;
         if ((sbr_picto_refine(pm, b->feat, SBR_PICTO_FEATURES, box, nb, b->ws,
                               SBR_PICTO_WORKSPACE_SIZE) != SBR_OK) ||
             (picto_box(view, pm, nb, b) == 0)) {
-            step = cfg->refine_steps; /* the box left the image: keep the last one */
+            step = steps; /* the box left the image: keep the last one */
         } else {
-            (*refined)++;
-            box[0] = nb[0];
-            box[1] = nb[1];
-            box[2] = nb[2];
-            box[3] = nb[3];
-            h->mx = 0.5f * (box[0] + box[2]);
-            h->my = 0.5f * (box[1] + box[3]);
-            h->mw = box[2] - box[0];
-            h->mh = box[3] - box[1];
-            signs = take_class(h, b->prob);
+            const float s2 = take_class(&moved, b->prob);
+            if (moved.score < h->score) {
+                step = steps; /* less sure there: keep the last box */
+            } else {
+                if (s2 < cfg->refine_score) {
+                    step = steps; /* no longer a likely sign: this is the last move */
+                }
+                (*refined)++;
+                box[0] = nb[0];
+                box[1] = nb[1];
+                box[2] = nb[2];
+                box[3] = nb[3];
+                moved.mx = 0.5f * (box[0] + box[2]);
+                moved.my = 0.5f * (box[1] + box[3]);
+                moved.mw = box[2] - box[0];
+                moved.mh = box[3] - box[1];
+                *h = moved;
+            }
         }
     }
     return 1;
@@ -895,10 +908,12 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
        suppression again on the new scores */
     if (model->picto.version != 0u) {
         uint32_t examined = 0u;
+        float *feat = (float *)(void *)&base[l.total - l.picto];
+        float *prob = &feat[SBR_PICTO_FEATURES];
         recog_picto_buf_t pb;
-        pb.feat = (float *)(void *)&base[l.total - l.picto];
-        pb.prob = &pb.feat[SBR_PICTO_FEATURES];
-        pb.ws = (void *)&pb.prob[SBR_PICTO_OUTPUTS];
+        pb.feat = feat;
+        pb.prob = prob;
+        pb.ws = (void *)&prob[SBR_PICTO_OUTPUTS];
         for (i = 0u; i < kept; i++) {
             recog_hyp_t *h = &c.hyps[i];
             if (h->keep == 0u) {
