@@ -68,6 +68,22 @@ static void step_edge(uint32_t x0, uint32_t y0, uint32_t s)
     }
 }
 
+/* A hand-made classifier without hidden layer or box regression, all weights and the
+   features zero (uniform probabilities). */
+static void hand_model(sbr_picto_model_t *m)
+{
+    (void)memset(g_w2, 0, sizeof g_w2);
+    (void)memset(g_w3, 0, sizeof g_w3);
+    (void)memset(g_f, 0, sizeof g_f);
+    m->version = SBR_PICTO_VERSION;
+    m->features = F;
+    m->hidden = 0u;
+    m->threshold = 0.5f;
+    m->w1 = NULL;
+    m->w2 = g_w2;
+    m->w3 = NULL;
+}
+
 static sbr_status_t feats(const sbr_image_t *v, float x0, float y0, float x1, float y1, float *f)
 {
     const float box[4] = {x0, y0, x1, y1};
@@ -194,15 +210,7 @@ static void test_classify_values(void)
     float p[SBR_PICTO_OUTPUTS];
     float sum = 0.0f;
     uint32_t i;
-    (void)memset(g_w2, 0, sizeof g_w2);
-    (void)memset(g_f, 0, sizeof g_f);
-    m.version = SBR_PICTO_VERSION;
-    m.features = F;
-    m.hidden = 0u;
-    m.threshold = 0.5f;
-    m.w1 = NULL;
-    m.w2 = g_w2;
-    m.w3 = NULL;
+    hand_model(&m);
     g_w2[(5u * (F + 1u)) + F] = logf(2.0f); /* class 5: twice the weight of the others */
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
@@ -274,16 +282,7 @@ static void test_refine_values(void)
     sbr_picto_model_t m;
     const float box[4] = {10.0f, 20.0f, 50.0f, 40.0f}; /* centre (30, 30), 40 x 20 */
     float r[4];
-    (void)memset(g_w2, 0, sizeof g_w2);
-    (void)memset(g_w3, 0, sizeof g_w3);
-    (void)memset(g_f, 0, sizeof g_f);
-    m.version = SBR_PICTO_VERSION;
-    m.features = F;
-    m.hidden = 0u;
-    m.threshold = 0.5f;
-    m.w1 = NULL;
-    m.w2 = g_w2;
-    m.w3 = NULL;
+    hand_model(&m);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_refine(&m, g_f, F, box, r, g_ws, sizeof g_ws));
     TEST_ASSERT_EQUAL_FLOAT(10.0f, r[0]);
     TEST_ASSERT_EQUAL_FLOAT(20.0f, r[1]);
