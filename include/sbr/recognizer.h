@@ -45,8 +45,7 @@
  *    sign class) and the score (that probability; "no sign" takes the rest). When the
  *    classifier has a box regression, a candidate that is at least `refine_score` likely
  *    a sign is moved to the box the regression predicts and classified again there
- *    (`refine_steps` times at most); a move is kept only when the class there is at
- *    least as probable as before (else the refinement stops). Detections
+ *    (`refine_steps` times at most); class, score and box are the last ones. Detections
  *    below `min_score` are dropped and suppression runs again on the new scores.
  *    Without a class stage the part score and part evidence's class are reported.
  *

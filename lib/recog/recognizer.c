@@ -728,10 +728,8 @@ static int picto_box(const sbr_image_t *view, const sbr_picto_model_t *pm, const
 
 /* The class stage on one hypothesis: classify its box; while the signs are at least
    refine_score probable (at most refine_steps times), move the box by the classifier's
-   box regression and classify again there. A move is kept only when the new box's class
-   is at least as probable as the last one's (a regression that slides off the sign onto
-   its neighbour or clutter is undone, and the refinement stops). Returns 0 when the box
-   cannot be sampled; counts kept refinements in *refined. */
+   box regression and classify again there; class, score and box are the last ones.
+   Returns 0 when the box cannot be sampled; counts refinements in *refined. */
 static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
                         const sbr_recog_config_t *cfg, recog_picto_buf_t *b,
                         uint32_t *refined)
@@ -751,30 +749,23 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     }
     while (step < steps) {
         float nb[4];
-        recog_hyp_t moved = *h;
         step++;
         if ((sbr_picto_refine(pm, b->feat, SBR_PICTO_FEATURES, box, nb, b->ws,
                               SBR_PICTO_WORKSPACE_SIZE) != SBR_OK) ||
             (picto_box(view, pm, nb, b) == 0)) {
             step = steps; /* the box left the image: keep the last one */
         } else {
-            const float s2 = take_class(&moved, b->prob);
-            if (moved.score < h->score) {
-                step = steps; /* less sure there: keep the last box */
-            } else {
-                if (s2 < cfg->refine_score) {
-                    step = steps; /* no longer a likely sign: this is the last move */
-                }
-                (*refined)++;
-                box[0] = nb[0];
-                box[1] = nb[1];
-                box[2] = nb[2];
-                box[3] = nb[3];
-                moved.mx = 0.5f * (box[0] + box[2]);
-                moved.my = 0.5f * (box[1] + box[3]);
-                moved.mw = box[2] - box[0];
-                moved.mh = box[3] - box[1];
-                *h = moved;
+            (*refined)++;
+            box[0] = nb[0];
+            box[1] = nb[1];
+            box[2] = nb[2];
+            box[3] = nb[3];
+            h->mx = 0.5f * (box[0] + box[2]);
+            h->my = 0.5f * (box[1] + box[3]);
+            h->mw = box[2] - box[0];
+            h->mh = box[3] - box[1];
+            if (take_class(h, b->prob) < cfg->refine_score) {
+                step = steps; /* no longer a likely sign: this was the last move */
             }
         }
     }
