@@ -266,6 +266,7 @@ static void test_builtin_and_corrupt(void)
     bad.hidden = 0u;
     bad.w1 = NULL;
     bad.w2 = g_w2;
+    bad.w3 = NULL; /* the built-in rows are sized for its hidden layer, not for hidden = 0 */
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&bad));
     g_w2[100] = INFINITY;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&bad));
