@@ -296,4 +296,13 @@ std::string write_picto_c(const Picto &p, const std::string &path, const std::st
     return f ? "" : "write failed: " + path;
 }
 
+bool report_write(const char *tool, const std::string &path, const std::string &error) {
+    if (!error.empty()) {
+        std::fprintf(stderr, "%s: %s\n", tool, error.c_str());
+        return false;
+    }
+    std::fprintf(stderr, "%s: wrote %s\n", tool, path.c_str());
+    return true;
+}
+
 }  // namespace sbr_host

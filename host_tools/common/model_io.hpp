@@ -60,4 +60,8 @@ std::string load_picto(const std::string &path, Picto &p);
 // The generated C source: const tables and sbr_picto_gtsdb().
 std::string write_picto_c(const Picto &p, const std::string &path, const std::string &header);
 
+// Reports the outcome of one of the writers above on stderr ("TOOL: wrote PATH" or
+// "TOOL: ERROR"); returns false on error.
+bool report_write(const char *tool, const std::string &path, const std::string &error);
+
 }  // namespace sbr_host

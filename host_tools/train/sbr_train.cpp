@@ -498,16 +498,8 @@ int main(int argc, char **argv) {
                   "Library: %zu prototypes, %zu cascade entries, operating point score >= %.4f.",
                   r0, r1, double(vote_error), min_support, max_protos, r0, r1, nsigns, inst.size(), nbg,
                   m.protos.size(), m.cascade.size(), double(m.view.score_threshold));
-    if (!out_c.empty()) {
-        const std::string e = write_model_c(m, out_c, head);
-        if (!e.empty()) { std::fprintf(stderr, "sbr_train: %s\n", e.c_str()); return 1; }
-        std::fprintf(stderr, "sbr_train: wrote %s\n", out_c.c_str());
-    }
-    if (!out_model.empty()) {
-        const std::string e = save_model(m, out_model);
-        if (!e.empty()) { std::fprintf(stderr, "sbr_train: %s\n", e.c_str()); return 1; }
-        std::fprintf(stderr, "sbr_train: wrote %s\n", out_model.c_str());
-    }
+    if (!out_c.empty() && !report_write("sbr_train", out_c, write_model_c(m, out_c, head))) return 1;
+    if (!out_model.empty() && !report_write("sbr_train", out_model, save_model(m, out_model))) return 1;
     std::printf("prototypes=%zu cascade=%zu score_threshold=%.4f\n", m.protos.size(), m.cascade.size(),
                 double(m.view.score_threshold));
     return 0;

@@ -94,6 +94,14 @@ struct Sample {
     bool hard = false;  // a detection of an earlier round: weighted like a sign, always seen
 };
 
+// A deterministic order of the samples, whatever order threads collected them in.
+void sort_samples(std::vector<Sample> &s) {
+    std::sort(s.begin(), s.end(), [](const Sample &a, const Sample &b) {
+        if (a.label != b.label) return a.label < b.label;
+        return a.f < b.f;
+    });
+}
+
 // Regression target of box b for the sign box g: centre shift in units of b's width and
 // height, log size ratios (pictogram.h, sbr_picto_refine()).
 void box_target(const Box &b, const Box &g, float t[4]) {
@@ -456,10 +464,7 @@ int main(int argc, char **argv) {
         for (unsigned t = 0; t < nt; ++t) th.emplace_back(work);
         for (auto &t : th) t.join();
         // deterministic order whatever the threads did
-        std::sort(samples.begin(), samples.end(), [](const Sample &a, const Sample &b) {
-            if (a.label != b.label) return a.label < b.label;
-            return a.f < b.f;
-        });
+        sort_samples(samples);
     };
     size_t nbg = 0, nreg = 0, nfg = 0;
     auto count = [&]() {
@@ -542,10 +547,7 @@ int main(int argc, char **argv) {
                 x.hard = true;
             }
             for (auto &x : first) samples.push_back(std::move(x));
-            std::sort(samples.begin(), samples.end(), [](const Sample &a, const Sample &b) {
-                if (a.label != b.label) return a.label < b.label;
-                return a.f < b.f;
-            });
+            sort_samples(samples);
             count();
         }
         if (!fit(out)) { std::fprintf(stderr, "sbr_train_picto: trained weights fail the check\n"); return 1; }
@@ -560,16 +562,8 @@ int main(int argc, char **argv) {
                   "%zu boxes for the box regression only.",
                   r0, r1, hidden, epochs, jitter, double(bg_fraction), box ? "" : " --no-box", rounds, seed, r0, r1, nfg, nbg,
                   nreg);
-    if (!out_c.empty()) {
-        const std::string e = write_picto_c(out, out_c, head);
-        if (!e.empty()) { std::fprintf(stderr, "sbr_train_picto: %s\n", e.c_str()); return 1; }
-        std::fprintf(stderr, "sbr_train_picto: wrote %s\n", out_c.c_str());
-    }
-    if (!out_file.empty()) {
-        const std::string e = save_picto(out, out_file);
-        if (!e.empty()) { std::fprintf(stderr, "sbr_train_picto: %s\n", e.c_str()); return 1; }
-        std::fprintf(stderr, "sbr_train_picto: wrote %s\n", out_file.c_str());
-    }
+    if (!out_c.empty() && !report_write("sbr_train_picto", out_c, write_picto_c(out, out_c, head))) return 1;
+    if (!out_file.empty() && !report_write("sbr_train_picto", out_file, save_picto(out, out_file))) return 1;
 
     if (e0 >= 0) {
         // diagnostic on other images (normally the development split), with the core's
