@@ -5,6 +5,7 @@
 //              [--no-picto] [--range A-B]
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
+//              [--maps MASK] [--max-candidates N]
 //
 // --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
 //   accepted too). --range A-B keeps images numbered A..B.
@@ -25,7 +26,9 @@
 // --summary: the summary text (also printed): images, detections, time per frame (median
 //   and 95th percentile, per stage), workspace bytes, capacity hits.
 // --min-parts, --vote-error, --verify-error, --min-score, --refine-steps override the recogniser's options
-//   of those names (include/sbr/recognizer.h), for tuning and regression.
+//   of those names (include/sbr/recognizer.h), for tuning and regression; --maps sets
+//   parts.maps (bit k = map kind k of include/sbr/map.h; 0x1 intensity only) and
+//   --max-candidates the class stage's candidate bound.
 // Time is measured per frame on one core (the tool is single-threaded).
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -104,7 +107,7 @@ int main(int argc, char **argv) {
     float threshold = -1.0f;
     uint32_t subsample = 1;
     bool use_roi = false, quiet = false;
-    int min_parts = -1, refine_steps = -1;
+    int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1;
     bool sequence = false;
     float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f;
     sbr_rect_t roi{};
@@ -126,6 +129,8 @@ int main(int argc, char **argv) {
         else if (a == "--sequence") sequence = true;
         else if (a == "--min-parts") min_parts = std::atoi(next().c_str());
         else if (a == "--refine-steps") refine_steps = std::atoi(next().c_str());
+        else if (a == "--maps") maps = int(std::strtol(next().c_str(), nullptr, 0));
+        else if (a == "--max-candidates") max_candidates = std::atoi(next().c_str());
         else if (a == "--vote-error") vote_error = std::strtof(next().c_str(), nullptr);
         else if (a == "--verify-error") verify_error = std::strtof(next().c_str(), nullptr);
         else if (a == "--min-score") min_score = std::strtof(next().c_str(), nullptr);
@@ -141,7 +146,8 @@ int main(int argc, char **argv) {
                          "usage: %s --input DIR --detections FILE [--annotated DIR] [--canlog FILE]\n"
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
                          "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]\n"
-                         "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n", argv[0]);
+                         "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
+                         "          [--refine-steps N] [--maps MASK] [--max-candidates N] [--picto FILE | --no-picto]\n", argv[0]);
             return 2;
         }
     }
@@ -179,6 +185,8 @@ int main(int argc, char **argv) {
     if (min_score >= 0.0f) cfg.min_score = min_score;
     if (min_parts >= 0) cfg.min_parts = uint32_t(min_parts);
     if (refine_steps >= 0) cfg.refine_steps = uint32_t(refine_steps);
+    if (maps >= 0) cfg.parts.maps = uint32_t(maps);
+    if (max_candidates >= 0) cfg.max_candidates = uint32_t(max_candidates);
     if (vote_error >= 0.0f) cfg.vote_error = vote_error;
     if (verify_error >= 0.0f) cfg.verify_error = verify_error;
     cfg.clock = host_clock;

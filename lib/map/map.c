@@ -23,6 +23,28 @@ static uint8_t map_value(sbr_map_kind_t kind, uint32_t r, uint32_t g, uint32_t b
     return (uint8_t)v;
 }
 
+/* One row at subsample 1, the kind chosen once per row (same values as map_value()). */
+static void map_row(sbr_map_kind_t kind, const uint8_t *row, uint32_t bpp, uint32_t ri,
+                    uint32_t bi, uint32_t n, uint8_t *dst)
+{
+    uint32_t x;
+    if (bpp == 1u) {
+        for (x = 0u; x < n; x++) {
+            dst[x] = row[x];
+        }
+    } else if (kind == SBR_MAP_INTENSITY) {
+        for (x = 0u; x < n; x++) {
+            const uint8_t *px = &row[x * 3u];
+            dst[x] = (uint8_t)((((uint32_t)px[0] + px[1]) + ((uint32_t)px[2] + 1u)) / 3u);
+        }
+    } else {
+        for (x = 0u; x < n; x++) {
+            const uint8_t *px = &row[x * 3u];
+            dst[x] = map_value(kind, px[ri], px[1], px[bi]);
+        }
+    }
+}
+
 sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t subsample,
                           uint8_t *out, uint32_t out_stride, size_t out_size,
                           sbr_image_t *out_view)
@@ -74,7 +96,11 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
         bi = 0u;
     }
     n2 = subsample * subsample;
-    for (y = 0u; y < oh; y++) {
+    for (y = 0u; (y < oh) && (subsample == 1u); y++) {
+        map_row(kind, &src->data[(size_t)y * src->stride], bpp, ri, bi, ow,
+                &out[(size_t)y * out_stride]);
+    }
+    for (y = 0u; (y < oh) && (subsample > 1u); y++) {
         uint8_t *dst = &out[(size_t)y * out_stride];
         for (x = 0u; x < ow; x++) {
             uint32_t sr = 0u;

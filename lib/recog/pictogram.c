@@ -75,54 +75,6 @@ static uint32_t nb_hi(uint32_t i)
     return r;
 }
 
-/* Bilinear sample of the three channels at (x, y) in pixel-centre coordinates, clamped
-   to the image; out in R, G, B order. */
-static void sample_rgb(const sbr_image_t *img, float x, float y, float out[3])
-{
-    const float xm = (float)img->width - 1.0f;
-    const float ym = (float)img->height - 1.0f;
-    const float xc = picto_clampf(x, 0.0f, xm);
-    const float yc = picto_clampf(y, 0.0f, ym);
-    uint32_t x0 = (uint32_t)xc;
-    uint32_t y0 = (uint32_t)yc;
-    uint32_t x1;
-    uint32_t y1;
-    float fx;
-    float fy;
-    uint32_t c;
-    if (x0 >= (img->width - 1u)) {
-        x0 = img->width - 1u;
-    }
-    if (y0 >= (img->height - 1u)) {
-        y0 = img->height - 1u;
-    }
-    x1 = x0;
-    if ((x0 + 1u) < img->width) {
-        x1 = x0 + 1u;
-    }
-    y1 = y0;
-    if ((y0 + 1u) < img->height) {
-        y1 = y0 + 1u;
-    }
-    fx = xc - (float)x0;
-    fy = yc - (float)y0;
-    for (c = 0u; c < 3u; c++) {
-        uint32_t ch = c;
-        if (img->format == SBR_PIXEL_BGR888) {
-            ch = 2u - c;
-        }
-        const uint8_t *r0 = &img->data[(size_t)y0 * img->stride];
-        const uint8_t *r1 = &img->data[(size_t)y1 * img->stride];
-        const float a = (float)r0[(x0 * 3u) + ch];
-        const float b = (float)r0[(x1 * 3u) + ch];
-        const float d = (float)r1[(x0 * 3u) + ch];
-        const float e = (float)r1[(x1 * 3u) + ch];
-        const float top = a + (fx * (b - a));
-        const float bot = d + (fx * (e - d));
-        out[c] = top + (fy * (bot - top));
-    }
-}
-
 /* Version, sizes and tables present (what every call needs; the weights' finiteness is
    sbr_picto_check()'s, once per model). */
 static int header_ok(const sbr_picto_model_t *model)
@@ -174,15 +126,68 @@ sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
     return SBR_OK;
 }
 
-/* Resample the box into grey (g) and chromaticity (cr, cb) patches. */
-static void picto_resample(const sbr_image_t *img, const float box[4], float *g, float *cr, float *cb)
+/* One bilinear tap along an axis: the two neighbouring sample coordinates and the weight
+   of the second. */
+typedef struct picto_tap_s {
+    uint32_t lo;
+    uint32_t hi;
+    float f;
+} picto_tap_t;
+
+/* The taps of both axes live in the workspace's fourth patch-sized block. */
+typedef char picto_tap_fits[((sizeof(picto_tap_t) * 2u * PS * 4u) <= (PS * PS * sizeof(float)))
+                                ? 1 : -1];
+
+/* The taps of PS output pixels with n sub-samples each along one axis: sub-sample i of
+   pixel u sits at start + step (u + (i + 0.5) / n) - 0.5 in pixel-centre coordinates,
+   clamped to [0, size - 1]. */
+static void picto_taps(float start, float step, uint32_t n, uint32_t size, picto_tap_t *t)
+{
+    const float cmax = (float)size - 1.0f;
+    uint32_t u;
+    for (u = 0u; u < PS; u++) {
+        uint32_t i;
+        for (i = 0u; i < n; i++) {
+            const float c = picto_clampf(
+                start + (step * ((float)u + (((float)i + 0.5f) / (float)n))) - 0.5f, 0.0f, cmax);
+            picto_tap_t *tp = &t[(u * n) + i];
+            uint32_t c0 = (uint32_t)c;
+            uint32_t c1;
+            if (c0 >= (size - 1u)) {
+                c0 = size - 1u;
+            }
+            c1 = c0;
+            if ((c0 + 1u) < size) {
+                c1 = c0 + 1u;
+            }
+            tp->lo = c0;
+            tp->hi = c1;
+            tp->f = c - (float)c0;
+        }
+    }
+}
+
+/* Resample the box into grey (g) and chromaticity (cr, cb) patches: each patch pixel is
+   the mean of nx x ny bilinear samples (nx, ny = the box's scale, 1..4), the
+   taps in `taps` (2 PS 4 entries). */
+static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap_t *taps,
+                           float *g, float *cr, float *cb)
 {
     const float sx = (box[2] - box[0]) / (float)PS;
     const float sy = (box[3] - box[1]) / (float)PS;
     const uint32_t nx = (uint32_t)picto_clampf(ceilf(sx), 1.0f, 4.0f);
     const uint32_t ny = (uint32_t)picto_clampf(ceilf(sy), 1.0f, 4.0f);
     const float inv = 1.0f / ((float)nx * (float)ny);
+    const picto_tap_t *tx = taps;
+    const picto_tap_t *ty = &taps[PS * 4u];
+    uint32_t ch[3] = {0u, 1u, 2u};
     uint32_t v;
+    if (img->format == SBR_PIXEL_BGR888) {
+        ch[0] = 2u;
+        ch[2] = 0u;
+    }
+    picto_taps(box[0], sx, nx, img->width, &taps[0]);
+    picto_taps(box[1], sy, ny, img->height, &taps[PS * 4u]);
     for (v = 0u; v < PS; v++) {
         uint32_t u;
         for (u = 0u; u < PS; u++) {
@@ -190,16 +195,24 @@ static void picto_resample(const sbr_image_t *img, const float box[4], float *g,
             float sum;
             uint32_t j;
             for (j = 0u; j < ny; j++) {
-                const float y = box[1] + (sy * ((float)v + (((float)j + 0.5f) / (float)ny))) - 0.5f;
+                const picto_tap_t *yt = &ty[(v * ny) + j];
+                const uint8_t *r0 = &img->data[(size_t)yt->lo * img->stride];
+                const uint8_t *r1 = &img->data[(size_t)yt->hi * img->stride];
                 uint32_t i;
                 for (i = 0u; i < nx; i++) {
-                    const float x =
-                        box[0] + (sx * ((float)u + (((float)i + 0.5f) / (float)nx))) - 0.5f;
-                    float px[3];
-                    sample_rgb(img, x, y, px);
-                    acc[0] += px[0];
-                    acc[1] += px[1];
-                    acc[2] += px[2];
+                    const picto_tap_t *xt = &tx[(u * nx) + i];
+                    const uint32_t x0 = xt->lo * 3u;
+                    const uint32_t x1 = xt->hi * 3u;
+                    uint32_t c;
+                    for (c = 0u; c < 3u; c++) {
+                        const float a = (float)r0[x0 + ch[c]];
+                        const float b = (float)r0[x1 + ch[c]];
+                        const float d = (float)r1[x0 + ch[c]];
+                        const float e = (float)r1[x1 + ch[c]];
+                        const float top = a + (xt->f * (b - a));
+                        const float bot = d + (xt->f * (e - d));
+                        acc[c] += top + (yt->f * (bot - top));
+                    }
                 }
             }
             acc[0] *= inv;
@@ -274,7 +287,7 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
     g = (float *)workspace;
     cr = &g[PS * PS];
     cb = &cr[PS * PS];
-    picto_resample(img, box, g, cr, cb);
+    picto_resample(img, box, (picto_tap_t *)(void *)&cb[PS * PS], g, cr, cb);
 
     /* contrast-normalised grey */
     for (i = 0u; i < (PS * PS); i++) {
@@ -369,6 +382,29 @@ static sbr_status_t run_check(const sbr_picto_model_t *model, const float *feat,
     return SBR_OK;
 }
 
+/* a . b over n elements, in four interleaved partial sums (independent additions the
+   FPU can pipeline; the order is fixed, so every target adds the same way). */
+static float dot(const float *a, const float *b, size_t n)
+{
+    float s0 = 0.0f;
+    float s1 = 0.0f;
+    float s2 = 0.0f;
+    float s3 = 0.0f;
+    size_t k = 0u;
+    while ((k + 4u) <= n) {
+        s0 += a[k] * b[k];
+        s1 += a[k + 1u] * b[k + 1u];
+        s2 += a[k + 2u] * b[k + 2u];
+        s3 += a[k + 3u] * b[k + 3u];
+        k += 4u;
+    }
+    while (k < n) {
+        s0 += a[k] * b[k];
+        k++;
+    }
+    return (s0 + s1) + (s2 + s3);
+}
+
 /* The last layer's inputs: the rectified hidden units (in the workspace), or the features
    themselves without a hidden layer. */
 static const float *last_inputs(const sbr_picto_model_t *model, const float *feat, float *a)
@@ -378,11 +414,7 @@ static const float *last_inputs(const sbr_picto_model_t *model, const float *fea
         uint32_t i;
         for (i = 0u; i < model->hidden; i++) {
             const float *w = &model->w1[(size_t)i * (SBR_PICTO_FEATURES + 1u)];
-            float s = w[SBR_PICTO_FEATURES];
-            uint32_t k;
-            for (k = 0u; k < SBR_PICTO_FEATURES; k++) {
-                s += w[k] * feat[k];
-            }
+            const float s = w[SBR_PICTO_FEATURES] + dot(w, feat, SBR_PICTO_FEATURES);
             a[i] = (s > 0.0f) ? s : 0.0f;
         }
         in = a;
@@ -396,12 +428,7 @@ static void affine(const float *w, const float *in, size_t cols, uint32_t rows, 
     uint32_t r;
     for (r = 0u; r < rows; r++) {
         const float *wr = &w[(size_t)r * cols];
-        float s = wr[cols - 1u];
-        size_t k;
-        for (k = 0u; k < (cols - 1u); k++) {
-            s += wr[k] * in[k];
-        }
-        out[r] = s;
+        out[r] = wr[cols - 1u] + dot(wr, in, cols - 1u);
     }
 }
 
