@@ -72,6 +72,7 @@ static void draw_sign(float cx, float cy, float r)
 static void test_config(void)
 {
     sbr_recog_config_default(&g_cfg);
+    g_cfg.parts.maps = 0x7u; /* intensity, red and blue: the red map's path too */
     g_cfg.parts.max_side = 48u;
     g_cfg.parts.max_regions = 256u;
     g_cfg.parts.max_contour = 512u;
@@ -398,6 +399,28 @@ static void test_class_stage(void)
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
                                                               16u, &n, &st));
         g_model.picto.w3 = NULL;
+    }
+    /* views: averaging the same probabilities keeps them; each likely candidate costs
+       views - 1 extra pictograms; 0 and more than SBR_RECOG_MAX_VIEWS are refused */
+    {
+        sbr_recog_config_t rc = g_cfg;
+        sbr_recog_stats_t st;
+        uint32_t nv;
+        for (nv = 1u; nv <= SBR_RECOG_MAX_VIEWS; nv += 2u) {
+            rc.views = nv;
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                           16u, &n, &st));
+            TEST_ASSERT_TRUE(n >= 1u);
+            TEST_ASSERT_EQUAL_UINT32(3u, g_dets[0].class_id);
+            TEST_ASSERT_FLOAT_WITHIN(1e-4f, expf(4.0f) / (expf(4.0f) + 43.0f), g_dets[0].score);
+            TEST_ASSERT_EQUAL_UINT32((nv - 1u) * st.classified, st.views);
+        }
+        rc.views = 0u;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                              16u, &n, &st));
+        rc.views = SBR_RECOG_MAX_VIEWS + 1u;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                              16u, &n, &st));
     }
     w2[(3u * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 0.0f;
     w2[(SBR_PICTO_BACKGROUND * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 8.0f;

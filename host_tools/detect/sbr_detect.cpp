@@ -5,7 +5,7 @@
 //              [--no-picto] [--range A-B]
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
-//              [--maps MASK] [--max-candidates N]
+//              [--maps MASK] [--max-candidates N] [--views N]
 //
 // --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
 //   accepted too). --range A-B keeps images numbered A..B.
@@ -25,7 +25,7 @@
 //   its own; --no-picto: no class stage (part evidence alone scores and classifies).
 // --summary: the summary text (also printed): images, detections, time per frame (median
 //   and 95th percentile, per stage), workspace bytes, capacity hits.
-// --min-parts, --vote-error, --verify-error, --min-score, --refine-steps override the recogniser's options
+// --min-parts, --vote-error, --verify-error, --min-score, --refine-steps, --views override the recogniser's options
 //   of those names (include/sbr/recognizer.h), for tuning and regression; --maps sets
 //   parts.maps (bit k = map kind k of include/sbr/map.h; 0x1 intensity only) and
 //   --max-candidates the class stage's candidate bound.
@@ -107,7 +107,7 @@ int main(int argc, char **argv) {
     float threshold = -1.0f;
     uint32_t subsample = 1;
     bool use_roi = false, quiet = false;
-    int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1;
+    int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1;
     bool sequence = false;
     float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f;
     sbr_rect_t roi{};
@@ -131,6 +131,7 @@ int main(int argc, char **argv) {
         else if (a == "--refine-steps") refine_steps = std::atoi(next().c_str());
         else if (a == "--maps") maps = int(std::strtol(next().c_str(), nullptr, 0));
         else if (a == "--max-candidates") max_candidates = std::atoi(next().c_str());
+        else if (a == "--views") views_opt = std::atoi(next().c_str());
         else if (a == "--vote-error") vote_error = std::strtof(next().c_str(), nullptr);
         else if (a == "--verify-error") verify_error = std::strtof(next().c_str(), nullptr);
         else if (a == "--min-score") min_score = std::strtof(next().c_str(), nullptr);
@@ -147,7 +148,7 @@ int main(int argc, char **argv) {
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
                          "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]\n"
                          "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
-                         "          [--refine-steps N] [--maps MASK] [--max-candidates N] [--picto FILE | --no-picto]\n", argv[0]);
+                         "          [--refine-steps N] [--maps MASK] [--max-candidates N] [--views N] [--picto FILE | --no-picto]\n", argv[0]);
             return 2;
         }
     }
@@ -187,6 +188,7 @@ int main(int argc, char **argv) {
     if (refine_steps >= 0) cfg.refine_steps = uint32_t(refine_steps);
     if (maps >= 0) cfg.parts.maps = uint32_t(maps);
     if (max_candidates >= 0) cfg.max_candidates = uint32_t(max_candidates);
+    if (views_opt >= 0) cfg.views = uint32_t(views_opt);
     if (vote_error >= 0.0f) cfg.vote_error = vote_error;
     if (verify_error >= 0.0f) cfg.verify_error = verify_error;
     cfg.clock = host_clock;
@@ -217,7 +219,7 @@ int main(int argc, char **argv) {
     std::vector<std::vector<double>> ms_stage(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
     size_t capacity_kind[5] = {0, 0, 0, 0, 0};
-    size_t classified = 0, refined = 0, frames_run = 0;
+    size_t classified = 0, refined = 0, views = 0, frames_run = 0;
     uint64_t parts_total = 0;
     double sum_ms = 0;
     for (size_t i = 0; i < files.size(); ++i) {
@@ -257,6 +259,7 @@ int main(int argc, char **argv) {
             for (unsigned b = 0; b < 5; ++b) capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
             classified += stats.classified;
             refined += stats.refined;
+            views += stats.views;
             ++frames_run;
             for (uint32_t k = 0; k < n; ++k) {
                 const auto &d = dets[k];
@@ -314,8 +317,9 @@ int main(int argc, char **argv) {
       << ", candidates " << capacity_kind[4] << ")\n";
     if (frames_run > 0 && classified > 0) {
         char cbuf[160];
-        std::snprintf(cbuf, sizeof cbuf, "class stage per frame (mean): %.1f candidates classified, %.1f boxes refined\n",
-                      double(classified) / double(frames_run), double(refined) / double(frames_run));
+        std::snprintf(cbuf, sizeof cbuf, "class stage per frame (mean): %.1f candidates classified, %.1f boxes refined, %.1f extra views\n",
+                      double(classified) / double(frames_run), double(refined) / double(frames_run),
+                      double(views) / double(frames_run));
         s << cbuf;
     }
     if (can) s << "CAN log: " << canlog << " (" << can->frames_written() << " frames)\n";

@@ -161,6 +161,9 @@ int main(int argc, char **argv) {
     }
     sbr_recog_config_t cfg;
     sbr_recog_config_default(&cfg);
+    // The library carries prototypes of the intensity, red and blue maps, whichever subset
+    // the recogniser runs (its default leaves the red map out; an integrator may add it).
+    cfg.parts.maps = 0x7u;
     const float centre_tol = cfg.centre_tol, size_f = 1.0f + cfg.size_tol;
     const auto t0 = std::chrono::steady_clock::now();
 

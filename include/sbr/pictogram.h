@@ -10,14 +10,18 @@
  * 1. The box is resampled to ::SBR_PICTO_SIZE x ::SBR_PICTO_SIZE pixels (area-averaged
  *    bilinear samples, so a 90 px sign and a 16 px sign give comparable patches).
  * 2. Features (::SBR_PICTO_FEATURES values), all invariant to brightness and contrast:
- *    - edge orientation histograms: 4 x 4 cells, 8 signed directions (the gradient of the
- *      contrast-normalised grey patch projected on 4 axes, positive and negative parts
- *      apart), L2-normalised over the patch: the shape of the pictogram's boundaries;
- *    - the contrast-normalised grey patch at 8 x 8: the pictogram's mask;
- *    - red and blue chromaticity per cell (4 x 4 x 2): the sign's colour layout;
- *    - finer edge orientation histograms of the middle half of the patch (4 x 4 cells of
- *      3 px, 8 directions, L2-normalised on their own): the pictogram's detail (the
- *      digits of a speed limit are only a few pixels wide).
+ *    - edge orientation histograms: ::SBR_PICTO_CELLS x ::SBR_PICTO_CELLS cells (6 x 6
+ *      of 6 px), 8 signed directions (the gradient of the contrast-normalised grey patch
+ *      projected on 4 axes, positive and negative parts apart), L2-normalised over the
+ *      patch: the shape of the pictogram's boundaries;
+ *    - the contrast-normalised grey patch at ::SBR_PICTO_THUMB x ::SBR_PICTO_THUMB
+ *      (12 x 12): the pictogram's mask;
+ *    - red and blue chromaticity per cell of a 4 x 4 grid (4 x 4 x 2): the sign's colour
+ *      layout;
+ *    - finer edge orientation histograms of the middle half of the patch
+ *      (::SBR_PICTO_CENTRE_CELLS per side, 6 x 6 cells of 3 px, 8 directions,
+ *      L2-normalised on their own): the pictogram's detail (the digits of a speed limit
+ *      are only a few pixels wide).
  * 3. A classifier learned by `sbr_train_picto` (a layer of rectified units, or none, then a
  *    softmax) gives the probability of each GTSDB class and of "no sign"
  *    (::SBR_PICTO_BACKGROUND).
@@ -40,13 +44,13 @@ extern "C" {
 #endif
 
 /** Patch side in pixels. */
-#define SBR_PICTO_SIZE 24u
+#define SBR_PICTO_SIZE 36u
 /** Orientation-histogram cells per side. */
 #define SBR_PICTO_CELLS 6u
 /** Grey thumbnail side. */
 #define SBR_PICTO_THUMB 12u
 /** Cells per side of the middle half's finer orientation histograms. */
-#define SBR_PICTO_CENTRE_CELLS 4u
+#define SBR_PICTO_CENTRE_CELLS 6u
 /** Feature vector length: cells^2 x 8 orientations + thumb^2 grey + 4 x 4 x 2 colours +
     centre cells^2 x 8 orientations. */
 #define SBR_PICTO_FEATURES \

@@ -45,7 +45,10 @@
  *    sign class) and the score (that probability; "no sign" takes the rest). When the
  *    classifier has a box regression, a candidate that is at least `refine_score` likely
  *    a sign is moved to the box the regression predicts and classified again there
- *    (`refine_steps` times at most); class, score and box are the last ones. Detections
+ *    (`refine_steps` times at most); box is the last one. A candidate still at least
+ *    `refine_score` likely is then classified at `views` slightly shifted copies of its
+ *    box and class and score come from the mean probabilities (fewer confident false
+ *    detections; views = 1 keeps the last classification). Detections
  *    below `min_score` are dropped and suppression runs again on the new scores.
  *    Without a class stage the part score and part evidence's class are reported.
  *
@@ -64,6 +67,10 @@ extern "C" {
 
 /** Classes of the German Traffic Sign Detection Benchmark (ids 0..42). */
 #define SBR_RECOG_CLASSES 43u
+/** Largest sbr_recog_config_t::views. */
+#define SBR_RECOG_MAX_VIEWS 5u
+/** Shift of the extra views, as a fraction of the box's width or height. */
+#define SBR_RECOG_VIEW_SHIFT 0.06f
 /** Largest sbr_recog_config_t::refine_steps. */
 #define SBR_RECOG_MAX_REFINE 4u
 /** Classes a prototype can be shared by. */
@@ -130,8 +137,11 @@ sbr_status_t sbr_model_gtsdb(sbr_model_t *out);
 /** Options. Start from sbr_recog_config_default(); every field is documented there. */
 typedef struct sbr_recog_config_s {
     /** Part extraction (parts.h). fd_n and fd_m must equal the model's. Default:
-        sbr_parts_config_default(). Trade-off: maps and subsample set most of the time and
-        memory; subsample 2 quarters both and loses signs below about 24 px. */
+        sbr_parts_config_default() with MSER delta 3, max_variation 0.5 and maps =
+        intensity + blue (the built-in library also has red-map prototypes; adding the red
+        map costs about a third more part time and, on GTSDB, did not help). Trade-off:
+        maps and subsample set most of the time and memory; subsample 2 quarters both and
+        loses signs below about 24 px. GRAY8 frames need maps = intensity only. */
     sbr_parts_config_t parts;
     /** Correlation size P (a supported FFT size, >= 2M + 1). Default 32. Larger P locates
         the peak on a finer grid before refinement; the cost grows with P log P. */
@@ -184,6 +194,12 @@ typedef struct sbr_recog_config_s {
         Default 0.1 (most candidates are clearly background and are not refined). Lower:
         more work, a little more recall on badly placed boxes. */
     float refine_score;
+    /** With a class stage: a candidate that is still at least refine_score likely after
+        its refinement is classified at this many views of its final box, 1 ..
+        ::SBR_RECOG_MAX_VIEWS, and the class probabilities are averaged: the box itself,
+        then shifted by ::SBR_RECOG_VIEW_SHIFT of its size right, left, down, up. Default
+        5. 1: the box alone. Each view costs one more pictogram. */
+    uint32_t views;
     /** Score floor of reported detections, [0, 1): the class stage's probability, or the
         part score without one. Default 0.3 (below the usual operating point, so
         evaluations can draw precision-recall curves). */
@@ -229,6 +245,7 @@ typedef struct sbr_recog_stats_s {
     uint32_t rejected;        /**< hypotheses below min_parts or a score floor */
     uint32_t classified;      /**< candidates the class stage examined */
     uint32_t refined;         /**< box refinements the class stage applied */
+    uint32_t views;           /**< extra views the class stage classified (config.views) */
     uint32_t capacity_hit;    /**< bit 0 parts, bit 1 votes, bit 2 hypotheses, bit 3 MSER,
                                    bit 4 candidates */
     uint32_t stage_ticks[SBR_RECOG_STAGES]; /**< clock ticks per ::sbr_recog_stage_t
@@ -258,7 +275,7 @@ size_t sbr_recog_workspace_size(uint32_t width, uint32_t height, const sbr_recog
      ((size_t)(width) / (s)) * ((size_t)(height) / (s)) + 2048u * 40u + \
      160u * 160u * 5u + 162u * 162u + 2048u * 12u + 128u * 8u + 4096u * sizeof(sbr_part_t) + \
      1024u * sizeof(sbr_fd_match_t) + 160u * 8u + 16384u * 32u + 4096u * 56u + 512u + \
-     SBR_PICTO_WORKSPACE_SIZE + (SBR_PICTO_FEATURES + SBR_PICTO_OUTPUTS) * 4u + 8u)
+     SBR_PICTO_WORKSPACE_SIZE + (SBR_PICTO_FEATURES + 2u * SBR_PICTO_OUTPUTS) * 4u + 8u)
 
 /**
  * @brief Detect signs.
