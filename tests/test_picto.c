@@ -121,8 +121,10 @@ static void test_step_edge(void)
     float bin0 = 0.0f;
     uint32_t c;
     uint32_t i;
-    step_edge(16u, 16u, 48u);
-    TEST_ASSERT_EQUAL_INT(SBR_OK, feats(&v, 16.0f, 16.0f, 64.0f, 64.0f, g_f));
+    /* two image pixels per patch pixel: no sample mixes in the grey outside the box */
+    step_edge(16u, 16u, 2u * SBR_PICTO_SIZE);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, feats(&v, 16.0f, 16.0f, 16.0f + (2.0f * (float)SBR_PICTO_SIZE),
+                                        16.0f + (2.0f * (float)SBR_PICTO_SIZE), g_f));
     for (i = 0u; i < HOG_LEN; i++) {
         TEST_ASSERT_TRUE(g_f[i] >= 0.0f);
         ss += g_f[i] * g_f[i];
