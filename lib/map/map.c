@@ -23,7 +23,7 @@ static uint8_t map_value(sbr_map_kind_t kind, uint32_t r, uint32_t g, uint32_t b
     return (uint8_t)v;
 }
 
-/* One row at subsample 1, the kind chosen once per row (same values as map_value()). */
+/* One row at subsample 1: map_value() of each pixel, without the block means' divisions. */
 static void map_row(sbr_map_kind_t kind, const uint8_t *row, uint32_t bpp, uint32_t ri,
                     uint32_t bi, uint32_t n, uint8_t *dst)
 {
@@ -31,11 +31,6 @@ static void map_row(sbr_map_kind_t kind, const uint8_t *row, uint32_t bpp, uint3
     if (bpp == 1u) {
         for (x = 0u; x < n; x++) {
             dst[x] = row[x];
-        }
-    } else if (kind == SBR_MAP_INTENSITY) {
-        for (x = 0u; x < n; x++) {
-            const uint8_t *px = &row[x * 3u];
-            dst[x] = (uint8_t)((((uint32_t)px[0] + px[1]) + ((uint32_t)px[2] + 1u)) / 3u);
         }
     } else {
         for (x = 0u; x < n; x++) {
