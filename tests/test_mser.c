@@ -80,8 +80,8 @@ static void test_map_formulas_on_known_colours(void)
     sbr_image_t src = {4u, 1u, 12u, SBR_PIXEL_RGB888, rgb};
     sbr_image_t ov;
     TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_INTENSITY, 1u, out, 4u, 4u, &ov));
-    TEST_ASSERT_EQUAL_UINT8(85u, out[0]);  /* (255 + 1) / 3 */
-    TEST_ASSERT_EQUAL_UINT8(100u, out[1]);
+    TEST_ASSERT_EQUAL_UINT8(85u, out[0]);  /* (T(255) + 1) / 3 = (255 + 1) / 3 */
+    TEST_ASSERT_EQUAL_UINT8(160u, out[1]); /* T(100) = round(sqrt(25500)) = round(159.7) */
     TEST_ASSERT_EQUAL_UINT8(170u, out[3]); /* (510 + 1) / 3 */
     TEST_ASSERT_EQUAL_UINT32(4u, ov.width);
     TEST_ASSERT_EQUAL_INT(SBR_PIXEL_GRAY8, ov.format);
@@ -99,6 +99,13 @@ static void test_map_formulas_on_known_colours(void)
     TEST_ASSERT_EQUAL_UINT8(128u, out[1]);
     TEST_ASSERT_EQUAL_UINT8(0u, out[2]);   /* (512 - 510) / 4 = 0 (truncated) */
     TEST_ASSERT_EQUAL_UINT8(255u, out[3]); /* (512 + 510) / 4 */
+    /* dark red (60, 20, 20): T gives (124, 71, 71), red map (512 + 248 - 142) / 4 */
+    {
+        static const uint8_t dark[3] = {60, 20, 20};
+        sbr_image_t s1 = {1u, 1u, 3u, SBR_PIXEL_RGB888, dark};
+        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&s1, SBR_MAP_RED, 1u, out, 1u, 1u, NULL));
+        TEST_ASSERT_EQUAL_UINT8(154u, out[0]);
+    }
     /* the same pixels in BGR order give the same maps */
     {
         static const uint8_t bgr[12] = {0, 0, 255, 100, 100, 100, 255, 0, 0, 0, 255, 255};
@@ -111,8 +118,9 @@ static void test_map_formulas_on_known_colours(void)
 
 static void test_map_subsample_averages_blocks(void)
 {
-    /* 4x2 grey image, 2x2 blocks: mean of {0, 255, 255, 255} = 191.25 -> 191; of
-       {10, 11, 12, 13} = 11.5 -> 12 (rounded to nearest) */
+    /* 4x2 grey image, 2x2 blocks: mean of {0, 255, 255, 255} = 191.25 -> 191, T(191) =
+       round(220.7); of {10, 11, 12, 13} = 11.5 -> 12 (rounded to nearest), T(12) =
+       round(55.3) */
     static const uint8_t g[8] = {0, 255, 10, 11, 255, 255, 12, 13};
     uint8_t out[2];
     sbr_image_t src = {4u, 2u, 4u, SBR_PIXEL_GRAY8, g};
@@ -120,8 +128,36 @@ static void test_map_subsample_averages_blocks(void)
     TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_INTENSITY, 2u, out, 2u, 2u, &ov));
     TEST_ASSERT_EQUAL_UINT32(2u, ov.width);
     TEST_ASSERT_EQUAL_UINT32(1u, ov.height);
-    TEST_ASSERT_EQUAL_UINT8(191u, out[0]);
-    TEST_ASSERT_EQUAL_UINT8(12u, out[1]);
+    TEST_ASSERT_EQUAL_UINT8(221u, out[0]);
+    TEST_ASSERT_EQUAL_UINT8(55u, out[1]);
+}
+
+static void test_map_tone_curve_every_level(void)
+{
+    /* a grey ramp 0..255: the intensity map is T(c) = round(sqrt(255 c)), checked in
+       integers: v = T(c) exactly when (2v - 1)^2 <= 1020 c < (2v + 1)^2 */
+    static uint8_t ramp[256];
+    static uint8_t out[256];
+    sbr_image_t src = {256u, 1u, 256u, SBR_PIXEL_GRAY8, ramp};
+    uint32_t c;
+    for (c = 0u; c < 256u; c++) {
+        ramp[c] = (uint8_t)c;
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK,
+                          (int)sbr_map_make(&src, SBR_MAP_INTENSITY, 1u, out, 256u, 256u, NULL));
+    for (c = 0u; c < 256u; c++) {
+        const uint32_t v = out[c];
+        const uint32_t lo = (v == 0u) ? 0u : (((2u * v) - 1u) * ((2u * v) - 1u));
+        TEST_ASSERT_TRUE_MESSAGE(lo <= 1020u * c, "tone curve too high");
+        TEST_ASSERT_TRUE_MESSAGE(1020u * c < (((2u * v) + 1u) * ((2u * v) + 1u)),
+                                 "tone curve too low");
+        if (c > 0u) {
+            TEST_ASSERT_TRUE(out[c] >= out[c - 1u]); /* monotonic */
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT8(64u, out[16]);
+    TEST_ASSERT_EQUAL_UINT8(128u, out[64]);
+    TEST_ASSERT_EQUAL_UINT8(255u, out[255]);
 }
 
 static void test_map_bad_input(void)
@@ -426,6 +462,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_map_formulas_on_known_colours);
     RUN_TEST(test_map_subsample_averages_blocks);
+    RUN_TEST(test_map_tone_curve_every_level);
     RUN_TEST(test_map_bad_input);
     RUN_TEST(test_mser_dark_square);
     RUN_TEST(test_mser_nested_regions_both_polarities);

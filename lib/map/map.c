@@ -2,9 +2,38 @@
 
 #include "../common/sbr_util.h"
 
-/* One map value from mean channel values. */
-static uint8_t map_value(sbr_map_kind_t kind, uint32_t r, uint32_t g, uint32_t b)
+/* Tone curve applied to the channel values before the map formulas (map.h): the square-root
+   compression tone[c] = round(sqrt(255 c)), which stretches the dark end (0..64 become
+   0..128) so that a sign in shadow under a bright sky spans enough grey levels for MSER's
+   stability test. Computed offline; test_mser checks every entry against the definition. */
+static const uint8_t k_tone[256] = {
+    0u, 16u, 23u, 28u, 32u, 36u, 39u, 42u, 45u, 48u, 50u, 53u, 55u, 58u,
+    60u, 62u, 64u, 66u, 68u, 70u, 71u, 73u, 75u, 77u, 78u, 80u, 81u, 83u,
+    84u, 86u, 87u, 89u, 90u, 92u, 93u, 94u, 96u, 97u, 98u, 100u, 101u, 102u,
+    103u, 105u, 106u, 107u, 108u, 109u, 111u, 112u, 113u, 114u, 115u, 116u, 117u, 118u,
+    119u, 121u, 122u, 123u, 124u, 125u, 126u, 127u, 128u, 129u, 130u, 131u, 132u, 133u,
+    134u, 135u, 135u, 136u, 137u, 138u, 139u, 140u, 141u, 142u, 143u, 144u, 145u, 145u,
+    146u, 147u, 148u, 149u, 150u, 151u, 151u, 152u, 153u, 154u, 155u, 156u, 156u, 157u,
+    158u, 159u, 160u, 160u, 161u, 162u, 163u, 164u, 164u, 165u, 166u, 167u, 167u, 168u,
+    169u, 170u, 170u, 171u, 172u, 173u, 173u, 174u, 175u, 176u, 176u, 177u, 178u, 179u,
+    179u, 180u, 181u, 181u, 182u, 183u, 183u, 184u, 185u, 186u, 186u, 187u, 188u, 188u,
+    189u, 190u, 190u, 191u, 192u, 192u, 193u, 194u, 194u, 195u, 196u, 196u, 197u, 198u,
+    198u, 199u, 199u, 200u, 201u, 201u, 202u, 203u, 203u, 204u, 204u, 205u, 206u, 206u,
+    207u, 208u, 208u, 209u, 209u, 210u, 211u, 211u, 212u, 212u, 213u, 214u, 214u, 215u,
+    215u, 216u, 217u, 217u, 218u, 218u, 219u, 220u, 220u, 221u, 221u, 222u, 222u, 223u,
+    224u, 224u, 225u, 225u, 226u, 226u, 227u, 228u, 228u, 229u, 229u, 230u, 230u, 231u,
+    231u, 232u, 233u, 233u, 234u, 234u, 235u, 235u, 236u, 236u, 237u, 237u, 238u, 238u,
+    239u, 240u, 240u, 241u, 241u, 242u, 242u, 243u, 243u, 244u, 244u, 245u, 245u, 246u,
+    246u, 247u, 247u, 248u, 248u, 249u, 249u, 250u, 250u, 251u, 251u, 252u, 252u, 253u,
+    253u, 254u, 254u, 255u
+};
+
+/* One map value from mean channel values (before the tone curve). */
+static uint8_t map_value(sbr_map_kind_t kind, uint32_t mr, uint32_t mg, uint32_t mb)
 {
+    const uint32_t r = k_tone[mr & 255u];
+    const uint32_t g = k_tone[mg & 255u];
+    const uint32_t b = k_tone[mb & 255u];
     uint32_t v;
     switch (kind) {
     case SBR_MAP_RED:
@@ -30,7 +59,7 @@ static void map_row(sbr_map_kind_t kind, const uint8_t *row, uint32_t bpp, uint3
     uint32_t x;
     if (bpp == 1u) {
         for (x = 0u; x < n; x++) {
-            dst[x] = row[x];
+            dst[x] = k_tone[row[x]];
         }
     } else {
         for (x = 0u; x < n; x++) {
