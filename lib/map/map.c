@@ -2,10 +2,11 @@
 
 #include "../common/sbr_util.h"
 
-/* Tone curve applied to the channel values before the map formulas (map.h): the square-root
-   compression tone[c] = round(sqrt(255 c)), which stretches the dark end (0..64 become
-   0..128) so that a sign in shadow under a bright sky spans enough grey levels for MSER's
-   stability test. Computed offline; test_mser checks every entry against the definition. */
+/* Tone curve applied to the channel values before the map formulas (map.h): square-root
+   compression, tone[c] = the integer nearest the square root of 255 c. It stretches the
+   dark end (0..64 become 0..128) so that a sign in shadow under a bright sky spans enough
+   grey levels for MSER's stability test. Computed offline; test_mser checks every entry
+   against the definition in integer arithmetic. */
 static const uint8_t k_tone[256] = {
     0u, 16u, 23u, 28u, 32u, 36u, 39u, 42u, 45u, 48u, 50u, 53u, 55u, 58u,
     60u, 62u, 64u, 66u, 68u, 70u, 71u, 73u, 75u, 77u, 78u, 80u, 81u, 83u,
