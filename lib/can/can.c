@@ -60,7 +60,8 @@ static int32_t to_signed(uint32_t raw, uint32_t len)
     return v;
 }
 
-/* Physical value to raw integer: round(phys / factor); fails outside [lo, hi] or NaN. */
+/* Physical value to raw integer: phys / factor rounded to nearest; fails outside [lo, hi]
+   or NaN. */
 static int encode(float phys, float factor, float lo, float hi, int32_t *raw)
 {
     int ok = 0;
