@@ -52,6 +52,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -427,6 +428,13 @@ int main(int argc, char **argv) {
             for (size_t g = 0; g < gts.size() && mine == nullptr; ++g) {
                 const Box &b = gts[g];
                 const float w = float(b.x1 - b.x0), h = float(b.y1 - b.y0);
+                // the sign's neighbourhood (one sign size around it) clipped to the image:
+                // x0, y0, x1, y1 (exclusive)
+                auto around = [&](const Box &q) {
+                    return std::array<int, 4>{std::max(0, int(q.x0 - w)), std::max(0, int(q.y0 - h)),
+                                              std::min(img.cols, int(q.x1 + w) + 1),
+                                              std::min(img.rows, int(q.y1 + h) + 1)};
+                };
                 for (int j = 0; j <= jitter; ++j) {
                     Box q = b;
                     if (j > 0) {
@@ -440,8 +448,7 @@ int main(int argc, char **argv) {
                     // averaging) so the sign is 1.5 to 4 times smaller, at least 12 px
                     const float shrink = 1.5f + 1.25f * (U(rng) + 1.0f);
                     if (j % 2 == 1 && w / shrink >= 12.0f) {
-                        const int mx0 = std::max(0, int(b.x0 - w)), my0 = std::max(0, int(b.y0 - h));
-                        const int mx1 = std::min(img.cols, int(b.x1 + w) + 1), my1 = std::min(img.rows, int(b.y1 + h) + 1);
+                        const auto [mx0, my0, mx1, my1] = around(b);
                         cv::Mat small;
                         cv::resize(img(cv::Rect(mx0, my0, mx1 - mx0, my1 - my0)), small, cv::Size(), 1.0 / shrink,
                                    1.0 / shrink, cv::INTER_AREA);
@@ -454,8 +461,7 @@ int main(int argc, char **argv) {
                     } else if (j % 4 == 2 && exposure) {
                         // another exposure: the neighbourhood's values through a random
                         // gamma (0.5 to 2) and contrast (0.5 to 1) about mid-grey
-                        const int mx0 = std::max(0, int(b.x0 - w)), my0 = std::max(0, int(b.y0 - h));
-                        const int mx1 = std::min(img.cols, int(b.x1 + w) + 1), my1 = std::min(img.rows, int(b.y1 + h) + 1);
+                        const auto [mx0, my0, mx1, my1] = around(b);
                         const float gam = std::exp(0.6931472f * U(rng)), con = 0.75f + 0.25f * U(rng);
                         cv::Mat lut(1, 256, CV_8U), shot;
                         for (int k = 0; k < 256; ++k) {
