@@ -189,6 +189,101 @@ static void test_subsample_keeps_input_coordinates(void)
     TEST_ASSERT_TRUE(found);
 }
 
+/* Parts of one map kind from an extraction, in order. */
+static uint32_t parts_of_map(const sbr_part_t *all, uint32_t n, uint8_t kind, sbr_part_t *out)
+{
+    uint32_t i;
+    uint32_t k = 0u;
+    for (i = 0u; i < n; i++) {
+        if (all[i].map == kind) {
+            out[k] = all[i];
+            k++;
+        }
+    }
+    return k;
+}
+
+/* map_subsample coarsens one map only: the red map at 2 gives exactly the parts of a
+   whole extraction at subsample 2, the intensity map those at full resolution. */
+static void test_map_subsample_per_kind(void)
+{
+    static sbr_part_t ref[64];
+    static sbr_part_t got[64];
+    static sbr_part_t mixed[64];
+    const sbr_image_t v = view();
+    sbr_parts_config_t c;
+    uint32_t n = 0u;
+    uint32_t nm = 0u;
+    uint32_t nr;
+    uint32_t ng;
+    uint32_t i;
+    draw_ring_sign(48.0f, 32.0f);
+    g_cfg.mser.min_area = 20u;
+    g_cfg.min_side = 4u;
+    g_cfg.max_side = 40u;
+    g_cfg.maps = (1u << SBR_MAP_INTENSITY) | (1u << SBR_MAP_RED);
+    c = g_cfg;
+    c.map_subsample[SBR_MAP_RED] = 2u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &c, &g_fft, g_ws, sizeof g_ws, mixed, 64u,
+                                                    &nm, NULL));
+    /* red parts: as with subsample 2 for every map */
+    c = g_cfg;
+    c.subsample = 2u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &c, &g_fft, g_ws, sizeof g_ws, g_parts, 64u,
+                                                    &n, NULL));
+    nr = parts_of_map(g_parts, n, (uint8_t)SBR_MAP_RED, ref);
+    ng = parts_of_map(mixed, nm, (uint8_t)SBR_MAP_RED, got);
+    TEST_ASSERT_TRUE(nr >= 1u);
+    TEST_ASSERT_EQUAL_UINT32(nr, ng);
+    for (i = 0u; i < nr; i++) {
+        TEST_ASSERT_EQUAL_UINT32(ref[i].bbox.x, got[i].bbox.x);
+        TEST_ASSERT_EQUAL_UINT32(ref[i].bbox.width, got[i].bbox.width);
+        TEST_ASSERT_EQUAL_UINT32(ref[i].area, got[i].area);
+        TEST_ASSERT_EQUAL_FLOAT(ref[i].fd.cx, got[i].fd.cx);
+        TEST_ASSERT_EQUAL_FLOAT(ref[i].fd.scale, got[i].fd.scale);
+    }
+    /* intensity parts: as at full resolution */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts,
+                                                    64u, &n, NULL));
+    nr = parts_of_map(g_parts, n, (uint8_t)SBR_MAP_INTENSITY, ref);
+    ng = parts_of_map(mixed, nm, (uint8_t)SBR_MAP_INTENSITY, got);
+    TEST_ASSERT_TRUE(nr >= 1u);
+    TEST_ASSERT_EQUAL_UINT32(nr, ng);
+    for (i = 0u; i < nr; i++) {
+        TEST_ASSERT_EQUAL_UINT32(ref[i].area, got[i].area);
+        TEST_ASSERT_EQUAL_FLOAT(ref[i].fd.cy, got[i].fd.cy);
+    }
+    /* bad factors: 0, above the map's largest, a product above it */
+    c = g_cfg;
+    c.map_subsample[SBR_MAP_BLUE] = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_config_check(&c));
+    c = g_cfg;
+    c.map_subsample[SBR_MAP_YELLOW] = SBR_MAP_MAX_SUBSAMPLE + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_config_check(&c));
+    c = g_cfg;
+    c.subsample = 4u;
+    c.map_subsample[SBR_MAP_RED] = 4u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_extract(&v, &c, &g_fft, g_ws, sizeof g_ws, g_parts,
+                                                           64u, &n, NULL));
+    /* a selected map below 3 x 3 at its own factor: SBR_ERR_SIZE, unselected ones do not
+       matter */
+    c = g_cfg;
+    c.map_subsample[SBR_MAP_RED] = 8u;
+    {
+        sbr_image_t small = v;
+        small.width = 20u; /* red map 2 x 2, intensity map 20 x 20 */
+        small.height = 20u;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_parts_extract(&small, &c, &g_fft, g_ws, sizeof g_ws,
+                                                              g_parts, 64u, &n, NULL));
+        TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_parts_workspace_size(20u, 20u, &c));
+        c.maps = 1u << SBR_MAP_INTENSITY;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&small, &c, &g_fft, g_ws, sizeof g_ws,
+                                                        g_parts, 64u, &n, NULL));
+        TEST_ASSERT_TRUE(sbr_parts_workspace_size(20u, 20u, &c) > 0u);
+    }
+}
+
 static void test_parts_capacity_and_bad_input(void)
 {
     sbr_image_t v = view();
@@ -232,6 +327,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_ring_sign_and_triangle);
     RUN_TEST(test_subsample_keeps_input_coordinates);
+    RUN_TEST(test_map_subsample_per_kind);
     RUN_TEST(test_parts_capacity_and_bad_input);
     return UNITY_END();
 }

@@ -73,6 +73,9 @@ static void test_config(void)
 {
     sbr_recog_config_default(&g_cfg);
     g_cfg.parts.maps = 0x7u; /* intensity, red and blue: the red map's path too */
+    g_cfg.parts.map_subsample[SBR_MAP_BLUE] = 1u; /* every map at full resolution: the
+                                                     models here are learned from this
+                                                     small frame's parts */
     g_cfg.parts.max_side = 48u;
     g_cfg.parts.max_regions = 256u;
     g_cfg.parts.max_contour = 512u;

@@ -5,7 +5,8 @@
 //              [--no-picto] [--range A-B]
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
-//              [--maps MASK] [--max-candidates N] [--views N]
+//              [--refine-score S] [--views N] [--view-score S] [--maps MASK]
+//              [--map-subsample I,R,B,Y] [--max-candidates N]
 //
 // --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
 //   accepted too). --range A-B keeps images numbered A..B.
@@ -25,10 +26,12 @@
 //   its own; --no-picto: no class stage (part evidence alone scores and classifies).
 // --summary: the summary text (also printed): images, detections, time per frame (median
 //   and 95th percentile, per stage), workspace bytes, capacity hits.
-// --min-parts, --vote-error, --verify-error, --min-score, --refine-steps, --views override the recogniser's options
-//   of those names (include/sbr/recognizer.h), for tuning and regression; --maps sets
-//   parts.maps (bit k = map kind k of include/sbr/map.h; 0x1 intensity only) and
-//   --max-candidates the class stage's candidate bound.
+// --min-parts, --vote-error, --verify-error, --min-score, --refine-steps, --refine-score,
+//   --views, --view-score override the recogniser's options of those names
+//   (include/sbr/recognizer.h), for tuning and regression; --maps sets parts.maps (bit k =
+//   map kind k of include/sbr/map.h; 0x1 intensity only), --map-subsample
+//   parts.map_subsample (per kind, in the order intensity, red, blue, yellow; kinds not
+//   given keep their defaults) and --max-candidates the class stage's candidate bound.
 // Time is measured per frame on one core (the tool is single-threaded).
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -109,7 +112,8 @@ int main(int argc, char **argv) {
     bool use_roi = false, quiet = false;
     int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1;
     bool sequence = false;
-    float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f;
+    std::vector<unsigned> map_sub;  // --map-subsample: per map kind, empty = defaults
+    float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, view_score = -1.0f;
     sbr_rect_t roi{};
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -129,7 +133,14 @@ int main(int argc, char **argv) {
         else if (a == "--sequence") sequence = true;
         else if (a == "--min-parts") min_parts = std::atoi(next().c_str());
         else if (a == "--refine-steps") refine_steps = std::atoi(next().c_str());
-        else if (a == "--maps") maps = int(std::strtol(next().c_str(), nullptr, 0));
+        else if (a == "--refine-score") refine_score = std::strtof(next().c_str(), nullptr);
+        else if (a == "--view-score") view_score = std::strtof(next().c_str(), nullptr);
+        else if (a == "--map-subsample") {
+            unsigned f[4] = {1, 1, 1, 1};
+            const int got = std::sscanf(next().c_str(), "%u,%u,%u,%u", &f[0], &f[1], &f[2], &f[3]);
+            if (got < 1) { std::fprintf(stderr, "--map-subsample wants I[,R[,B[,Y]]]\n"); return 2; }
+            map_sub.assign(f, f + got);
+        } else if (a == "--maps") maps = int(std::strtol(next().c_str(), nullptr, 0));
         else if (a == "--max-candidates") max_candidates = std::atoi(next().c_str());
         else if (a == "--views") views_opt = std::atoi(next().c_str());
         else if (a == "--vote-error") vote_error = std::strtof(next().c_str(), nullptr);
@@ -148,7 +159,7 @@ int main(int argc, char **argv) {
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
                          "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]\n"
                          "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
-                         "          [--refine-steps N] [--maps MASK] [--max-candidates N] [--views N] [--picto FILE | --no-picto]\n", argv[0]);
+                         "          [--refine-steps N] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--max-candidates N] [--views N] [--picto FILE | --no-picto]\n", argv[0]);
             return 2;
         }
     }
@@ -186,6 +197,9 @@ int main(int argc, char **argv) {
     if (min_score >= 0.0f) cfg.min_score = min_score;
     if (min_parts >= 0) cfg.min_parts = uint32_t(min_parts);
     if (refine_steps >= 0) cfg.refine_steps = uint32_t(refine_steps);
+    if (refine_score >= 0.0f) cfg.refine_score = refine_score;
+    if (view_score >= 0.0f) cfg.view_score = view_score;
+    for (size_t k = 0; k < map_sub.size(); ++k) cfg.parts.map_subsample[k] = map_sub[k];
     if (maps >= 0) cfg.parts.maps = uint32_t(maps);
     if (max_candidates >= 0) cfg.max_candidates = uint32_t(max_candidates);
     if (views_opt >= 0) cfg.views = uint32_t(views_opt);

@@ -3,7 +3,7 @@
 //
 //   sbr_train_picto [--data DIR] [--range A-B] [--model FILE.sbrm] [--candidates FILE]
 //                   [--hidden H] [--epochs E] [--jitter J] [--lr L] [--seed S] [--threshold T]
-//                   [--bg-fraction F] [--dropout D] [--decay W] [--exposure] [--no-box]
+//                   [--bg-fraction F] [--dropout D] [--decay W] [--exposure] [--mirror] [--no-box]
 //                   [--rounds R] [--out-c FILE] [--out FILE] [--eval-range A-B]
 //
 // Defaults: --data ../shared/data/gtsdb, --range 0-399 (the training split; the
@@ -13,8 +13,8 @@
 // --bg-fraction 0.3 (share of the background samples each epoch sees, a fresh draw each
 // epoch), --dropout 0.5 (share of the hidden units left out of each training sample's
 // forward and backward pass, a fresh deterministic draw per sample and epoch; 0 = none),
-// --decay 1e-4 (L2 weight decay), --exposure off, box regression on (--no-box: a
-// classifier without it).
+// --decay 1e-4 (L2 weight decay), --exposure off, --mirror off, box regression on
+// (--no-box: a classifier without it).
 // Dropout keeps the 752 x 128 first layer from learning the 636 training signs by heart:
 // without it the classifier names all annotated training boxes correctly but 88 % of the
 // development split's (--eval-range 400-599); with 0.5, 91 %, and the whole recogniser's
@@ -28,6 +28,11 @@
 //    every fourth copy is seen under another exposure (the neighbourhood through a random
 //    gamma 0.5-2 and contrast 0.5-1). It raised --eval-range accuracy from 91 % to 94 %
 //    but not the recogniser's F1 (0.835 against 0.848 without), so it is off by default;
+//    with --mirror, every fourth copy of a sign whose mirror image is a GTSDB class
+//    (symmetric signs, and pairs such as keep right / keep left) is taken from the
+//    mirrored neighbourhood with that class. It did not help either: class-level F1
+//    0.836 against 0.848 with seed 1, 0.825 against 0.831 with seed 2 (danger recall
+//    +3 signs with seed 1, none with seed 2), so it is off by default;
 //  - the recogniser's candidate boxes on the training images (its part model with
 //    min_parts 1 and no score floor, or the boxes of --candidates, a detection file):
 //    IoU >= 0.55 with a sign -> that sign's class; IoU < 0.3 with every sign -> background;
@@ -136,6 +141,10 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
                                   std::vector<uint64_t> &ws) {
     sbr_recog_config_t rc;
     sbr_recog_config_default(&rc);
+    // every map at full resolution, as the part model was learned (sbr_train): the finest
+    // candidates (the recogniser's default runs the blue map at half resolution; the class
+    // stage learned this way scores the same there, see the README)
+    for (uint32_t k = 0; k < SBR_MAP_KINDS; ++k) rc.parts.map_subsample[k] = 1;
     rc.min_parts = 1;
     rc.min_score = picto != nullptr ? kMineScore : 0.0f;
     sbr_model_t m = model;
@@ -338,14 +347,32 @@ void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, i
     }
 }
 
+// The class a GTSDB sign of class c shows in a mirror, -1 when no class does (digits,
+// text, vehicles and other pictograms that are not left-right symmetric).
+int mirror_class(int c) {
+    switch (c) {
+    case 11: case 12: case 13: case 15: case 17: case 18: case 22: case 26: case 30: case 35:
+        return c;  // symmetric
+    case 19: return 20;  // dangerous curve left <-> right
+    case 20: return 19;
+    case 33: return 34;  // turn right ahead <-> turn left ahead
+    case 34: return 33;
+    case 36: return 37;  // straight or right <-> straight or left
+    case 37: return 36;
+    case 38: return 39;  // keep right <-> keep left
+    case 39: return 38;
+    default: return -1;
+    }
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
     std::string data = "../shared/data/gtsdb", cand_path, out_c, out_file, model_path;
     int r0 = 0, r1 = 399, e0 = -1, e1 = -1, hidden = 128, epochs = 20, jitter = 20;
-    float lr = 0.01f, threshold = 0.5f, bg_fraction = 0.3f, dropout = 0.5f, decay = 1e-4f;
+    float lr = 0.01f, threshold = 0.5f, bg_fraction = 0.3f, dropout = 0.5f, decay = 1e-4f, balance = 0.0f;
     int rounds = 2;
-    bool box = true, exposure = false;
+    bool box = true, exposure = false, mirror = false;
     unsigned seed = 1;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -367,6 +394,8 @@ int main(int argc, char **argv) {
         else if (a == "--decay") decay = std::strtof(next().c_str(), nullptr);
         else if (a == "--no-box") box = false;
         else if (a == "--exposure") exposure = true;
+        else if (a == "--mirror") mirror = true;
+        else if (a == "--balance") balance = std::strtof(next().c_str(), nullptr);
         else if (a == "--rounds") rounds = std::atoi(next().c_str());
         else if (a == "--seed") seed = unsigned(std::atoi(next().c_str()));
         else if (a == "--out-c") out_c = next();
@@ -374,9 +403,9 @@ int main(int argc, char **argv) {
         else { std::fprintf(stderr, "sbr_train_picto: unknown option %s (see the file's header)\n", a.c_str()); return 2; }
     }
     if (hidden < 0 || hidden > int(SBR_PICTO_HIDDEN_MAX) || epochs < 1 || rounds < 1 || !(bg_fraction > 0.0f && bg_fraction <= 1.0f) ||
-        !(dropout >= 0.0f && dropout <= 0.9f) || !(decay >= 0.0f && decay < 1.0f)) {
+        !(dropout >= 0.0f && dropout <= 0.9f) || !(decay >= 0.0f && decay < 1.0f) || !(balance >= 0.0f && balance <= 2.0f)) {
         std::fprintf(stderr, "sbr_train_picto: --hidden 0..%u, --epochs >= 1, --rounds >= 1, --bg-fraction in (0, 1], "
-                             "--dropout in [0, 0.9], --decay in [0, 1)\n",
+                             "--dropout in [0, 0.9], --decay in [0, 1), --balance in [0, 2]\n",
                      SBR_PICTO_HIDDEN_MAX);
         return 2;
     }
@@ -473,6 +502,25 @@ int main(int argc, char **argv) {
                         const Box qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
                         if (features(sv, qs, f)) local.push_back({f, cls[g]});
                         else continue;
+                    } else if (j > 0 && j % 4 == 0 && mirror && mirror_class(cls[g]) >= 0) {
+                        // the mirror image: the neighbourhood flipped left to right, the
+                        // class its mirror class (keep right <-> keep left, ...)
+                        const auto [mx0, my0, mx1, my1] = around(b);
+                        cv::Mat flipped;
+                        cv::flip(img(cv::Rect(mx0, my0, mx1 - mx0, my1 - my0)), flipped, 1);
+                        const sbr_image_t sv = bgr_view(flipped);
+                        const float W = float(mx1 - mx0);
+                        auto flip = [&](const Box &r) {
+                            return Box{W - (r.x1 - float(mx0)), r.y0 - float(my0), W - (r.x0 - float(mx0)), r.y1 - float(my0)};
+                        };
+                        const Box qs = flip(q);
+                        if (!features(sv, qs, f)) continue;
+                        local.push_back({f, mirror_class(cls[g])});
+                        if (box) {
+                            local.back().has_box = true;
+                            box_target(qs, flip(b), local.back().t);
+                        }
+                        continue;
                     } else if (features(v, q, f)) {
                         local.push_back({f, cls[g]});
                     } else {
@@ -551,6 +599,23 @@ int main(int argc, char **argv) {
         const float wbg = float(nfg) / float(nbg);
         for (size_t i = 0; i < samples.size(); ++i)
             if (samples[i].label == int(SBR_PICTO_BACKGROUND) && !samples[i].hard) sw[i] = wbg;
+        if (balance > 0.0f) {
+            // rarer classes weigh more: class c's samples by (n_c / mean)^-balance, scaled
+            // so the signs together weigh as before
+            std::vector<double> nc(SBR_PICTO_BACKGROUND, 0.0);
+            for (const auto &x : samples)
+                if (x.label >= 0 && x.label < int(SBR_PICTO_BACKGROUND)) nc[size_t(x.label)] += 1.0;
+            double present = 0.0, total = 0.0, wsum = 0.0;
+            for (double c : nc) { present += c > 0.0; total += c; }
+            const double mean_n = total / std::max(present, 1.0);
+            for (size_t i = 0; i < samples.size(); ++i)
+                if (samples[i].label >= 0 && samples[i].label < int(SBR_PICTO_BACKGROUND)) {
+                    sw[i] = float(std::pow(nc[size_t(samples[i].label)] / mean_n, -double(balance)));
+                    wsum += sw[i];
+                }
+            for (size_t i = 0; i < samples.size(); ++i)
+                if (samples[i].label >= 0 && samples[i].label < int(SBR_PICTO_BACKGROUND)) sw[i] *= float(total / wsum);
+        }
         Net net;
         net.h = hidden;
         train(net, samples, sw, epochs, seed, lr, bg_fraction, dropout, decay);
@@ -608,12 +673,12 @@ int main(int argc, char **argv) {
     std::snprintf(head, sizeof head,
                   "Class stage (pictogram classifier) of sbr's recogniser. GENERATED by sbr_train_picto - do not edit.\n"
                   "Regenerate: ./sbr.sh train   (runs sbr_train_picto --range %d-%d --hidden %d --epochs %d --jitter %d\n"
-                  "            --bg-fraction %g --dropout %g --decay %g%s%s --rounds %d --seed %u\n"
+                  "            --bg-fraction %g --dropout %g --decay %g%s%s%s --rounds %d --seed %u\n"
                   "            --out-c lib/models/sbr_picto_gtsdb.c on GTSDB)\n"
                   "Training: GTSDB images %05d-%05d, %zu sign samples, %zu background samples,\n"
                   "%zu boxes for the box regression only.",
                   r0, r1, hidden, epochs, jitter, double(bg_fraction), double(dropout), double(decay),
-                  box ? "" : " --no-box", exposure ? " --exposure" : "", rounds, seed, r0, r1, nfg, nbg, nreg);
+                  box ? "" : " --no-box", exposure ? " --exposure" : "", mirror ? " --mirror" : "", rounds, seed, r0, r1, nfg, nbg, nreg);
     if (!out_c.empty() && !report_write("sbr_train_picto", out_c, write_picto_c(out, out_c, head))) return 1;
     if (!out_file.empty() && !report_write("sbr_train_picto", out_file, save_picto(out, out_file))) return 1;
 

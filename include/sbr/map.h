@@ -38,6 +38,9 @@ extern "C" {
 /** Largest subsampling factor. */
 #define SBR_MAP_MAX_SUBSAMPLE 8u
 
+/** Number of map kinds (::sbr_map_kind_t values 0 .. SBR_MAP_KINDS - 1). */
+#define SBR_MAP_KINDS 4u
+
 /** Map kinds. */
 typedef enum sbr_map_kind_e {
     SBR_MAP_INTENSITY = 0,

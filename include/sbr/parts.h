@@ -45,6 +45,12 @@ typedef struct sbr_parts_config_s {
     /** Map subsampling, 1..::SBR_MAP_MAX_SUBSAMPLE. 2 quarters the memory and the time and
         loses signs below about twice the MSER min_area. Default 1. */
     uint32_t subsample;
+    /** Further subsampling of one map kind (index ::sbr_map_kind_t): map k is made with
+        blocks of subsample x map_subsample[k] pixels, at most ::SBR_MAP_MAX_SUBSAMPLE
+        (region filters and MSER areas stay in that map's pixels). A map whose objects are
+        large enough anyway costs a quarter of the time at 2. Default 1 for every kind.
+        The workspace is sized by `subsample` alone (the finest map). */
+    uint32_t map_subsample[SBR_MAP_KINDS];
     /** Region extraction. Defaults: delta 5, area 60..14400, variation 0.25, diversity 0.2,
         both polarities, max_nodes 68000 (a sixteenth of a 1360 x 800 map, measured
         sufficient on GTSDB scenes; stats.capacity_hit says when a frame needed more). */

@@ -46,7 +46,7 @@
  *    classifier has a box regression, a candidate that is at least `refine_score` likely
  *    a sign is moved to the box the regression predicts and classified again there
  *    (`refine_steps` times at most); box is the last one. A candidate still at least
- *    `refine_score` likely is then classified at `views` slightly shifted copies of its
+ *    `view_score` likely is then classified at `views` slightly shifted copies of its
  *    box and class and score come from the mean probabilities (fewer confident false
  *    detections; views = 1 keeps the last classification). Detections
  *    below `min_score` are dropped and suppression runs again on the new scores.
@@ -139,9 +139,11 @@ typedef struct sbr_recog_config_s {
     /** Part extraction (parts.h). fd_n and fd_m must equal the model's. Default:
         sbr_parts_config_default() with MSER delta 3, max_variation 0.5 and maps =
         intensity + blue (the built-in library also has red-map prototypes; adding the red
-        map costs about a third more part time and, on GTSDB, did not help). Trade-off:
-        maps and subsample set most of the time and memory; subsample 2 quarters both and
-        loses signs below about 24 px. GRAY8 frames need maps = intensity only. */
+        map costs about a third more part time and, on GTSDB, did not help), the blue map
+        at half resolution (map_subsample[SBR_MAP_BLUE] = 2: a quarter of its time, same
+        F1 on GTSDB). Trade-off: maps and subsample set most of the time and memory;
+        subsample 2 quarters both and loses signs below about 24 px. GRAY8 frames need
+        maps = intensity only. */
     sbr_parts_config_t parts;
     /** Correlation size P (a supported FFT size, >= 2M + 1). Default 32. Larger P locates
         the peak on a finer grid before refinement; the cost grows with P log P. */
@@ -194,12 +196,16 @@ typedef struct sbr_recog_config_s {
         Default 0.1 (most candidates are clearly background and are not refined). Lower:
         more work, a little more recall on badly placed boxes. */
     float refine_score;
-    /** With a class stage: a candidate that is still at least refine_score likely after
+    /** With a class stage: a candidate that is still at least view_score likely after
         its refinement is classified at this many views of its final box, 1 ..
         ::SBR_RECOG_MAX_VIEWS, and the class probabilities are averaged: the box itself,
         then shifted by ::SBR_RECOG_VIEW_SHIFT of its size right, left, down, up. Default
         5. 1: the box alone. Each view costs one more pictogram. */
     uint32_t views;
+    /** Classify at several views only while the sign classes together are at least this
+        probable after refinement, [0, 1]. Default 0.1. Lower: more work (most candidates
+        are background). */
+    float view_score;
     /** Score floor of reported detections, [0, 1): the class stage's probability, or the
         part score without one. Default 0.3 (below the usual operating point, so
         evaluations can draw precision-recall curves). */

@@ -10,14 +10,17 @@
 
 #include <string.h>
 
-#define PARTS_MAX_KINDS 4u
 #define PARTS_ALIGN(x) ((((size_t)(x)) + 7u) & ~((size_t)7u))
 
 void sbr_parts_config_default(sbr_parts_config_t *cfg)
 {
     if (cfg != NULL) {
+        uint32_t k;
         cfg->maps = 0x7u;
         cfg->subsample = 1u;
+        for (k = 0u; k < SBR_MAP_KINDS; k++) {
+            cfg->map_subsample[k] = 1u;
+        }
         sbr_mser_config_default(&cfg->mser);
         cfg->mser.max_nodes = 68000u;
         cfg->max_regions = 2048u;
@@ -34,6 +37,7 @@ void sbr_parts_config_default(sbr_parts_config_t *cfg)
 sbr_status_t sbr_parts_config_check(const sbr_parts_config_t *cfg)
 {
     sbr_status_t st;
+    uint32_t k;
     if (cfg == NULL) {
         return SBR_ERR_NULL;
     }
@@ -48,6 +52,13 @@ sbr_status_t sbr_parts_config_check(const sbr_parts_config_t *cfg)
         (sbr_fft_size_supported(cfg->fd_n) == 0) || (cfg->fd_m == 0u) ||
         (cfg->fd_m > SBR_FD_MAX_M) || ((2u * cfg->fd_m) >= cfg->fd_n)) {
         return SBR_ERR_RANGE;
+    }
+    for (k = 0u; k < SBR_MAP_KINDS; k++) {
+        /* the product stays within the map's range (no overflow: both are checked first) */
+        if ((cfg->map_subsample[k] == 0u) || (cfg->map_subsample[k] > SBR_MAP_MAX_SUBSAMPLE) ||
+            ((cfg->subsample * cfg->map_subsample[k]) > SBR_MAP_MAX_SUBSAMPLE)) {
+            return SBR_ERR_RANGE;
+        }
     }
     if (!((cfg->max_aspect >= 1.0f) && (cfg->max_aspect <= 1.0e6f)) ||
         !((cfg->min_fill >= 0.0f) && (cfg->min_fill <= 1.0f))) {
@@ -77,8 +88,15 @@ static int parts_layout(uint32_t width, uint32_t height, const sbr_parts_config_
     const uint32_t mh = height / cfg->subsample;
     const size_t side = (size_t)cfg->max_side;
     size_t ms;
+    uint32_t k;
     if ((mw < 3u) || (mh < 3u)) {
         return 0;
+    }
+    for (k = 0u; k < SBR_MAP_KINDS; k++) {
+        const uint32_t s = cfg->subsample * cfg->map_subsample[k];
+        if (((cfg->maps & (1u << k)) != 0u) && (((width / s) < 3u) || ((height / s) < 3u))) {
+            return 0;
+        }
     }
     ms = sbr_mser_workspace_size(mw, mh, &cfg->mser);
     if (ms == 0u) {
@@ -149,7 +167,7 @@ static int region_to_part(const sbr_image_t *map, const sbr_mser_region_t *r,
                           const sbr_parts_config_t *cfg, const sbr_fft_t *fft,
                           parts_bufs_t *b, uint8_t kind, sbr_part_t *out)
 {
-    const uint32_t s = cfg->subsample;
+    const uint32_t s = cfg->subsample * cfg->map_subsample[kind];
     const float half = 0.5f * ((float)s - 1.0f);
     sbr_image_t mv;
     sbr_contour_t ct;
@@ -258,15 +276,16 @@ sbr_status_t sbr_parts_extract(const sbr_image_t *img, const sbr_parts_config_t 
     base = &base[l.pointsf];
     b.fdwork = (sbr_complex_t *)(void *)base;
 
-    for (kind = 0u; (kind < PARTS_MAX_KINDS) && (full == 0); kind++) {
+    for (kind = 0u; (kind < SBR_MAP_KINDS) && (full == 0); kind++) {
         sbr_image_t map;
+        uint32_t sub;
         uint32_t nreg = 0u;
         uint32_t i;
         if ((cfg->maps & (1u << kind)) == 0u) {
             continue;
         }
-        st = sbr_map_make(img, (sbr_map_kind_t)kind, cfg->subsample, b.map,
-                          img->width / cfg->subsample, l.map, &map);
+        sub = cfg->subsample * cfg->map_subsample[kind];
+        st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, b.map, img->width / sub, l.map, &map);
         if (st != SBR_OK) {
             return st;
         }
