@@ -6,7 +6,7 @@
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
 //              [--refine-score S] [--views N] [--view-score S] [--maps MASK]
-//              [--map-subsample I,R,B,Y] [--max-candidates N] [--candidate-score S]
+//              [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S]
 //
 // --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
 //   accepted too). --range A-B keeps images numbered A..B.
@@ -31,7 +31,9 @@
 //   (include/sbr/recognizer.h), for tuning and regression; --maps sets parts.maps (bit k =
 //   map kind k of include/sbr/map.h; 0x1 intensity only), --map-subsample
 //   parts.map_subsample (per kind, in the order intensity, red, blue, yellow; kinds not
-//   given keep their defaults) and --max-candidates the class stage's candidate bound.
+//   given keep their defaults), --max-nodes parts.mser.max_nodes (MSER tree nodes, most of
+//   the workspace; 0 = the worst case) and --max-candidates the class stage's candidate
+//   bound.
 // Time is measured per frame on one core (the tool is single-threaded).
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -110,7 +112,7 @@ int main(int argc, char **argv) {
     float threshold = -1.0f;
     uint32_t subsample = 1;
     bool use_roi = false, quiet = false;
-    int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1;
+    int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1, max_nodes = -1;
     bool sequence = false;
     std::vector<unsigned> map_sub;  // --map-subsample: per map kind, empty = defaults
     float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, view_score = -1.0f, candidate_score = -1.0f;
@@ -142,6 +144,7 @@ int main(int argc, char **argv) {
             if (got < 1) { std::fprintf(stderr, "--map-subsample wants I[,R[,B[,Y]]]\n"); return 2; }
             map_sub.assign(f, f + got);
         } else if (a == "--maps") maps = int(std::strtol(next().c_str(), nullptr, 0));
+        else if (a == "--max-nodes") max_nodes = std::atoi(next().c_str());
         else if (a == "--max-candidates") max_candidates = std::atoi(next().c_str());
         else if (a == "--views") views_opt = std::atoi(next().c_str());
         else if (a == "--vote-error") vote_error = std::strtof(next().c_str(), nullptr);
@@ -160,7 +163,7 @@ int main(int argc, char **argv) {
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
                          "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]\n"
                          "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
-                         "          [--refine-steps N] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--max-candidates N] [--candidate-score S] [--views N] [--picto FILE | --no-picto]\n", argv[0]);
+                         "          [--refine-steps N] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S] [--views N] [--picto FILE | --no-picto]\n", argv[0]);
             return 2;
         }
     }
@@ -203,6 +206,7 @@ int main(int argc, char **argv) {
     if (candidate_score >= 0.0f) cfg.candidate_score = candidate_score;
     for (size_t k = 0; k < map_sub.size(); ++k) cfg.parts.map_subsample[k] = map_sub[k];
     if (maps >= 0) cfg.parts.maps = uint32_t(maps);
+    if (max_nodes >= 0) cfg.parts.mser.max_nodes = uint32_t(max_nodes);
     if (max_candidates >= 0) cfg.max_candidates = uint32_t(max_candidates);
     if (views_opt >= 0) cfg.views = uint32_t(views_opt);
     if (vote_error >= 0.0f) cfg.vote_error = vote_error;
