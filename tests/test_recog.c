@@ -418,6 +418,24 @@ static void test_class_stage(void)
             TEST_ASSERT_FLOAT_WITHIN(1e-4f, expf(4.0f) / (expf(4.0f) + 43.0f), g_dets[0].score);
             TEST_ASSERT_EQUAL_UINT32((nv - 1u) * st.classified, st.views);
         }
+        /* views only for likely signs: the sign classes here are (e^4 + 42) / (e^4 + 43)
+           = 0.982 probable, so a view_score above that classifies every candidate once */
+        rc.views = SBR_RECOG_MAX_VIEWS;
+        rc.view_score = 0.99f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                       16u, &n, &st));
+        TEST_ASSERT_TRUE(n >= 1u);
+        TEST_ASSERT_TRUE(st.classified >= 1u);
+        TEST_ASSERT_EQUAL_UINT32(0u, st.views);
+        rc.view_score = 0.98f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                       16u, &n, &st));
+        TEST_ASSERT_EQUAL_UINT32((SBR_RECOG_MAX_VIEWS - 1u) * st.classified, st.views);
+        rc.view_score = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        rc.view_score = 1.5f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        rc.view_score = g_cfg.view_score;
         rc.views = 0u;
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
                                                               16u, &n, &st));
