@@ -791,6 +791,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
                         sbr_recog_stats_t *st)
 {
     float box[4];
+    float signs; /* the sign classes' probability at the current box */
     uint32_t step = 0u;
     uint32_t steps = 0u;
     box[0] = h->mx - (0.5f * h->mw);
@@ -800,7 +801,8 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     if (picto_box(view, pm, box, b) == 0) {
         return 0;
     }
-    if ((take_class(h, b->prob) >= cfg->refine_score) && (pm->w3 != NULL)) {
+    signs = take_class(h, b->prob);
+    if ((signs >= cfg->refine_score) && (pm->w3 != NULL)) {
         steps = cfg->refine_steps;
     }
     while (step < steps) {
@@ -820,12 +822,13 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
             h->my = 0.5f * (box[1] + box[3]);
             h->mw = box[2] - box[0];
             h->mh = box[3] - box[1];
-            if (take_class(h, b->prob) < cfg->refine_score) {
+            signs = take_class(h, b->prob);
+            if (signs < cfg->refine_score) {
                 step = steps; /* no longer a likely sign: this was the last move */
             }
         }
     }
-    if ((cfg->views > 1u) && (take_class(h, b->prob) >= cfg->view_score)) {
+    if ((cfg->views > 1u) && (signs >= cfg->view_score)) {
         st->views += average_views(h, view, pm, cfg->views, box, b);
     }
     return 1;
