@@ -226,20 +226,6 @@ static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap
     }
 }
 
-/* A run of CENTRE_CELL pixels lies in one coarse cell and in at most one fine cell. */
-typedef char picto_run_check[(((CELL % CENTRE_CELL) == 0u) && ((CENTRE_LO % CENTRE_CELL) == 0u))
-                                 ? 1 : -1];
-
-/* Projection p on axis k: its positive part to bin k, its negative part to bin k + 4. */
-static void add_signed(float acc[ORIENT], uint32_t k, float p)
-{
-    if (p > 0.0f) {
-        acc[k] += p;
-    } else {
-        acc[k + 4u] -= p;
-    }
-}
-
 /* Normalise a vector segment to unit L2 norm (left alone when it is all zero). */
 static void unit_norm(float *f, uint32_t n)
 {
@@ -319,36 +305,34 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
     }
     (void)memset(feat, 0, SBR_PICTO_FEATURES * sizeof(float));
 
-    /* orientation histograms: the gradient projected on 0, 45, 90 and 135 degrees, its
-       positive and negative parts apart; summed over runs of CENTRE_CELL pixels of a row
-       (one run lies in one coarse and at most one fine cell), then added to the cells */
+    /* orientation histograms: the gradient projected on 0, 45, 90 and 135 degrees */
     for (v = 0u; v < PS; v++) {
-        const float *row = &g[v * PS];
-        const float *below = &g[nb_hi(v) * PS];
-        const float *above = &g[nb_lo(v) * PS];
-        float *coarse = &feat[F_HOG + ((v / CELL) * CELLS * ORIENT)];
-        uint32_t s;
-        for (s = 0u; s < PS; s += CENTRE_CELL) {
-            float acc[ORIENT] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
-            float *cell = &coarse[(s / CELL) * ORIENT];
+        const uint32_t vm = nb_lo(v);
+        const uint32_t vp = nb_hi(v);
+        for (u = 0u; u < PS; u++) {
+            const uint32_t um = nb_lo(u);
+            const uint32_t up = nb_hi(u);
+            const float gx = g[(v * PS) + up] - g[(v * PS) + um];
+            const float gy = g[(vp * PS) + u] - g[(vm * PS) + u];
+            float proj[4];
+            float *cell = &feat[F_HOG + ((((v / CELL) * CELLS) + (u / CELL)) * ORIENT)];
+            float *fine = NULL;
             uint32_t k;
-            for (u = s; u < (s + CENTRE_CELL); u++) {
-                const float gx = row[nb_hi(u)] - row[nb_lo(u)];
-                const float gy = below[u] - above[u];
-                add_signed(acc, 0u, gx);
-                add_signed(acc, 1u, DIAG * (gx + gy));
-                add_signed(acc, 2u, gy);
-                add_signed(acc, 3u, DIAG * (gy - gx));
+            if ((u >= CENTRE_LO) && (v >= CENTRE_LO) && (u < (PS - CENTRE_LO)) &&
+                (v < (PS - CENTRE_LO))) {
+                fine = &feat[F_CENTRE + ((((((v - CENTRE_LO) / CENTRE_CELL) * CENTRE_CELLS) +
+                                           ((u - CENTRE_LO) / CENTRE_CELL))) * ORIENT)];
             }
-            for (k = 0u; k < ORIENT; k++) {
-                cell[k] += acc[k];
-            }
-            if ((v >= CENTRE_LO) && (v < (PS - CENTRE_LO)) && (s >= CENTRE_LO) &&
-                (s < (PS - CENTRE_LO))) {
-                float *fine = &feat[F_CENTRE + (((((v - CENTRE_LO) / CENTRE_CELL) * CENTRE_CELLS) +
-                                                  ((s - CENTRE_LO) / CENTRE_CELL)) * ORIENT)];
-                for (k = 0u; k < ORIENT; k++) {
-                    fine[k] += acc[k];
+            proj[0] = gx;
+            proj[1] = DIAG * (gx + gy);
+            proj[2] = gy;
+            proj[3] = DIAG * (gy - gx);
+            for (k = 0u; k < 4u; k++) {
+                const uint32_t bin = (proj[k] > 0.0f) ? k : (k + 4u);
+                const float mag = (proj[k] > 0.0f) ? proj[k] : -proj[k];
+                cell[bin] += mag;
+                if (fine != NULL) {
+                    fine[bin] += mag;
                 }
             }
         }
