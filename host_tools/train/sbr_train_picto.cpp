@@ -65,7 +65,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -465,13 +464,11 @@ int main(int argc, char **argv) {
             for (size_t g = 0; g < gts.size() && mine == nullptr; ++g) {
                 const Box &b = gts[g];
                 const float w = float(b.x1 - b.x0), h = float(b.y1 - b.y0);
-                // the sign's neighbourhood (one sign size around it) clipped to the image:
-                // x0, y0, x1, y1 (exclusive)
-                auto around = [&](const Box &q) {
-                    return std::array<int, 4>{std::max(0, int(q.x0 - w)), std::max(0, int(q.y0 - h)),
-                                              std::min(img.cols, int(q.x1 + w) + 1),
-                                              std::min(img.rows, int(q.y1 + h) + 1)};
-                };
+                // the sign's neighbourhood (one sign size around it) clipped to the image,
+                // where the transformed copies are taken from
+                const int mx0 = std::max(0, int(b.x0 - w)), my0 = std::max(0, int(b.y0 - h));
+                const int mx1 = std::min(img.cols, int(b.x1 + w) + 1), my1 = std::min(img.rows, int(b.y1 + h) + 1);
+                const cv::Mat near = img(cv::Rect(mx0, my0, mx1 - mx0, my1 - my0));
                 for (int j = 0; j <= jitter; ++j) {
                     Box q = b;
                     if (j > 0) {
@@ -481,62 +478,51 @@ int main(int argc, char **argv) {
                         const float hw = 0.5f * w * s * (1.0f + 0.04f * U(rng)), hh = 0.5f * h * s * (1.0f + 0.04f * U(rng));
                         q = {cx - hw, cy - hh, cx + hw, cy + hh};
                     }
+                    // the copy: box qs of image `seen` (the frame, or a transformed
+                    // neighbourhood), with that class; mirrored copies flip the target's
+                    // horizontal shift
+                    cv::Mat seen;
+                    sbr_image_t sv = v;
+                    Box qs = q;
+                    int label = cls[g];
+                    bool mirrored = false;
                     // every other copy as a farther sign: the neighbourhood shrunk (area
                     // averaging) so the sign is 1.5 to 4 times smaller, at least 12 px
                     const float shrink = 1.5f + 1.25f * (U(rng) + 1.0f);
                     if (j % 2 == 1 && w / shrink >= 12.0f) {
-                        const auto [mx0, my0, mx1, my1] = around(b);
-                        cv::Mat small;
-                        cv::resize(img(cv::Rect(mx0, my0, mx1 - mx0, my1 - my0)), small, cv::Size(), 1.0 / shrink,
-                                   1.0 / shrink, cv::INTER_AREA);
-                        const sbr_image_t sv = bgr_view(small);
-                        const float fx = float(small.cols) / float(mx1 - mx0), fy = float(small.rows) / float(my1 - my0);
-                        const Box qs = {(float(q.x0) - float(mx0)) * fx, (float(q.y0) - float(my0)) * fy,
-                                        (float(q.x1) - float(mx0)) * fx, (float(q.y1) - float(my0)) * fy};
-                        if (features(sv, qs, f)) local.push_back({f, cls[g]});
-                        else continue;
+                        cv::resize(near, seen, cv::Size(), 1.0 / shrink, 1.0 / shrink, cv::INTER_AREA);
+                        const float fx = float(seen.cols) / float(mx1 - mx0), fy = float(seen.rows) / float(my1 - my0);
+                        qs = {(float(q.x0) - float(mx0)) * fx, (float(q.y0) - float(my0)) * fy,
+                              (float(q.x1) - float(mx0)) * fx, (float(q.y1) - float(my0)) * fy};
                     } else if (j % 4 == 2 && exposure) {
                         // another exposure: the neighbourhood's values through a random
                         // gamma (0.5 to 2) and contrast (0.5 to 1) about mid-grey
-                        const auto [mx0, my0, mx1, my1] = around(b);
                         const float gam = std::exp(0.6931472f * U(rng)), con = 0.75f + 0.25f * U(rng);
-                        cv::Mat lut(1, 256, CV_8U), shot;
+                        cv::Mat lut(1, 256, CV_8U);
                         for (int k = 0; k < 256; ++k) {
                             const float t = 255.0f * std::pow(float(k) / 255.0f, gam);
                             lut.at<uint8_t>(k) = cv::saturate_cast<uint8_t>(128.0f + con * (t - 128.0f));
                         }
-                        cv::LUT(img(cv::Rect(mx0, my0, mx1 - mx0, my1 - my0)), lut, shot);
-                        const sbr_image_t sv = bgr_view(shot);
-                        const Box qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
-                        if (features(sv, qs, f)) local.push_back({f, cls[g]});
-                        else continue;
+                        cv::LUT(near, lut, seen);
+                        qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
                     } else if (j > 0 && j % 4 == 0 && mirror && mirror_class(cls[g]) >= 0) {
                         // the mirror image: the neighbourhood flipped left to right, the
                         // class its mirror class (keep right <-> keep left, ...)
-                        const auto [mx0, my0, mx1, my1] = around(b);
-                        cv::Mat flipped;
-                        cv::flip(img(cv::Rect(mx0, my0, mx1 - mx0, my1 - my0)), flipped, 1);
-                        const sbr_image_t sv = bgr_view(flipped);
+                        cv::flip(near, seen, 1);
                         const float W = float(mx1 - mx0);
-                        auto flip = [&](const Box &r) {
-                            return Box{W - (r.x1 - float(mx0)), r.y0 - float(my0), W - (r.x0 - float(mx0)), r.y1 - float(my0)};
-                        };
-                        const Box qs = flip(q);
-                        if (!features(sv, qs, f)) continue;
-                        local.push_back({f, mirror_class(cls[g])});
-                        if (box) {
-                            local.back().has_box = true;
-                            box_target(qs, flip(b), local.back().t);
-                        }
-                        continue;
-                    } else if (features(v, q, f)) {
-                        local.push_back({f, cls[g]});
-                    } else {
-                        continue;
+                        qs = {W - (q.x1 - float(mx0)), q.y0 - float(my0), W - (q.x0 - float(mx0)), q.y1 - float(my0)};
+                        label = mirror_class(cls[g]);
+                        mirrored = true;
                     }
+                    if (!seen.empty()) sv = bgr_view(seen);
+                    if (!features(sv, qs, f)) continue;
+                    local.push_back({f, label});
                     if (box) {
+                        // the target is the same in the frame's coordinates (shift and
+                        // scale invariant), mirrored for a mirror image
                         local.back().has_box = true;
                         box_target(q, b, local.back().t);
+                        if (mirrored) local.back().t[0] = -local.back().t[0];
                     }
                 }
             }
@@ -610,19 +596,20 @@ int main(int argc, char **argv) {
         if (balance > 0.0f) {
             // rarer classes weigh more: class c's samples by (n_c / mean)^-balance, scaled
             // so the signs together weigh as before
+            auto sign = [](const Sample &x) { return x.label >= 0 && x.label < int(SBR_PICTO_BACKGROUND); };
             std::vector<double> nc(SBR_PICTO_BACKGROUND, 0.0);
             for (const auto &x : samples)
-                if (x.label >= 0 && x.label < int(SBR_PICTO_BACKGROUND)) nc[size_t(x.label)] += 1.0;
+                if (sign(x)) nc[size_t(x.label)] += 1.0;
             double present = 0.0, total = 0.0, wsum = 0.0;
             for (double c : nc) { present += c > 0.0; total += c; }
             const double mean_n = total / std::max(present, 1.0);
             for (size_t i = 0; i < samples.size(); ++i)
-                if (samples[i].label >= 0 && samples[i].label < int(SBR_PICTO_BACKGROUND)) {
+                if (sign(samples[i])) {
                     sw[i] = float(std::pow(nc[size_t(samples[i].label)] / mean_n, -double(balance)));
                     wsum += sw[i];
                 }
             for (size_t i = 0; i < samples.size(); ++i)
-                if (samples[i].label >= 0 && samples[i].label < int(SBR_PICTO_BACKGROUND)) sw[i] *= float(total / wsum);
+                if (sign(samples[i])) sw[i] *= float(total / wsum);
         }
         Net net;
         net.h = hidden;
