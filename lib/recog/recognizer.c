@@ -44,9 +44,18 @@ typedef struct recog_hyp_s {
     uint32_t keep;
 } recog_hyp_t;
 
+/* An entry of the part index: the parts of each group (map, polarity) in order of their
+   centre's x, so that the cascade looks only at parts near a predicted position. */
+typedef struct recog_index_s {
+    float cx;
+    uint32_t part;
+    uint32_t group;
+} recog_index_t;
+
 typedef struct recog_layout_s {
     size_t parts_ws;
     size_t parts;
+    size_t index;
     size_t results;
     size_t work;
     size_t votes;
@@ -239,13 +248,15 @@ static int recog_layout(uint32_t width, uint32_t height, const sbr_recog_config_
         return 0;
     }
     l->parts = RECOG_ALIGN((size_t)cfg->max_parts * sizeof(sbr_part_t));
+    l->index = RECOG_ALIGN((size_t)cfg->max_parts * sizeof(recog_index_t));
     l->results = RECOG_ALIGN((size_t)cfg->max_model_protos * sizeof(sbr_fd_match_t));
     l->work = RECOG_ALIGN((size_t)cfg->match_p * 5u * sizeof(sbr_complex_t)); /* the table
                                                                     matcher's four-lane scratch */
     l->votes = RECOG_ALIGN((size_t)cfg->max_votes * sizeof(recog_vote_t));
     l->hyps = RECOG_ALIGN((size_t)cfg->max_hypotheses * sizeof(recog_hyp_t));
     l->picto = RECOG_ALIGN(RECOG_PICTO_BYTES);
-    l->total = l->parts_ws + l->parts + l->results + l->work + l->votes + l->hyps + l->picto;
+    l->total = l->parts_ws + l->parts + l->index + l->results + l->work + l->votes + l->hyps +
+               l->picto;
     return 1;
 }
 
@@ -356,6 +367,8 @@ typedef struct recog_ctx_s {
     sbr_fd_match_config_t mcfg;
     sbr_part_t *parts;
     uint32_t nparts;
+    recog_index_t *index;                          /* [nparts] */
+    uint32_t group_first[SBR_MODEL_GROUPS + 1u];   /* each group's first index entry */
     sbr_fd_match_t *results;
     sbr_complex_t *work;
     uint32_t work_len;
@@ -519,6 +532,50 @@ static int voted(const recog_vote_t *votes, uint32_t a, uint32_t b, uint32_t q)
     return found;
 }
 
+/* Index order: by group, then centre x, then part. */
+static int index_before(const void *pa, const void *pb, int mode)
+{
+    const recog_index_t *a = (const recog_index_t *)pa;
+    const recog_index_t *b = (const recog_index_t *)pb;
+    int before = 0;
+    (void)mode;
+    if (a->group != b->group) {
+        if (a->group < b->group) {
+            before = 1;
+        }
+    } else if (a->cx != b->cx) {
+        if (a->cx < b->cx) {
+            before = 1;
+        }
+    } else if (a->part < b->part) {
+        before = 1;
+    } else {
+        before = 0;
+    }
+    return before;
+}
+
+/* Build the part index and each group's first entry. */
+static void index_parts(recog_ctx_t *c)
+{
+    uint32_t i;
+    uint32_t g = 0u;
+    for (i = 0u; i < c->nparts; i++) {
+        const sbr_part_t *p = &c->parts[i];
+        c->index[i].cx = p->fd.cx;
+        c->index[i].part = i;
+        c->index[i].group = ((uint32_t)p->map * 2u) + ((uint32_t)p->polarity - 1u);
+    }
+    heap_sort((uint8_t *)(void *)c->index, c->nparts, sizeof(recog_index_t), index_before, 0);
+    for (i = 0u; i <= c->nparts; i++) {
+        const uint32_t gi = (i < c->nparts) ? c->index[i].group : SBR_MODEL_GROUPS;
+        while (g <= gi) {
+            c->group_first[g] = i;
+            g++;
+        }
+    }
+}
+
 /* Look for cascade prototype q of class cls near where hypothesis h predicts it.
    Returns the weight it adds (0 if not found). */
 static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint32_t cls)
@@ -529,10 +586,25 @@ static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint3
     const float py = h->my - (pr->dy * s);
     const float f = 1.0f + c->cfg->size_tol;
     const float tol = c->cfg->centre_tol * maxf(h->mw, h->mh);
+    /* the index range holds every part whose x passes the test below (one pixel of
+       margin for rounding); the test itself decides */
+    const float xlo = (px - tol) - 1.0f;
+    const float xhi = (px + tol) + 1.0f;
+    const uint32_t g = ((uint32_t)pr->map * 2u) + ((uint32_t)pr->polarity - 1u);
+    uint32_t lo = c->group_first[g];
+    uint32_t hi = c->group_first[g + 1u];
     float best = 0.0f;
     uint32_t i;
-    for (i = 0u; i < c->nparts; i++) {
-        const sbr_part_t *p = &c->parts[i];
+    while (lo < hi) { /* first entry with cx >= xlo */
+        const uint32_t mid = lo + ((hi - lo) / 2u);
+        if (c->index[mid].cx < xlo) {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    for (i = lo; (i < c->group_first[g + 1u]) && (c->index[i].cx <= xhi); i++) {
+        const sbr_part_t *p = &c->parts[c->index[i].part];
         if ((p->map == pr->map) && (p->polarity == pr->polarity) &&
             (fabsf(p->fd.cx - px) <= tol) && (fabsf(p->fd.cy - py) <= tol) &&
             (p->fd.scale <= (s * f)) && ((p->fd.scale * f) >= s)) {
@@ -905,11 +977,18 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
     c.mcfg.max_rotation = cfg->max_rotation;
     base = (uint8_t *)workspace;
     c.parts = (sbr_part_t *)(void *)&base[l.parts_ws];
-    c.results = (sbr_fd_match_t *)(void *)&base[l.parts_ws + l.parts];
-    c.work = (sbr_complex_t *)(void *)&base[l.parts_ws + l.parts + l.results];
+    base = &base[l.parts_ws + l.parts];
+    c.index = (recog_index_t *)(void *)base;
+    base = &base[l.index];
+    c.results = (sbr_fd_match_t *)(void *)base;
+    base = &base[l.results];
+    c.work = (sbr_complex_t *)(void *)base;
     c.work_len = cfg->match_p * 5u; /* SBR_FD_TABLE_WORK_LEN */
-    c.votes = (recog_vote_t *)(void *)&base[l.parts_ws + l.parts + l.results + l.work];
-    c.hyps = (recog_hyp_t *)(void *)&base[l.parts_ws + l.parts + l.results + l.work + l.votes];
+    base = &base[l.work];
+    c.votes = (recog_vote_t *)(void *)base;
+    base = &base[l.votes];
+    c.hyps = (recog_hyp_t *)(void *)base;
+    base = (uint8_t *)workspace;
 
     if (cfg->clock != NULL) {
         t0 = cfg->clock(cfg->clock_ctx);
@@ -949,6 +1028,7 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
 
     /* 4. evidence per class, cascade verification */
     heap_sort((uint8_t *)(void *)c.votes, c.nvotes, sizeof(recog_vote_t), vote_before, 1);
+    index_parts(&c);
     score_hyps(&c);
     stage_end(&c, (uint32_t)SBR_RECOG_STAGE_VERIFY, &t0);
 
