@@ -326,32 +326,50 @@ static uint32_t heap_pop(mser_ctx_t *c, uint32_t level)
     return c->heap[c->heap_base[level] + c->heap_top[level]];
 }
 
-/* Prepare one pass: the (inverted) copy of the map, states, and the heap layout. */
-static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask)
+/* Prepare one pass: the (inverted) copy of the map, states, and the heap layout. The
+   heap's layout needs the number of interior pixels per level: counted for the first
+   pass; the second pass (same map, inverted) reads them off the first pass's layout,
+   level v of the inverted map being level 255 - v of the map. */
+static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, int second)
 {
     const uint32_t w = c->width;
     const uint32_t h = c->height;
-    uint32_t x;
+    const uint32_t interior = (w - 2u) * (h - 2u);
     uint32_t y;
     uint32_t v;
     uint32_t acc = 0u;
 
-    for (v = 0u; v < MSER_LEVELS; v++) {
-        c->heap_top[v] = 0u;
+    if (second != 0) {
+        /* heap_top[v] = count of level 255 - v of the first pass, from its layout */
+        for (v = 0u; v < MSER_LEVELS; v++) {
+            const uint32_t u = (MSER_LEVELS - 1u) - v;
+            const uint32_t end = (u == (MSER_LEVELS - 1u)) ? interior : c->heap_base[u + 1u];
+            c->heap_top[v] = end - c->heap_base[u];
+        }
+    } else {
+        for (v = 0u; v < MSER_LEVELS; v++) {
+            c->heap_top[v] = 0u;
+        }
     }
     for (y = 0u; y < h; y++) {
         const uint8_t *src = &map->data[(size_t)y * map->stride];
         uint8_t *g = &c->gray[(size_t)y * w];
         uint8_t *s = &c->state[(size_t)y * w];
+        uint32_t x;
         for (x = 0u; x < w; x++) {
             g[x] = (uint8_t)(src[x] ^ xor_mask);
-            s[x] = ST_DONE;
         }
         if ((y > 0u) && (y < (h - 1u))) {
-            for (x = 1u; x < (w - 1u); x++) {
-                s[x] = 0u;
-                c->heap_top[g[x]]++; /* count per level for now */
+            s[0] = ST_DONE;
+            (void)memset(&s[1], 0, (size_t)w - 2u);
+            s[w - 1u] = ST_DONE;
+            if (second == 0) {
+                for (x = 1u; x < (w - 1u); x++) {
+                    c->heap_top[g[x]]++; /* count per level for now */
+                }
             }
+        } else {
+            (void)memset(s, (int)ST_DONE, (size_t)w);
         }
     }
     for (v = 0u; v < MSER_LEVELS; v++) {
@@ -542,6 +560,7 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     uint64_t span;
     int full = 0;
     int overflow = 0;
+    int counted = 0; /* the dark pass counted the levels */
 
     if ((map == NULL) || (cfg == NULL) || (regions == NULL) || (count == NULL)) {
         return SBR_ERR_NULL;
@@ -603,14 +622,15 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     c.div_magic = ((((uint64_t)1u) << bits) / (uint64_t)map->width) + 1u;
 
     if ((cfg->polarity & (uint32_t)SBR_MSER_DARK) != 0u) {
-        pass_setup(&c, map, 0u);
+        pass_setup(&c, map, 0u, 0);
         pass_flood(&c);
         pass_select(&c, cfg, (uint8_t)SBR_MSER_DARK, regions, capacity, count, &full);
         overflow |= c.overflow;
+        counted = 1;
     }
     if ((cfg->polarity & (uint32_t)SBR_MSER_BRIGHT) != 0u) {
         c.overflow = 0;
-        pass_setup(&c, map, 0xFFu);
+        pass_setup(&c, map, 0xFFu, counted);
         pass_flood(&c);
         pass_select(&c, cfg, (uint8_t)SBR_MSER_BRIGHT, regions, capacity, count, &full);
         overflow |= c.overflow;
