@@ -280,7 +280,8 @@ size_t sbr_recog_workspace_size(uint32_t width, uint32_t height, const sbr_recog
     (SBR_MSER_WORKSPACE_SIZE((width) / (s), (height) / (s), 5u, 68000u) + \
      ((size_t)(width) / (s)) * ((size_t)(height) / (s)) + 2048u * 40u + \
      160u * 160u * 5u + 162u * 162u + 2048u * 12u + 128u * 8u + 4096u * sizeof(sbr_part_t) + \
-     1024u * sizeof(sbr_fd_match_t) + 160u * 8u + 16384u * 32u + 4096u * 56u + 512u + \
+     4096u * 12u + 1024u * sizeof(sbr_fd_match_t) + 160u * 8u + 16384u * 32u + \
+     4096u * 56u + 512u + \
      SBR_PICTO_WORKSPACE_SIZE + (SBR_PICTO_FEATURES + 2u * SBR_PICTO_OUTPUTS) * 4u + 8u)
 
 /**

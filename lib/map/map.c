@@ -53,7 +53,8 @@ static uint8_t map_value(sbr_map_kind_t kind, uint32_t mr, uint32_t mg, uint32_t
     return (uint8_t)v;
 }
 
-/* One row at subsample 1: map_value() of each pixel, without the block means' divisions. */
+/* One row at subsample 1: map_value() of each pixel, without the block means' divisions;
+   one loop per kind (the same formulas as map_value(), the choice made once per row). */
 static void map_row(sbr_map_kind_t kind, const uint8_t *row, uint32_t bpp, uint32_t ri,
                     uint32_t bi, uint32_t n, uint8_t *dst)
 {
@@ -62,10 +63,25 @@ static void map_row(sbr_map_kind_t kind, const uint8_t *row, uint32_t bpp, uint3
         for (x = 0u; x < n; x++) {
             dst[x] = k_tone[row[x]];
         }
+    } else if (kind == SBR_MAP_RED) {
+        for (x = 0u; x < n; x++) {
+            const uint8_t *px = &row[x * 3u];
+            dst[x] = map_value(SBR_MAP_RED, px[ri], px[1], px[bi]);
+        }
+    } else if (kind == SBR_MAP_BLUE) {
+        for (x = 0u; x < n; x++) {
+            const uint8_t *px = &row[x * 3u];
+            dst[x] = map_value(SBR_MAP_BLUE, px[ri], px[1], px[bi]);
+        }
+    } else if (kind == SBR_MAP_YELLOW) {
+        for (x = 0u; x < n; x++) {
+            const uint8_t *px = &row[x * 3u];
+            dst[x] = map_value(SBR_MAP_YELLOW, px[ri], px[1], px[bi]);
+        }
     } else {
         for (x = 0u; x < n; x++) {
             const uint8_t *px = &row[x * 3u];
-            dst[x] = map_value(kind, px[ri], px[1], px[bi]);
+            dst[x] = map_value(SBR_MAP_INTENSITY, px[ri], px[1], px[bi]);
         }
     }
 }

@@ -310,18 +310,16 @@ static int hyp_before(const void *pa, const void *pb, int mode)
     return before;
 }
 
-/* Swap two elements of `size` bytes: four bytes at a time (memcpy through locals, which
+/* Swap two elements of `size` bytes: four bytes at a time (fixed-size memcpy, which
    compilers turn into word loads and stores), then any bytes left. */
 static void swap_bytes(uint8_t *a, uint8_t *b, size_t size)
 {
     size_t i = 0u;
     while ((i + 4u) <= size) {
-        uint32_t x;
-        uint32_t y;
-        (void)memcpy(&x, &a[i], 4u);
-        (void)memcpy(&y, &b[i], 4u);
-        (void)memcpy(&a[i], &y, 4u);
-        (void)memcpy(&b[i], &x, 4u);
+        uint8_t t[4];
+        (void)memcpy(t, &a[i], 4u);
+        (void)memcpy(&a[i], &b[i], 4u);
+        (void)memcpy(&b[i], t, 4u);
         i += 4u;
     }
     while (i < size) {
@@ -587,6 +585,28 @@ static void index_parts(recog_ctx_t *c)
     }
 }
 
+/* Bisection in index entries [lo, hi) of one group: the first entry with cx >= x
+   (above = 0) or with cx > x (above = 1); hi if there is none. */
+static uint32_t index_bound(const recog_ctx_t *c, uint32_t lo, uint32_t hi, float x, int above)
+{
+    uint32_t a = lo;
+    uint32_t b = hi;
+    while (a < b) {
+        const uint32_t mid = a + ((b - a) / 2u);
+        const float v = c->index[mid].cx;
+        int left = 0; /* the answer lies right of mid */
+        if ((v < x) || ((above != 0) && (v <= x))) {
+            left = 1;
+        }
+        if (left != 0) {
+            a = mid + 1u;
+        } else {
+            b = mid;
+        }
+    }
+    return a;
+}
+
 /* Look for cascade prototype q of class cls near where hypothesis h predicts it.
    Returns the weight it adds (0 if not found). */
 static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint32_t cls)
@@ -602,19 +622,11 @@ static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint3
     const float xlo = (px - tol) - 1.0f;
     const float xhi = (px + tol) + 1.0f;
     const uint32_t g = ((uint32_t)pr->map * 2u) + ((uint32_t)pr->polarity - 1u);
-    uint32_t lo = c->group_first[g];
-    uint32_t hi = c->group_first[g + 1u];
+    const uint32_t a = index_bound(c, c->group_first[g], c->group_first[g + 1u], xlo, 0);
+    const uint32_t b = index_bound(c, a, c->group_first[g + 1u], xhi, 1);
     float best = 0.0f;
     uint32_t i;
-    while (lo < hi) { /* first entry with cx >= xlo */
-        const uint32_t mid = lo + ((hi - lo) / 2u);
-        if (c->index[mid].cx < xlo) {
-            lo = mid + 1u;
-        } else {
-            hi = mid;
-        }
-    }
-    for (i = lo; (i < c->group_first[g + 1u]) && (c->index[i].cx <= xhi); i++) {
+    for (i = a; i < b; i++) {
         const sbr_part_t *p = &c->parts[c->index[i].part];
         if ((p->map == pr->map) && (p->polarity == pr->polarity) &&
             (fabsf(p->fd.cx - px) <= tol) && (fabsf(p->fd.cy - py) <= tol) &&
