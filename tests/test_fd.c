@@ -329,6 +329,109 @@ static void test_table_lanes_equal_single_matches(void)
                                                             SBR_FD_TABLE_WORK_LEN(64), res, &best));
 }
 
+/* Screening (max_error): every match whose error is at most max_error is bit for bit the
+   unscreened one, in the lane path (which then packs non-adjacent prototypes into lanes),
+   the one-by-one table path and sbr_fd_match(); a screened pair gets error 4, rotation 0,
+   shift 0 and only ever one whose real error is above max_error. */
+static void test_screening_keeps_every_match_up_to_max_error(void)
+{
+    enum { NP = 22 };
+    static const float k_cut[3] = {0.05f, 0.3f, 1.0f};
+    sbr_fd_t protos[NP];
+    sbr_fd_match_t all[NP];
+    sbr_fd_match_t lanes[NP];
+    sbr_fd_match_t scalar[NP];
+    sbr_fd_match_t one;
+    sbr_pointf_t sq[4] = {{0, 0}, {0, 1}, {1, 1}, {1, 0}};
+    sbr_pointf_t tri[3] = {{0, 0}, {0, 1}, {1, 0}};
+    sbr_pointf_t ell[24];
+    sbr_fd_match_config_t cfgs[3];
+    sbr_fd_t q;
+    uint32_t best = 0u;
+    uint32_t screened = 0u;
+    uint32_t kept = 0u;
+    uint32_t c;
+    uint32_t t;
+    uint32_t i;
+    cfgs[0] = g_cov;
+    cfgs[1] = g_inv;
+    cfgs[2] = g_cov;
+    cfgs[2].max_rotation = 10.0f * DEG;
+    /* the shape under rotations (some close to the query), squares, triangles, ellipses */
+    for (i = 0u; i < 8u; i++) {
+        transform((float)i * 7.0f * DEG, 1.0f + 0.3f * (float)i, 0.0f, 0.0f, 2u * i);
+        protos[i] = fd_of(g_tmp, NPTS);
+        protos[i].c[M + 3u].im += 0.02f * (float)i;
+    }
+    for (i = 8u; i < (uint32_t)NP; i++) {
+        const uint32_t kind = i % 3u;
+        if (kind == 0u) {
+            protos[i] = fd_of(sq, 4u);
+        } else if (kind == 1u) {
+            protos[i] = fd_of(tri, 3u);
+        } else {
+            uint32_t k;
+            for (k = 0u; k < 24u; k++) {
+                const float a = 2.0f * PI_F * (float)k / 24.0f;
+                ell[k].x = (1.0f + 0.4f * (float)i) * cosf(a);
+                ell[k].y = sinf(a);
+            }
+            protos[i] = fd_of(ell, 24u);
+        }
+    }
+    transform(20.0f * DEG, 2.0f, 3.0f, -1.0f, 7u);
+    q = fd_of(g_tmp, NPTS);
+    for (c = 0u; c < 3u; c++) {
+        sbr_fd_match_config_t cut = cfgs[c];
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_table(&g_fft_p, &cfgs[c], &q, protos, NP, g_wide,
+                                                         SBR_FD_TABLE_WORK_LEN(64), all, &best));
+        for (t = 0u; t < 3u; t++) {
+            cut.max_error = k_cut[t];
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_table(&g_fft_p, &cut, &q, protos, NP, g_wide,
+                                                             SBR_FD_TABLE_WORK_LEN(64), lanes, &best));
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_table(&g_fft_p, &cut, &q, protos, NP, g_work,
+                                                             256u, scalar, &best));
+            for (i = 0u; i < (uint32_t)NP; i++) {
+                TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match(&g_fft_p, &cut, &q, &protos[i], g_work,
+                                                           256u, &one));
+                TEST_ASSERT_EQUAL_MEMORY(&one, &scalar[i], sizeof one);
+                TEST_ASSERT_EQUAL_FLOAT(all[i].scale_ratio, lanes[i].scale_ratio);
+                if (all[i].error <= k_cut[t]) {
+                    TEST_ASSERT_EQUAL_MEMORY(&all[i], &lanes[i], sizeof all[i]);
+                    kept++;
+                } else if (memcmp(&all[i], &lanes[i], sizeof all[i]) != 0) {
+                    TEST_ASSERT_EQUAL_FLOAT(4.0f, lanes[i].error);
+                    TEST_ASSERT_EQUAL_FLOAT(0.0f, lanes[i].rotation);
+                    TEST_ASSERT_EQUAL_FLOAT(0.0f, lanes[i].shift);
+                    TEST_ASSERT_EQUAL_FLOAT(4.0f, one.error);
+                    screened++;
+                }
+            }
+        }
+    }
+    /* the test means something: pairs were kept and pairs were screened */
+    TEST_ASSERT_TRUE(kept >= 6u);
+    TEST_ASSERT_TRUE(screened >= 20u);
+    /* screening does not hide a corrupt prototype, nor accept a bad threshold */
+    {
+        sbr_fd_match_config_t cut = g_cov;
+        cut.max_error = 0.05f;
+        protos[NP - 1].c[M + 1u].re = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, &cut, &q, protos, NP, g_wide,
+                                                                SBR_FD_TABLE_WORK_LEN(64), lanes, &best));
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match(&g_fft_p, &cut, &q, &protos[NP - 1], g_work,
+                                                          256u, &one));
+        cut.max_error = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match(&g_fft_p, &cut, &q, &q, g_work, 256u, &one));
+        cut.max_error = -0.01f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match(&g_fft_p, &cut, &q, &q, g_work, 256u, &one));
+        cut.max_error = 0.0f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match(&g_fft_p, &cut, &q, &q, g_work, 256u, &one));
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f, 0.0f, one.error);
+        TEST_ASSERT_EQUAL_FLOAT(4.0f, g_cov.max_error); /* the default screens nothing */
+    }
+}
+
 /* The matcher's polynomial atan2 against libm's over all four quadrants, the axes and
    the signed zeros: within 6e-7 rad, and in (-pi, pi]. */
 static void test_fast_atan2_accuracy(void)
@@ -537,6 +640,7 @@ int main(void)
     RUN_TEST(test_table);
     RUN_TEST(test_table_lanes_equal_single_matches);
     RUN_TEST(test_table_lanes_refuse_corrupt_prototypes);
+    RUN_TEST(test_screening_keeps_every_match_up_to_max_error);
     RUN_TEST(test_fast_atan2_accuracy);
     RUN_TEST(test_degenerate_input_gets_status);
     RUN_TEST(test_check_reports_energy);

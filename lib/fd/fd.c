@@ -288,6 +288,7 @@ sbr_status_t sbr_fd_match_config_default(sbr_fd_match_config_t *cfg)
     cfg->mode = SBR_FD_ROTATION_COVARIANT;
     cfg->max_rotation = SBR_PI_F;
     cfg->refine = 1;
+    cfg->max_error = 4.0f;
     return SBR_OK;
 }
 
@@ -350,7 +351,8 @@ static sbr_status_t check_match_args(const sbr_fft_t *fft, const sbr_fd_match_co
         return SBR_ERR_NULL;
     }
     if (((cfg->mode != SBR_FD_ROTATION_INVARIANT) && (cfg->mode != SBR_FD_ROTATION_COVARIANT)) ||
-        (isfinite(cfg->max_rotation) == 0) || (cfg->max_rotation < 0.0f)) {
+        (isfinite(cfg->max_rotation) == 0) || (cfg->max_rotation < 0.0f) ||
+        (!(cfg->max_error >= 0.0f))) {
         return SBR_ERR_RANGE;
     }
     if ((fft->n < ((2u * query->m) + 1u)) || (work_len < fft->n)) {
@@ -524,6 +526,61 @@ static void finish_match(uint32_t size, const sbr_fd_match_config_t *cfg,
     result->shift = lag;
 }
 
+/* Screening (sbr_fd_match_config_t::max_error): |r| <= sum |Q(n)| |C(n)| at every lag,
+   integer or not, and every mode's objective is at most |r|, so e >= 2 - 2 sum. A pair is
+   skipped when that sum is below 1 - max_error / 2 by more than FD_SCREEN_MARGIN (far more
+   than the rounding of a correlation of unit-energy descriptors). A non-finite
+   coefficient makes the sum non-finite, which never passes the test: such a prototype is
+   correlated and reported as before. */
+#define FD_SCREEN_MARGIN 1.0e-4f
+
+/* The level the magnitude sum must reach, or a negative value when nothing is screened. */
+static float screen_level(const sbr_fd_match_config_t *cfg)
+{
+    float level = -1.0f;
+    if (cfg->max_error < 2.0f) {
+        level = (1.0f - (0.5f * cfg->max_error)) - FD_SCREEN_MARGIN;
+    }
+    return level;
+}
+
+/* |Q(n)| of the query's 2M + 1 coefficients. */
+static void query_magnitudes(const sbr_fd_t *query, float *qmag)
+{
+    const uint32_t n = (2u * query->m) + 1u;
+    uint32_t k;
+    for (k = 0u; k < n; k++) {
+        const sbr_complex_t q = query->c[k];
+        qmag[k] = sqrtf((q.re * q.re) + (q.im * q.im));
+    }
+}
+
+/* Is the pair certainly worse than max_error? (level from screen_level(), > 0) */
+static int screened_out(const float *qmag, const sbr_fd_t *proto, float level)
+{
+    const uint32_t n = (2u * proto->m) + 1u;
+    float sum = 0.0f;
+    uint32_t k;
+    int out = 0;
+    for (k = 0u; k < n; k++) {
+        const sbr_complex_t c = proto->c[k];
+        sum += qmag[k] * sqrtf((c.re * c.re) + (c.im * c.im));
+    }
+    if (sum < level) {
+        out = 1;
+    }
+    return out;
+}
+
+/* The result of a pair that was not correlated (as finish_match() without a peak). */
+static void no_match(const sbr_fd_t *query, const sbr_fd_t *proto, sbr_fd_match_t *result)
+{
+    result->scale_ratio = query->scale / proto->scale;
+    result->error = 4.0f;
+    result->rotation = 0.0f;
+    result->shift = 0.0f;
+}
+
 /* One match through the FFT instance, on checked arguments (prototype included). */
 static void match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                        const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
@@ -571,6 +628,25 @@ static void match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
         }
         finish_match(size, cfg, query, proto, (best_val > FD_OUTSIDE) ? 1 : 0, best, around,
                      result);
+    }
+}
+
+/* match_core() after the screening (checked arguments). */
+static void match_screened(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                           const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
+                           sbr_fd_match_t *result)
+{
+    const float level = screen_level(cfg);
+    int skip = 0;
+    if (level > 0.0f) {
+        float qmag[(2u * SBR_FD_MAX_M) + 1u];
+        query_magnitudes(query, qmag);
+        skip = screened_out(qmag, proto, level);
+    }
+    if (skip != 0) {
+        no_match(query, proto, result);
+    } else {
+        match_core(fft, cfg, query, proto, work, result);
     }
 }
 
@@ -766,18 +842,18 @@ static void lanes_peaks(uint32_t size, int inv, float cb, const float *re, const
    four prototypes' values are loaded one by one (straight-line code, which compilers pack
    into one vector on SIMD hosts) and the products are stored as whole-lane groups,
    instead of 2 x 4 scattered single stores. */
-static void lanes_products(const sbr_fd_t *query, const sbr_fd_t *protos, const uint32_t *pos,
-                           float *re, float *im)
+static void lanes_products(const sbr_fd_t *query, const sbr_fd_t *const protos[FD_LANES],
+                           const uint32_t *pos, float *re, float *im)
 {
     const uint32_t n = (2u * query->m) + 1u;
     uint32_t k;
     for (k = 0u; k < n; k++) {
         const float qr = query->c[k].re;
         const float qi = query->c[k].im;
-        const sbr_complex_t c0 = protos[0].c[k];
-        const sbr_complex_t c1 = protos[1].c[k];
-        const sbr_complex_t c2 = protos[2].c[k];
-        const sbr_complex_t c3 = protos[3].c[k];
+        const sbr_complex_t c0 = protos[0]->c[k];
+        const sbr_complex_t c1 = protos[1]->c[k];
+        const sbr_complex_t c2 = protos[2]->c[k];
+        const sbr_complex_t c3 = protos[3]->c[k];
         const float cr[FD_LANES] = {c0.re, c1.re, c2.re, c3.re};
         const float ci[FD_LANES] = {c0.im, c1.im, c2.im, c3.im};
         float *r = &re[pos[k]];
@@ -814,11 +890,14 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
     sbr_complex_t *tw = &work[size * FD_LANES];       /* P / 2 twiddles after re, im */
     const int inv = mode_invariant(cfg);
     const float cb = rotation_cos_bound(cfg);
+    const float level = screen_level(cfg);
+    float qmag[(2u * SBR_FD_MAX_M) + 1u];
     uint32_t best[FD_LANES];
     float check[FD_LANES];
     uint32_t pos[(2u * SBR_FD_MAX_M) + 1u];
     uint32_t j;
-    uint32_t i0;
+    uint32_t i = 0u;
+    sbr_status_t header = SBR_OK;
 
     product_positions(query->m, size, fft->bitrev, FD_LANES, pos);
     for (j = 0u; j < (size / 2u); j++) {
@@ -826,24 +905,34 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
         tw[j].re = cosf(a);
         tw[j].im = sinf(a);
     }
-    for (i0 = 0u; i0 < count; i0 += FD_LANES) {
-        uint32_t lanes = count - i0;
-        uint32_t valid;
-        sbr_status_t header = SBR_OK;
+    if (level > 0.0f) {
+        query_magnitudes(query, qmag);
+    }
+    while ((i < count) && (header == SBR_OK)) {
+        /* the next (up to) four prototypes that pass the header check and the screening,
+           in table order; the walk stops at the first bad header, whose status is
+           returned after the coefficients of those gathered before it are checked, so the
+           first bad prototype in table order decides the status */
+        const sbr_fd_t *lane[FD_LANES];
+        uint32_t idx[FD_LANES];
+        uint32_t valid = 0u;
         uint32_t b;
         uint32_t k;
-        if (lanes > FD_LANES) {
-            lanes = FD_LANES;
-        }
-        /* prototypes up to the first bad header take part; its error is returned after
-           the coefficients of those before it are checked, so the first bad prototype in
-           table order decides the status */
-        valid = 0u;
-        while ((valid < lanes) && (header == SBR_OK)) {
-            header = check_proto_header(query, &protos[i0 + valid]);
+        while ((valid < FD_LANES) && (i < count) && (header == SBR_OK)) {
+            header = check_proto_header(query, &protos[i]);
             if (header == SBR_OK) {
-                valid++;
+                if ((level > 0.0f) && (screened_out(qmag, &protos[i], level) != 0)) {
+                    no_match(query, &protos[i], &results[i]);
+                } else {
+                    lane[valid] = &protos[i];
+                    idx[valid] = i;
+                    valid++;
+                }
+                i++;
             }
+        }
+        if (valid == 0u) {
+            continue;
         }
         /* only the gap n = M+1 .. P-M-1 stays zero after the products are placed */
         for (k = query->m + 1u; k < (size - query->m); k++) {
@@ -861,10 +950,10 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
             }
         }
         if (valid == FD_LANES) {
-            lanes_products(query, &protos[i0], pos, re, im);
+            lanes_products(query, lane, pos, re, im);
         } else {
             for (b = 0u; b < valid; b++) {
-                write_products(query, &protos[i0 + b], pos, &re[b], &im[b]);
+                write_products(query, lane[b], pos, &re[b], &im[b]);
             }
         }
         lanes_transform(size, tw, re, im);
@@ -873,9 +962,6 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
             if ((isfinite(check[b]) == 0) || (check[b] < 0.0f)) {
                 return SBR_ERR_RANGE;
             }
-        }
-        if (header != SBR_OK) {
-            return header;
         }
         for (b = 0u; b < valid; b++) {
             sbr_complex_t around[3];
@@ -886,11 +972,11 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
                 around[k].re = re[(at[k] * FD_LANES) + b];
                 around[k].im = im[(at[k] * FD_LANES) + b];
             }
-            finish_match(size, cfg, query, &protos[i0 + b], found_any(inv, cb, around[1]),
-                         best[b], around, &results[i0 + b]);
+            finish_match(size, cfg, query, lane[b], found_any(inv, cb, around[1]), best[b],
+                         around, &results[idx[b]]);
         }
     }
-    return SBR_OK;
+    return header;
 }
 
 sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
@@ -903,7 +989,7 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
         st = check_proto(query, proto);
     }
     if (st == SBR_OK) {
-        match_core(fft, cfg, query, proto, work, result);
+        match_screened(fft, cfg, query, proto, work, result);
     }
     return st;
 }
@@ -937,7 +1023,7 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
             if (st != SBR_OK) {
                 return st;
             }
-            match_core(fft, cfg, query, &protos[i], work, &results[i]);
+            match_screened(fft, cfg, query, &protos[i], work, &results[i]);
         }
     }
     for (i = 1u; i < count; i++) {

@@ -373,7 +373,8 @@ typedef struct recog_ctx_s {
     const sbr_recog_config_t *cfg;
     const sbr_model_t *model;
     sbr_fft_t fft_p;
-    sbr_fd_match_config_t mcfg;
+    sbr_fd_match_config_t mcfg;  /* votes: screened at the vote error */
+    sbr_fd_match_config_t vcfg;  /* cascade: screened at the verification error */
     sbr_part_t *parts;
     uint32_t nparts;
     recog_index_t *index;                          /* [nparts] */
@@ -633,7 +634,7 @@ static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint3
             (p->fd.scale <= (s * f)) && ((p->fd.scale * f) >= s)) {
             sbr_fd_match_t r;
             c->st.matches++;
-            if ((sbr_fd_match(&c->fft_p, &c->mcfg, &p->fd, &c->model->fds[q], c->work,
+            if ((sbr_fd_match(&c->fft_p, &c->vcfg, &p->fd, &c->model->fds[q], c->work,
                               c->work_len, &r) == SBR_OK) &&
                 (r.error <= c->cfg->verify_error)) {
                 const float w = pr->weight * (1.0f - (r.error / c->cfg->verify_error)) *
@@ -998,6 +999,9 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
     (void)sbr_fd_match_config_default(&c.mcfg);
     c.mcfg.mode = SBR_FD_ROTATION_COVARIANT;
     c.mcfg.max_rotation = cfg->max_rotation;
+    c.vcfg = c.mcfg;
+    c.mcfg.max_error = c.vote_error;   /* only matches up to these errors count */
+    c.vcfg.max_error = cfg->verify_error;
     base = (uint8_t *)workspace;
     c.parts = (sbr_part_t *)(void *)&base[l.parts_ws];
     base = &base[l.parts_ws + l.parts];
