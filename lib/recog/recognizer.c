@@ -411,6 +411,16 @@ static float maxf(float a, float b)
     return r;
 }
 
+/* The smaller of two finite values (what fminf gives them, without a library call). */
+static float minf(float a, float b)
+{
+    float r = a;
+    if (b < a) {
+        r = b;
+    }
+    return r;
+}
+
 /* Match one part against its group and cast its votes. */
 static sbr_status_t cast_votes(recog_ctx_t *c, uint32_t pi)
 {
@@ -735,14 +745,14 @@ static void hyp_box(const recog_hyp_t *h, uint32_t vw, uint32_t vh, float b[4])
     const float hh = 0.5f * h->mh;
     b[0] = maxf(0.0f, h->mx - hw);
     b[1] = maxf(0.0f, h->my - hh);
-    b[2] = fminf((float)vw, h->mx + hw);
-    b[3] = fminf((float)vh, h->my + hh);
+    b[2] = minf((float)vw, h->mx + hw);
+    b[3] = minf((float)vh, h->my + hh);
 }
 
 static float box_iou(const float a[4], const float b[4])
 {
-    const float iw = fminf(a[2], b[2]) - maxf(a[0], b[0]);
-    const float ih = fminf(a[3], b[3]) - maxf(a[1], b[1]);
+    const float iw = minf(a[2], b[2]) - maxf(a[0], b[0]);
+    const float ih = minf(a[3], b[3]) - maxf(a[1], b[1]);
     float iou = 0.0f;
     if ((iw > 0.0f) && (ih > 0.0f)) {
         const float inter = iw * ih;
