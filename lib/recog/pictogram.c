@@ -167,11 +167,65 @@ static void picto_taps(float start, float step, uint32_t n, uint32_t size, picto
     }
 }
 
+/* Horizontal sub-samples of the resampling: per source row, the bilinear value along x
+   of each of the PS nx sub-sample columns in each channel (what the vertical step mixes).
+   Two rows are kept, so that consecutive sub-rows (which share their rows) compute each
+   source row once. */
+#define ROW_SAMPLES (PS * 4u)
+#define ROW_FLOATS (3u * ROW_SAMPLES)
+
+typedef struct picto_rows_s {
+    float *h[2];     /* [ROW_FLOATS] each: channel c, sub-sample s at c ROW_SAMPLES + s */
+    uint32_t tag[2]; /* the source row held, or PICTO_NO_ROW */
+} picto_rows_t;
+
+#define PICTO_NO_ROW 0xFFFFFFFFu
+
+/* The patches, the taps' block, the two rows and the accumulators fit the workspace. */
+typedef char picto_ws_fits[((((4u * PS * PS) + (2u * ROW_FLOATS) + (3u * PS)) * sizeof(float)) <=
+                            SBR_PICTO_WORKSPACE_SIZE) ? 1 : -1];
+
+/* The slot holding source row r (filled if need be, never slot `keep`). */
+static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uint32_t n,
+                              const uint32_t ch[3], uint32_t r, uint32_t keep,
+                              picto_rows_t *rows, uint32_t *slot)
+{
+    uint32_t k = 0u;
+    if (rows->tag[0] == r) {
+        k = 0u;
+    } else if (rows->tag[1] == r) {
+        k = 1u;
+    } else {
+        const uint8_t *src = &img->data[(size_t)r * img->stride];
+        float *h;
+        uint32_t t;
+        if (keep == 0u) {
+            k = 1u;
+        }
+        h = rows->h[k];
+        for (t = 0u; t < n; t++) {
+            const picto_tap_t *xt = &tx[t];
+            const uint32_t x0 = xt->lo * 3u;
+            const uint32_t x1 = xt->hi * 3u;
+            uint32_t c;
+            for (c = 0u; c < 3u; c++) {
+                const float a = (float)src[x0 + ch[c]];
+                const float b = (float)src[x1 + ch[c]];
+                h[(c * ROW_SAMPLES) + t] = a + (xt->f * (b - a));
+            }
+        }
+        rows->tag[k] = r;
+    }
+    *slot = k;
+    return rows->h[k];
+}
+
 /* Resample the box into grey (g) and chromaticity (cr, cb) patches: each patch pixel is
    the mean of nx x ny bilinear samples (nx, ny = the box's scale, 1..4), the
-   taps in `taps` (2 PS 4 entries). */
+   taps in `taps` (2 PS 4 entries), `rows` and `acc` (3 PS floats) as scratch. The sums
+   run over the sub-samples in the same order as a pixel-by-pixel loop would. */
 static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap_t *taps,
-                           float *g, float *cr, float *cb)
+                           picto_rows_t *rows, float *acc, float *g, float *cr, float *cb)
 {
     const float sx = (box[2] - box[0]) / (float)PS;
     const float sy = (box[3] - box[1]) / (float)PS;
@@ -188,40 +242,44 @@ static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap
     }
     picto_taps(box[0], sx, nx, img->width, &taps[0]);
     picto_taps(box[1], sy, ny, img->height, &taps[PS * 4u]);
+    rows->tag[0] = PICTO_NO_ROW;
+    rows->tag[1] = PICTO_NO_ROW;
     for (v = 0u; v < PS; v++) {
         uint32_t u;
-        for (u = 0u; u < PS; u++) {
-            float acc[3] = {0.0f, 0.0f, 0.0f};
-            float sum;
-            uint32_t j;
-            for (j = 0u; j < ny; j++) {
-                const picto_tap_t *yt = &ty[(v * ny) + j];
-                const uint8_t *r0 = &img->data[(size_t)yt->lo * img->stride];
-                const uint8_t *r1 = &img->data[(size_t)yt->hi * img->stride];
-                uint32_t i;
-                for (i = 0u; i < nx; i++) {
-                    const picto_tap_t *xt = &tx[(u * nx) + i];
-                    const uint32_t x0 = xt->lo * 3u;
-                    const uint32_t x1 = xt->hi * 3u;
-                    uint32_t c;
-                    for (c = 0u; c < 3u; c++) {
-                        const float a = (float)r0[x0 + ch[c]];
-                        const float b = (float)r0[x1 + ch[c]];
-                        const float d = (float)r1[x0 + ch[c]];
-                        const float e = (float)r1[x1 + ch[c]];
-                        const float top = a + (xt->f * (b - a));
-                        const float bot = d + (xt->f * (e - d));
-                        acc[c] += top + (yt->f * (bot - top));
+        uint32_t j;
+        for (u = 0u; u < (3u * PS); u++) {
+            acc[u] = 0.0f;
+        }
+        for (j = 0u; j < ny; j++) {
+            const picto_tap_t *yt = &ty[(v * ny) + j];
+            const float fy = yt->f;
+            uint32_t s0;
+            uint32_t s1;
+            const float *h0 = picto_row(img, tx, PS * nx, ch, yt->lo, 2u, rows, &s0);
+            const float *h1 = picto_row(img, tx, PS * nx, ch, yt->hi, s0, rows, &s1);
+            uint32_t c;
+            for (c = 0u; c < 3u; c++) {
+                const float *t0 = &h0[c * ROW_SAMPLES];
+                const float *t1 = &h1[c * ROW_SAMPLES];
+                float *ac = &acc[c * PS];
+                for (u = 0u; u < PS; u++) {
+                    uint32_t i;
+                    for (i = 0u; i < nx; i++) {
+                        const float top = t0[(u * nx) + i];
+                        const float bot = t1[(u * nx) + i];
+                        ac[u] += top + (fy * (bot - top));
                     }
                 }
             }
-            acc[0] *= inv;
-            acc[1] *= inv;
-            acc[2] *= inv;
-            sum = acc[0] + acc[1] + acc[2];
+        }
+        for (u = 0u; u < PS; u++) {
+            const float a0 = acc[u] * inv;
+            const float a1 = acc[PS + u] * inv;
+            const float a2 = acc[(2u * PS) + u] * inv;
+            const float sum = a0 + a1 + a2;
             g[(v * PS) + u] = sum * (1.0f / 3.0f);
-            cr[(v * PS) + u] = acc[0] / (sum + 30.0f);
-            cb[(v * PS) + u] = acc[2] / (sum + 30.0f);
+            cr[(v * PS) + u] = a0 / (sum + 30.0f);
+            cb[(v * PS) + u] = a2 / (sum + 30.0f);
         }
     }
 }
@@ -287,7 +345,16 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
     g = (float *)workspace;
     cr = &g[PS * PS];
     cb = &cr[PS * PS];
-    picto_resample(img, box, (picto_tap_t *)(void *)&cb[PS * PS], g, cr, cb);
+    {
+        /* after the three patches: the taps (one patch-sized block), the two rows, the
+           accumulators */
+        float *after_taps = &cb[2u * PS * PS];
+        picto_rows_t rows;
+        rows.h[0] = after_taps;
+        rows.h[1] = &after_taps[ROW_FLOATS];
+        picto_resample(img, box, (picto_tap_t *)(void *)&cb[PS * PS], &rows,
+                       &after_taps[2u * ROW_FLOATS], g, cr, cb);
+    }
 
     /* contrast-normalised grey */
     for (i = 0u; i < (PS * PS); i++) {
