@@ -382,6 +382,7 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
             const float gx = g[(v * PS) + up] - g[(v * PS) + um];
             const float gy = g[(vp * PS) + u] - g[(vm * PS) + u];
             float proj[4];
+            float add8[ORIENT];
             float *cell = &feat[F_HOG + ((((v / CELL) * CELLS) + (u / CELL)) * ORIENT)];
             float *fine = NULL;
             uint32_t k;
@@ -394,12 +395,25 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
             proj[1] = DIAG * (gx + gy);
             proj[2] = gy;
             proj[3] = DIAG * (gy - gx);
+            /* direction k gets a positive projection, k + 4 a negative one (negated); the
+               other bin gets +0, which leaves every sum as it was, so all eight bins are
+               updated without a data-dependent branch or index */
             for (k = 0u; k < 4u; k++) {
-                const uint32_t bin = (proj[k] > 0.0f) ? k : (k + 4u);
-                const float mag = (proj[k] > 0.0f) ? proj[k] : -proj[k];
-                cell[bin] += mag;
-                if (fine != NULL) {
-                    fine[bin] += mag;
+                float pos = 0.0f;
+                float neg = -proj[k];
+                if (proj[k] > 0.0f) {
+                    pos = proj[k];
+                    neg = 0.0f;
+                }
+                add8[k] = pos;
+                add8[k + 4u] = neg;
+            }
+            for (k = 0u; k < ORIENT; k++) {
+                cell[k] += add8[k];
+            }
+            if (fine != NULL) {
+                for (k = 0u; k < ORIENT; k++) {
+                    fine[k] += add8[k];
                 }
             }
         }
