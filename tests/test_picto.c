@@ -21,7 +21,7 @@ static uint8_t g_bgr[H][W][3];
 static uint64_t g_ws[SBR_PICTO_WORKSPACE_SIZE / 8u + 1u];
 static float g_f[F];
 static float g_g[F];
-static float g_w1[4u * (F + 1u)];
+static float g_w1[7u * (F + 1u)];
 static float g_w2[SBR_PICTO_OUTPUTS * (F + 1u)];
 static float g_w3[SBR_PICTO_BOX_OUTPUTS * (F + 1u)];
 
@@ -242,6 +242,94 @@ static void test_classify_values(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f / 44.0f, p[7]);
 }
 
+/* A network with 7 hidden units (the classifier works on blocks of four units and four
+   outputs: one block and a tail of three) and pseudo-random weights: its probabilities
+   and refined box agree with a direct double-precision evaluation of the definitions in
+   pictogram.h. */
+static void test_classify_matches_reference(void)
+{
+    enum { HID = 7 };
+    static float w2[SBR_PICTO_OUTPUTS * (HID + 1)];
+    static float w3[SBR_PICTO_BOX_OUTPUTS * (HID + 1)];
+    sbr_picto_model_t m;
+    double a[HID];
+    double logit[SBR_PICTO_OUTPUTS];
+    double d[SBR_PICTO_BOX_OUTPUTS];
+    double mx;
+    double sum = 0.0;
+    float p[SBR_PICTO_OUTPUTS];
+    const float box[4] = {10.0f, 20.0f, 50.0f, 40.0f};
+    float r[4];
+    uint32_t seed = 12345u;
+    uint32_t i;
+    uint32_t k;
+    hand_model(&m);
+    for (i = 0u; i < F; i++) {
+        seed = (seed * 1664525u) + 1013904223u;
+        g_f[i] = (float)((int32_t)(seed >> 20) - 2048) / 2048.0f;
+    }
+    for (i = 0u; i < (uint32_t)HID * (F + 1u); i++) {
+        seed = (seed * 1664525u) + 1013904223u;
+        g_w1[i] = (float)((int32_t)(seed >> 20) - 2048) / 40000.0f;
+    }
+    for (i = 0u; i < (uint32_t)SBR_PICTO_OUTPUTS * (HID + 1u); i++) {
+        seed = (seed * 1664525u) + 1013904223u;
+        w2[i] = (float)((int32_t)(seed >> 20) - 2048) / 1024.0f;
+    }
+    for (i = 0u; i < (uint32_t)SBR_PICTO_BOX_OUTPUTS * (HID + 1u); i++) {
+        seed = (seed * 1664525u) + 1013904223u;
+        w3[i] = (float)((int32_t)(seed >> 20) - 2048) / 8192.0f;
+    }
+    m.hidden = HID;
+    m.w1 = g_w1;
+    m.w2 = w2;
+    m.w3 = w3;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+    for (i = 0u; i < (uint32_t)HID; i++) {
+        double s = (double)g_w1[(i * (F + 1u)) + F];
+        for (k = 0u; k < F; k++) {
+            s += (double)g_w1[(i * (F + 1u)) + k] * (double)g_f[k];
+        }
+        a[i] = (s > 0.0) ? s : 0.0;
+    }
+    TEST_ASSERT_TRUE((a[0] > 0.0) || (a[4] > 0.0)); /* the units are not all idle */
+    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+        double s = (double)w2[(i * (HID + 1u)) + HID];
+        for (k = 0u; k < (uint32_t)HID; k++) {
+            s += (double)w2[(i * (HID + 1u)) + k] * a[k];
+        }
+        logit[i] = s;
+    }
+    mx = logit[0];
+    for (i = 1u; i < SBR_PICTO_OUTPUTS; i++) {
+        mx = (logit[i] > mx) ? logit[i] : mx;
+    }
+    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+        sum += exp(logit[i] - mx);
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+        TEST_ASSERT_FLOAT_WITHIN(2e-6f, (float)(exp(logit[i] - mx) / sum), p[i]);
+    }
+    for (i = 0u; i < SBR_PICTO_BOX_OUTPUTS; i++) {
+        double s = (double)w3[(i * (HID + 1u)) + HID];
+        for (k = 0u; k < (uint32_t)HID; k++) {
+            s += (double)w3[(i * (HID + 1u)) + k] * a[k];
+        }
+        d[i] = s;
+    }
+    TEST_ASSERT_TRUE(fabs(d[0]) < (double)SBR_PICTO_MAX_SHIFT); /* no clamping below */
+    TEST_ASSERT_TRUE(fabs(d[1]) < (double)SBR_PICTO_MAX_SHIFT);
+    TEST_ASSERT_TRUE(fabs(d[2]) < (double)SBR_PICTO_MAX_LOG_SCALE);
+    TEST_ASSERT_TRUE(fabs(d[3]) < (double)SBR_PICTO_MAX_LOG_SCALE);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_refine(&m, g_f, F, box, r, g_ws, sizeof g_ws));
+    /* centre (30, 30), half sizes 20 x 10 */
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, (float)((30.0 + 40.0 * d[0]) - 20.0 * exp(d[2])), r[0]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, (float)((30.0 + 40.0 * d[0]) + 20.0 * exp(d[2])), r[2]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, (float)((30.0 + 20.0 * d[1]) - 10.0 * exp(d[3])), r[1]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, (float)((30.0 + 20.0 * d[1]) + 10.0 * exp(d[3])), r[3]);
+}
+
 /* The built-in classifier passes its check; corrupted copies do not. */
 static void test_builtin_and_corrupt(void)
 {
@@ -429,6 +517,7 @@ int main(void)
     RUN_TEST(test_format_and_scale);
     RUN_TEST(test_classify_values);
     RUN_TEST(test_builtin_and_corrupt);
+    RUN_TEST(test_classify_matches_reference);
     RUN_TEST(test_refine_values);
     RUN_TEST(test_bad_input);
     return UNITY_END();

@@ -486,16 +486,77 @@ static float dot(const float *a, const float *b, size_t n)
     return (s0 + s1) + (s2 + s3);
 }
 
+/* dot() of four rows (w, w + stride, ...) with the same b at once: each row's sum is the
+   same sequence of operations as dot()'s (bit for bit), but the four rows' additions are
+   independent, so the FPU overlaps them instead of waiting on one chain. */
+static void dot4(const float *w, size_t stride, const float *b, size_t n, float out[4])
+{
+    /* four partial sums per row, as dot(); each row's four are one group of lanes (one
+       vector on SIMD hosts) */
+    const float *w0 = w;
+    const float *w1 = &w[stride];
+    const float *w2 = &w[2u * stride];
+    const float *w3 = &w[3u * stride];
+    float s0[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    float s1[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    float s2[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    float s3[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    size_t k;
+    for (k = 0u; (k + 4u) <= n; k += 4u) {
+        uint32_t l;
+        for (l = 0u; l < 4u; l++) {
+            s0[l] += w0[k + l] * b[k + l];
+        }
+        for (l = 0u; l < 4u; l++) {
+            s1[l] += w1[k + l] * b[k + l];
+        }
+        for (l = 0u; l < 4u; l++) {
+            s2[l] += w2[k + l] * b[k + l];
+        }
+        for (l = 0u; l < 4u; l++) {
+            s3[l] += w3[k + l] * b[k + l];
+        }
+    }
+    while (k < n) {
+        s0[0] += w0[k] * b[k];
+        s1[0] += w1[k] * b[k];
+        s2[0] += w2[k] * b[k];
+        s3[0] += w3[k] * b[k];
+        k++;
+    }
+    out[0] = (s0[0] + s0[1]) + (s0[2] + s0[3]);
+    out[1] = (s1[0] + s1[1]) + (s1[2] + s1[3]);
+    out[2] = (s2[0] + s2[1]) + (s2[2] + s2[3]);
+    out[3] = (s3[0] + s3[1]) + (s3[2] + s3[3]);
+}
+
+/* out[r] = dot(row r of w, b) for `rows` rows `stride` apart: four rows at a time. */
+static void rows_dot(const float *w, size_t stride, uint32_t rows, const float *b, size_t n,
+                     float *out)
+{
+    uint32_t r = 0u;
+    while ((r + 4u) <= rows) {
+        dot4(&w[(size_t)r * stride], stride, b, n, &out[r]);
+        r += 4u;
+    }
+    while (r < rows) {
+        out[r] = dot(&w[(size_t)r * stride], b, n);
+        r++;
+    }
+}
+
 /* The last layer's inputs: the rectified hidden units (in the workspace), or the features
    themselves without a hidden layer. */
 static const float *last_inputs(const sbr_picto_model_t *model, const float *feat, float *a)
 {
     const float *in = feat;
     if (model->hidden > 0u) {
+        const uint32_t ncols = SBR_PICTO_FEATURES + 1u;
+        const size_t cols = (size_t)ncols;
         uint32_t i;
+        rows_dot(model->w1, cols, model->hidden, feat, SBR_PICTO_FEATURES, a);
         for (i = 0u; i < model->hidden; i++) {
-            const float *w = &model->w1[(size_t)i * (SBR_PICTO_FEATURES + 1u)];
-            const float s = w[SBR_PICTO_FEATURES] + dot(w, feat, SBR_PICTO_FEATURES);
+            const float s = model->w1[((size_t)i * cols) + SBR_PICTO_FEATURES] + a[i];
             a[i] = (s > 0.0f) ? s : 0.0f;
         }
         in = a;
@@ -507,9 +568,9 @@ static const float *last_inputs(const sbr_picto_model_t *model, const float *fea
 static void affine(const float *w, const float *in, size_t cols, uint32_t rows, float *out)
 {
     uint32_t r;
+    rows_dot(w, cols, rows, in, cols - 1u, out);
     for (r = 0u; r < rows; r++) {
-        const float *wr = &w[(size_t)r * cols];
-        out[r] = wr[cols - 1u] + dot(wr, in, cols - 1u);
+        out[r] = w[((size_t)r * cols) + (cols - 1u)] + out[r];
     }
 }
 
