@@ -661,6 +661,25 @@ static int mser_pass_level(uint8_t v, const sbr_mser_region_t *r)
     return in;
 }
 
+/* One neighbour (nx, ny) of the region mask's fill: marked and stacked if it is in the
+   region and not marked yet. */
+static void mask_grow(const sbr_image_t *map, const sbr_mser_region_t *r, uint8_t *mask,
+                      uint32_t mask_stride, uint32_t nx, uint32_t ny, uint32_t *stack,
+                      uint32_t *sp, uint32_t *filled)
+{
+    uint8_t *m = &mask[((size_t)ny * mask_stride) + nx];
+    if (*m == 0u) {
+        const uint8_t v =
+            map->data[((size_t)(ny + r->bbox.y) * map->stride) + (size_t)(nx + r->bbox.x)];
+        if (mser_pass_level(v, r) != 0) {
+            *m = 255u;
+            stack[*sp] = (ny << 16) | nx;
+            (*sp)++;
+            (*filled)++;
+        }
+    }
+}
+
 sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_t *region,
                                   void *workspace, size_t workspace_size, uint8_t *mask,
                                   uint32_t mask_stride, size_t mask_size)
@@ -719,53 +738,28 @@ sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_
             return SBR_ERR_CORRUPT;
         }
         mask[((size_t)sy * mask_stride) + sx] = 255u;
-        stack[0] = (sy * bw) + sx;
+        stack[0] = (sy << 16) | sx;
         sp = 1u;
         filled = 1u;
     }
     while (sp > 0u) {
-        uint32_t d;
+        /* stack entries pack (y, x) in 16 bits each (region boxes are below 65536 px) */
         uint32_t lx;
         uint32_t ly;
         sp--;
-        ly = stack[sp] / bw;
-        lx = stack[sp] - (ly * bw);
-        for (d = 0u; d < 4u; d++) {
-            uint32_t nx = lx;
-            uint32_t ny = ly;
-            int inside = 0;
-            if (d == 0u) {
-                if ((lx + 1u) < bw) {
-                    nx = lx + 1u;
-                    inside = 1;
-                }
-            } else if (d == 1u) {
-                if ((ly + 1u) < b->height) {
-                    ny = ly + 1u;
-                    inside = 1;
-                }
-            } else if (d == 2u) {
-                if (lx > 0u) {
-                    nx = lx - 1u;
-                    inside = 1;
-                }
-            } else {
-                if (ly > 0u) {
-                    ny = ly - 1u;
-                    inside = 1;
-                }
-            }
-            if (inside != 0) {
-                uint8_t *m = &mask[((size_t)ny * mask_stride) + nx];
-                const uint8_t v =
-                    map->data[((size_t)(ny + b->y) * map->stride) + (size_t)(nx + b->x)];
-                if ((*m == 0u) && (mser_pass_level(v, region) != 0)) {
-                    *m = 255u;
-                    stack[sp] = (ny * bw) + nx;
-                    sp++;
-                    filled++;
-                }
-            }
+        ly = stack[sp] >> 16;
+        lx = stack[sp] & 0xFFFFu;
+        if ((lx + 1u) < bw) {
+            mask_grow(map, region, mask, mask_stride, lx + 1u, ly, stack, &sp, &filled);
+        }
+        if ((ly + 1u) < b->height) {
+            mask_grow(map, region, mask, mask_stride, lx, ly + 1u, stack, &sp, &filled);
+        }
+        if (lx > 0u) {
+            mask_grow(map, region, mask, mask_stride, lx - 1u, ly, stack, &sp, &filled);
+        }
+        if (ly > 0u) {
+            mask_grow(map, region, mask, mask_stride, lx, ly - 1u, stack, &sp, &filled);
         }
     }
     if (filled != region->area) {
