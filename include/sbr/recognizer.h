@@ -35,7 +35,10 @@
  *    looked for among the parts where the model predicts them (centre within `centre_tol`,
  *    scale within a factor 1 + `size_tol`, same group) with the looser `verify_error`;
  *    each one found adds its weight. A hypothesis needs `min_parts` distinct supporting
- *    prototypes.
+ *    prototypes. (The parts are indexed by group and centre x once per frame, so a check
+ *    looks only at the parts in the x range; matching in steps 2 and 4 screens out
+ *    prototypes whose error is certainly above the threshold, fd.h `max_error`. Neither
+ *    changes a result.)
  * 5. Part score = 1 - prod(1 - w) over the supporting weights w (0..1). Hypotheses below
  *    the part-score floor are dropped; overlapping ones (IoU > `nms_iou`) are suppressed,
  *    the higher score kept.
@@ -148,7 +151,8 @@ typedef struct sbr_recog_config_s {
     /** Correlation size P (a supported FFT size, >= 2M + 1). Default 32. Larger P locates
         the peak on a finer grid before refinement; the cost grows with P log P. */
     uint32_t match_p;
-    /** Parts kept per frame (bounds the workspace). Default 4096. */
+    /** Parts kept per frame (bounds the workspace: each part's record and its 12-byte
+        entry in the cascade's index of parts by group and x). Default 4096. */
     uint32_t max_parts;
     /** Votes kept per frame. Default 16384. */
     uint32_t max_votes;
