@@ -190,6 +190,80 @@ static void test_finds_sign_elsewhere_and_larger(void)
     TEST_ASSERT_EQUAL_UINT32(0u, st.stage_ticks[0]); /* no clock configured */
 }
 
+/* The cascade: with a vote error too tight for most parts, the sign's other parts are
+   found where the model predicts them (with the looser verification error) and add their
+   weight; a second sign elsewhere in the frame lends none of its parts to the first. */
+static void test_cascade_finds_the_parts_that_did_not_vote(void)
+{
+    const sbr_image_t v = view();
+    sbr_recog_stats_t st;
+    sbr_recog_config_t c = g_cfg;
+    const uint32_t np = g_model.proto_count;
+    uint32_t off = 0u; /* prototypes made to miss the vote */
+    float voted[2];
+    float small_sign;
+    uint32_t n = 0u;
+    uint32_t k;
+    /* every other prototype's shape a little off: its match error (a few hundredths) is
+       above the vote error below and well under the verification error */
+    for (k = 1u; k < np; k += 2u) {
+        sbr_fd_t *fd = &g_fds[k];
+        float e = 0.0f;
+        float s;
+        uint32_t j;
+        fd->c[fd->m + 3u].re += 0.2f;
+        for (j = 0u; j <= (2u * fd->m); j++) {
+            e += (fd->c[j].re * fd->c[j].re) + (fd->c[j].im * fd->c[j].im);
+        }
+        s = 1.0f / sqrtf(e);
+        for (j = 0u; j <= (2u * fd->m); j++) {
+            fd->c[j].re *= s;
+            fd->c[j].im *= s;
+        }
+        off++;
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
+    c.vote_error = 0.01f;
+    c.verify_error = 0.25f;
+    c.min_parts = 1u;
+    /* the learned sign (left) and a larger copy 72 px to its right */
+    draw_sign(112.0f, 50.0f, 18.0f);
+    draw_sign(40.0f, 48.0f, 14.0f);
+    c.cascade_depth = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(2u, n);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.verified);
+    for (k = 0u; k < 2u; k++) {
+        const uint32_t right = (g_dets[k].box.x > 60u) ? 1u : 0u;
+        TEST_ASSERT_EQUAL_UINT32(np - off, g_dets[k].parts); /* the votes alone */
+        voted[right] = g_dets[k].score;
+    }
+    c.cascade_depth = 8u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(2u, n);
+    TEST_ASSERT_EQUAL_UINT32(2u * off, st.verified); /* each sign's missing parts, found */
+    small_sign = 0.0f;
+    for (k = 0u; k < 2u; k++) {
+        const uint32_t right = (g_dets[k].box.x > 60u) ? 1u : 0u;
+        TEST_ASSERT_EQUAL_UINT32(np, g_dets[k].parts);
+        TEST_ASSERT_TRUE(g_dets[k].score > voted[right]);
+        if (right == 0u) {
+            small_sign = g_dets[k].score;
+        }
+    }
+    /* the left sign alone: exactly the same score, the right sign's parts lent nothing */
+    clear();
+    draw_sign(40.0f, 48.0f, 14.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                   16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_EQUAL_UINT32(off, st.verified);
+    TEST_ASSERT_EQUAL_FLOAT(small_sign, g_dets[0].score);
+    TEST_ASSERT_TRUE(off >= 1u);
+}
+
 /* A frame without the sign: nothing. With min_parts above what one sign offers: nothing. */
 static void test_empty_frame_and_min_parts(void)
 {
@@ -351,6 +425,11 @@ static void test_class_stage(void)
     g_model.picto.w2 = w2;
     g_model.picto.w3 = NULL;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
+    {
+        char msg[80];
+        (void)snprintf(msg, sizeof msg, "protos %u", (unsigned)g_model.proto_count);
+        TEST_MESSAGE(msg);
+    }
     draw_sign(112.0f, 50.0f, 18.0f);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
                                                    16u, &n, NULL));
@@ -548,6 +627,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_finds_sign_elsewhere_and_larger);
     RUN_TEST(test_empty_frame_and_min_parts);
+    RUN_TEST(test_cascade_finds_the_parts_that_did_not_vote);
     RUN_TEST(test_roi_offsets_boxes);
     RUN_TEST(test_capacity);
     RUN_TEST(test_bad_input);
