@@ -360,9 +360,10 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
             g[x] = (uint8_t)(src[x] ^ xor_mask);
         }
         if ((y > 0u) && (y < (h - 1u))) {
-            const uint32_t inner = w - 2u;
             s[0] = ST_DONE;
-            (void)memset(&s[1], 0, (size_t)inner);
+            for (x = 1u; x < (w - 1u); x++) {
+                s[x] = 0u;
+            }
             s[w - 1u] = ST_DONE;
             if (second == 0) {
                 for (x = 1u; x < (w - 1u); x++) {
