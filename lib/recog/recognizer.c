@@ -161,6 +161,18 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
     return SBR_OK;
 }
 
+/* The prototype group of a (map, polarity): map * 2 + polarity - 1, or SBR_MODEL_GROUPS
+   for a polarity that is neither dark nor bright. */
+static uint32_t group_of(uint8_t map, uint8_t polarity)
+{
+    uint32_t g = SBR_MODEL_GROUPS;
+    if (((polarity == (uint8_t)SBR_MSER_DARK) || (polarity == (uint8_t)SBR_MSER_BRIGHT)) &&
+        ((uint32_t)map < (SBR_MODEL_GROUPS / 2u))) {
+        g = ((uint32_t)map * 2u) + ((uint32_t)polarity - 1u);
+    }
+    return g;
+}
+
 static int proto_ok(const sbr_model_proto_t *p, uint32_t g)
 {
     uint32_t k;
@@ -169,8 +181,7 @@ static int proto_ok(const sbr_model_proto_t *p, uint32_t g)
     if ((in_range(p->dx, -100.0f, 100.0f) == 0) || (in_range(p->dy, -100.0f, 100.0f) == 0) ||
         (in_range(p->w, 1.0e-3f, 100.0f) == 0) || (in_range(p->h, 1.0e-3f, 100.0f) == 0) ||
         (in_range(p->weight, 1.0e-6f, 1.0f) == 0) || (p->map > 3u) ||
-        ((p->polarity != (uint8_t)SBR_MSER_DARK) && (p->polarity != (uint8_t)SBR_MSER_BRIGHT)) ||
-        ((((uint32_t)p->map * 2u) + ((uint32_t)p->polarity - 1u)) != g)) {
+        (group_of(p->map, p->polarity) != g)) {
         ok = 0;
     }
     for (k = 0u; (k < SBR_MODEL_PROTO_CLASSES) && (ok != 0); k++) {
@@ -426,13 +437,13 @@ static sbr_status_t cast_votes(recog_ctx_t *c, uint32_t pi)
 {
     const sbr_part_t *p = &c->parts[pi];
     const sbr_model_t *m = c->model;
-    const uint32_t g = ((uint32_t)p->map * 2u) + ((uint32_t)p->polarity - 1u);
+    const uint32_t g = group_of(p->map, p->polarity);
     uint32_t first;
     uint32_t n;
     uint32_t best = 0u;
     uint32_t k;
     sbr_status_t st;
-    if ((g >= SBR_MODEL_GROUPS) || (p->polarity == 0u)) {
+    if (g >= SBR_MODEL_GROUPS) {
         return SBR_OK;
     }
     first = m->group_first[g];
@@ -584,7 +595,8 @@ static void index_parts(recog_ctx_t *c)
         const sbr_part_t *p = &c->parts[i];
         c->index[i].cx = p->fd.cx;
         c->index[i].part = i;
-        c->index[i].group = ((uint32_t)p->map * 2u) + ((uint32_t)p->polarity - 1u);
+        c->index[i].group = group_of(p->map, p->polarity); /* SBR_MODEL_GROUPS (never
+                                                               searched) if invalid */
     }
     heap_sort((uint8_t *)(void *)c->index, c->nparts, sizeof(recog_index_t), index_before, 0);
     for (i = 0u; i <= c->nparts; i++) {
@@ -632,7 +644,7 @@ static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint3
        margin for rounding); the test itself decides */
     const float xlo = (px - tol) - 1.0f;
     const float xhi = (px + tol) + 1.0f;
-    const uint32_t g = ((uint32_t)pr->map * 2u) + ((uint32_t)pr->polarity - 1u);
+    const uint32_t g = group_of(pr->map, pr->polarity); /* < SBR_MODEL_GROUPS: checked */
     const uint32_t a = index_bound(c, c->group_first[g], c->group_first[g + 1u], xlo, 0);
     const uint32_t b = index_bound(c, a, c->group_first[g + 1u], xhi, 1);
     float best = 0.0f;
