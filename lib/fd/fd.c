@@ -655,7 +655,8 @@ static void match_screened(const sbr_fft_t *fft, const sbr_fd_match_config_t *cf
    independent transforms side by side (lane-interleaved arrays): the innermost loop has
    a fixed trip count over contiguous floats, which compilers map to SIMD registers on
    hosts that have them; on a scalar ECU core it costs the same as one transform after
-   another. Layout of `work` (as floats): re[4P], im[4P], then P / 2 complex twiddles. */
+   another. Layout of `work` (as floats): re[4P], im[4P], P / 2 complex twiddles, then
+   P floats for the screening's query magnitudes (SBR_FD_TABLE_WORK_LEN = 5P complex). */
 #define FD_LANES 4u
 
 /* One radix-2 butterfly on FD_LANES transforms: all loads before all stores, so that the
@@ -888,10 +889,11 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
     float *re = (float *)(void *)work;
     float *im = &re[size * FD_LANES];
     sbr_complex_t *tw = &work[size * FD_LANES];       /* P / 2 twiddles after re, im */
+    /* the query's magnitudes in the last P floats (2M + 1 <= P) */
+    float *qmag = (float *)(void *)&work[(size * FD_LANES) + (size / 2u)];
     const int inv = mode_invariant(cfg);
     const float cb = rotation_cos_bound(cfg);
     const float level = screen_level(cfg);
-    float qmag[(2u * SBR_FD_MAX_M) + 1u];
     uint32_t best[FD_LANES];
     float check[FD_LANES];
     uint32_t pos[(2u * SBR_FD_MAX_M) + 1u];
