@@ -138,7 +138,9 @@ typedef struct sbr_fd_match_config_s {
         every match whose error is at most `max_error` comes out exactly as without
         screening, while most unrelated pairs skip the transform. For callers that only
         use matches up to some error (such as the recogniser's votes). Costs one square
-        root per coefficient of each prototype. */
+        root per coefficient of each prototype. Invalid prototypes get their status as
+        without screening (a non-finite coefficient makes the bound non-finite, which is
+        never screened out). */
     float max_error;
 } sbr_fd_match_config_t;
 
