@@ -425,10 +425,28 @@ static void test_screening_keeps_every_match_up_to_max_error(void)
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match(&g_fft_p, &cut, &q, &q, g_work, 256u, &one));
         cut.max_error = -0.01f;
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match(&g_fft_p, &cut, &q, &q, g_work, 256u, &one));
+        /* 0 (the default, and what a zero-initialised configuration holds) screens
+           nothing: every pair as without the field */
+        TEST_ASSERT_EQUAL_FLOAT(0.0f, g_cov.max_error);
+        protos[NP - 1] = protos[NP - 2];
         cut.max_error = 0.0f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_table(&g_fft_p, &cut, &q, protos, NP, g_wide,
+                                                         SBR_FD_TABLE_WORK_LEN(64), lanes, &best));
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_table(&g_fft_p, &g_cov, &q, protos, NP, g_wide,
+                                                         SBR_FD_TABLE_WORK_LEN(64), all, &best));
+        TEST_ASSERT_EQUAL_MEMORY(all, lanes, sizeof all);
+        {
+            /* the worst pair (far above the thresholds that screened pairs above) is
+               correlated: a real error, not the no-match 4 */
+            float worst = 0.0f;
+            for (i = 0u; i < (uint32_t)NP; i++) {
+                worst = (all[i].error > worst) ? all[i].error : worst;
+            }
+            TEST_ASSERT_TRUE(worst > 0.3f);
+            TEST_ASSERT_TRUE(worst < 4.0f);
+        }
         TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match(&g_fft_p, &cut, &q, &q, g_work, 256u, &one));
         TEST_ASSERT_FLOAT_WITHIN(1e-4f, 0.0f, one.error);
-        TEST_ASSERT_EQUAL_FLOAT(4.0f, g_cov.max_error); /* the default screens nothing */
     }
 }
 

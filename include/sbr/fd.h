@@ -131,9 +131,10 @@ typedef struct sbr_fd_match_config_s {
     /** 1 (default): refine the peak between grid samples (exact rotation and shift, a
         slightly lower error); 0: grid peak only (faster, for bulk screening). */
     int refine;
-    /** Screening (>= 0; default 4, none): a prototype whose error is certainly above
-        `max_error` is not correlated and gets the no-match result (error 4, rotation and
-        shift 0, scale_ratio as always). The test is a bound, |r| <= sum |Q(n)| |C(n)|
+    /** Screening (>= 0; default 0, none; 0 and values of 2 or more screen nothing, so a
+        zero-initialised configuration behaves as before this field existed): a prototype
+        whose error is certainly above `max_error` is not correlated and gets the no-match
+        result (error 4, rotation and shift 0, scale_ratio as always). The test is a bound, |r| <= sum |Q(n)| |C(n)|
         over the coefficients (so e >= 2 - 2 sum), with a margin of 1e-4 for rounding:
         every match whose error is at most `max_error` comes out exactly as without
         screening, while most unrelated pairs skip the transform. For callers that only
@@ -152,7 +153,7 @@ typedef struct sbr_fd_match_s {
     float scale_ratio; /**< query scale / prototype scale */
 } sbr_fd_match_t;
 
-/** @brief Defaults: covariant, no rotation bound, refined, no screening (max_error 4).
+/** @brief Defaults: covariant, no rotation bound, refined, no screening (max_error 0).
     @return ::SBR_OK, ::SBR_ERR_NULL. */
 sbr_status_t sbr_fd_match_config_default(sbr_fd_match_config_t *cfg);
 

@@ -288,7 +288,7 @@ sbr_status_t sbr_fd_match_config_default(sbr_fd_match_config_t *cfg)
     cfg->mode = SBR_FD_ROTATION_COVARIANT;
     cfg->max_rotation = SBR_PI_F;
     cfg->refine = 1;
-    cfg->max_error = 4.0f;
+    cfg->max_error = 0.0f;
     return SBR_OK;
 }
 
@@ -534,11 +534,12 @@ static void finish_match(uint32_t size, const sbr_fd_match_config_t *cfg,
    correlated and reported as before. */
 #define FD_SCREEN_MARGIN 1.0e-4f
 
-/* The level the magnitude sum must reach, or a negative value when nothing is screened. */
+/* The level the magnitude sum must reach, or a negative value when nothing is screened
+   (max_error 0: off; 2 or more: no pair could be ruled out). */
 static float screen_level(const sbr_fd_match_config_t *cfg)
 {
     float level = -1.0f;
-    if (cfg->max_error < 2.0f) {
+    if ((cfg->max_error > 0.0f) && (cfg->max_error < 2.0f)) {
         level = (1.0f - (0.5f * cfg->max_error)) - FD_SCREEN_MARGIN;
     }
     return level;
