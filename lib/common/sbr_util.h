@@ -31,6 +31,32 @@ static inline int sbr_util_aligned(const void *p, uint32_t align)
     return ok;
 }
 
+/* a . b over n elements in four interleaved partial sums: element k goes to sum k mod 4
+   (the tail after the last whole group of four to sum 0), and the result is
+   (s0 + s1) + (s2 + s3). Independent additions the FPU can pipeline (one vector register
+   on SIMD hosts); the order is fixed, so every target adds the same way. Code that must
+   agree with it bit for bit (the class stage's four-row products) keeps this order. */
+static inline float sbr_util_dot(const float *a, const float *b, size_t n)
+{
+    float s0 = 0.0f;
+    float s1 = 0.0f;
+    float s2 = 0.0f;
+    float s3 = 0.0f;
+    size_t k = 0u;
+    while ((k + 4u) <= n) {
+        s0 += a[k] * b[k];
+        s1 += a[k + 1u] * b[k + 1u];
+        s2 += a[k + 2u] * b[k + 2u];
+        s3 += a[k + 3u] * b[k + 3u];
+        k += 4u;
+    }
+    while (k < n) {
+        s0 += a[k] * b[k];
+        k++;
+    }
+    return (s0 + s1) + (s2 + s3);
+}
+
 /* The angle of the point (x, y) in (-pi, pi] for finite arguments, to within 6e-7 rad
    (a degree-13 odd near-minimax polynomial of atan on [0, 1], 3.3e-7 rad, plus float
    rounding), several times faster than libm's atan2f. y = -0 counts as positive (the

@@ -174,24 +174,13 @@ sbr_status_t sbr_fd_from_pointsf(const sbr_fft_t *fft, const sbr_pointf_t *point
     return fd_compute(fft, NULL, points, count, m, work, work_len, out);
 }
 
-/* Sum of squares of a descriptor's coefficients with four independent partial sums (one
-   vector register on SIMD hosts); not finite iff a coefficient is not finite. */
+/* Sum of squares of a descriptor's coefficients (sbr_util_dot's four partial sums); not
+   finite iff a coefficient is not finite. */
 static float coeff_energy(const sbr_fd_t *p)
 {
     const float *f = (const float *)(const void *)p->c; /* 2(2M+1) floats */
     const uint32_t n = 2u * ((2u * p->m) + 1u);
-    float acc[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    uint32_t k;
-    for (k = 0u; (k + 4u) <= n; k += 4u) {
-        uint32_t j;
-        for (j = 0u; j < 4u; j++) {
-            acc[j] += f[k + j] * f[k + j];
-        }
-    }
-    for (; k < n; k++) {
-        acc[0] += f[k] * f[k];
-    }
-    return (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    return sbr_util_dot(f, f, (size_t)n);
 }
 
 sbr_status_t sbr_fd_check(const sbr_fd_t *fd, float *energy)

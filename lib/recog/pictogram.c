@@ -463,36 +463,13 @@ static sbr_status_t run_check(const sbr_picto_model_t *model, const float *feat,
     return SBR_OK;
 }
 
-/* a . b over n elements, in four interleaved partial sums (independent additions the
-   FPU can pipeline; the order is fixed, so every target adds the same way). */
-static float dot(const float *a, const float *b, size_t n)
-{
-    float s0 = 0.0f;
-    float s1 = 0.0f;
-    float s2 = 0.0f;
-    float s3 = 0.0f;
-    size_t k = 0u;
-    while ((k + 4u) <= n) {
-        s0 += a[k] * b[k];
-        s1 += a[k + 1u] * b[k + 1u];
-        s2 += a[k + 2u] * b[k + 2u];
-        s3 += a[k + 3u] * b[k + 3u];
-        k += 4u;
-    }
-    while (k < n) {
-        s0 += a[k] * b[k];
-        k++;
-    }
-    return (s0 + s1) + (s2 + s3);
-}
-
-/* dot() of four rows (w, w + stride, ...) with the same b at once: each row's sum is the
-   same sequence of operations as dot()'s (bit for bit), but the four rows' additions are
-   independent, so the FPU overlaps them instead of waiting on one chain. */
+/* sbr_util_dot() of four rows (w, w + stride, ...) with the same b at once: each row's sum
+   is the same sequence of operations as sbr_util_dot()'s (bit for bit), but the four rows'
+   additions are independent, so the FPU overlaps them instead of waiting on one chain. */
 static void dot4(const float *w, size_t stride, const float *b, size_t n, float out[4])
 {
-    /* four partial sums per row, as dot(); each row's four are one group of lanes (one
-       vector on SIMD hosts) */
+    /* four partial sums per row, as sbr_util_dot(); each row's four are one group of
+       lanes (one vector on SIMD hosts) */
     const float *w0 = w;
     const float *w1 = &w[stride];
     const float *w2 = &w[2u * stride];
@@ -530,7 +507,8 @@ static void dot4(const float *w, size_t stride, const float *b, size_t n, float 
     out[3] = (s3[0] + s3[1]) + (s3[2] + s3[3]);
 }
 
-/* out[r] = dot(row r of w, b) for `rows` rows `stride` apart: four rows at a time. */
+/* out[r] = sbr_util_dot(row r of w, b) for `rows` rows `stride` apart, four rows at a
+   time. */
 static void rows_dot(const float *w, size_t stride, uint32_t rows, const float *b, size_t n,
                      float *out)
 {
@@ -540,7 +518,7 @@ static void rows_dot(const float *w, size_t stride, uint32_t rows, const float *
         r += 4u;
     }
     while (r < rows) {
-        out[r] = dot(&w[(size_t)r * stride], b, n);
+        out[r] = sbr_util_dot(&w[(size_t)r * stride], b, n);
         r++;
     }
 }
