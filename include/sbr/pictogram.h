@@ -74,7 +74,7 @@ extern "C" {
 /** Workspace bytes of sbr_picto_features() and sbr_picto_classify(). */
 #define SBR_PICTO_WORKSPACE_SIZE \
     ((size_t)SBR_PICTO_SIZE * SBR_PICTO_SIZE * 4u * sizeof(float) + \
-     (size_t)SBR_PICTO_SIZE * 27u * sizeof(float) + \
+     (size_t)SBR_PICTO_SIZE * 24u * sizeof(float) + \
      (size_t)SBR_PICTO_HIDDEN_MAX * sizeof(float))
 
 /**

@@ -175,14 +175,15 @@ static void picto_taps(float start, float step, uint32_t n, uint32_t size, picto
 #define ROW_FLOATS (3u * ROW_SAMPLES)
 
 typedef struct picto_rows_s {
-    float *h[2];     /* [ROW_FLOATS] each: channel c, sub-sample s at c ROW_SAMPLES + s */
+    float *h[2];     /* [ROW_FLOATS] each: channel c, sub-sample i of pixel u at
+                        c ROW_SAMPLES + i PS + u */
     uint32_t tag[2]; /* the source row held, or PICTO_NO_ROW */
 } picto_rows_t;
 
 #define PICTO_NO_ROW 0xFFFFFFFFu
 
-/* The patches, the taps' block, the two rows and the accumulators fit the workspace. */
-typedef char picto_ws_fits[((((4u * PS * PS) + (2u * ROW_FLOATS) + (3u * PS)) * sizeof(float)) <=
+/* The patches, the taps' block and the two rows fit the workspace. */
+typedef char picto_ws_fits[((((4u * PS * PS) + (2u * ROW_FLOATS)) * sizeof(float)) <=
                             SBR_PICTO_WORKSPACE_SIZE) ? 1 : -1];
 
 /* The slot holding source row r (filled if need be, never slot `keep`). */
@@ -198,20 +199,23 @@ static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uin
     } else {
         const uint8_t *src = &img->data[(size_t)r * img->stride];
         float *h;
-        uint32_t t;
+        uint32_t u;
+        uint32_t i;
         if (keep == 0u) {
             k = 1u;
         }
         h = rows->h[k];
-        for (t = 0u; t < n; t++) {
-            const picto_tap_t *xt = &tx[t];
-            const uint32_t x0 = xt->lo * 3u;
-            const uint32_t x1 = xt->hi * 3u;
-            uint32_t c;
-            for (c = 0u; c < 3u; c++) {
-                const float a = (float)src[x0 + ch[c]];
-                const float b = (float)src[x1 + ch[c]];
-                h[(c * ROW_SAMPLES) + t] = a + (xt->f * (b - a));
+        for (u = 0u; u < PS; u++) {
+            for (i = 0u; i < n; i++) {
+                const picto_tap_t *xt = &tx[(u * n) + i];
+                const uint32_t x0 = xt->lo * 3u;
+                const uint32_t x1 = xt->hi * 3u;
+                uint32_t c;
+                for (c = 0u; c < 3u; c++) {
+                    const float a = (float)src[x0 + ch[c]];
+                    const float b = (float)src[x1 + ch[c]];
+                    h[(c * ROW_SAMPLES) + (i * PS) + u] = a + (xt->f * (b - a));
+                }
             }
         }
         rows->tag[k] = r;
@@ -222,11 +226,13 @@ static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uin
 
 /* Resample the box into grey (g) and chromaticity (cr, cb) patches: each patch pixel is
    the mean of nx x ny bilinear samples (nx, ny = the box's scale, 1..4), the
-   taps in `taps` (2 PS 4 entries), `rows` and `acc` (3 PS floats) as scratch. The sums
-   run over the sub-samples in the same order as a pixel-by-pixel loop would. */
+   taps in `taps` (2 PS 4 entries) and `rows` as scratch. The sums run over the
+   sub-samples in the same order as a pixel-by-pixel loop would (per patch pixel: source
+   sub-row by sub-row, each left to right). */
 static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap_t *taps,
-                           picto_rows_t *rows, float *acc, float *g, float *cr, float *cb)
+                           picto_rows_t *rows, float *g, float *cr, float *cb)
 {
+    float acc[3][PS]; /* a local array: the compiler knows the rows do not alias it */
     const float sx = (box[2] - box[0]) / (float)PS;
     const float sy = (box[3] - box[1]) / (float)PS;
     const uint32_t nx = (uint32_t)picto_clampf(ceilf(sx), 1.0f, 4.0f);
@@ -247,35 +253,35 @@ static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap
     for (v = 0u; v < PS; v++) {
         uint32_t u;
         uint32_t j;
-        for (u = 0u; u < (3u * PS); u++) {
-            acc[u] = 0.0f;
+        for (u = 0u; u < PS; u++) {
+            acc[0][u] = 0.0f;
+            acc[1][u] = 0.0f;
+            acc[2][u] = 0.0f;
         }
         for (j = 0u; j < ny; j++) {
             const picto_tap_t *yt = &ty[(v * ny) + j];
             const float fy = yt->f;
             uint32_t s0;
             uint32_t s1;
-            const float *h0 = picto_row(img, tx, PS * nx, ch, yt->lo, 2u, rows, &s0);
-            const float *h1 = picto_row(img, tx, PS * nx, ch, yt->hi, s0, rows, &s1);
+            const float *h0 = picto_row(img, tx, nx, ch, yt->lo, 2u, rows, &s0);
+            const float *h1 = picto_row(img, tx, nx, ch, yt->hi, s0, rows, &s1);
             uint32_t c;
             for (c = 0u; c < 3u; c++) {
-                const float *t0 = &h0[c * ROW_SAMPLES];
-                const float *t1 = &h1[c * ROW_SAMPLES];
-                float *ac = &acc[c * PS];
-                for (u = 0u; u < PS; u++) {
-                    uint32_t i;
-                    for (i = 0u; i < nx; i++) {
-                        const float top = t0[(u * nx) + i];
-                        const float bot = t1[(u * nx) + i];
-                        ac[u] += top + (fy * (bot - top));
+                uint32_t i;
+                for (i = 0u; i < nx; i++) {
+                    const float *t0 = &h0[(c * ROW_SAMPLES) + (i * PS)];
+                    const float *t1 = &h1[(c * ROW_SAMPLES) + (i * PS)];
+                    float *ac = &acc[c][0];
+                    for (u = 0u; u < PS; u++) {
+                        ac[u] += t0[u] + (fy * (t1[u] - t0[u]));
                     }
                 }
             }
         }
         for (u = 0u; u < PS; u++) {
-            const float a0 = acc[u] * inv;
-            const float a1 = acc[PS + u] * inv;
-            const float a2 = acc[(2u * PS) + u] * inv;
+            const float a0 = acc[0][u] * inv;
+            const float a1 = acc[1][u] * inv;
+            const float a2 = acc[2][u] * inv;
             const float sum = a0 + a1 + a2;
             g[(v * PS) + u] = sum * (1.0f / 3.0f);
             cr[(v * PS) + u] = a0 / (sum + 30.0f);
@@ -346,14 +352,12 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
     cr = &g[PS * PS];
     cb = &cr[PS * PS];
     {
-        /* after the three patches: the taps (one patch-sized block), the two rows, the
-           accumulators */
+        /* after the three patches: the taps (one patch-sized block), the two rows */
         float *after_taps = &cb[2u * PS * PS];
         picto_rows_t rows;
         rows.h[0] = after_taps;
         rows.h[1] = &after_taps[ROW_FLOATS];
-        picto_resample(img, box, (picto_tap_t *)(void *)&cb[PS * PS], &rows,
-                       &after_taps[2u * ROW_FLOATS], g, cr, cb);
+        picto_resample(img, box, (picto_tap_t *)(void *)&cb[PS * PS], &rows, g, cr, cb);
     }
 
     /* contrast-normalised grey */
