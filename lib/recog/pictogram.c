@@ -198,24 +198,33 @@ static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uin
         k = 1u;
     } else {
         const uint8_t *src = &img->data[(size_t)r * img->stride];
-        float *h;
-        uint32_t u;
+        const uint32_t c0 = ch[0];
+        const uint32_t c1 = ch[1];
+        const uint32_t c2 = ch[2];
         uint32_t i;
         if (keep == 0u) {
             k = 1u;
         }
-        h = rows->h[k];
-        for (u = 0u; u < PS; u++) {
-            for (i = 0u; i < n; i++) {
+        for (i = 0u; i < n; i++) {
+            /* sub-sample column i of the three channels */
+            float *h0 = &rows->h[k][i * PS];
+            float *h1 = &h0[ROW_SAMPLES];
+            float *h2 = &h1[ROW_SAMPLES];
+            uint32_t u;
+            for (u = 0u; u < PS; u++) {
                 const picto_tap_t *xt = &tx[(u * n) + i];
-                const uint32_t x0 = xt->lo * 3u;
-                const uint32_t x1 = xt->hi * 3u;
-                uint32_t c;
-                for (c = 0u; c < 3u; c++) {
-                    const float a = (float)src[x0 + ch[c]];
-                    const float b = (float)src[x1 + ch[c]];
-                    h[(c * ROW_SAMPLES) + (i * PS) + u] = a + (xt->f * (b - a));
-                }
+                const uint8_t *pa = &src[xt->lo * 3u];
+                const uint8_t *pb = &src[xt->hi * 3u];
+                const float f = xt->f;
+                float a = (float)pa[c0];
+                float b = (float)pb[c0];
+                h0[u] = a + (f * (b - a));
+                a = (float)pa[c1];
+                b = (float)pb[c1];
+                h1[u] = a + (f * (b - a));
+                a = (float)pa[c2];
+                b = (float)pb[c2];
+                h2[u] = a + (f * (b - a));
             }
         }
         rows->tag[k] = r;
