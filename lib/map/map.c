@@ -86,6 +86,19 @@ static void map_row(sbr_map_kind_t kind, const uint8_t *row, uint32_t bpp, uint3
     }
 }
 
+/* Rounded block mean s / n2: a shift when n2 is a power of two (shift = log2 n2, else 0),
+   the same value as the division. */
+static uint32_t block_mean(uint32_t s, uint32_t n2, uint32_t shift)
+{
+    uint32_t m;
+    if (shift != 0u) {
+        m = (s + (n2 / 2u)) >> shift;
+    } else {
+        m = (s + (n2 / 2u)) / n2;
+    }
+    return m;
+}
+
 sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t subsample,
                           uint8_t *out, uint32_t out_stride, size_t out_size,
                           sbr_image_t *out_view)
@@ -99,6 +112,7 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
     uint32_t x;
     uint32_t y;
     uint32_t n2;
+    uint32_t shift = 0u;
     size_t src_bytes;
     size_t out_bytes;
 
@@ -137,6 +151,11 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
         bi = 0u;
     }
     n2 = subsample * subsample;
+    if ((n2 & (n2 - 1u)) == 0u) {
+        while ((1u << shift) < n2) {
+            shift++;
+        }
+    }
     for (y = 0u; (y < oh) && (subsample == 1u); y++) {
         map_row(kind, &src->data[(size_t)y * src->stride], bpp, ri, bi, ow,
                 &out[(size_t)y * out_stride]);
@@ -165,8 +184,8 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
                     }
                 }
             }
-            dst[x] = map_value(kind, (sr + (n2 / 2u)) / n2, (sg + (n2 / 2u)) / n2,
-                               (sb + (n2 / 2u)) / n2);
+            dst[x] = map_value(kind, block_mean(sr, n2, shift), block_mean(sg, n2, shift),
+                               block_mean(sb, n2, shift));
         }
     }
     if (out_view != NULL) {
