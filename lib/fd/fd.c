@@ -550,11 +550,14 @@ static int screened_out(const float *qmag, const sbr_fd_t *proto, float level)
 {
     const uint32_t n = (2u * proto->m) + 1u;
     float sum = 0.0f;
-    uint32_t k;
+    uint32_t k = 0u;
     int out = 0;
-    for (k = 0u; k < n; k++) {
+    /* The terms are >= 0 (or NaN), so a partial sum that reached the level stays there:
+       the pair is not screened out, and the rest of the sum is not needed. */
+    while ((k < n) && (!(sum >= level))) {
         const sbr_complex_t c = proto->c[k];
         sum += qmag[k] * sqrtf((c.re * c.re) + (c.im * c.im));
+        k++;
     }
     if (sum < level) {
         out = 1;
