@@ -1,0 +1,131 @@
+// sbr_bench_picto: time per box of the recogniser's class stage (pictogram.h) on recorded
+// frames: sbr_picto_features() and sbr_picto_classify() with the built-in classifier.
+//
+//   sbr_bench_picto [--data DIR] [--images N] [--boxes N] [--rounds R]
+//
+// Defaults: --data ../shared/data/gtsdb (GTSDB images 00400, 00450, 00500, ... of
+// FullIJCNN2013), --images 3, --boxes 3000 per image, --rounds 15. The boxes are fixed
+// (12-130 px, some reaching past the image border), so two builds see the same work.
+// Per image the best round counts (the least disturbed by other load); the figure is
+// the mean over the images. The checksum (FNV-1a over the features' and probabilities'
+// bytes) tells whether two builds compute bit-identical results.
+// Prints: images, boxes, features_us, classify_us, checksum. Exit status 1 when an image
+// cannot be read or a call fails on a box that should be valid.
+#include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "sbr/pictogram.h"
+}
+
+namespace {
+
+uint64_t fnv(uint64_t h, const void *p, size_t n) {
+    const unsigned char *b = static_cast<const unsigned char *>(p);
+    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    return h;
+}
+
+// Box i of the fixed set, scaled to an image of w x h.
+void box_of(int i, uint32_t w, uint32_t h, float b[4]) {
+    const float s = float(12 + (i % 9) * 13) + 0.5f * float(i % 4);
+    const float x = float(-10 + (i * 37) % int(w - 60)) + 0.37f * float(i % 3);
+    const float y = float(-10 + (i * 53) % int(h - 40)) + 0.21f * float(i % 7);
+    b[0] = x;
+    b[1] = y;
+    b[2] = x + s * (1.0f + 0.05f * float(i % 3));
+    b[3] = y + s;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    std::string data = "../shared/data/gtsdb";
+    int images = 3, boxes = 3000, rounds = 15;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+        if (a == "--data") data = next();
+        else if (a == "--images") images = std::atoi(next().c_str());
+        else if (a == "--boxes") boxes = std::atoi(next().c_str());
+        else if (a == "--rounds") rounds = std::atoi(next().c_str());
+        else {
+            std::fprintf(stderr, "usage: %s [--data DIR] [--images N] [--boxes N] [--rounds R]\n", argv[0]);
+            return 2;
+        }
+    }
+    if (images < 1 || images > 12 || boxes < 1 || rounds < 1) {
+        std::fprintf(stderr, "sbr_bench_picto: --images 1..12, --boxes >= 1, --rounds >= 1\n");
+        return 2;
+    }
+    sbr_picto_model_t model;
+    if (sbr_picto_gtsdb(&model) != SBR_OK || sbr_picto_check(&model) != SBR_OK) {
+        std::fprintf(stderr, "sbr_bench_picto: the built-in classifier fails its check\n");
+        return 1;
+    }
+    std::vector<float> ws(SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1);
+    std::vector<float> feat(static_cast<size_t>(boxes) * SBR_PICTO_FEATURES);
+    std::vector<int> ok(static_cast<size_t>(boxes));
+    std::vector<float> prob(SBR_PICTO_OUTPUTS);
+    double feat_us = 0.0, cls_us = 0.0;
+    uint64_t sum = 1469598103934665603ull;
+    for (int k = 0; k < images; ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "%05d.jpg", 400 + 50 * k);
+        const std::string path = data + "/FullIJCNN2013/" + name;
+        cv::Mat im = cv::imread(path);
+        if (im.empty() || im.cols < 100 || im.rows < 100) {
+            std::fprintf(stderr, "sbr_bench_picto: cannot read %s\n", path.c_str());
+            return 1;
+        }
+        const sbr_image_t v{uint32_t(im.cols), uint32_t(im.rows), uint32_t(im.step), SBR_PIXEL_BGR888, im.data};
+        double best_f = 1e30, best_c = 1e30;
+        for (int r = 0; r < rounds; ++r) {
+            auto t0 = std::chrono::steady_clock::now();
+            for (int i = 0; i < boxes; ++i) {
+                float b[4];
+                box_of(i, v.width, v.height, b);
+                ok[size_t(i)] = sbr_picto_features(&v, b, &feat[size_t(i) * SBR_PICTO_FEATURES], SBR_PICTO_FEATURES,
+                                                   ws.data(), SBR_PICTO_WORKSPACE_SIZE) == SBR_OK;
+            }
+            auto t1 = std::chrono::steady_clock::now();
+            for (int i = 0; i < boxes; ++i) {
+                if (ok[size_t(i)] &&
+                    sbr_picto_classify(&model, &feat[size_t(i) * SBR_PICTO_FEATURES], SBR_PICTO_FEATURES, prob.data(),
+                                       SBR_PICTO_OUTPUTS, ws.data(), SBR_PICTO_WORKSPACE_SIZE) != SBR_OK) {
+                    std::fprintf(stderr, "sbr_bench_picto: classify failed on box %d of %s\n", i, name);
+                    return 1;
+                }
+                if (r == 0 && ok[size_t(i)]) sum = fnv(sum, prob.data(), prob.size() * sizeof(float));
+            }
+            auto t2 = std::chrono::steady_clock::now();
+            best_f = std::min(best_f, std::chrono::duration<double, std::micro>(t1 - t0).count() / boxes);
+            best_c = std::min(best_c, std::chrono::duration<double, std::micro>(t2 - t1).count() / boxes);
+        }
+        int valid = 0;
+        for (int i = 0; i < boxes; ++i) {
+            sum = fnv(sum, &ok[size_t(i)], sizeof(int));
+            if (ok[size_t(i)]) {
+                sum = fnv(sum, &feat[size_t(i) * SBR_PICTO_FEATURES], SBR_PICTO_FEATURES * sizeof(float));
+                ++valid;
+            }
+        }
+        if (valid == 0) {
+            std::fprintf(stderr, "sbr_bench_picto: no valid box on %s\n", name);
+            return 1;
+        }
+        feat_us += best_f;
+        cls_us += best_c;
+    }
+    std::printf("images=%d boxes=%d features_us=%.2f classify_us=%.2f checksum=%016llx\n", images, boxes,
+                feat_us / images, cls_us / images, static_cast<unsigned long long>(sum));
+    return 0;
+}
