@@ -482,6 +482,57 @@ static void test_class_stage(void)
                                                               16u, &n, &st));
         g_model.picto.w3 = NULL;
     }
+    /* suppression before the class stage (candidate_iou): two signs whose boxes overlap
+       by IoU 5 / 57 (the right one drawn over the left one's rim). At 1 (the default)
+       both are candidates and, with nms_iou 1, both are reported; at 0.05 the second one
+       is dropped before the class stage ever sees it; at 0.2 (above their IoU) both are
+       classified again. 0, values above 1 and NaN are refused. */
+    {
+        sbr_recog_config_t rc = g_cfg;
+        sbr_recog_stats_t st;
+        float left = 0.0f;
+        float right = 0.0f;
+        uint32_t k;
+        TEST_ASSERT_EQUAL_FLOAT(1.0f, rc.candidate_iou);
+        clear();
+        draw_sign(58.0f, 48.0f, 15.0f);
+        draw_sign(84.0f, 48.0f, 15.0f);
+        rc.nms_iou = 1.0f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                       16u, &n, &st));
+        TEST_ASSERT_EQUAL_UINT32(2u, n);
+        TEST_ASSERT_EQUAL_UINT32(2u, st.classified);
+        for (k = 0u; k < n; k++) {
+            const float cx = (float)g_dets[k].box.x + (0.5f * (float)g_dets[k].box.width);
+            TEST_ASSERT_EQUAL_UINT32(3u, g_dets[k].class_id);
+            if (cx < 71.0f) {
+                left = cx;
+            } else {
+                right = cx;
+            }
+        }
+        TEST_ASSERT_FLOAT_WITHIN(3.0f, 58.0f, left);
+        TEST_ASSERT_FLOAT_WITHIN(3.0f, 84.0f, right);
+        rc.candidate_iou = 0.05f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                       16u, &n, &st));
+        TEST_ASSERT_EQUAL_UINT32(1u, n);
+        TEST_ASSERT_EQUAL_UINT32(1u, st.classified);
+        rc.candidate_iou = 0.2f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                       16u, &n, &st));
+        TEST_ASSERT_EQUAL_UINT32(2u, n);
+        TEST_ASSERT_EQUAL_UINT32(2u, st.classified);
+        rc.candidate_iou = 0.0f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        rc.candidate_iou = 1.01f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        rc.candidate_iou = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws,
+                                                              g_dets, 16u, &n, &st));
+        clear();
+        draw_sign(112.0f, 50.0f, 18.0f); /* the scene of the tests below */
+    }
     /* views: averaging the same probabilities keeps them; each likely candidate costs
        views - 1 extra pictograms; 0 and more than SBR_RECOG_MAX_VIEWS are refused */
     {

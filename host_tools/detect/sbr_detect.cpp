@@ -27,7 +27,7 @@
 // --summary: the summary text (also printed): images, detections, time per frame (median
 //   and 95th percentile, per stage), workspace bytes, capacity hits.
 // --min-parts, --vote-error, --verify-error, --min-score, --refine-steps, --refine-score,
-//   --views, --view-score, --candidate-score override the recogniser's options of those names
+//   --views, --view-score, --candidate-score, --candidate-iou override the recogniser's options of those names
 //   (include/sbr/recognizer.h), for tuning and regression; --maps sets parts.maps (bit k =
 //   map kind k of include/sbr/map.h; 0x1 intensity only), --map-subsample
 //   parts.map_subsample (per kind, in the order intensity, red, blue, yellow; kinds not
@@ -115,7 +115,7 @@ int main(int argc, char **argv) {
     int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1, max_nodes = -1;
     bool sequence = false;
     std::vector<unsigned> map_sub;  // --map-subsample: per map kind, empty = defaults
-    float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, view_score = -1.0f, candidate_score = -1.0f;
+    float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, view_score = -1.0f, candidate_score = -1.0f, candidate_iou = -1.0f;
     sbr_rect_t roi{};
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -137,6 +137,7 @@ int main(int argc, char **argv) {
         else if (a == "--refine-steps") refine_steps = std::atoi(next().c_str());
         else if (a == "--refine-score") refine_score = std::strtof(next().c_str(), nullptr);
         else if (a == "--candidate-score") candidate_score = std::strtof(next().c_str(), nullptr);
+        else if (a == "--candidate-iou") candidate_iou = std::strtof(next().c_str(), nullptr);
         else if (a == "--view-score") view_score = std::strtof(next().c_str(), nullptr);
         else if (a == "--map-subsample") {
             unsigned f[4] = {1, 1, 1, 1};
@@ -163,7 +164,7 @@ int main(int argc, char **argv) {
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
                          "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet]\n"
                          "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
-                         "          [--refine-steps N] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S] [--views N] [--picto FILE | --no-picto]\n", argv[0]);
+                         "          [--refine-steps N] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S] [--candidate-iou U] [--views N] [--picto FILE | --no-picto]\n", argv[0]);
             return 2;
         }
     }
@@ -204,6 +205,7 @@ int main(int argc, char **argv) {
     if (refine_score >= 0.0f) cfg.refine_score = refine_score;
     if (view_score >= 0.0f) cfg.view_score = view_score;
     if (candidate_score >= 0.0f) cfg.candidate_score = candidate_score;
+    if (candidate_iou >= 0.0f) cfg.candidate_iou = candidate_iou;
     for (size_t k = 0; k < map_sub.size(); ++k) cfg.parts.map_subsample[k] = map_sub[k];
     if (maps >= 0) cfg.parts.maps = uint32_t(maps);
     if (max_nodes >= 0) cfg.parts.mser.max_nodes = uint32_t(max_nodes);

@@ -109,6 +109,7 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->view_score = 0.1f;
         cfg->min_score = 0.3f;
         cfg->nms_iou = 0.3f;
+        cfg->candidate_iou = 1.0f;
         cfg->clock = NULL;
         cfg->clock_ctx = NULL;
     }
@@ -155,7 +156,8 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (in_range(cfg->candidate_score, 0.0f, 0.999999f) == 0) ||
         (in_range(cfg->refine_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->view_score, 0.0f, 1.0f) == 0) ||
-        (in_range(cfg->nms_iou, 1.0e-6f, 1.0f) == 0)) {
+        (in_range(cfg->nms_iou, 1.0e-6f, 1.0f) == 0) ||
+        (in_range(cfg->candidate_iou, 1.0e-6f, 1.0f) == 0)) {
         return SBR_ERR_RANGE;
     }
     return SBR_OK;
@@ -793,20 +795,25 @@ static uint32_t compact_sorted(recog_ctx_t *c)
 }
 
 /* Greedy non-maximum suppression over the first n (sorted) hypotheses: one overlapping
-   a better kept one by more than nms_iou, or with an empty box, is dropped. */
-static void suppress(recog_ctx_t *c, uint32_t n, uint32_t vw, uint32_t vh)
+   a better kept one by more than iou, or with an empty box, is dropped (iou 1: only the
+   empty boxes, as no IoU exceeds 1). */
+static void suppress(recog_ctx_t *c, uint32_t n, uint32_t vw, uint32_t vh, float iou)
 {
     uint32_t i;
     for (i = 0u; i < n; i++) {
         float bi[4];
         uint32_t j;
+        uint32_t earlier = 0u; /* the better hypotheses to compare with */
         int suppressed = 0;
         hyp_box(&c->hyps[i], vw, vh, bi);
-        for (j = 0u; (j < i) && (suppressed == 0); j++) {
+        if (iou < 1.0f) {
+            earlier = i;
+        }
+        for (j = 0u; (j < earlier) && (suppressed == 0); j++) {
             if (c->hyps[j].keep != 0u) {
                 float bj[4];
                 hyp_box(&c->hyps[j], vw, vh, bj);
-                if (box_iou(bi, bj) > c->cfg->nms_iou) {
+                if (box_iou(bi, bj) > iou) {
                     suppressed = 1;
                 }
             }
@@ -1083,7 +1090,8 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
 
     /* 5. non-maximum suppression on part evidence, best first */
     kept = compact_sorted(&c);
-    suppress(&c, kept, view.width, view.height);
+    suppress(&c, kept, view.width, view.height,
+             (model->picto.version != 0u) ? cfg->candidate_iou : cfg->nms_iou);
     stage_end(&c, (uint32_t)SBR_RECOG_STAGE_NMS, &t0);
 
     /* 6. class stage: the pictogram classifier scores and classifies the survivors, then
@@ -1119,7 +1127,7 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
         }
         c.st.classified = examined;
         kept = compact_sorted(&c);
-        suppress(&c, kept, view.width, view.height);
+        suppress(&c, kept, view.width, view.height, cfg->nms_iou);
     }
     stage_end(&c, (uint32_t)SBR_RECOG_STAGE_CLASS, &t0);
 
