@@ -652,9 +652,9 @@ static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint3
     float best = 0.0f;
     uint32_t i;
     for (i = a; i < b; i++) {
+        /* entries of group g only: the part's map and polarity are the prototype's */
         const sbr_part_t *p = &c->parts[c->index[i].part];
-        if ((p->map == pr->map) && (p->polarity == pr->polarity) &&
-            (fabsf(p->fd.cx - px) <= tol) && (fabsf(p->fd.cy - py) <= tol) &&
+        if ((fabsf(p->fd.cx - px) <= tol) && (fabsf(p->fd.cy - py) <= tol) &&
             (p->fd.scale <= (s * f)) && ((p->fd.scale * f) >= s)) {
             sbr_fd_match_t r;
             c->st.matches++;
@@ -1088,7 +1088,8 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
     score_hyps(&c);
     stage_end(&c, (uint32_t)SBR_RECOG_STAGE_VERIFY, &t0);
 
-    /* 5. non-maximum suppression on part evidence, best first */
+    /* 5. non-maximum suppression on part evidence, best first (with a class stage at
+       candidate_iou, by default none: only empty boxes go) */
     kept = compact_sorted(&c);
     suppress(&c, kept, view.width, view.height,
              (model->picto.version != 0u) ? cfg->candidate_iou : cfg->nms_iou);
