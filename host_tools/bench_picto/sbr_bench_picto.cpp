@@ -3,9 +3,10 @@
 //
 //   sbr_bench_picto [--data DIR] [--images N] [--boxes N] [--rounds R]
 //
-// Defaults: --data ../shared/data/gtsdb (GTSDB images 00400, 00450, 00500, ... of
-// FullIJCNN2013), --images 3, --boxes 3000 per image, --rounds 15. The boxes are fixed
-// (12-130 px, some reaching past the image border), so two builds see the same work.
+// Defaults: --data ../shared/data/gtsdb (GTSDB images 00400, 00450, 00500, ... of the
+// folder or its FullIJCNN2013), --images 3, --boxes 3000 per image, --rounds 15. The
+// boxes are fixed (12-130 px, some reaching past the image border), so two builds see the
+// same work.
 // Per image the best round counts (the least disturbed by other load); the figure is
 // the mean over the images. The checksum (FNV-1a over the features' and probabilities'
 // bytes) tells whether two builds compute bit-identical results.
@@ -21,6 +22,8 @@
 #include <cstring>
 #include <string>
 #include <vector>
+
+#include "gtsdb.hpp"
 
 extern "C" {
 #include "sbr/pictogram.h"
@@ -80,13 +83,13 @@ int main(int argc, char **argv) {
     for (int k = 0; k < images; ++k) {
         char name[32];
         std::snprintf(name, sizeof name, "%05d.jpg", 400 + 50 * k);
-        const std::string path = data + "/FullIJCNN2013/" + name;
+        const std::string path = sbr_host::gtsdb_image_dir(data) + "/" + name;
         cv::Mat im = cv::imread(path);
         if (im.empty() || im.cols < 100 || im.rows < 100) {
             std::fprintf(stderr, "sbr_bench_picto: cannot read %s\n", path.c_str());
             return 1;
         }
-        const sbr_image_t v{uint32_t(im.cols), uint32_t(im.rows), uint32_t(im.step), SBR_PIXEL_BGR888, im.data};
+        const sbr_image_t v = sbr_host::bgr_view(im);
         double best_f = 1e30, best_c = 1e30;
         for (int r = 0; r < rounds; ++r) {
             auto t0 = std::chrono::steady_clock::now();
