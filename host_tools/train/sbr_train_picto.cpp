@@ -38,8 +38,9 @@
 //  - every annotated sign's box, and jittered copies of it (shifts up to 8 % of its size,
 //    scale up to 8 %; up to 15 % made the recogniser's class-level F1 0.69 and 0.73 with
 //    seeds 1 and 2 instead of 0.866 and 0.857), labelled with its class; every other
-//    copy is taken from the sign's neighbourhood shrunk 1.5-4 times (area averaging; only while the sign stays
-//    >= 12 px), so each class is also seen as small, far signs look; with --exposure,
+//    copy is taken from the sign's neighbourhood shrunk 1.5-4 times (area averaging;
+//    only while the sign stays >= 12 px), so each class is also seen as small, far signs
+//    look; with --exposure,
 //    every fourth copy is seen under another exposure (the neighbourhood through a random
 //    gamma 0.5-2 and contrast 0.5-1). It raised --eval-range accuracy from 91 % to 94 %
 //    but not the recogniser's F1 (0.835 against 0.848 without), so it is off by default;
