@@ -40,9 +40,8 @@
 //    seeds 1 and 2 instead of 0.866 and 0.857), labelled with its class; every other
 //    copy is taken from the sign's neighbourhood shrunk 1.5-4 times (area averaging;
 //    only while the sign stays >= 12 px), so each class is also seen as small, far signs
-//    look; with --exposure,
-//    every fourth copy is seen under another exposure (the neighbourhood through a random
-//    gamma 0.5-2 and contrast 0.5-1). It raised --eval-range accuracy from 91 % to 94 %
+//    look; with --exposure, every fourth copy is seen under another exposure (the
+//    neighbourhood through a random gamma 0.5-2 and contrast 0.5-1). It raised --eval-range accuracy from 91 % to 94 %
 //    but not the recogniser's F1 (0.835 against 0.848 without), so it is off by default;
 //    with --mirror, every fourth copy of a sign whose mirror image is a GTSDB class
 //    (symmetric signs, and pairs such as keep right / keep left) is taken from the
