@@ -345,13 +345,9 @@ int main(int argc, char **argv) {
     if (all.is_open()) s << ", " << nall << " in all";
     s << "\nparts per frame (mean): " << (ms_total.empty() ? 0 : parts_total / ms_total.size()) << "\n";
     char buf[256];
-    if (repeat > 1)
-        std::snprintf(buf, sizeof buf,
-                      "time per frame (one core, fastest of %d runs): median %.1f ms, 95th percentile %.1f ms\n",
-                      repeat, percentile(ms_total, 0.5), percentile(ms_total, 0.95));
-    else
-        std::snprintf(buf, sizeof buf, "time per frame (one core): median %.1f ms, 95th percentile %.1f ms\n",
-                      percentile(ms_total, 0.5), percentile(ms_total, 0.95));
+    const std::string runs = repeat > 1 ? ", fastest of " + std::to_string(repeat) + " runs" : "";
+    std::snprintf(buf, sizeof buf, "time per frame (one core%s): median %.1f ms, 95th percentile %.1f ms\n",
+                  runs.c_str(), percentile(ms_total, 0.5), percentile(ms_total, 0.95));
     s << buf;
     for (unsigned k = 0; k < SBR_RECOG_STAGES; ++k) {
         std::snprintf(buf, sizeof buf, "  %-36s median %.1f ms, 95th percentile %.1f ms\n", stage_names[k],
