@@ -50,7 +50,7 @@
 //    +3 signs with seed 1, none with seed 2), so it is off by default (with --bg-swap
 //    round as well: F1 0.861 and 0.858 against 0.882 and 0.867, danger +1 sign each);
 //    with --bg-swap round (the default), every fourth copy of a round sign (a disc
-//    outline, sign_outline()) is seen in front of another background: the neighbourhood
+//    outline, sign_shape()) is seen in front of another background: the neighbourhood
 //    outside the sign's outline (grown by 5 %) is replaced by an equally large piece of
 //    the same frame that overlaps no annotated sign (--bg-swap all: every class, the
 //    triangles, diamond and octagon included; off: none). It teaches that the box's
@@ -397,17 +397,30 @@ int mirror_class(int c) {
     }
 }
 
-// The outline of a sign of GTSDB class c in its box, in units of the box (0..1 across
-// and down): the danger signs' triangle, the yield sign's inverted triangle, the priority
-// road's diamond, the stop sign's octagon, a disc for every other class.
+// The shape of a sign of GTSDB class c: the danger signs (superclass 2) are triangles,
+// the yield sign an inverted triangle, the priority road a diamond, the stop sign an
+// octagon, every other class a disc.
+enum class Shape { triangle, inverted, diamond, octagon, disc };
+Shape sign_shape(int c) {
+    if (superclass_of(c) == 2) return Shape::triangle;
+    if (c == 13) return Shape::inverted;
+    if (c == 12) return Shape::diamond;
+    if (c == 14) return Shape::octagon;
+    return Shape::disc;
+}
+
+// That shape's outline in the sign's box, in units of the box (0..1 across and down).
 std::vector<cv::Point2f> sign_outline(int c) {
-    if (c == 11 || (c >= 18 && c <= 31)) return {{0.5f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
-    if (c == 13) return {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.5f, 1.0f}};
-    if (c == 12) return {{0.5f, 0.0f}, {1.0f, 0.5f}, {0.5f, 1.0f}, {0.0f, 0.5f}};
-    if (c == 14) {
+    switch (sign_shape(c)) {
+    case Shape::triangle: return {{0.5f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};
+    case Shape::inverted: return {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.5f, 1.0f}};
+    case Shape::diamond: return {{0.5f, 0.0f}, {1.0f, 0.5f}, {0.5f, 1.0f}, {0.0f, 0.5f}};
+    case Shape::octagon: {
         const float a = 0.2929f;  // 1 - 1/sqrt(2): a regular octagon's corner cut
         return {{a, 0.0f}, {1.0f - a, 0.0f}, {1.0f, a}, {1.0f, 1.0f - a},
                 {1.0f - a, 1.0f}, {a, 1.0f}, {0.0f, 1.0f - a}, {0.0f, a}};
+    }
+    case Shape::disc: break;
     }
     std::vector<cv::Point2f> disc;
     for (int k = 0; k < 32; ++k) {
@@ -416,9 +429,6 @@ std::vector<cv::Point2f> sign_outline(int c) {
     }
     return disc;
 }
-
-// A round sign: one whose outline is a disc.
-bool round_sign(int c) { return !(c == 11 || (c >= 18 && c <= 31) || c == 12 || c == 13 || c == 14); }
 
 // --bg-swap: which signs are seen in front of other backgrounds.
 enum class BgSwap { off, round, all };
@@ -564,7 +574,8 @@ int main(int argc, char **argv) {
                         }
                         cv::LUT(near, lut, seen);
                         qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
-                    } else if (j % 4 == 2 && (bg_swap == BgSwap::all || (bg_swap == BgSwap::round && round_sign(cls[g])))) {
+                    } else if (j % 4 == 2 && (bg_swap == BgSwap::all ||
+                                              (bg_swap == BgSwap::round && sign_shape(cls[g]) == Shape::disc))) {
                         // the sign in front of another background: the neighbourhood outside
                         // the sign's outline (grown by 5 %) replaced by an equally large
                         // piece of the same frame that overlaps no annotated sign, so the
