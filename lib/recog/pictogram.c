@@ -536,25 +536,6 @@ static void rows_dot(const float *w, size_t stride, uint32_t rows, const float *
     }
 }
 
-/* The last layer's inputs: the rectified hidden units (in the workspace), or the features
-   themselves without a hidden layer. */
-static const float *last_inputs(const sbr_picto_model_t *model, const float *feat, float *a)
-{
-    const float *in = feat;
-    if (model->hidden > 0u) {
-        const uint32_t ncols = SBR_PICTO_FEATURES + 1u;
-        const size_t cols = (size_t)ncols;
-        uint32_t i;
-        rows_dot(model->w1, cols, model->hidden, feat, SBR_PICTO_FEATURES, a);
-        for (i = 0u; i < model->hidden; i++) {
-            const float s = model->w1[((size_t)i * cols) + SBR_PICTO_FEATURES] + a[i];
-            a[i] = (s > 0.0f) ? s : 0.0f;
-        }
-        in = a;
-    }
-    return in;
-}
-
 /* out[r] = w[r] . [in; 1] for `rows` rows of `cols` (inputs + bias). */
 static void affine(const float *w, const float *in, size_t cols, uint32_t rows, float *out)
 {
@@ -563,6 +544,22 @@ static void affine(const float *w, const float *in, size_t cols, uint32_t rows, 
     for (r = 0u; r < rows; r++) {
         out[r] = w[((size_t)r * cols) + (cols - 1u)] + out[r];
     }
+}
+
+/* The last layer's inputs: the rectified hidden units (in the workspace), or the features
+   themselves without a hidden layer. */
+static const float *last_inputs(const sbr_picto_model_t *model, const float *feat, float *a)
+{
+    const float *in = feat;
+    if (model->hidden > 0u) {
+        uint32_t i;
+        affine(model->w1, feat, (size_t)SBR_PICTO_FEATURES + 1u, model->hidden, a);
+        for (i = 0u; i < model->hidden; i++) {
+            a[i] = (a[i] > 0.0f) ? a[i] : 0.0f;
+        }
+        in = a;
+    }
+    return in;
 }
 
 sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *feat, uint32_t len,
