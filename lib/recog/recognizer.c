@@ -182,8 +182,8 @@ static int proto_ok(const sbr_model_proto_t *p, uint32_t g)
     int ok = 1;
     if ((in_range(p->dx, -100.0f, 100.0f) == 0) || (in_range(p->dy, -100.0f, 100.0f) == 0) ||
         (in_range(p->w, 1.0e-3f, 100.0f) == 0) || (in_range(p->h, 1.0e-3f, 100.0f) == 0) ||
-        (in_range(p->weight, 1.0e-6f, 1.0f) == 0) || (p->map > 3u) ||
-        (group_of(p->map, p->polarity) != g)) {
+        (in_range(p->weight, 1.0e-6f, 1.0f) == 0) ||
+        (group_of(p->map, p->polarity) != g)) { /* also a map or polarity out of range */
         ok = 0;
     }
     for (k = 0u; (k < SBR_MODEL_PROTO_CLASSES) && (ok != 0); k++) {
