@@ -134,14 +134,14 @@ typedef struct sbr_fd_match_config_s {
     /** Screening (>= 0; default 0, none; 0 and values of 2 or more screen nothing, so a
         zero-initialised configuration behaves as before this field existed): a prototype
         whose error is certainly above `max_error` is not correlated and gets the no-match
-        result (error 4, rotation and shift 0, scale_ratio as always). The test is a bound, |r| <= sum |Q(n)| |C(n)|
-        over the coefficients (so e >= 2 - 2 sum), with a margin of 1e-4 for rounding:
-        every match whose error is at most `max_error` comes out exactly as without
-        screening, while most unrelated pairs skip the transform. For callers that only
-        use matches up to some error (such as the recogniser's votes). Costs one square
-        root per coefficient of each prototype. Invalid prototypes get their status as
-        without screening (a non-finite coefficient makes the bound non-finite, which is
-        never screened out). */
+        result (error 4, rotation and shift 0, scale_ratio as always). The test is a
+        bound, |r| <= sum |Q(n)| |C(n)| over the coefficients (so e >= 2 - 2 sum), with a
+        margin of 1e-4 for rounding: every match whose error is at most `max_error` comes
+        out exactly as without screening, while most unrelated pairs skip the transform.
+        For callers that only use matches up to some error (such as the recogniser's
+        votes). Costs one square root per coefficient of each prototype. Invalid
+        prototypes get their status as without screening (a non-finite coefficient makes
+        the bound non-finite, which is never screened out). */
     float max_error;
 } sbr_fd_match_config_t;
 
