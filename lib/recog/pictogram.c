@@ -552,8 +552,9 @@ static const float *last_inputs(const sbr_picto_model_t *model, const float *fea
 {
     const float *in = feat;
     if (model->hidden > 0u) {
+        const uint32_t cols = SBR_PICTO_FEATURES + 1u; /* inputs + bias */
         uint32_t i;
-        affine(model->w1, feat, (size_t)SBR_PICTO_FEATURES + 1u, model->hidden, a);
+        affine(model->w1, feat, (size_t)cols, model->hidden, a);
         for (i = 0u; i < model->hidden; i++) {
             a[i] = (a[i] > 0.0f) ? a[i] : 0.0f;
         }
