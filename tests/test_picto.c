@@ -90,6 +90,61 @@ static sbr_status_t feats(const sbr_image_t *v, float x0, float y0, float x1, fl
     return sbr_picto_features(v, box, f, F, g_ws, sizeof g_ws);
 }
 
+/* sbr_picto_features_outline(): the box outline is sbr_picto_features(); the triangle
+   outline ignores what lies outside the triangle (the box's top corners) and puts half
+   the inside's mean grey there, with that grey's chromaticity g / (3 g + 30). */
+static void test_triangle_outline(void)
+{
+    const sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
+    const float box[4] = {20.0f, 20.0f, 56.0f, 56.0f}; /* 36 px: one pixel per patch pixel */
+    static float tri[F];
+    uint32_t x;
+    uint32_t y;
+    uint32_t i;
+    float most = 0.0f;
+    /* uniform grey 100: outside 50, chromaticity 50 / 180 (top-left colour cell, all
+       outside); inside 100 / 330 (bottom row's second cell, all inside) */
+    fill(100u, 100u, 100u);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_features_outline(&v, box, (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE,
+                                                             tri, F, g_ws, sizeof g_ws));
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 50.0f / 180.0f, tri[COLOUR_AT]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 50.0f / 180.0f, tri[COLOUR_AT + 1u]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 100.0f / 330.0f, tri[COLOUR_AT + 26u]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 100.0f / 330.0f, tri[COLOUR_AT + 27u]);
+    /* a textured box: the box outline equals sbr_picto_features() bit for bit */
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            g_rgb[y][x][0] = (uint8_t)(((x * 37u) + (y * 91u)) & 255u);
+            g_rgb[y][x][1] = (uint8_t)(((x * 11u) + (y * 53u)) & 255u);
+            g_rgb[y][x][2] = (uint8_t)(((x * 71u) + (y * 13u)) & 255u);
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, feats(&v, box[0], box[1], box[2], box[3], g_f));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_features_outline(&v, box, (uint32_t)SBR_PICTO_OUTLINE_BOX, g_g, F,
+                                                             g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_MEMORY(g_f, g_g, sizeof g_f);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_features_outline(&v, box, (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE,
+                                                             tri, F, g_ws, sizeof g_ws));
+    /* whiten both top corners (6 x 6 px, well outside the triangle): the triangle view
+       stays bit for bit, the box view changes */
+    for (y = 20u; y < 26u; y++) {
+        for (x = 0u; x < 6u; x++) {
+            (void)memset(g_rgb[y][20u + x], 255, 3u);
+            (void)memset(g_rgb[y][50u + x], 255, 3u);
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_features_outline(&v, box, (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE,
+                                                             g_g, F, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_MEMORY(tri, g_g, sizeof tri);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, feats(&v, box[0], box[1], box[2], box[3], g_g));
+    for (i = 0u; i < F; i++) {
+        most = fmaxf(most, fabsf(g_g[i] - g_f[i]));
+    }
+    TEST_ASSERT_TRUE(most > 0.01f);
+    /* an outline out of range */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_features_outline(&v, box, 2u, tri, F, g_ws, sizeof g_ws));
+}
+
 /* A uniform patch has no edges (coarse or fine), a zero contrast-normalised thumbnail and
    the colour's chromaticity r / (r + g + b + 30) in every cell. */
 static void test_uniform_patch(void)
@@ -519,6 +574,7 @@ int main(void)
     RUN_TEST(test_builtin_and_corrupt);
     RUN_TEST(test_classify_matches_reference);
     RUN_TEST(test_refine_values);
+    RUN_TEST(test_triangle_outline);
     RUN_TEST(test_bad_input);
     return UNITY_END();
 }

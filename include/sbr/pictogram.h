@@ -129,6 +129,27 @@ sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out);
 sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], float *feat,
                                 uint32_t len, void *workspace, size_t workspace_size);
 
+/** What of a box sbr_picto_features_outline() looks at. */
+typedef enum sbr_picto_outline_e {
+    /** The whole box (sbr_picto_features()). */
+    SBR_PICTO_OUTLINE_BOX = 0,
+    /** An upward triangle inscribed in the box (apex at the middle of the top side, base
+        along the bottom side), grown by one patch pixel: the outline of a danger sign.
+        Patch pixels outside it are replaced by a plain grey of half the inside's mean
+        grey, so clutter in the box's top corners (branches, a bright sky behind a
+        backlit sign) does not enter the features. */
+    SBR_PICTO_OUTLINE_TRIANGLE = 1
+} sbr_picto_outline_t;
+
+/**
+ * @brief sbr_picto_features() of what lies inside an outline in the box.
+ * @param[in]  outline  ::sbr_picto_outline_t.
+ * @return as sbr_picto_features(); ::SBR_ERR_RANGE also for an outline out of range.
+ */
+sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[4],
+                                        uint32_t outline, float *feat, uint32_t len,
+                                        void *workspace, size_t workspace_size);
+
 /**
  * @brief Class probabilities of a feature vector.
  * @param[in]  model  checked with sbr_picto_check() first (not repeated here per call:

@@ -315,8 +315,58 @@ static void unit_norm(float *f, uint32_t n)
     }
 }
 
+/* Whether patch pixel (u, v) lies inside the upward triangle inscribed in the patch,
+   grown by one patch pixel (pictogram.h SBR_PICTO_OUTLINE_TRIANGLE): apex at
+   (PS / 2, -1), base from (-1, PS + 1) to (PS + 1, PS + 1), pixel centres tested. */
+static int in_triangle(uint32_t u, uint32_t v)
+{
+    const float x = ((float)u + 0.5f) - (0.5f * (float)PS);
+    const float y = (float)v + 1.5f;                  /* down from the apex */
+    const float half = ((0.5f * (float)PS) + 1.0f) * (y / ((float)PS + 2.0f));
+    return (fabsf(x) <= half) ? 1 : 0;
+}
+
+/* Replace the patch pixels outside the triangle by half the inside's mean grey, with the
+   chromaticity picto_resample() gives a grey pixel of that value. */
+static void picto_mask_triangle(float *g, float *cr, float *cb)
+{
+    float sum = 0.0f;
+    float n = 0.0f;
+    float fill;
+    float chroma;
+    uint32_t u;
+    uint32_t v;
+    for (v = 0u; v < PS; v++) {
+        for (u = 0u; u < PS; u++) {
+            if (in_triangle(u, v) != 0) {
+                sum += g[(v * PS) + u];
+                n += 1.0f;
+            }
+        }
+    }
+    fill = (0.5f * sum) / n; /* n > 0: the triangle holds half the patch */
+    chroma = fill / ((3.0f * fill) + 30.0f);
+    for (v = 0u; v < PS; v++) {
+        for (u = 0u; u < PS; u++) {
+            if (in_triangle(u, v) == 0) {
+                g[(v * PS) + u] = fill;
+                cr[(v * PS) + u] = chroma;
+                cb[(v * PS) + u] = chroma;
+            }
+        }
+    }
+}
+
 sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], float *feat,
                                 uint32_t len, void *workspace, size_t workspace_size)
+{
+    return sbr_picto_features_outline(img, box, (uint32_t)SBR_PICTO_OUTLINE_BOX, feat, len,
+                                      workspace, workspace_size);
+}
+
+sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[4],
+                                        uint32_t outline, float *feat, uint32_t len,
+                                        void *workspace, size_t workspace_size)
 {
     float *g;
     float *cr;
@@ -348,7 +398,7 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
         (sbr_util_aligned(workspace, 4u) == 0)) {
         return SBR_ERR_WORKSPACE;
     }
-    if (finite4(box) == 0) {
+    if ((finite4(box) == 0) || (outline > (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE)) {
         return SBR_ERR_RANGE;
     }
     bw = box[2] - box[0];
@@ -367,6 +417,9 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
         rows.h[0] = after_taps;
         rows.h[1] = &after_taps[ROW_FLOATS];
         picto_resample(img, box, (picto_tap_t *)(void *)&cb[PS * PS], &rows, g, cr, cb);
+    }
+    if (outline == (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE) {
+        picto_mask_triangle(g, cr, cb);
     }
 
     /* contrast-normalised grey */
