@@ -573,6 +573,38 @@ static void test_class_stage(void)
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
                                                               16u, &n, &st));
     }
+    /* triangle view (on by default): class 18 (a danger sign) gets the logit
+       6 - 200 (r - b) of the chromaticities of the box's top-left colour cell. In the
+       box's own view that cell holds part of the red ring (r > b): class 3 stays. In the
+       triangle view the cell lies outside the triangle, replaced by grey (r = b): class
+       18 with exactly e^6 / (e^6 + e^4 + 42), more than class 3's score, so it is
+       taken. Off, or a value above 1 refused. */
+    {
+        const size_t row18 = 18u * (SBR_PICTO_FEATURES + 1u);
+        const size_t colour0 = (SBR_PICTO_CELLS * SBR_PICTO_CELLS * 8u) + (SBR_PICTO_THUMB * SBR_PICTO_THUMB);
+        sbr_recog_config_t rc = g_cfg;
+        const float p18 = expf(6.0f) / (expf(6.0f) + expf(4.0f) + 42.0f);
+        TEST_ASSERT_EQUAL_UINT32(1u, rc.triangle_view);
+        w2[row18 + SBR_PICTO_FEATURES] = 6.0f;
+        w2[row18 + colour0] = -200.0f;
+        w2[row18 + colour0 + 1u] = 200.0f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                       16u, &n, NULL));
+        TEST_ASSERT_TRUE(n >= 1u);
+        TEST_ASSERT_EQUAL_UINT32(18u, g_dets[0].class_id);
+        TEST_ASSERT_FLOAT_WITHIN(1e-4f, p18, g_dets[0].score);
+        rc.triangle_view = 0u;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                       16u, &n, NULL));
+        TEST_ASSERT_TRUE(n >= 1u);
+        TEST_ASSERT_EQUAL_UINT32(3u, g_dets[0].class_id);
+        TEST_ASSERT_FLOAT_WITHIN(1e-3f, expf(4.0f) / (expf(4.0f) + 42.0f), g_dets[0].score);
+        rc.triangle_view = 2u;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        w2[row18 + SBR_PICTO_FEATURES] = 0.0f;
+        w2[row18 + colour0] = 0.0f;
+        w2[row18 + colour0 + 1u] = 0.0f;
+    }
     w2[(3u * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 0.0f;
     w2[(SBR_PICTO_BACKGROUND * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 8.0f;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,

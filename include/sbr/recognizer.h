@@ -54,7 +54,9 @@
  *    (`refine_steps` times at most); box is the last one. A candidate still at least
  *    `view_score` likely is then classified at `views` slightly shifted copies of its
  *    box and class and score come from the mean probabilities (fewer confident false
- *    detections; views = 1 keeps the last classification). Detections
+ *    detections; views = 1 keeps the last classification). With `triangle_view`, the
+ *    final box is classified once more with only the inside of a danger sign's triangle
+ *    in view, and a danger class more probable there is taken. Detections
  *    below `min_score` are dropped and suppression runs again on the new scores.
  *    Without a class stage the part score and part evidence's class are reported.
  *
@@ -213,6 +215,14 @@ typedef struct sbr_recog_config_s {
         probable after refinement, [0, 1]. Default 0.1. Lower: more work (most candidates
         are background). */
     float view_score;
+    /** With a class stage: 1 (default) classifies every candidate once more at its final
+        box with only the inside of a danger sign's triangle (sbr_picto_features_outline(),
+        ::SBR_PICTO_OUTLINE_TRIANGLE); when that view's most probable sign class is a
+        danger sign (GTSDB class 11 or 18..31) and more probable than the candidate's
+        score, it becomes the candidate's class and score. Clutter or a bright sky in
+        the box's top corners had made the classifier call clear danger signs "no sign".
+        0: off. Costs one more pictogram per candidate. */
+    uint32_t triangle_view;
     /** Score floor of reported detections, [0, 1): the class stage's probability, or the
         part score without one. Default 0.3 (below the usual operating point, so
         evaluations can draw precision-recall curves). */

@@ -107,6 +107,7 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->refine_score = 0.1f;
         cfg->views = 5u;
         cfg->view_score = 0.1f;
+        cfg->triangle_view = 1u;
         cfg->min_score = 0.3f;
         cfg->nms_iou = 0.3f;
         cfg->candidate_iou = 1.0f;
@@ -142,7 +143,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (cfg->max_model_protos == 0u) || (cfg->max_model_protos > 65535u) ||
         (cfg->cascade_depth > 65535u) || (cfg->min_parts > 65535u) ||
         (cfg->max_candidates > 1000000u) || (cfg->refine_steps > SBR_RECOG_MAX_REFINE) ||
-        (cfg->views == 0u) || (cfg->views > SBR_RECOG_MAX_VIEWS)) {
+        (cfg->views == 0u) || (cfg->views > SBR_RECOG_MAX_VIEWS) || (cfg->triangle_view > 1u)) {
         return SBR_ERR_RANGE;
     }
     if ((in_range(cfg->vote_error, 0.0f, 4.0f) == 0) ||
@@ -905,6 +906,32 @@ static uint32_t average_views(recog_hyp_t *h, const sbr_image_t *view,
     return (uint32_t)n - 1u;
 }
 
+/* Is GTSDB class c a danger sign (an upward red triangle: 11, 18..31)? */
+static int danger_class(uint32_t c)
+{
+    return ((c == 11u) || ((c >= 18u) && (c <= 31u))) ? 1 : 0;
+}
+
+/* config.triangle_view: classify the inside of the triangle inscribed in box; its most
+   probable sign class replaces the hypothesis's class and score when it is a danger sign
+   and more probable than the current score. */
+static void triangle_view(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
+                          const float box[4], recog_picto_buf_t *b)
+{
+    if ((sbr_picto_features_outline(view, box, (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE, b->feat,
+                                    SBR_PICTO_FEATURES, b->ws, SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
+        (sbr_picto_classify(pm, b->feat, SBR_PICTO_FEATURES, b->prob, SBR_PICTO_OUTPUTS, b->ws,
+                            SBR_PICTO_WORKSPACE_SIZE) == SBR_OK)) {
+        recog_hyp_t t = *h;
+        (void)take_class(&t, b->prob);
+        if ((danger_class(t.class_id) != 0) && (t.score > h->score)) {
+            h->class_id = t.class_id;
+            h->score = t.score;
+            h->share = t.share;
+        }
+    }
+}
+
 /* The class stage on one hypothesis: classify its box; while the signs are at least
    refine_score probable (at most refine_steps times), move the box by the classifier's
    box regression and classify again there; the box is the last one, and so are class
@@ -955,6 +982,9 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     }
     if ((cfg->views > 1u) && (signs >= cfg->view_score)) {
         st->views += average_views(h, view, pm, cfg->views, box, b);
+    }
+    if (cfg->triangle_view != 0u) {
+        triangle_view(h, view, pm, box, b);
     }
     return 1;
 }
