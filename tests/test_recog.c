@@ -578,13 +578,17 @@ static void test_class_stage(void)
        box's own view that cell holds part of the red ring (r > b): class 3 stays. In the
        triangle view the cell lies outside the triangle, replaced by grey (r = b): class
        18 with exactly e^6 / (e^6 + e^4 + 42), more than class 3's score, so it is
-       taken. Off, or a value above 1 refused. */
+       taken. Off, or a value above 1 refused. The box's own view gives class 18 almost
+       nothing (e^(6 - 200 (r - b))), so the default triangle_score skips the candidate
+       unless that cell's red is weak; triangle_score 0 always looks, 1 never. */
     {
         const size_t row18 = 18u * (SBR_PICTO_FEATURES + 1u);
         const size_t colour0 = (SBR_PICTO_CELLS * SBR_PICTO_CELLS * 8u) + (SBR_PICTO_THUMB * SBR_PICTO_THUMB);
         sbr_recog_config_t rc = g_cfg;
         const float p18 = expf(6.0f) / (expf(6.0f) + expf(4.0f) + 42.0f);
         TEST_ASSERT_EQUAL_UINT32(1u, rc.triangle_view);
+        TEST_ASSERT_EQUAL_FLOAT(0.001f, rc.triangle_score);
+        rc.triangle_score = 0.0f;
         w2[row18 + SBR_PICTO_FEATURES] = 6.0f;
         w2[row18 + colour0] = -200.0f;
         w2[row18 + colour0 + 1u] = 200.0f;
@@ -593,6 +597,18 @@ static void test_class_stage(void)
         TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_EQUAL_UINT32(18u, g_dets[0].class_id);
         TEST_ASSERT_FLOAT_WITHIN(1e-4f, p18, g_dets[0].score);
+        rc.triangle_score = 1.0f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                       16u, &n, NULL));
+        TEST_ASSERT_TRUE(n >= 1u);
+        TEST_ASSERT_EQUAL_UINT32(3u, g_dets[0].class_id);
+        rc.triangle_score = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        rc.triangle_score = 1.5f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        rc.triangle_score = -0.5f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        rc.triangle_score = 0.0f;
         rc.triangle_view = 0u;
         TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
                                                        16u, &n, NULL));

@@ -7,7 +7,7 @@
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
 //              [--refine-score S] [--views N] [--view-score S] [--maps MASK]
 //              [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S]
-//              [--candidate-iou U] [--triangle-view 0|1]
+//              [--candidate-iou U] [--triangle-view 0|1] [--triangle-score S]
 //
 // --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
 //   accepted too). --range A-B keeps images numbered A..B.
@@ -28,8 +28,8 @@
 // --summary: the summary text (also printed): images, detections, time per frame (median
 //   and 95th percentile, per stage), workspace bytes, capacity hits.
 // --min-parts, --vote-error, --verify-error, --min-score, --refine-steps, --refine-score,
-//   --views, --view-score, --candidate-score, --candidate-iou, --triangle-view override the recogniser's options of
-//   those names
+//   --views, --view-score, --candidate-score, --candidate-iou, --triangle-view, --triangle-score
+//   override the recogniser's options of those names
 //   (include/sbr/recognizer.h), for tuning and regression; --maps sets parts.maps (bit k =
 //   map kind k of include/sbr/map.h; 0x1 intensity only), --map-subsample
 //   parts.map_subsample (per kind, in the order intensity, red, blue, yellow; kinds not
@@ -123,7 +123,7 @@ int main(int argc, char **argv) {
     int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1, triangle_view = -1, max_nodes = -1;
     bool sequence = false;
     std::vector<unsigned> map_sub;  // --map-subsample: per map kind, empty = defaults
-    float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, view_score = -1.0f, candidate_score = -1.0f, candidate_iou = -1.0f;
+    float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, view_score = -1.0f, triangle_score = -1.0f, candidate_score = -1.0f, candidate_iou = -1.0f;
     sbr_rect_t roi{};
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -158,6 +158,7 @@ int main(int argc, char **argv) {
         else if (a == "--max-candidates") max_candidates = std::atoi(next().c_str());
         else if (a == "--views") views_opt = std::atoi(next().c_str());
         else if (a == "--triangle-view") triangle_view = std::atoi(next().c_str());
+        else if (a == "--triangle-score") triangle_score = std::strtof(next().c_str(), nullptr);
         else if (a == "--vote-error") vote_error = std::strtof(next().c_str(), nullptr);
         else if (a == "--verify-error") verify_error = std::strtof(next().c_str(), nullptr);
         else if (a == "--min-score") min_score = std::strtof(next().c_str(), nullptr);
@@ -174,7 +175,7 @@ int main(int argc, char **argv) {
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
                          "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N]\n"
                          "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
-                         "          [--refine-steps N] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--picto FILE | --no-picto]\n", argv[0]);
+                         "          [--refine-steps N] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--triangle-score S] [--picto FILE | --no-picto]\n", argv[0]);
             return 2;
         }
     }
@@ -226,6 +227,7 @@ int main(int argc, char **argv) {
     if (max_candidates >= 0) cfg.max_candidates = uint32_t(max_candidates);
     if (views_opt >= 0) cfg.views = uint32_t(views_opt);
     if (triangle_view >= 0) cfg.triangle_view = uint32_t(triangle_view);
+    if (triangle_score >= 0.0f) cfg.triangle_score = triangle_score;
     if (vote_error >= 0.0f) cfg.vote_error = vote_error;
     if (verify_error >= 0.0f) cfg.verify_error = verify_error;
     cfg.clock = host_clock;

@@ -195,6 +195,10 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     sbr_recog_config_t rc;
     sbr_recog_config_default(&rc);
     rc.triangle_view = triangle_view ? 1u : 0u;
+    // the triangle view on every candidate (the recogniser's default skips the ones its
+    // first classification does not find danger-like): mining also sees the false danger
+    // signs the triangle view makes of those, and the committed class stage was learned so
+    rc.triangle_score = 0.0f;
     // every map at full resolution, as the part model was learned (sbr_train): the finest
     // candidates (the recogniser's default runs the blue map at half resolution; the class
     // stage learned this way scores the same there, see the README)

@@ -108,6 +108,7 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->views = 5u;
         cfg->view_score = 0.1f;
         cfg->triangle_view = 1u;
+        cfg->triangle_score = 0.001f;
         cfg->min_score = 0.3f;
         cfg->nms_iou = 0.3f;
         cfg->candidate_iou = 1.0f;
@@ -157,6 +158,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (in_range(cfg->candidate_score, 0.0f, 0.999999f) == 0) ||
         (in_range(cfg->refine_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->view_score, 0.0f, 1.0f) == 0) ||
+        (in_range(cfg->triangle_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->nms_iou, 1.0e-6f, 1.0f) == 0) ||
         (in_range(cfg->candidate_iou, 1.0e-6f, 1.0f) == 0)) {
         return SBR_ERR_RANGE;
@@ -912,6 +914,19 @@ static int danger_class(uint32_t c)
     return ((c == 11u) || ((c >= 18u) && (c <= 31u))) ? 1 : 0;
 }
 
+/* The danger classes' probability together. */
+static float danger_mass(const float *prob)
+{
+    float m = 0.0f;
+    uint32_t k;
+    for (k = 0u; k < SBR_PICTO_BACKGROUND; k++) {
+        if (danger_class(k) != 0) {
+            m += prob[k];
+        }
+    }
+    return m;
+}
+
 /* config.triangle_view: classify the inside of the triangle inscribed in box; its most
    probable sign class replaces the hypothesis's class and score when it is a danger sign
    and more probable than the current score. */
@@ -944,6 +959,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
 {
     float box[4];
     float signs; /* the sign classes' probability at the current box */
+    float danger; /* the danger classes' probability at the first box */
     uint32_t step = 0u;
     uint32_t steps = 0u;
     box[0] = h->mx - (0.5f * h->mw);
@@ -953,6 +969,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     if (picto_box(view, pm, box, b) == 0) {
         return 0;
     }
+    danger = danger_mass(b->prob);
     signs = take_class(h, b->prob);
     if ((signs >= cfg->refine_score) && (pm->w3 != NULL)) {
         steps = cfg->refine_steps;
@@ -983,7 +1000,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     if ((cfg->views > 1u) && (signs >= cfg->view_score)) {
         st->views += average_views(h, view, pm, cfg->views, box, b);
     }
-    if (cfg->triangle_view != 0u) {
+    if ((cfg->triangle_view != 0u) && (danger >= cfg->triangle_score)) {
         triangle_view(h, view, pm, box, b);
     }
     return 1;
