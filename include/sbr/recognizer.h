@@ -242,8 +242,8 @@ typedef struct sbr_recog_config_s {
         scores, (0, 1]. Default 1: every hypothesis above the floor is a candidate (up to
         max_candidates, best part score first) and suppression runs once, on the class
         scores (nms_iou). Lower values classify fewer boxes (0.3, the suppression of
-        earlier versions: class-level F1 on the GTSDB development split 0.851 instead of
-        0.882 with the built-in models, 236 instead of 255 candidates a frame). */
+        earlier versions: class-level F1 on the GTSDB development split 0.861 instead of
+        0.892 with the built-in models, 236 instead of 255 candidates a frame). */
     float candidate_iou;
     /** Optional time source for per-stage profiling (e.g. the DWT cycle counter on a
         Cortex-M, a monotonic clock on a host): returns a free-running tick count; the
