@@ -315,15 +315,19 @@ static void unit_norm(float *f, uint32_t n)
     }
 }
 
-/* Whether patch pixel (u, v) lies inside the upward triangle inscribed in the patch,
-   grown by one patch pixel (pictogram.h SBR_PICTO_OUTLINE_TRIANGLE): apex at
-   (PS / 2, -1), base from (-1, PS + 1) to (PS + 1, PS + 1), pixel centres tested. */
-static int in_triangle(uint32_t u, uint32_t v)
+/* The columns [*u0, *u1) of patch row v that lie inside the upward triangle inscribed in
+   the patch, grown by one patch pixel (pictogram.h SBR_PICTO_OUTLINE_TRIANGLE): apex at
+   (PS / 2, -1), base from (-1, PS + 1) to (PS + 1, PS + 1), pixel centres tested. At row
+   v's centre the triangle is (v + 1.5) / 2 wide on either side of the middle, a quarter
+   pixel off every pixel centre, so rounding cannot move a pixel in or out. */
+static void triangle_row(uint32_t v, uint32_t *u0, uint32_t *u1)
 {
-    const float x = ((float)u + 0.5f) - (0.5f * (float)PS);
-    const float y = (float)v + 1.5f;                  /* down from the apex */
-    const float half = ((0.5f * (float)PS) + 1.0f) * (y / ((float)PS + 2.0f));
-    return (fabsf(x) <= half) ? 1 : 0;
+    const float half = 0.5f * ((float)v + 1.5f);
+    const float mid = (0.5f * (float)PS) - 0.5f; /* the middle, in pixel-centre columns */
+    const float lo = ceilf(mid - half);
+    const float hi = floorf(mid + half); /* the last column inside */
+    *u0 = (lo > 0.0f) ? (uint32_t)lo : 0u;
+    *u1 = (hi >= ((float)PS - 1.0f)) ? PS : ((uint32_t)hi + 1u);
 }
 
 /* Replace the patch pixels outside the triangle by half the inside's mean grey, with the
@@ -331,24 +335,26 @@ static int in_triangle(uint32_t u, uint32_t v)
 static void picto_mask_triangle(float *g, float *cr, float *cb)
 {
     float sum = 0.0f;
-    float n = 0.0f;
     float fill;
     float chroma;
     uint32_t u;
     uint32_t v;
+    uint32_t u0;
+    uint32_t u1;
+    uint32_t inside = 0u;
     for (v = 0u; v < PS; v++) {
-        for (u = 0u; u < PS; u++) {
-            if (in_triangle(u, v) != 0) {
-                sum += g[(v * PS) + u];
-                n += 1.0f;
-            }
+        triangle_row(v, &u0, &u1);
+        for (u = u0; u < u1; u++) {
+            sum += g[(v * PS) + u];
         }
+        inside += u1 - u0;
     }
-    fill = (0.5f * sum) / n; /* n > 0: the triangle holds half the patch */
+    fill = (0.5f * sum) / (float)inside; /* inside > 0: the triangle holds half the patch */
     chroma = fill / ((3.0f * fill) + 30.0f);
     for (v = 0u; v < PS; v++) {
+        triangle_row(v, &u0, &u1);
         for (u = 0u; u < PS; u++) {
-            if (in_triangle(u, v) == 0) {
+            if ((u < u0) || (u >= u1)) {
                 g[(v * PS) + u] = fill;
                 cr[(v * PS) + u] = chroma;
                 cb[(v * PS) + u] = chroma;

@@ -969,7 +969,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     if (picto_box(view, pm, box, b) == 0) {
         return 0;
     }
-    danger = danger_mass(b->prob);
+    danger = (cfg->triangle_view != 0u) ? danger_mass(b->prob) : 0.0f;
     signs = take_class(h, b->prob);
     if ((signs >= cfg->refine_score) && (pm->w3 != NULL)) {
         steps = cfg->refine_steps;
