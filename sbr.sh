@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # sbr's one entry point: set-up, the main job and the tests.
 #
-#   ./sbr.sh detect [--input DIR] [--out DIR] [--range A-B]
+#   ./sbr.sh detect [--input DIR] [--out DIR] [--range A-B] [--baseline FILE]
 #                                               the main job (see README.md): the recogniser
 #                                               over a folder of images (default: GTSDB's
 #                                               development split 00400-00599), detections,
-#                                               annotated images, CAN log, summary
+#                                               annotated images, CAN log, summary;
+#                                               --baseline: an earlier version's
+#                                               detections_all.txt, compared in evaluation.txt
 #   ./sbr.sh dashboard [--log FILE | --socketcan IF | --virtual CH] [options]
 #                                               the reference dashboard (dashboard/), default:
 #                                               replay out/sbr_can.log; --help for options
@@ -132,13 +134,14 @@ cmd_test() {
 }
 
 cmd_detect() {
-  local input="" out="$ROOT/out" range=""
+  local input="" out="$ROOT/out" range="" baseline=""
   while [ $# -gt 0 ]; do
     case "$1" in
       --input) input="$2"; shift 2 ;;
       --out) out="$2"; shift 2 ;;
       --range) range="$2"; shift 2 ;;
-      -h|--help) sed -n '2,18p' "$0"; return 0 ;;
+      --baseline) baseline="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"; shift 2 ;;
+      -h|--help) sed -n '2,24p' "$0"; return 0 ;;
       *) echo "unknown option $1" >&2; return 2 ;;
     esac
   done
@@ -168,7 +171,7 @@ cmd_detect() {
     thr="$(sed -nE 's/.*operating point score >= ([0-9.]+).*/\1/p' "$out/summary.txt" | head -1)"
     "$tools/sbr_eval" --detections "$out/detections_all.txt" --gt "$gt" \
         ${range:+--range "$range"} --threshold "${thr:-0}" --plot "$out/pr_curve.png" \
-        | tee "$out/evaluation.txt"
+        ${baseline:+--baseline "$baseline"} | tee "$out/evaluation.txt"
     { echo; echo "evaluation (sbr_eval, operating point score >= ${thr:-0}):"; cat "$out/evaluation.txt"; } >> "$out/summary.txt"
   fi
   log "wrote $out: detections.txt, detections_all.txt, annotated/, sbr_can.log, summary.txt${gt:+, evaluation.txt, pr_curve.png}"
@@ -224,5 +227,5 @@ case "${1:-}" in
   learn-tracker) shift; cmd_learn_tracker "$@" ;;
   track) shift; cmd_track "$@" ;;
   setup) setup ;;
-  *) sed -n '2,21p' "$0"; exit 2 ;;
+  *) sed -n '2,24p' "$0"; exit 2 ;;
 esac

@@ -2,6 +2,7 @@
 //
 //   sbr_eval --detections FILE --gt gt.txt [--range A-B] [--images DIR] [--iou 0.5]
 //            [--threshold T] [--plot pr.png] [--confusion N]
+//            [--baseline FILE [--max-drop D] [--list N]]
 //
 // Files: NNNNN.ext;left;top;right;bottom;class_id[;score] (GTSDB's format; gt has no
 // score, a detection without one counts as 1). The images evaluated: --range A-B (image
@@ -20,6 +21,22 @@
 //    (gt -> detected), missed boxes (gt -> none) and false detections (none -> detected);
 //  - a precision-recall plot per superclass as PNG (--plot, default pr_curve.png).
 // Last line: superclass_ap prohibitory=<x> mandatory=<x> danger=<x> other=<x> mean=<x>
+//
+// Regression between versions (--baseline FILE: another version's detections of the same
+// images, scored the same way, same images, --iou and --threshold), printed before that
+// last line:
+//  - per superclass: recall, precision and AP, baseline -> this file, and the change;
+//    class level: TP, FP, FN and F1, baseline -> this file;
+//  - the ground-truth signs that changed at class level: found now and missed by the
+//    baseline ("gained"), found by the baseline and missed now ("lost"), each with the
+//    best-scoring detection of either file on its box (IoU >= --iou, any score: "class
+//    30 score 0.29" shows a sign below the threshold or of the wrong class);
+//  - false detections at class level that are new (no false detection of the baseline
+//    in the same image with the same class at IoU >= --iou) and those that are gone;
+//  - up to --list N lines of each list (default 20; the counts are always complete).
+// --max-drop D: the exit status is 3 when class-level F1, or any superclass's recall,
+// precision or AP with ground truth in the images, is more than D below the baseline's
+// (a regression gate for scripts; without --max-drop the status does not depend on it).
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -166,10 +183,141 @@ void plot_pr(const std::string &path, const std::array<std::vector<std::pair<dou
     cv::imwrite(path, img);
 }
 
+// Everything sbr_eval reports about one detections file.
+struct Eval {
+    std::array<Prf, 4> sp{};                                        // per superclass
+    std::array<double, 4> ap{};
+    std::array<long, 4> n_gt{};
+    std::array<std::vector<std::pair<double, double>>, 4> curves;  // recall, precision
+    std::map<int, Prf> cp;                                          // per class
+    Prf total;                                                      // class level
+    std::vector<char> hit_cls;   // per gt: matched at class level
+    std::vector<char> hit_any;   // per gt: matched by a box of any class
+    std::vector<int> match_cls;  // per detection: gt matched at class level, or -1
+    std::map<std::pair<int, int>, long> conf;  // (gt class or -1, det class or -1)
+};
+
+Eval evaluate(const std::vector<Box> &dets, const std::vector<Box> &gts, double iou_thr) {
+    Eval e;
+    // superclass level
+    std::vector<char> hit;
+    const auto msup = match(dets, gts, iou_thr, [](const Box &d, const Box &g) {
+        return superclass_of(d.cls) == superclass_of(g.cls); }, hit);
+    std::array<std::vector<std::pair<double, bool>>, 4> scored;
+    for (size_t i = 0; i < dets.size(); ++i) {
+        const int s = superclass_of(dets[i].cls);
+        (msup[i] >= 0 ? e.sp[s].tp : e.sp[s].fp)++;
+        scored[s].emplace_back(dets[i].score, msup[i] >= 0);
+    }
+    for (size_t g = 0; g < gts.size(); ++g) {
+        const int s = superclass_of(gts[g].cls);
+        ++e.n_gt[s];
+        if (!hit[g]) ++e.sp[s].fn;
+    }
+    for (int s = 0; s < 4; ++s) e.ap[s] = average_precision(scored[s], e.n_gt[s], e.curves[s]);
+
+    // class level
+    e.match_cls = match(dets, gts, iou_thr, [](const Box &d, const Box &g) { return d.cls == g.cls; }, e.hit_cls);
+    for (size_t i = 0; i < dets.size(); ++i) {
+        (e.match_cls[i] >= 0 ? e.cp[dets[i].cls].tp : e.cp[dets[i].cls].fp)++;
+        (e.match_cls[i] >= 0 ? e.total.tp : e.total.fp)++;
+    }
+    for (size_t g = 0; g < gts.size(); ++g)
+        if (!e.hit_cls[g]) { ++e.cp[gts[g].cls].fn; ++e.total.fn; }
+
+    // confusion: class-agnostic matching, then the class pairs that differ
+    const auto many = match(dets, gts, iou_thr, [](const Box &, const Box &) { return true; }, e.hit_any);
+    for (size_t i = 0; i < dets.size(); ++i) {
+        if (many[i] < 0) ++e.conf[{-1, dets[i].cls}];
+        else if (gts[static_cast<size_t>(many[i])].cls != dets[i].cls) ++e.conf[{gts[static_cast<size_t>(many[i])].cls, dets[i].cls}];
+    }
+    for (size_t g = 0; g < gts.size(); ++g)
+        if (!e.hit_any[g]) ++e.conf[{gts[g].cls, -1}];
+    return e;
+}
+
+std::string box_text(const Box &b) {
+    char t[96];
+    std::snprintf(t, sizeof t, "%05d;%.0f;%.0f;%.0f;%.0f;%d", b.image, b.l, b.t, b.r, b.b, b.cls);
+    return t;
+}
+
+// The best-scoring detection of `all` (any score) on ground-truth box g, as text.
+std::string best_on(const std::vector<Box> &all, const Box &g, double iou_thr) {
+    const Box *best = nullptr;
+    for (const Box &d : all)
+        if (d.image == g.image && iou(d, g) >= iou_thr && (best == nullptr || d.score > best->score)) best = &d;
+    if (best == nullptr) return "none";
+    char t[64];
+    std::snprintf(t, sizeof t, "class %d score %.2f", best->cls, best->score);
+    return t;
+}
+
+// False detections (class level) of `a` with no false detection of `b` in the same image,
+// of the same class, at IoU >= iou_thr.
+std::vector<const Box *> unmatched_fps(const std::vector<Box> &a, const Eval &ea, const std::vector<Box> &b,
+                                       const Eval &eb, double iou_thr) {
+    std::vector<const Box *> out;
+    for (size_t i = 0; i < a.size(); ++i) {
+        if (ea.match_cls[i] >= 0) continue;
+        bool seen = false;
+        for (size_t j = 0; j < b.size() && !seen; ++j)
+            seen = eb.match_cls[j] < 0 && b[j].image == a[i].image && b[j].cls == a[i].cls && iou(a[i], b[j]) >= iou_thr;
+        if (!seen) out.push_back(&a[i]);
+    }
+    return out;
+}
+
+// Prints the comparison with the baseline; returns the largest drop of class-level F1 and
+// of each superclass's recall, precision and AP (superclasses with ground truth only).
+double print_baseline(const std::string &path, const Eval &base, const Eval &now, const std::vector<Box> &base_dets,
+                      const std::vector<Box> &dets, const std::vector<Box> &base_all, const std::vector<Box> &dets_all,
+                      const std::vector<Box> &gts, double iou_thr, size_t list_n) {
+    double worst = 0.0;
+    auto drop = [&](double b, double n) { worst = std::max(worst, b - n); };
+    std::printf("against the baseline %s (same images, IoU and threshold): baseline -> this file\n", path.c_str());
+    std::printf("%-12s %26s %26s %26s\n", "superclass", "recall", "precision", "AP");
+    for (int s = 0; s < 4; ++s) {
+        const double r0 = rec(base.sp[s]), r1 = rec(now.sp[s]), p0 = prec(base.sp[s]), p1 = prec(now.sp[s]);
+        std::printf("%-12s %6.4f -> %6.4f (%+.4f) %6.4f -> %6.4f (%+.4f) %6.4f -> %6.4f (%+.4f)\n", kSuper[s], r0, r1,
+                    r1 - r0, p0, p1, p1 - p0, base.ap[s], now.ap[s], now.ap[s] - base.ap[s]);
+        if (now.n_gt[s] > 0) { drop(r0, r1); drop(p0, p1); drop(base.ap[s], now.ap[s]); }
+    }
+    std::printf("class level: TP %ld -> %ld, FP %ld -> %ld, FN %ld -> %ld, F1 %.4f -> %.4f (%+.4f)\n", base.total.tp,
+                now.total.tp, base.total.fp, now.total.fp, base.total.fn, now.total.fn, f1(base.total), f1(now.total),
+                f1(now.total) - f1(base.total));
+    drop(f1(base.total), f1(now.total));
+    std::vector<size_t> gained, lost;
+    for (size_t g = 0; g < gts.size(); ++g) {
+        if (now.hit_cls[g] && !base.hit_cls[g]) gained.push_back(g);
+        if (!now.hit_cls[g] && base.hit_cls[g]) lost.push_back(g);
+    }
+    auto list_signs = [&](const char *what, const std::vector<size_t> &v) {
+        std::printf("signs %s: %zu (image;left;top;right;bottom;gt class: baseline | this file)\n", what, v.size());
+        for (size_t k = 0; k < std::min(list_n, v.size()); ++k) {
+            const Box &g = gts[v[k]];
+            std::printf("  %s: %s | %s\n", box_text(g).c_str(), best_on(base_all, g, iou_thr).c_str(),
+                        best_on(dets_all, g, iou_thr).c_str());
+        }
+    };
+    list_signs("gained (found now, missed by the baseline)", gained);
+    list_signs("lost (found by the baseline, missed now)", lost);
+    auto list_fps = [&](const char *what, const std::vector<const Box *> &v) {
+        std::printf("false detections %s: %zu (image;left;top;right;bottom;class score)\n", what, v.size());
+        for (size_t k = 0; k < std::min(list_n, v.size()); ++k)
+            std::printf("  %s %.2f\n", box_text(*v[k]).c_str(), v[k]->score);
+    };
+    list_fps("new", unmatched_fps(dets, now, base_dets, base, iou_thr));
+    list_fps("gone", unmatched_fps(base_dets, base, dets, now, iou_thr));
+    return worst;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
-    std::string det_path, gt_path, images_dir, plot_path = "pr_curve.png";
+    std::string det_path, gt_path, images_dir, plot_path = "pr_curve.png", base_path;
+    double max_drop = -1.0;
+    size_t list_n = 20;
     int range_a = -1, range_b = -1;
     double iou_thr = 0.5, score_thr = 0.0;
     size_t confusion_n = 10;
@@ -182,6 +330,9 @@ int main(int argc, char **argv) {
         else if (a == "--plot") plot_path = next();
         else if (a == "--iou") iou_thr = std::atof(next().c_str());
         else if (a == "--threshold") score_thr = std::atof(next().c_str());
+        else if (a == "--baseline") base_path = next();
+        else if (a == "--max-drop") max_drop = std::atof(next().c_str());
+        else if (a == "--list") list_n = static_cast<size_t>(std::atoi(next().c_str()));
         else if (a == "--confusion") confusion_n = static_cast<size_t>(std::atoi(next().c_str()));
         else if (a == "--range") {
             const std::string r = next();
@@ -191,7 +342,8 @@ int main(int argc, char **argv) {
             }
         } else {
             std::fprintf(stderr, "usage: %s --detections FILE --gt gt.txt [--range A-B] [--images DIR] "
-                                 "[--iou 0.5] [--threshold T] [--plot pr.png] [--confusion N]\n", argv[0]);
+                                 "[--iou 0.5] [--threshold T] [--plot pr.png] [--confusion N] "
+                                 "[--baseline FILE [--max-drop D] [--list N]]\n", argv[0]);
             return 2;
         }
     }
@@ -199,8 +351,13 @@ int main(int argc, char **argv) {
         std::fprintf(stderr, "sbr_eval: --detections and --gt are required\n");
         return 2;
     }
-    std::vector<Box> dets_all, gts_all;
-    if (!read_boxes(det_path, dets_all) || !read_boxes(gt_path, gts_all)) {
+    if (base_path.empty() && max_drop >= 0.0) {
+        std::fprintf(stderr, "sbr_eval: --max-drop needs --baseline\n");
+        return 2;
+    }
+    std::vector<Box> dets_all, gts_all, base_all;
+    if (!read_boxes(det_path, dets_all) || !read_boxes(gt_path, gts_all) ||
+        (!base_path.empty() && !read_boxes(base_path, base_all))) {
         std::fprintf(stderr, "sbr_eval: cannot read the input files\n");
         return 1;
     }
@@ -222,49 +379,10 @@ int main(int argc, char **argv) {
     for (const Box &b : gts_all)
         if (image_set.count(b.image)) gts.push_back(b);
 
-    // superclass level
-    std::vector<char> hit;
-    const auto msup = match(dets, gts, iou_thr, [](const Box &d, const Box &g) {
-        return superclass_of(d.cls) == superclass_of(g.cls); }, hit);
-    std::array<Prf, 4> sp{};
-    std::array<std::vector<std::pair<double, bool>>, 4> scored;
-    std::array<long, 4> n_gt{};
-    for (size_t i = 0; i < dets.size(); ++i) {
-        const int s = superclass_of(dets[i].cls);
-        (msup[i] >= 0 ? sp[s].tp : sp[s].fp)++;
-        scored[s].emplace_back(dets[i].score, msup[i] >= 0);
-    }
-    for (size_t g = 0; g < gts.size(); ++g) {
-        const int s = superclass_of(gts[g].cls);
-        ++n_gt[s];
-        if (!hit[g]) ++sp[s].fn;
-    }
-    std::array<double, 4> ap{};
-    std::array<std::vector<std::pair<double, double>>, 4> curves;
-    for (int s = 0; s < 4; ++s) ap[s] = average_precision(scored[s], n_gt[s], curves[s]);
-
-    // class level
-    std::vector<char> hit_c;
-    const auto mcls = match(dets, gts, iou_thr, [](const Box &d, const Box &g) { return d.cls == g.cls; }, hit_c);
-    std::map<int, Prf> cp;
-    Prf total;
-    for (size_t i = 0; i < dets.size(); ++i) {
-        (mcls[i] >= 0 ? cp[dets[i].cls].tp : cp[dets[i].cls].fp)++;
-        (mcls[i] >= 0 ? total.tp : total.fp)++;
-    }
-    for (size_t g = 0; g < gts.size(); ++g)
-        if (!hit_c[g]) { ++cp[gts[g].cls].fn; ++total.fn; }
-
-    // confusion: class-agnostic matching, then the class pairs that differ
-    std::vector<char> hit_any;
-    const auto many = match(dets, gts, iou_thr, [](const Box &, const Box &) { return true; }, hit_any);
-    std::map<std::pair<int, int>, long> conf;  // (gt class or -1, det class or -1)
-    for (size_t i = 0; i < dets.size(); ++i) {
-        if (many[i] < 0) ++conf[{-1, dets[i].cls}];
-        else if (gts[static_cast<size_t>(many[i])].cls != dets[i].cls) ++conf[{gts[static_cast<size_t>(many[i])].cls, dets[i].cls}];
-    }
-    for (size_t g = 0; g < gts.size(); ++g)
-        if (!hit_any[g]) ++conf[{gts[g].cls, -1}];
+    const Eval e = evaluate(dets, gts, iou_thr);
+    const auto &sp = e.sp;
+    const auto &ap = e.ap;
+    const Prf &total = e.total;
 
     std::printf("images %zu, ground-truth boxes %zu, detections %zu (score >= %.3f), IoU >= %.2f\n",
                 image_set.size(), gts.size(), dets.size(), score_thr, iou_thr);
@@ -279,16 +397,16 @@ int main(int argc, char **argv) {
                 total.tp, total.fp, total.fn, prec(total), rec(total), f1(total));
     {
         size_t found_any = 0;
-        for (char h : hit_any) found_any += h != 0;
+        for (char h : e.hit_any) found_any += h != 0;
         std::printf("any class (box only): %zu of %zu ground-truth boxes matched, recall %.4f\n", found_any, gts.size(),
                     gts.empty() ? 0.0 : double(found_any) / double(gts.size()));
     }
     std::printf("%-6s %6s %6s %6s %10s %8s %8s\n", "class", "TP", "FP", "FN", "precision", "recall", "F1");
-    for (auto &kv : cp)
+    for (auto &kv : e.cp)
         std::printf("%-6d %6ld %6ld %6ld %10.4f %8.4f %8.4f\n", kv.first, kv.second.tp, kv.second.fp, kv.second.fn,
                     prec(kv.second), rec(kv.second), f1(kv.second));
     std::vector<std::pair<long, std::pair<int, int>>> errs;
-    for (auto &kv : conf) errs.emplace_back(kv.second, kv.first);
+    for (auto &kv : e.conf) errs.emplace_back(kv.second, kv.first);
     std::stable_sort(errs.begin(), errs.end(), [](auto &a, auto &b) { return a.first > b.first; });
     std::printf("most frequent errors (gt -> detected; 'none' = missed / false detection):\n");
     for (size_t k = 0; k < std::min(confusion_n, errs.size()); ++k) {
@@ -297,9 +415,25 @@ int main(int argc, char **argv) {
         const std::string b = e.second.second < 0 ? "none" : std::to_string(e.second.second);
         std::printf("  %5ld  %4s -> %s\n", e.first, a.c_str(), b.c_str());
     }
-    plot_pr(plot_path, curves, ap);
+    plot_pr(plot_path, e.curves, ap);
     std::printf("precision-recall plot: %s\n", plot_path.c_str());
+    double worst = 0.0;
+    if (!base_path.empty()) {
+        std::vector<Box> base;
+        for (const Box &b : base_all)
+            if (image_set.count(b.image) && b.score >= score_thr) base.push_back(b);
+        std::vector<Box> base_in, dets_in;  // any score, for what lies on a changed sign
+        for (const Box &b : base_all)
+            if (image_set.count(b.image)) base_in.push_back(b);
+        for (const Box &b : dets_all)
+            if (image_set.count(b.image)) dets_in.push_back(b);
+        worst = print_baseline(base_path, evaluate(base, gts, iou_thr), e, base, dets, base_in, dets_in, gts, iou_thr,
+                               list_n);
+        if (max_drop >= 0.0)
+            std::printf("largest drop against the baseline %.4f (allowed %.4f): %s\n", worst, max_drop,
+                        worst > max_drop ? "REGRESSION" : "ok");
+    }
     std::printf("superclass_ap prohibitory=%.4f mandatory=%.4f danger=%.4f other=%.4f mean=%.4f\n", ap[0], ap[1],
                 ap[2], ap[3], ap_mean);
-    return 0;
+    return (max_drop >= 0.0 && worst > max_drop) ? 3 : 0;
 }

@@ -8,6 +8,15 @@ j%5==3 shifted by 10 % of its width (IoU about 0.82, a hit); j%5==4 exact. One e
 "stop" per 20 images. Hits score 0.9 and false detections 0.5, so every superclass's AP
 equals its recall. The expected table is counted here, independently of sbr_eval.
 
+Then the same against a constructed baseline (--baseline): there boxes j%5==0 and 1 are
+exact with the right class (signs the new file lost), j%5==2 has nothing (the new file's
+false detection is new), j%5==4 is missing when (j//5) is even (signs gained), and the
+false "stop"s are only in every other of those images, plus a false "priority road" per 20
+images that the new file does not have (false detections gone). Checked: the counts of
+gained and lost signs and of new and gone false detections, the class-level line, a lost
+sign's line, and the exit status of --max-drop just below and just above the largest drop
+(class-level F1, superclass recall, precision and AP), computed here.
+
 usage: test_sbr_eval.py --eval PATH --gt gt.txt --work DIR     (exit 77 without the data)
 """
 import argparse
@@ -94,6 +103,51 @@ def main():
         out.append((img, extra, 14, 0.5))
         exp["other"]["fp"] += 1
         cls["fp"] += 1
+    base = []  # the constructed baseline, and its expected counts
+    bexp = {s: dict(tp=0, fp=0, fn=0, n=0) for s in SUPER}
+    bcls = dict(tp=0, fp=0, fn=0)
+    gained = lost = 0
+    lost_example = None
+    for j, (img, (l, t, r, b), c) in enumerate(gt):
+        s = superclass(c)
+        bexp[s]["n"] += 1
+        kind = j % 5
+        if kind in (0, 1):
+            base.append((img, (l, t, r, b), c, 0.9))
+            lost += 1
+            if lost_example is None and kind == 0:
+                lost_example = f"  {img:05d};{l};{t};{r};{b};{c}: class {c} score 0.90 | none"
+        elif kind == 2:
+            bexp[s]["fn"] += 1
+            bcls["fn"] += 1
+            continue
+        elif kind == 3:
+            w = r - l
+            d = max(1, round(0.1 * w))
+            base.append((img, (l + d, t, r + d, b), c, 0.9))
+        elif (j // 5) % 2 == 0:
+            gained += 1
+            bexp[s]["fn"] += 1
+            bcls["fn"] += 1
+            continue
+        else:
+            base.append((img, (l, t, r, b), c, 0.9))
+        bexp[s]["tp"] += 1
+        bcls["tp"] += 1
+    fp_new = sum(1 for j in range(len(gt)) if j % 5 in (1, 2))  # wrong class or moved
+    for img in range(400, 600, 20):
+        extra = (0, 600, 30, 630)
+        assert not any(overlaps(extra, o) for o in boxes_of.get(img, [])), img
+        base.append((img, extra, 12, 0.5))
+        bexp["other"]["fp"] += 1
+        bcls["fp"] += 1
+        if img % 40 == 0:
+            base.append((img, (0, 700, 30, 730), 14, 0.5))
+            bexp["other"]["fp"] += 1
+            bcls["fp"] += 1
+        else:
+            fp_new += 1
+    fp_gone = len(range(400, 600, 20))
     det = os.path.join(a.work, "detections.txt")
     with open(det, "w") as f:
         for img, (l, t, r, b), c, sc in out:
@@ -119,6 +173,55 @@ def main():
     ok &= got == want
     ok &= os.path.getsize(png) > 1000
     ok &= "most frequent errors" in res
+
+    def prf(e):
+        p = e["tp"] / (e["tp"] + e["fp"]) if e["tp"] + e["fp"] else 0.0
+        r = e["tp"] / (e["tp"] + e["fn"]) if e["tp"] + e["fn"] else 0.0
+        return p, r, (2 * p * r / (p + r) if p + r else 0.0)
+
+    worst = prf(bcls)[2] - prf(cls)[2]
+    for s in SUPER:
+        p0, r0, _ = prf(bexp[s])
+        p1, r1, _ = prf(exp[s])
+        # AP equals recall for both files (hits 0.9, false detections 0.5)
+        worst = max(worst, r0 - r1, p0 - p1)
+    bpath = os.path.join(a.work, "baseline.txt")
+    with open(bpath, "w") as f:
+        for img, (l, t, r, b), c, sc in base:
+            f.write(f"{img:05d}.jpg;{l};{t};{r};{b};{c};{sc}\n")
+    cmd = [a.eval, "--detections", det, "--gt", a.gt, "--range", "400-599", "--plot", png,
+           "--baseline", bpath, "--list", "1000"]
+    loose = subprocess.run(cmd + ["--max-drop", f"{worst + 0.001:.4f}"], capture_output=True, text=True)
+    tight = subprocess.run(cmd + ["--max-drop", f"{worst - 0.001:.4f}"], capture_output=True, text=True)
+    res = loose.stdout
+    print(res[res.find("against the baseline"):])
+
+    def count(what):
+        m = re.search(rf"^{what}: (\d+)", res, re.M)
+        return int(m.group(1)) if m else -1
+
+    got = (count(r"signs gained \(found now, missed by the baseline\)"),
+           count(r"signs lost \(found by the baseline, missed now\)"),
+           count("false detections new"), count("false detections gone"))
+    want = (gained, lost, fp_new, fp_gone)
+    print(f"baseline: gained, lost, new and gone false detections: got {got}, expected {want}")
+    ok &= got == want
+    line = (f"class level: TP {bcls['tp']} -> {cls['tp']}, FP {bcls['fp']} -> {cls['fp']}, "
+            f"FN {bcls['fn']} -> {cls['fn']}, F1 {prf(bcls)[2]:.4f} -> {prf(cls)[2]:.4f}")
+    print(f"expecting '{line}' and '{lost_example}'")
+    ok &= line in res and lost_example in res.splitlines()
+    print(f"largest drop {worst:.4f}: exit {loose.returncode} with a looser gate, "
+          f"{tight.returncode} with a tighter one")
+    ok &= worst > 0.01 and loose.returncode == 0 and tight.returncode == 3
+    same = subprocess.run([a.eval, "--detections", det, "--gt", a.gt, "--range", "400-599",
+                           "--plot", png, "--baseline", det, "--max-drop", "0"],
+                          capture_output=True, text=True)
+    counts = re.findall(r"^(?:signs|false detections) [^:]*: (\d+)", same.stdout, re.M)
+    print(f"against itself: exit {same.returncode}, counts {counts}")
+    ok &= same.returncode == 0 and counts == ["0", "0", "0", "0"]
+    bad = subprocess.run([a.eval, "--detections", det, "--gt", a.gt, "--max-drop", "0.1"],
+                         capture_output=True, text=True)
+    ok &= bad.returncode == 2
     return 0 if ok else 1
 
 
