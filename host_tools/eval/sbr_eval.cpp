@@ -331,7 +331,13 @@ int main(int argc, char **argv) {
         else if (a == "--iou") iou_thr = std::atof(next().c_str());
         else if (a == "--threshold") score_thr = std::atof(next().c_str());
         else if (a == "--baseline") base_path = next();
-        else if (a == "--max-drop") max_drop = std::atof(next().c_str());
+        else if (a == "--max-drop") {
+            max_drop = std::atof(next().c_str());
+            if (!(max_drop >= 0.0)) {
+                std::fprintf(stderr, "sbr_eval: --max-drop wants a value >= 0\n");
+                return 2;
+            }
+        }
         else if (a == "--list") list_n = static_cast<size_t>(std::atoi(next().c_str()));
         else if (a == "--confusion") confusion_n = static_cast<size_t>(std::atoi(next().c_str()));
         else if (a == "--range") {

@@ -46,6 +46,20 @@ def overlaps(a, b):
     return not (a[2] < b[0] or b[2] < a[0] or a[3] < b[1] or b[3] < a[1])
 
 
+def add_false(rows, exp, cls, img, box, c, boxes_of):
+    """A false detection of class c (score 0.5) at box, counted as one."""
+    assert not any(overlaps(box, o) for o in boxes_of.get(img, [])), img
+    rows.append((img, box, c, 0.5))
+    exp[superclass(c)]["fp"] += 1
+    cls["fp"] += 1
+
+
+def write_dets(path, rows):
+    with open(path, "w") as f:
+        for img, (l, t, r, b), c, sc in rows:
+            f.write(f"{img:05d}.jpg;{l};{t};{r};{b};{c};{sc}\n")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--eval", required=True)
@@ -98,11 +112,7 @@ def main():
             exp[s]["tp"] += 1
             cls["tp"] += 1
     for img in range(400, 600, 20):
-        extra = (0, 700, 30, 730)
-        assert not any(overlaps(extra, o) for o in boxes_of.get(img, [])), img
-        out.append((img, extra, 14, 0.5))
-        exp["other"]["fp"] += 1
-        cls["fp"] += 1
+        add_false(out, exp, cls, img, (0, 700, 30, 730), 14, boxes_of)
     base = []  # the constructed baseline, and its expected counts
     bexp = {s: dict(tp=0, fp=0, fn=0, n=0) for s in SUPER}
     bcls = dict(tp=0, fp=0, fn=0)
@@ -136,22 +146,14 @@ def main():
         bcls["tp"] += 1
     fp_new = sum(1 for j in range(len(gt)) if j % 5 in (1, 2))  # wrong class or moved
     for img in range(400, 600, 20):
-        extra = (0, 600, 30, 630)
-        assert not any(overlaps(extra, o) for o in boxes_of.get(img, [])), img
-        base.append((img, extra, 12, 0.5))
-        bexp["other"]["fp"] += 1
-        bcls["fp"] += 1
+        add_false(base, bexp, bcls, img, (0, 600, 30, 630), 12, boxes_of)
         if img % 40 == 0:
-            base.append((img, (0, 700, 30, 730), 14, 0.5))
-            bexp["other"]["fp"] += 1
-            bcls["fp"] += 1
+            add_false(base, bexp, bcls, img, (0, 700, 30, 730), 14, boxes_of)
         else:
             fp_new += 1
     fp_gone = len(range(400, 600, 20))
     det = os.path.join(a.work, "detections.txt")
-    with open(det, "w") as f:
-        for img, (l, t, r, b), c, sc in out:
-            f.write(f"{img:05d}.jpg;{l};{t};{r};{b};{c};{sc}\n")
+    write_dets(det, out)
     png = os.path.join(a.work, "pr.png")
     res = subprocess.run([a.eval, "--detections", det, "--gt", a.gt, "--range", "400-599",
                           "--plot", png], check=True, capture_output=True, text=True).stdout
@@ -186,9 +188,7 @@ def main():
         # AP equals recall for both files (hits 0.9, false detections 0.5)
         worst = max(worst, r0 - r1, p0 - p1)
     bpath = os.path.join(a.work, "baseline.txt")
-    with open(bpath, "w") as f:
-        for img, (l, t, r, b), c, sc in base:
-            f.write(f"{img:05d}.jpg;{l};{t};{r};{b};{c};{sc}\n")
+    write_dets(bpath, base)
     cmd = [a.eval, "--detections", det, "--gt", a.gt, "--range", "400-599", "--plot", png,
            "--baseline", bpath, "--list", "1000"]
     loose = subprocess.run(cmd + ["--max-drop", f"{worst + 0.001:.4f}"], capture_output=True, text=True)
