@@ -46,6 +46,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -236,6 +237,14 @@ Eval evaluate(const std::vector<Box> &dets, const std::vector<Box> &gts, double 
     return e;
 }
 
+// The boxes of `all` in the images evaluated with a score >= min_score.
+std::vector<Box> select(const std::vector<Box> &all, const std::set<int> &images, double min_score) {
+    std::vector<Box> out;
+    for (const Box &b : all)
+        if (images.count(b.image) && b.score >= min_score) out.push_back(b);
+    return out;
+}
+
 std::string box_text(const Box &b) {
     char t[96];
     std::snprintf(t, sizeof t, "%05d;%.0f;%.0f;%.0f;%.0f;%d", b.image, b.l, b.t, b.r, b.b, b.cls);
@@ -379,11 +388,7 @@ int main(int argc, char **argv) {
         for (const Box &b : gts_all) image_set.insert(b.image);
         for (const Box &b : dets_all) image_set.insert(b.image);
     }
-    std::vector<Box> dets, gts;
-    for (const Box &b : dets_all)
-        if (image_set.count(b.image) && b.score >= score_thr) dets.push_back(b);
-    for (const Box &b : gts_all)
-        if (image_set.count(b.image)) gts.push_back(b);
+    const std::vector<Box> dets = select(dets_all, image_set, score_thr), gts = select(gts_all, image_set, 0.0);
 
     const Eval e = evaluate(dets, gts, iou_thr);
     const auto &sp = e.sp;
@@ -425,15 +430,11 @@ int main(int argc, char **argv) {
     std::printf("precision-recall plot: %s\n", plot_path.c_str());
     double worst = 0.0;
     if (!base_path.empty()) {
-        std::vector<Box> base;
-        for (const Box &b : base_all)
-            if (image_set.count(b.image) && b.score >= score_thr) base.push_back(b);
-        std::vector<Box> base_in, dets_in;  // any score, for what lies on a changed sign
-        for (const Box &b : base_all)
-            if (image_set.count(b.image)) base_in.push_back(b);
-        for (const Box &b : dets_all)
-            if (image_set.count(b.image)) dets_in.push_back(b);
-        worst = print_baseline(base_path, evaluate(base, gts, iou_thr), e, base, dets, base_in, dets_in, gts, iou_thr,
+        const std::vector<Box> base = select(base_all, image_set, score_thr);
+        // any score, for what lies on a changed sign
+        const double any = -std::numeric_limits<double>::infinity();
+        worst = print_baseline(base_path, evaluate(base, gts, iou_thr), e, base, dets,
+                               select(base_all, image_set, any), select(dets_all, image_set, any), gts, iou_thr,
                                list_n);
         if (max_drop >= 0.0)
             std::printf("largest drop against the baseline %.4f (allowed %.4f): %s\n", worst, max_drop,
