@@ -471,12 +471,46 @@ static void test_class_stage(void)
                                      (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
             TEST_ASSERT_FLOAT_WITHIN(1.01f, w0, (float)g_dets[0].box.width);
         }
-        /* refine only likely signs: with a floor above the sign classes' probability
-           nothing moves */
-        rc.refine_score = 1.0f;
+        /* the gates: the sign classes together are (e^4 + 42) / (e^4 + 43) = 0.9898
+           probable at every box. The first move needs refine_first_score, each further
+           one refine_score: a first gate above that probability moves nothing, whatever
+           the second; a first gate below it and a second above it move the box once. */
+        TEST_ASSERT_EQUAL_UINT32(2u, g_cfg.refine_steps);
+        TEST_ASSERT_EQUAL_FLOAT(0.0f, g_cfg.refine_first_score);
+        TEST_ASSERT_EQUAL_FLOAT(0.001f, g_cfg.refine_score);
+        rc.refine_steps = 2u;
+        rc.refine_first_score = 0.995f;
+        rc.refine_score = 0.0f;
         TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets, 16u,
                                                        &n, &st));
+        TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_EQUAL_UINT32(0u, st.refined);
+        TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0, (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+        rc.refine_first_score = 0.98f;
+        rc.refine_score = 0.995f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets, 16u,
+                                                       &n, &st));
+        TEST_ASSERT_TRUE(n >= 1u);
+        TEST_ASSERT_TRUE(st.refined >= 1u);
+        TEST_ASSERT_TRUE(st.refined <= st.classified);
+        TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.1f * w0),
+                                 (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+        /* both gates below it: two moves */
+        rc.refine_score = 0.98f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets, 16u,
+                                                       &n, &st));
+        TEST_ASSERT_TRUE(n >= 1u);
+        TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.2f * w0),
+                                 (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+        /* out of [0, 1] or NaN: refused */
+        rc.refine_first_score = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        rc.refine_first_score = -0.5f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        rc.refine_first_score = 1.5f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                              16u, &n, &st));
+        rc.refine_first_score = 0.0f;
         rc.refine_steps = SBR_RECOG_MAX_REFINE + 1u;
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
                                                               16u, &n, &st));

@@ -5,7 +5,7 @@
 //              [--no-picto] [--range A-B]
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
-//              [--refine-score S] [--views N] [--view-score S] [--maps MASK]
+//              [--refine-first-score S] [--refine-score S] [--views N] [--view-score S] [--maps MASK]
 //              [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S]
 //              [--candidate-iou U] [--triangle-view 0|1] [--triangle-score S]
 //
@@ -27,7 +27,7 @@
 //   its own; --no-picto: no class stage (part evidence alone scores and classifies).
 // --summary: the summary text (also printed): images, detections, time per frame (median
 //   and 95th percentile, per stage), workspace bytes, capacity hits.
-// --min-parts, --vote-error, --verify-error, --min-score, --refine-steps, --refine-score,
+// --min-parts, --vote-error, --verify-error, --min-score, --refine-steps, --refine-first-score, --refine-score,
 //   --views, --view-score, --candidate-score, --candidate-iou, --triangle-view, --triangle-score
 //   override the recogniser's options of those names
 //   (include/sbr/recognizer.h), for tuning and regression; --maps sets parts.maps (bit k =
@@ -123,7 +123,7 @@ int main(int argc, char **argv) {
     int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1, triangle_view = -1, max_nodes = -1;
     bool sequence = false;
     std::vector<unsigned> map_sub;  // --map-subsample: per map kind, empty = defaults
-    float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, view_score = -1.0f, triangle_score = -1.0f, candidate_score = -1.0f, candidate_iou = -1.0f;
+    float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, refine_first_score = -1.0f, view_score = -1.0f, triangle_score = -1.0f, candidate_score = -1.0f, candidate_iou = -1.0f;
     sbr_rect_t roi{};
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
@@ -145,6 +145,7 @@ int main(int argc, char **argv) {
         else if (a == "--min-parts") min_parts = std::atoi(next().c_str());
         else if (a == "--refine-steps") refine_steps = std::atoi(next().c_str());
         else if (a == "--refine-score") refine_score = std::strtof(next().c_str(), nullptr);
+        else if (a == "--refine-first-score") refine_first_score = std::strtof(next().c_str(), nullptr);
         else if (a == "--candidate-score") candidate_score = std::strtof(next().c_str(), nullptr);
         else if (a == "--candidate-iou") candidate_iou = std::strtof(next().c_str(), nullptr);
         else if (a == "--view-score") view_score = std::strtof(next().c_str(), nullptr);
@@ -175,7 +176,7 @@ int main(int argc, char **argv) {
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
                          "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N]\n"
                          "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
-                         "          [--refine-steps N] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--triangle-score S] [--picto FILE | --no-picto]\n", argv[0]);
+                         "          [--refine-steps N] [--refine-first-score S] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--triangle-score S] [--picto FILE | --no-picto]\n", argv[0]);
             return 2;
         }
     }
@@ -218,6 +219,7 @@ int main(int argc, char **argv) {
     if (min_parts >= 0) cfg.min_parts = uint32_t(min_parts);
     if (refine_steps >= 0) cfg.refine_steps = uint32_t(refine_steps);
     if (refine_score >= 0.0f) cfg.refine_score = refine_score;
+    if (refine_first_score >= 0.0f) cfg.refine_first_score = refine_first_score;
     if (view_score >= 0.0f) cfg.view_score = view_score;
     if (candidate_score >= 0.0f) cfg.candidate_score = candidate_score;
     if (candidate_iou >= 0.0f) cfg.candidate_iou = candidate_iou;

@@ -103,8 +103,9 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->min_parts = 1u;
         cfg->candidate_score = 0.0f;
         cfg->max_candidates = 256u;
-        cfg->refine_steps = 1u;
-        cfg->refine_score = 0.1f;
+        cfg->refine_steps = 2u;
+        cfg->refine_first_score = 0.0f;
+        cfg->refine_score = 0.001f;
         cfg->views = 5u;
         cfg->view_score = 0.1f;
         cfg->triangle_view = 1u;
@@ -157,6 +158,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (in_range(cfg->min_score, 0.0f, 0.999999f) == 0) ||
         (in_range(cfg->candidate_score, 0.0f, 0.999999f) == 0) ||
         (in_range(cfg->refine_score, 0.0f, 1.0f) == 0) ||
+        (in_range(cfg->refine_first_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->view_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->triangle_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->nms_iou, 1.0e-6f, 1.0f) == 0) ||
@@ -947,9 +949,10 @@ static void triangle_view(recog_hyp_t *h, const sbr_image_t *view, const sbr_pic
     }
 }
 
-/* The class stage on one hypothesis: classify its box; while the signs are at least
-   refine_score probable (at most refine_steps times), move the box by the classifier's
-   box regression and classify again there; the box is the last one, and so are class
+/* The class stage on one hypothesis: classify its box; if the signs are at least
+   refine_first_score probable, and then while they are at least refine_score probable
+   (at most refine_steps times in all), move the box by the classifier's box regression
+   and classify again there; the box is the last one, and so are class
    and score unless the candidate, still view_score likely, gets the mean of
    config.views views (average_views()).
    Returns 0 when the box cannot be sampled; counts refinements and extra views in *st. */
@@ -971,7 +974,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     }
     danger = (cfg->triangle_view != 0u) ? danger_mass(b->prob) : 0.0f;
     signs = take_class(h, b->prob);
-    if ((signs >= cfg->refine_score) && (pm->w3 != NULL)) {
+    if ((signs >= cfg->refine_first_score) && (pm->w3 != NULL)) {
         steps = cfg->refine_steps;
     }
     while (step < steps) {
