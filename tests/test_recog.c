@@ -69,6 +69,12 @@ static void draw_sign(float cx, float cy, float r)
     }
 }
 
+/* The centre x of a detection's box. */
+static float box_cx(const sbr_detection_t *d)
+{
+    return (float)d->box.x + (0.5f * (float)d->box.width);
+}
+
 static void test_config(void)
 {
     sbr_recog_config_default(&g_cfg);
@@ -173,7 +179,7 @@ static void test_finds_sign_elsewhere_and_larger(void)
                                                    16u, &n, &st));
     TEST_ASSERT_EQUAL_UINT32(1u, n);
     TEST_ASSERT_EQUAL_UINT32(14u, g_dets[0].class_id);
-    cx = (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width);
+    cx = box_cx(&g_dets[0]);
     cy = (float)g_dets[0].box.y + (0.5f * (float)g_dets[0].box.height);
     TEST_ASSERT_FLOAT_WITHIN(2.0f, 112.5f, cx);
     TEST_ASSERT_FLOAT_WITHIN(2.0f, 50.5f, cy);
@@ -438,7 +444,7 @@ static void test_class_stage(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-4f, expf(4.0f) / (expf(4.0f) + 43.0f), g_dets[0].score);
     /* share among the 43 sign classes: e^4 / (e^4 + 42) */
     TEST_ASSERT_FLOAT_WITHIN(1e-4f, expf(4.0f) / (expf(4.0f) + 42.0f), g_dets[0].class_share);
-    TEST_ASSERT_FLOAT_WITHIN(3.0f, 112.5f, (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+    TEST_ASSERT_FLOAT_WITHIN(3.0f, 112.5f, box_cx(&g_dets[0]));
     /* a box regression that always says "the sign is 10 % of the width to the right":
        each refinement step moves the box by that much and classifies it again */
     {
@@ -457,7 +463,7 @@ static void test_class_stage(void)
                                                        &n, &st));
         TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_EQUAL_UINT32(0u, st.refined);
-        cx0 = (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width);
+        cx0 = box_cx(&g_dets[0]);
         w0 = (float)g_dets[0].box.width;
         TEST_ASSERT_FLOAT_WITHIN(3.0f, 112.5f, cx0);
         for (steps = 1u; steps <= 2u; steps++) {
@@ -467,8 +473,7 @@ static void test_class_stage(void)
             TEST_ASSERT_TRUE(n >= 1u);
             TEST_ASSERT_TRUE(st.refined >= steps);
             TEST_ASSERT_EQUAL_UINT32(3u, g_dets[0].class_id);
-            TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.1f * w0 * (float)steps),
-                                     (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+            TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.1f * w0 * (float)steps), box_cx(&g_dets[0]));
             TEST_ASSERT_FLOAT_WITHIN(1.01f, w0, (float)g_dets[0].box.width);
         }
         /* the gates: the sign classes together are (e^4 + 42) / (e^4 + 43) = 0.9898
@@ -485,7 +490,7 @@ static void test_class_stage(void)
                                                        &n, &st));
         TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_EQUAL_UINT32(0u, st.refined);
-        TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0, (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+        TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0, box_cx(&g_dets[0]));
         rc.refine_first_score = 0.98f;
         rc.refine_score = 0.995f;
         TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets, 16u,
@@ -493,15 +498,13 @@ static void test_class_stage(void)
         TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_TRUE(st.refined >= 1u);
         TEST_ASSERT_TRUE(st.refined <= st.classified);
-        TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.1f * w0),
-                                 (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+        TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.1f * w0), box_cx(&g_dets[0]));
         /* both gates below it: two moves */
         rc.refine_score = 0.98f;
         TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets, 16u,
                                                        &n, &st));
         TEST_ASSERT_TRUE(n >= 1u);
-        TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.2f * w0),
-                                 (float)g_dets[0].box.x + (0.5f * (float)g_dets[0].box.width));
+        TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.2f * w0), box_cx(&g_dets[0]));
         /* out of [0, 1] or NaN: refused */
         rc.refine_first_score = NAN;
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
