@@ -186,7 +186,8 @@ cmd_train() {
   # the class stage learns from the new library's candidates: rebuild with it first
   cmake --build "$BUILD/native" -j "$JOBS" --target sbr_train_picto
   log "sbr_train_picto on GTSDB 00000-00399 -> lib/models/sbr_picto_gtsdb.c, $BUILD/sbr_picto_gtsdb.sbrp"
-  "$BUILD/native/host_tools/sbr_train_picto" --data "$ROOT/../shared/data/gtsdb" --range 0-399 \
+  # seed 2: see sbr_train_picto.cpp (training noise; the README's figures are this seed's)
+  "$BUILD/native/host_tools/sbr_train_picto" --data "$ROOT/../shared/data/gtsdb" --range 0-399 --seed 2 \
       --out-c "$ROOT/lib/models/sbr_picto_gtsdb.c" --out "$BUILD/sbr_picto_gtsdb.sbrp"
   cmake --build "$BUILD/native" -j "$JOBS"
 }

@@ -85,26 +85,38 @@ static void test_map_formulas_on_known_colours(void)
     TEST_ASSERT_EQUAL_UINT8(170u, out[3]); /* (510 + 1) / 3 */
     TEST_ASSERT_EQUAL_UINT32(4u, ov.width);
     TEST_ASSERT_EQUAL_INT(SBR_PIXEL_GRAY8, ov.format);
+    /* colour maps: C(d) = 128 + 128 d / (R + G + B + 60), truncated, clamped to 0..255 */
     TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_RED, 1u, out, 4u, 4u, NULL));
-    TEST_ASSERT_EQUAL_UINT8(255u, out[0]); /* (512 + 510) / 4 */
-    TEST_ASSERT_EQUAL_UINT8(128u, out[1]);
-    TEST_ASSERT_EQUAL_UINT8(64u, out[2]);  /* (512 - 255) / 4 */
+    TEST_ASSERT_EQUAL_UINT8(255u, out[0]); /* 128 + 65280 / 315 = 128 + 207, clamped */
+    TEST_ASSERT_EQUAL_UINT8(128u, out[1]); /* grey: d = 0 */
+    TEST_ASSERT_EQUAL_UINT8(25u, out[2]);  /* 128 - 32640 / 315 = 128 - 103 */
+    TEST_ASSERT_EQUAL_UINT8(185u, out[3]); /* 128 + 32640 / 570 = 128 + 57 */
     TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_BLUE, 1u, out, 4u, 4u, NULL));
-    TEST_ASSERT_EQUAL_UINT8(64u, out[0]);
+    TEST_ASSERT_EQUAL_UINT8(25u, out[0]);
     TEST_ASSERT_EQUAL_UINT8(128u, out[1]);
     TEST_ASSERT_EQUAL_UINT8(255u, out[2]);
-    TEST_ASSERT_EQUAL_UINT8(0u, out[3]);   /* (512 + 0 - 510) / 4 = 0 */
+    TEST_ASSERT_EQUAL_UINT8(14u, out[3]);  /* 128 - 65280 / 570 = 128 - 114 */
     TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_YELLOW, 1u, out, 4u, 4u, NULL));
-    TEST_ASSERT_EQUAL_UINT8(191u, out[0]); /* (512 + 255) / 4 */
+    TEST_ASSERT_EQUAL_UINT8(231u, out[0]); /* 128 + 32640 / 315 = 128 + 103 */
     TEST_ASSERT_EQUAL_UINT8(128u, out[1]);
-    TEST_ASSERT_EQUAL_UINT8(0u, out[2]);   /* (512 - 510) / 4 = 0 (truncated) */
-    TEST_ASSERT_EQUAL_UINT8(255u, out[3]); /* (512 + 510) / 4 */
-    /* dark red (60, 20, 20): T gives (124, 71, 71), red map (512 + 248 - 142) / 4 */
+    TEST_ASSERT_EQUAL_UINT8(0u, out[2]);   /* 128 - 207, clamped */
+    TEST_ASSERT_EQUAL_UINT8(242u, out[3]); /* 128 + 65280 / 570 = 128 + 114 */
+    /* brightness drops out: dark red (60, 20, 20) and bright red (240, 80, 80) differ only
+       through the dark bound 60: 128 + 10240 / 160 = 192 and 128 + 40960 / 460 = 217 */
     {
-        static const uint8_t dark[3] = {60, 20, 20};
-        sbr_image_t s1 = {1u, 1u, 3u, SBR_PIXEL_RGB888, dark};
-        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&s1, SBR_MAP_RED, 1u, out, 1u, 1u, NULL));
-        TEST_ASSERT_EQUAL_UINT8(154u, out[0]);
+        static const uint8_t reds[6] = {60, 20, 20, 240, 80, 80};
+        sbr_image_t s1 = {2u, 1u, 6u, SBR_PIXEL_RGB888, reds};
+        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&s1, SBR_MAP_RED, 1u, out, 2u, 2u, NULL));
+        TEST_ASSERT_EQUAL_UINT8(192u, out[0]);
+        TEST_ASSERT_EQUAL_UINT8(217u, out[1]);
+    }
+    /* near-black pixels stay near grey: (0, 0, 6) is 128 + 1536 / 66 = 151 in the blue map
+       (with the bound 0 it would be 255) */
+    {
+        static const uint8_t dim[3] = {0, 0, 6};
+        sbr_image_t s3 = {1u, 1u, 3u, SBR_PIXEL_RGB888, dim};
+        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&s3, SBR_MAP_BLUE, 1u, out, 1u, 1u, NULL));
+        TEST_ASSERT_EQUAL_UINT8(151u, out[0]);
     }
     /* the same pixels in BGR order give the same maps */
     {
@@ -112,7 +124,7 @@ static void test_map_formulas_on_known_colours(void)
         sbr_image_t s2 = {4u, 1u, 12u, SBR_PIXEL_BGR888, bgr};
         TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&s2, SBR_MAP_RED, 1u, out, 4u, 4u, NULL));
         TEST_ASSERT_EQUAL_UINT8(255u, out[0]);
-        TEST_ASSERT_EQUAL_UINT8(64u, out[2]);
+        TEST_ASSERT_EQUAL_UINT8(25u, out[2]);
     }
 }
 

@@ -284,6 +284,55 @@ static void test_map_subsample_per_kind(void)
     }
 }
 
+/* parts.map_min_area: a smaller region bound for one map kind keeps that map's small
+   regions; the other maps keep mser.min_area. */
+static void test_map_min_area_per_kind(void)
+{
+    static sbr_part_t with[64];
+    const sbr_image_t v = view();
+    sbr_parts_config_t c;
+    uint32_t x;
+    uint32_t y;
+    uint32_t n = 0u;
+    uint32_t nw = 0u;
+    uint32_t i;
+    uint32_t small_blue = 0u;
+    /* a dark blue disc of radius 5 (81 pixels) */
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            if (hypotf((float)x - 20.0f, (float)y - 20.0f) <= 5.0f) {
+                paint(x, y, 30u, 40u, 150u);
+            }
+        }
+    }
+    g_cfg.maps = (1u << SBR_MAP_INTENSITY) | (1u << SBR_MAP_BLUE);
+    g_cfg.mser.min_area = 120u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts,
+                                                    64u, &n, NULL));
+    c = g_cfg;
+    c.map_min_area[SBR_MAP_BLUE] = 40u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &c, &g_fft, g_ws, sizeof g_ws, with, 64u,
+                                                    &nw, NULL));
+    /* below mser.min_area: no part of either map */
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    /* the blue map's own bound keeps the disc there, and only there */
+    for (i = 0u; i < nw; i++) {
+        TEST_ASSERT_EQUAL_UINT8((uint8_t)SBR_MAP_BLUE, with[i].map);
+        if ((with[i].area >= 60u) && (with[i].area <= 100u) &&
+            (fabsf(with[i].fd.cx - 20.0f) < 1.0f) && (fabsf(with[i].fd.cy - 20.0f) < 1.0f)) {
+            small_blue++;
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32(1u, small_blue);
+    /* bounds: at most mser.max_area */
+    c.map_min_area[SBR_MAP_BLUE] = c.mser.max_area;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_config_check(&c));
+    c.map_min_area[SBR_MAP_RED] = c.mser.max_area + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_extract(&v, &c, &g_fft, g_ws, sizeof g_ws, g_parts,
+                                                           64u, &n, NULL));
+}
+
 static void test_parts_capacity_and_bad_input(void)
 {
     sbr_image_t v = view();
@@ -328,6 +377,7 @@ int main(void)
     RUN_TEST(test_ring_sign_and_triangle);
     RUN_TEST(test_subsample_keeps_input_coordinates);
     RUN_TEST(test_map_subsample_per_kind);
+    RUN_TEST(test_map_min_area_per_kind);
     RUN_TEST(test_parts_capacity_and_bad_input);
     return UNITY_END();
 }

@@ -1,28 +1,36 @@
 /**
  * @file map.h
- * @brief u8 channel maps from camera images: intensity and colour-opponent maps, with
+ * @brief u8 channel maps from camera images: intensity and colour (chromaticity) maps, with
  *        optional block subsampling (the input of region extraction).
  *
  * Each output pixel first averages an s x s block of the source (s = subsample, rounded
- * to nearest), giving mean channel values in 0..255 (a GRAY8 source gives the same value
- * for all three). Each mean c then passes the tone curve T(c) = round(sqrt(255 c)) (a
- * table: T(0) = 0, T(16) = 64, T(64) = 128, T(255) = 255), giving R, G, B. The curve
- * stretches the dark end: a sign in shadow under a bright sky, whose pixels a camera
- * exposed for the sky records in 10..60, spans about twice as many grey levels, enough
- * for MSER's stability test (on GTSDB 00400-00599 the recogniser's boxes matched 83 %
- * instead of 77 % of the signs, whatever the class, with the models of the time). Then,
- * with integer arithmetic (division truncates):
+ * to nearest), giving mean channel values R, G, B in 0..255 (a GRAY8 source gives the
+ * same value for all three). With integer arithmetic (division truncates towards zero):
  *
- *   ::SBR_MAP_INTENSITY  I = (R + G + B + 1) / 3
- *   ::SBR_MAP_RED        (512 + 2R - G - B) / 4      red vs. green and blue
- *   ::SBR_MAP_BLUE       (512 + 2B - R - G) / 4      blue vs. red and green
- *   ::SBR_MAP_YELLOW     (512 + R + G - 2B) / 4      yellow vs. blue
+ *   ::SBR_MAP_INTENSITY  (T(R) + T(G) + T(B) + 1) / 3
+ *   ::SBR_MAP_RED        C(2R - G - B)      red vs. green and blue
+ *   ::SBR_MAP_BLUE       C(2B - R - G)      blue vs. red and green
+ *   ::SBR_MAP_YELLOW     C(R + G - 2B)      yellow vs. blue
  *
- * The opponent maps are 128 for grey pixels of any brightness, rise towards 255 for
- * saturated red, blue or yellow and fall towards 0 for the opposite hue (cyan for red,
- * yellow for blue, blue for yellow); all stay in 0..255 without clamping. Red sign rims
- * are bright regions of the red map, blue mandatory signs bright regions of the blue map,
- * and the white or black inner parts extremal regions of the intensity map.
+ * The intensity map passes each mean c through the tone curve T(c) = round(sqrt(255 c))
+ * (a table: T(0) = 0, T(16) = 64, T(64) = 128, T(255) = 255). The curve stretches the
+ * dark end: a sign in shadow under a bright sky, whose pixels a camera exposed for the
+ * sky records in 10..60, spans about twice as many grey levels, enough for MSER's
+ * stability test (on GTSDB 00400-00599 the recogniser's boxes matched 83 % instead of
+ * 77 % of the signs, whatever the class, with the models of the time).
+ *
+ * The colour maps are chromaticities: C(d) = 128 + 128 d / (R + G + B + 60), clamped to
+ * 0..255. They are 128 for grey pixels of any brightness, rise towards 255 for saturated
+ * red, blue or yellow and fall towards 0 for the opposite hue (cyan for red, yellow for
+ * blue, blue for yellow). Dividing by the brightness makes a colour's value about the
+ * same in shadow and in sunlight; the 60 keeps the near-black pixels, whose hue is
+ * mostly noise, near 128. Red sign rims are bright regions of the red map, blue
+ * mandatory signs bright regions of the blue map, and the white or black inner parts
+ * extremal regions of the intensity map. (The earlier opponent maps, (512 + 2B - R - G)
+ * / 4 for blue, put a dark blue sign only about 20 levels above a pale sky: on GTSDB
+ * 00400-00599, MSER at the recogniser's settings outlined 22 of the 28 mandatory signs
+ * in the half-resolution blue map; the chromaticity map outlines 27, and all 28 with
+ * the recogniser's smaller blue-map regions, parts.h map_min_area.)
  *
  * Output size: floor(width / s) x floor(height / s). Work: one pass over the source.
  */

@@ -51,6 +51,11 @@ typedef struct sbr_parts_config_s {
         large enough anyway costs a quarter of the time at 2. Default 1 for every kind.
         The workspace is sized by `subsample` alone (the finest map). */
     uint32_t map_subsample[SBR_MAP_KINDS];
+    /** Smallest MSER region of one map kind (index ::sbr_map_kind_t), in that map's pixels;
+        0 = mser.min_area. A subsampled map's signs have a quarter of the area, so a smaller
+        bound keeps its small ones (more regions to describe). Otherwise in
+        [1, mser.max_area]. Default 0 for every kind. */
+    uint32_t map_min_area[SBR_MAP_KINDS];
     /** Region extraction. Defaults: delta 5, area 60..14400, variation 0.25, diversity 0.2,
         both polarities, max_nodes 68000 (a sixteenth of a 1360 x 800 map, measured
         sufficient on GTSDB scenes; stats.capacity_hit says when a frame needed more). */

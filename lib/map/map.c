@@ -2,7 +2,7 @@
 
 #include "../common/sbr_util.h"
 
-/* Tone curve applied to the channel values before the map formulas (map.h): square-root
+/* Tone curve applied to the channel values before the intensity formula (map.h): square-root
    compression, tone[c] = the integer nearest the square root of 255 c. It stretches the
    dark end (0..64 become 0..128) so that a sign in shadow under a bright sky spans enough
    grey levels for MSER's stability test. Computed offline; test_mser checks every entry
@@ -29,28 +29,48 @@ static const uint8_t k_tone[256] = {
     253u, 254u, 254u, 255u
 };
 
-/* One map value from mean channel values (before the tone curve). */
-static uint8_t map_value(sbr_map_kind_t kind, uint32_t mr, uint32_t mg, uint32_t mb)
+/* Colour map value from raw mean channel values: 128 + 128 d / (R + G + B + SBR_MAP_DARK),
+   d = the colour difference of the kind (map.h), the quotient truncated towards zero, the
+   result clamped to 0..255. */
+#define SBR_MAP_DARK 60
+static uint8_t chroma_value(int32_t d, uint32_t sum)
 {
-    const uint32_t r = k_tone[mr & 255u];
-    const uint32_t g = k_tone[mg & 255u];
-    const uint32_t b = k_tone[mb & 255u];
-    uint32_t v;
-    switch (kind) {
-    case SBR_MAP_RED:
-        v = ((512u + (2u * r)) - (g + b)) / 4u;
-        break;
-    case SBR_MAP_BLUE:
-        v = ((512u + (2u * b)) - (r + g)) / 4u;
-        break;
-    case SBR_MAP_YELLOW:
-        v = ((512u + r + g) - (2u * b)) / 4u;
-        break;
-    default:
-        v = (r + g + b + 1u) / 3u;
-        break;
+    int32_t v = 128 + ((128 * d) / ((int32_t)sum + SBR_MAP_DARK));
+    if (v < 0) {
+        v = 0;
+    }
+    if (v > 255) {
+        v = 255;
     }
     return (uint8_t)v;
+}
+
+/* One map value from mean channel values. */
+static uint8_t map_value(sbr_map_kind_t kind, uint32_t mr, uint32_t mg, uint32_t mb)
+{
+    const uint32_t ur = mr & 255u;
+    const uint32_t ug = mg & 255u;
+    const uint32_t ub = mb & 255u;
+    const int32_t r = (int32_t)ur;
+    const int32_t g = (int32_t)ug;
+    const int32_t b = (int32_t)ub;
+    const uint32_t sum = (ur + ug) + ub;
+    uint8_t v;
+    switch (kind) {
+    case SBR_MAP_RED:
+        v = chroma_value(((2 * r) - g) - b, sum);
+        break;
+    case SBR_MAP_BLUE:
+        v = chroma_value(((2 * b) - r) - g, sum);
+        break;
+    case SBR_MAP_YELLOW:
+        v = chroma_value((r + g) - (2 * b), sum);
+        break;
+    default:
+        v = (uint8_t)(((uint32_t)k_tone[ur] + (uint32_t)k_tone[ug] + (uint32_t)k_tone[ub] + 1u) / 3u);
+        break;
+    }
+    return v;
 }
 
 /* One row at subsample 1: map_value() of each pixel, without the block means' divisions;

@@ -20,6 +20,7 @@ void sbr_parts_config_default(sbr_parts_config_t *cfg)
         cfg->subsample = 1u;
         for (k = 0u; k < SBR_MAP_KINDS; k++) {
             cfg->map_subsample[k] = 1u;
+            cfg->map_min_area[k] = 0u;
         }
         sbr_mser_config_default(&cfg->mser);
         cfg->mser.max_nodes = 68000u;
@@ -56,7 +57,8 @@ sbr_status_t sbr_parts_config_check(const sbr_parts_config_t *cfg)
     for (k = 0u; k < SBR_MAP_KINDS; k++) {
         /* the product stays within the map's range (no overflow: both are checked first) */
         if ((cfg->map_subsample[k] == 0u) || (cfg->map_subsample[k] > SBR_MAP_MAX_SUBSAMPLE) ||
-            ((cfg->subsample * cfg->map_subsample[k]) > SBR_MAP_MAX_SUBSAMPLE)) {
+            ((cfg->subsample * cfg->map_subsample[k]) > SBR_MAP_MAX_SUBSAMPLE) ||
+            (cfg->map_min_area[k] > cfg->mser.max_area)) {
             return SBR_ERR_RANGE;
         }
     }
@@ -278,18 +280,22 @@ sbr_status_t sbr_parts_extract(const sbr_image_t *img, const sbr_parts_config_t 
 
     for (kind = 0u; (kind < SBR_MAP_KINDS) && (full == 0); kind++) {
         sbr_image_t map;
+        sbr_mser_config_t mc = cfg->mser;
         uint32_t sub;
         uint32_t nreg = 0u;
         uint32_t i;
         if ((cfg->maps & (1u << kind)) == 0u) {
             continue;
         }
+        if (cfg->map_min_area[kind] != 0u) {
+            mc.min_area = cfg->map_min_area[kind];
+        }
         sub = cfg->subsample * cfg->map_subsample[kind];
         st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, b.map, img->width / sub, l.map, &map);
         if (st != SBR_OK) {
             return st;
         }
-        st = sbr_mser_detect(&map, &cfg->mser, b.mser, b.mser_size, b.regions, cfg->max_regions,
+        st = sbr_mser_detect(&map, &mc, b.mser, b.mser_size, b.regions, cfg->max_regions,
                              &nreg);
         if (st == SBR_ERR_CAPACITY) {
             sx.capacity_hit = 1u;

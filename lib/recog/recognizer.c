@@ -87,6 +87,7 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
            00400-00599 with the models learned at full resolution: class-level F1 0.848 at
            full, 0.847 at half resolution; parts stage about 103 -> 80 ms per frame) */
         cfg->parts.map_subsample[SBR_MAP_BLUE] = 2u;
+        cfg->parts.map_min_area[SBR_MAP_BLUE] = 40u;
         cfg->match_p = 32u;
         cfg->max_parts = 4096u;
         cfg->max_votes = 16384u;
