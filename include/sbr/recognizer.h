@@ -152,10 +152,11 @@ typedef struct sbr_recog_config_s {
         map costs about a third more part time and, on GTSDB, did not help), the blue map
         at half resolution (map_subsample[SBR_MAP_BLUE] = 2: a quarter of its time, same
         F1 on GTSDB) with regions from 40 of its pixels (map_min_area[SBR_MAP_BLUE] = 40,
-        signs from about 15 px; mser.min_area 60 there lost a 17 px keep-right sign of
-        GTSDB 00400-00599, more blue regions cost about ... ms). Trade-off: maps and subsample set most of the time and memory;
-        subsample 2 quarters both and loses signs below about 24 px. GRAY8 frames need
-        maps = intensity only. */
+        signs from about 15 px: mser.min_area 60 there lost a 17 px keep-right sign of
+        GTSDB 00400-00599 (00507); the parts stage took about 1 ms a frame more, within
+        the noise of single passes). Trade-off: maps and subsample set most of the time
+        and memory; subsample 2 quarters both and loses signs below about 24 px. GRAY8
+        frames need maps = intensity only. */
     sbr_parts_config_t parts;
     /** Correlation size P (a supported FFT size, >= 2M + 1). Default 32. Larger P locates
         the peak on a finer grid before refinement; the cost grows with P log P. */
