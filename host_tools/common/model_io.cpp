@@ -305,4 +305,11 @@ bool report_write(const char *tool, const std::string &path, const std::string &
     return true;
 }
 
+void parts_at_full_resolution(sbr_parts_config_t &parts) {
+    for (uint32_t k = 0; k < SBR_MAP_KINDS; ++k) {
+        parts.map_subsample[k] = 1;
+        parts.map_min_area[k] = 0;
+    }
+}
+
 }  // namespace sbr_host

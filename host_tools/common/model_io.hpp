@@ -64,4 +64,10 @@ std::string write_picto_c(const Picto &p, const std::string &path, const std::st
 // "TOOL: ERROR"); returns false on error.
 bool report_write(const char *tool, const std::string &path, const std::string &error);
 
+// Every map of parts at full resolution with the MSER defaults' region bound: how the
+// prototype library is learned (sbr_train) and how the class stage's training candidates
+// are found (sbr_train_picto), whatever resolution the recogniser runs a map at
+// (descriptors are scale-normalised; parts.h map_subsample, map_min_area).
+void parts_at_full_resolution(sbr_parts_config_t &parts);
+
 }  // namespace sbr_host

@@ -166,10 +166,7 @@ int main(int argc, char **argv) {
     cfg.parts.maps = 0x7u;
     // ... and learns them at full resolution (the recogniser may run a map coarser:
     // descriptors are scale-normalised, see parts.map_subsample)
-    for (uint32_t k = 0; k < SBR_MAP_KINDS; ++k) {
-        cfg.parts.map_subsample[k] = 1;
-        cfg.parts.map_min_area[k] = 0;
-    }
+    parts_at_full_resolution(cfg.parts);
     const float centre_tol = cfg.centre_tol, size_f = 1.0f + cfg.size_tol;
     const auto t0 = std::chrono::steady_clock::now();
 

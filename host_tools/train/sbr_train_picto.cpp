@@ -212,10 +212,7 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     // every map at full resolution, as the part model was learned (sbr_train): the finest
     // candidates (the recogniser's default runs the blue map at half resolution; the class
     // stage learned this way scores the same there, see the README)
-    for (uint32_t k = 0; k < SBR_MAP_KINDS; ++k) {
-        rc.parts.map_subsample[k] = 1;
-        rc.parts.map_min_area[k] = 0;
-    }
+    parts_at_full_resolution(rc.parts);
     rc.min_parts = 1;
     rc.min_score = picto != nullptr ? kMineScore : 0.0f;
     sbr_model_t m = model;
