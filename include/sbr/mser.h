@@ -32,8 +32,9 @@
  * sbr_mser_region_mask() rebuilds its pixels from the map as a mask of its bounding box,
  * ready for sbr_contour_find_external().
  *
- * Memory: sbr_mser_workspace_size() bytes, 4-byte aligned, of which about 6 bytes per
- * pixel (a copy of the map, a state byte and a heap entry per pixel) and
+ * Memory: sbr_mser_workspace_size() bytes, 4-byte aligned, of which about 5.1 bytes per
+ * pixel (a copy of the map, a heap entry and a "reached" bit per pixel; a pixel waiting
+ * in the heap carries the next neighbour to look at in its entry) and
  * ::SBR_MSER_NODE_BYTES per tree node of area >= min_area. The number of such nodes is
  * at most the number of interior pixels; natural scenes have far fewer (the host tool
  * `sbr_mser` prints the count). config.max_nodes bounds it: 0 reserves the worst case
@@ -107,7 +108,8 @@ typedef struct sbr_mser_region_s {
 #define SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes) \
     (2048u + 258u * (32u + (((size_t)(delta)) + 1u) * 8u) + \
      ((size_t)(nodes)) * SBR_MSER_NODE_BYTES + \
-     (((size_t)(width)) * ((size_t)(height))) * 6u + 8u)
+     (((size_t)(width)) * ((size_t)(height))) * 5u + \
+     ((((size_t)(width)) * ((size_t)(height)) + 31u) / 32u) * 4u + 8u)
 
 /** @brief Fill a configuration with the defaults documented above. No-op for NULL. */
 void sbr_mser_config_default(sbr_mser_config_t *cfg);

@@ -17,11 +17,13 @@
 #define MSER_HEAP_HEADER_BYTES 2048u
 #define MSER_COMP_BYTES 32u
 
-/* Pixel state: bit 3 = reached by the flood; bits 0..2 = the next neighbour to look at
-   (1 right, 2 down, 3 left, 4 up, 5 done). The image border starts as "done". */
-#define ST_SEEN 0x08u
-#define ST_DIR_MASK 0x07u
-#define ST_DONE (ST_SEEN | 5u)
+/* The flood keeps one bit per pixel: reached (or on the image border, which bounds the
+   fill). What else a pixel waiting in the heap needs travels with its heap entry:
+   (pixel index << 3) | the next neighbour to look at (1 right, 2 down, 3 left, 4 up,
+   5 none left); its level is the level of the stack it waits on. Pixel indices are below
+   SBR_IMAGE_MAX_DIM^2 = 2^28, so an entry fits 32 bits. */
+#define HEAP_DIR_BITS 3u
+#define HEAP_DIR_MASK 7u
 
 #define NODE_SELECTED 1u
 
@@ -68,9 +70,9 @@ typedef struct mser_ctx_s {
     uint32_t *ring_size; /* [MSER_STACK * ring_cap] main-chain areas */
     uint16_t *ring_val;  /* [MSER_STACK * ring_cap] their levels */
     mser_node_t *node;   /* [node_cap] */
-    uint32_t *heap;      /* [pixels] */
+    uint32_t *heap;      /* [pixels] entries (HEAP_DIR_BITS) */
+    uint32_t *reached;   /* [(pixels + 31) / 32] bit p % 32 of word p / 32: pixel p reached */
     uint8_t *gray;       /* [pixels] the map, inverted for the bright pass */
-    uint8_t *state;      /* [pixels] */
     uint32_t width;
     uint32_t height;
     uint32_t ring_cap;   /* delta + 1 */
@@ -139,7 +141,7 @@ size_t sbr_mser_workspace_size(uint32_t width, uint32_t height, const sbr_mser_c
         const size_t pixels = (size_t)width * (size_t)height;
         const size_t nodes = mser_nodes_for(width, height, cfg) * (size_t)SBR_MSER_NODE_BYTES;
         return (size_t)MSER_HEAP_HEADER_BYTES + ((size_t)MSER_STACK * per_comp) + nodes +
-               (pixels * 6u) + 8u;
+               (pixels * 5u) + (((pixels + 31u) / 32u) * 4u) + 8u;
     }
 }
 
@@ -326,7 +328,17 @@ static uint32_t heap_pop(mser_ctx_t *c, uint32_t level)
     return c->heap[c->heap_base[level] + c->heap_top[level]];
 }
 
-/* Prepare one pass: the (inverted) copy of the map, states, and the heap layout. The
+static void mark_reached(mser_ctx_t *c, uint32_t p)
+{
+    c->reached[p >> 5] |= (1u << (p & 31u));
+}
+
+static uint32_t is_reached(const mser_ctx_t *c, uint32_t p)
+{
+    return (c->reached[p >> 5] >> (p & 31u)) & 1u;
+}
+
+/* Prepare one pass: the (inverted) copy of the map, the reached bits, and the heap layout. The
    heap's layout needs the number of interior pixels per level: counted for the first
    pass; the second pass (same map, inverted) reads them off the first pass's layout,
    level v of the inverted map being level 255 - v of the map. */
@@ -354,26 +366,31 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     for (y = 0u; y < h; y++) {
         const uint8_t *src = &map->data[(size_t)y * map->stride];
         uint8_t *g = &c->gray[(size_t)y * w];
-        uint8_t *s = &c->state[(size_t)y * w];
         uint32_t x;
         for (x = 0u; x < w; x++) {
             g[x] = (uint8_t)(src[x] ^ xor_mask);
         }
-        if ((y > 0u) && (y < (h - 1u))) {
-            s[0] = ST_DONE;
+        if ((second == 0) && (y > 0u) && (y < (h - 1u))) {
             for (x = 1u; x < (w - 1u); x++) {
-                s[x] = 0u;
+                c->heap_top[g[x]]++; /* count per level for now */
             }
-            s[w - 1u] = ST_DONE;
-            if (second == 0) {
-                for (x = 1u; x < (w - 1u); x++) {
-                    c->heap_top[g[x]]++; /* count per level for now */
-                }
-            }
-        } else {
-            for (x = 0u; x < w; x++) {
-                s[x] = ST_DONE;
-            }
+        }
+    }
+    /* nothing reached yet; the border is marked reached so the flood never enters it */
+    {
+        const uint32_t pixels = w * h;
+        const uint32_t words = (pixels + 31u) / 32u;
+        uint32_t i;
+        for (i = 0u; i < words; i++) {
+            c->reached[i] = 0u;
+        }
+        for (i = 0u; i < w; i++) {
+            mark_reached(c, i);
+            mark_reached(c, ((h - 1u) * w) + i);
+        }
+        for (y = 1u; y < (h - 1u); y++) {
+            mark_reached(c, y * w);
+            mark_reached(c, (y * w) + (w - 1u));
         }
     }
     for (v = 0u; v < MSER_LEVELS; v++) {
@@ -390,6 +407,8 @@ static void pass_flood(mser_ctx_t *c)
     const uint32_t w = c->width;
     uint32_t off[5];
     uint32_t p = w + 1u;
+    uint32_t k = 1u;
+    uint32_t cur = (uint32_t)c->gray[p];
     uint32_t top = 1u;
     int done = 0;
 
@@ -400,37 +419,36 @@ static void pass_flood(mser_ctx_t *c)
     off[4] = (0xFFFFFFFFu - w) + 1u; /* adds -w */
 
     comp_init(c, 0u, MSER_SENTINEL);
-    comp_init(c, 1u, (uint32_t)c->gray[p]);
-    c->state[p] = (uint8_t)(ST_SEEN | 1u);
+    comp_init(c, 1u, cur);
+    mark_reached(c, p);
     while (done == 0) {
-        uint32_t cur = (uint32_t)c->gray[p];
-        uint32_t k = (uint32_t)c->state[p] & ST_DIR_MASK;
+        uint32_t e; /* the next heap entry */
         while (k <= 4u) {
             const uint32_t q = p + off[k];
-            if (c->state[q] == 0u) {
+            if (is_reached(c, q) == 0u) {
                 const uint32_t g = (uint32_t)c->gray[q];
-                c->state[q] = (uint8_t)(ST_SEEN | 1u);
+                mark_reached(c, q);
                 if (g < cur) {
-                    /* a lower neighbour: come back to p later, descend into q */
-                    heap_push(c, cur, p);
-                    c->state[p] = (uint8_t)(ST_SEEN | (k + 1u));
+                    /* a lower neighbour: come back to p later (at its next neighbour),
+                       descend into q */
+                    heap_push(c, cur, (p << HEAP_DIR_BITS) | (k + 1u));
                     p = q;
                     top++;
                     comp_init(c, top, g);
                     cur = g;
                     k = 1u;
                 } else {
-                    heap_push(c, g, q);
+                    heap_push(c, g, (q << HEAP_DIR_BITS) | 1u);
                     k++;
                 }
             } else {
                 k++;
             }
         }
-        c->state[p] = ST_DONE;
         comp_add_pixel(c, &c->comp[top], p);
+        e = 0u;
         if (c->heap_top[cur] > 0u) {
-            p = heap_pop(c, cur);
+            e = heap_pop(c, cur);
         } else {
             uint32_t lv = cur + 1u;
             while ((lv < MSER_LEVELS) && (c->heap_top[lv] == 0u)) {
@@ -439,7 +457,7 @@ static void pass_flood(mser_ctx_t *c)
             if (lv >= MSER_LEVELS) {
                 done = 1;
             } else {
-                p = heap_pop(c, lv);
+                e = heap_pop(c, lv);
                 if (lv < (uint32_t)c->comp[top - 1u].level) {
                     comp_grow(c, top, lv);
                 } else {
@@ -448,8 +466,11 @@ static void pass_flood(mser_ctx_t *c)
                     comp_merge(c, top - 1u, top);
                     top--;
                 }
+                cur = lv;
             }
         }
+        p = e >> HEAP_DIR_BITS;
+        k = e & HEAP_DIR_MASK;
     }
     while ((top > 0u) && ((uint32_t)c->comp[top].level != MSER_SENTINEL)) {
         comp_grow(c, top, MSER_SENTINEL);
@@ -606,8 +627,9 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     base = &base[nodes * SBR_MSER_NODE_BYTES];
     c.heap = (uint32_t *)(void *)base;
     base = &base[pixels * 4u];
+    c.reached = (uint32_t *)(void *)base;
+    base = &base[((pixels + 31u) / 32u) * 4u];
     c.gray = base;
-    c.state = &base[pixels];
 
     c.width = map->width;
     c.height = map->height;
