@@ -31,12 +31,6 @@ extern "C" {
 
 namespace {
 
-uint64_t fnv(uint64_t h, const void *p, size_t n) {
-    const unsigned char *b = static_cast<const unsigned char *>(p);
-    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-    return h;
-}
-
 // Box i of the fixed set, scaled to an image of w x h.
 void box_of(int i, uint32_t w, uint32_t h, float b[4]) {
     const float s = float(12 + (i % 9) * 13) + 0.5f * float(i % 4);
@@ -79,7 +73,7 @@ int main(int argc, char **argv) {
     std::vector<int> ok(static_cast<size_t>(boxes));
     std::vector<float> prob(SBR_PICTO_OUTPUTS);
     double feat_us = 0.0, cls_us = 0.0;
-    uint64_t sum = 1469598103934665603ull;
+    uint64_t sum = sbr_host::kFnvStart;
     for (int k = 0; k < images; ++k) {
         char name[32];
         std::snprintf(name, sizeof name, "%05d.jpg", 400 + 50 * k);
@@ -107,7 +101,7 @@ int main(int argc, char **argv) {
                     std::fprintf(stderr, "sbr_bench_picto: classify failed on box %d of %s\n", i, name);
                     return 1;
                 }
-                if (r == 0 && ok[size_t(i)]) sum = fnv(sum, prob.data(), prob.size() * sizeof(float));
+                if (r == 0 && ok[size_t(i)]) sum = sbr_host::fnv1a(sum, prob.data(), prob.size() * sizeof(float));
             }
             auto t2 = std::chrono::steady_clock::now();
             best_f = std::min(best_f, std::chrono::duration<double, std::micro>(t1 - t0).count() / boxes);
@@ -115,9 +109,9 @@ int main(int argc, char **argv) {
         }
         int valid = 0;
         for (int i = 0; i < boxes; ++i) {
-            sum = fnv(sum, &ok[size_t(i)], sizeof(int));
+            sum = sbr_host::fnv1a(sum, &ok[size_t(i)], sizeof(int));
             if (ok[size_t(i)]) {
-                sum = fnv(sum, &feat[size_t(i) * SBR_PICTO_FEATURES], SBR_PICTO_FEATURES * sizeof(float));
+                sum = sbr_host::fnv1a(sum, &feat[size_t(i) * SBR_PICTO_FEATURES], SBR_PICTO_FEATURES * sizeof(float));
                 ++valid;
             }
         }

@@ -61,6 +61,12 @@ std::string gtsdb_image_dir(const std::string &dir) {
     return dir;
 }
 
+uint64_t fnv1a(uint64_t h, const void *p, size_t n) {
+    const unsigned char *b = static_cast<const unsigned char *>(p);
+    for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    return h;
+}
+
 std::vector<std::string> list_images(const std::string &dir) {
     std::vector<std::string> out;
     std::error_code ec;

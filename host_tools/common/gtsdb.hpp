@@ -1,6 +1,8 @@
 // GTSDB helpers for the host tools: ground truth, image lists, BGR views for the core.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -51,6 +53,11 @@ std::vector<std::string> list_images(const std::string &dir);
 
 // Image number of a file name like "00123.jpg" (-1 if it has none).
 int image_number(const std::string &path);
+
+// FNV-1a (64 bit) of n bytes, continuing from h (start: kFnvStart): checksums with which
+// benchmarks show that two builds computed bit-identical results.
+constexpr uint64_t kFnvStart = 1469598103934665603ull;
+uint64_t fnv1a(uint64_t h, const void *p, size_t n);
 
 // A BGR888 view of an 8-bit, 3-channel OpenCV image.
 sbr_image_t bgr_view(const cv::Mat &m);
