@@ -731,7 +731,8 @@ int main(int argc, char **argv) {
                 // --box-jitter: copies placed farther off (centre up to 25 % of the sign's
                 // size away, scale 0.74 to 1.35) for the box regression only, from their
                 // own random stream so the copies above stay as they were
-                std::mt19937 brng(seed * 100003u + unsigned(num) * 131u + unsigned(g) + 7u);
+                std::mt19937 brng;
+                if (box_jitter > 0 && box) brng.seed(seed * 100003u + unsigned(num) * 131u + unsigned(g) + 7u);
                 for (int j = 0; j < box_jitter && box; ++j) {
                     const float cx = 0.5f * float(b.x0 + b.x1) + 0.25f * w * U(brng);
                     const float cy = 0.5f * float(b.y0 + b.y1) + 0.25f * h * U(brng);
