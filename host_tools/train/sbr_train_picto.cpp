@@ -99,9 +99,9 @@
 //    F1 0.879, danger 37, prohibitory 99, mandatory 25. On by default (--no-rotate: off);
 //  - with --box-jitter N (default 0: none), N more copies of every annotated sign placed
 //    farther off (centre up to 25 % of its size away, scale 0.74-1.35), for the box
-//    regression only (no class): the part model's box for 00536's 17 px keep-right sign
-//    is 6 px too far left, and the regression, which had only seen copies up to 8 % off,
-//    left it there. With N = 8 (seed 2) the regression did move such boxes further (the
+//    regression only (no class; refused with --no-box): the part model's box for 00536's
+//    17 px keep-right sign is 6 px too far left, and the regression, which had only seen
+//    copies up to 8 % off, left it there. With N = 8 (seed 2) the regression did move such boxes further (the
 //    roundabout of 00479 from a 43 px box to within 2 px of its own), but the class stage
 //    trained that way found 102 prohibitory, 24 mandatory and 35 danger signs of
 //    00400-00599 (class-level F1 0.865) against 99, 25 and 37 (0.879) without, and
@@ -560,6 +560,10 @@ int main(int argc, char **argv) {
                      SBR_PICTO_HIDDEN_MAX);
         return 2;
     }
+    if (box_jitter > 0 && !box) {
+        std::fprintf(stderr, "sbr_train_picto: --box-jitter trains the box regression, which --no-box leaves out\n");
+        return 2;
+    }
     const auto t0 = std::chrono::steady_clock::now();
     auto secs = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
     const std::string dir = gtsdb_image_dir(data);
@@ -732,8 +736,8 @@ int main(int argc, char **argv) {
                 // size away, scale 0.74 to 1.35) for the box regression only, from their
                 // own random stream so the copies above stay as they were
                 std::mt19937 brng;
-                if (box_jitter > 0 && box) brng.seed(seed * 100003u + unsigned(num) * 131u + unsigned(g) + 7u);
-                for (int j = 0; j < box_jitter && box; ++j) {
+                if (box_jitter > 0) brng.seed(seed * 100003u + unsigned(num) * 131u + unsigned(g) + 7u);
+                for (int j = 0; j < box_jitter; ++j) {
                     const float cx = 0.5f * float(b.x0 + b.x1) + 0.25f * w * U(brng);
                     const float cy = 0.5f * float(b.y0 + b.y1) + 0.25f * h * U(brng);
                     const float s = std::exp(0.3f * U(brng));

@@ -120,6 +120,12 @@ sbr_status_t sbr_mser_config_check(const sbr_mser_config_t *cfg)
     return SBR_OK;
 }
 
+/* Words of the "reached" bitmap for `pixels` pixels (one bit each). */
+static size_t reached_words(size_t pixels)
+{
+    return (pixels + 31u) / 32u;
+}
+
 static size_t mser_nodes_for(uint32_t width, uint32_t height, const sbr_mser_config_t *cfg)
 {
     size_t n = SBR_MSER_WORST_NODES(width, height);
@@ -141,7 +147,7 @@ size_t sbr_mser_workspace_size(uint32_t width, uint32_t height, const sbr_mser_c
         const size_t pixels = (size_t)width * (size_t)height;
         const size_t nodes = mser_nodes_for(width, height, cfg) * (size_t)SBR_MSER_NODE_BYTES;
         return (size_t)MSER_HEAP_HEADER_BYTES + ((size_t)MSER_STACK * per_comp) + nodes +
-               (pixels * 5u) + (((pixels + 31u) / 32u) * 4u) + 8u;
+               (pixels * 5u) + (reached_words(pixels) * 4u) + 8u;
     }
 }
 
@@ -378,11 +384,11 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     }
     /* nothing reached yet; the border is marked reached so the flood never enters it */
     {
-        const uint32_t pixels = w * h;
-        const uint32_t words = (pixels + 31u) / 32u;
+        const size_t words = reached_words((size_t)w * (size_t)h);
+        size_t j;
         uint32_t i;
-        for (i = 0u; i < words; i++) {
-            c->reached[i] = 0u;
+        for (j = 0u; j < words; j++) {
+            c->reached[j] = 0u;
         }
         for (i = 0u; i < w; i++) {
             mark_reached(c, i);
@@ -628,7 +634,7 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     c.heap = (uint32_t *)(void *)base;
     base = &base[pixels * 4u];
     c.reached = (uint32_t *)(void *)base;
-    base = &base[((pixels + 31u) / 32u) * 4u];
+    base = &base[reached_words(pixels) * 4u];
     c.gray = base;
 
     c.width = map->width;
