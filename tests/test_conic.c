@@ -215,6 +215,93 @@ static void test_fit_degenerate_sets(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_ellipse_fit(p, 40u, NULL, &el));
 }
 
+/* Regression (fuzzer findings): finite, valid-looking ellipses whose conic overflows or
+   underflows float32 returned SBR_OK with NaN/Inf or a conic of another class. */
+static void test_ellipse_conic_refuses_what_float_cannot_hold(void)
+{
+    static const sbr_ellipse_t refused[] = {
+        {0.0f, 0.0f, 1e-30f, 1e-30f, 0.0f},  /* 1 / axis^2 overflows: all NaN before */
+        {1e30f, 0.0f, 10.0f, 5.0f, 0.0f},    /* f = inf before */
+        {0.0f, 0.0f, 1e-20f, 1e-20f, 0.3f},  /* a = inf, b = nan before */
+        {0.0f, 0.0f, 1e30f, 1e30f, 0.0f},    /* classified as a double line before */
+        {0.0f, 0.0f, 2e6f, 1e3f, 0.0f},      /* semi-major beyond SBR_CONIC_MAX_COORD */
+        {0.0f, 0.0f, 1.0f, 5e-4f, 0.0f},     /* semi-minor below SBR_CONIC_MIN_AXIS */
+    };
+    const sbr_ellipse_t far = {3e3f, -2e3f, 50.0f, 20.0f, 0.2f};
+    sbr_conic_t q = mk(7.0f, 7.0f, 7.0f, 7.0f, 7.0f, 7.0f);
+    sbr_conic_t untouched = q;
+    sbr_ellipse_t back;
+    sbr_conic_class_t cls;
+    uint32_t i;
+    for (i = 0u; i < sizeof(refused) / sizeof(refused[0]); i++) {
+        TEST_ASSERT_EQUAL_INT_MESSAGE(SBR_ERR_RANGE, sbr_ellipse_to_conic(&refused[i], &q),
+                                      "refused ellipse");
+        TEST_ASSERT_EQUAL_MEMORY(&untouched, &q, sizeof(q)); /* nothing written */
+    }
+    /* in range, far from the origin: a finite real ellipse that round-trips */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_to_conic(&far, &q));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&q, SBR_CONIC_ZERO_TOL, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_CONIC_REAL_ELLIPSE, cls);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_to_ellipse(&q, &back));
+    TEST_ASSERT_FLOAT_WITHIN(1.0f, far.cx, back.cx);
+    TEST_ASSERT_FLOAT_WITHIN(1.0f, far.cy, back.cy);
+    TEST_ASSERT_FLOAT_WITHIN(0.5f, far.semi_major, back.semi_major);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_to_conic(&back, &q));
+    /* over the domain, thin to round and near to far: either refused, or a finite conic
+       whose geometry comes back */
+    {
+        static const float centre[3] = {0.0f, 3e3f, 9.9e5f};
+        static const float minor[4] = {1e-3f, 1e-2f, 1.0f, 1e3f};
+        uint32_t ci;
+        uint32_t mi;
+        uint32_t refused_n = 0u;
+        for (ci = 0u; ci < 3u; ci++) {
+            for (mi = 0u; mi < 4u; mi++) {
+                const sbr_ellipse_t e = {centre[ci], -centre[ci], 1e3f, minor[mi], 0.7f};
+                const sbr_status_t st = sbr_ellipse_to_conic(&e, &q);
+                if (st == SBR_OK) {
+                    TEST_ASSERT_TRUE(isfinite(q.a) && isfinite(q.b) && isfinite(q.c) &&
+                                     isfinite(q.d) && isfinite(q.e) && isfinite(q.f));
+                    TEST_ASSERT_TRUE((q.a * q.c) - (q.b * q.b) > 0.0f);
+                } else {
+                    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, st);
+                    refused_n++;
+                }
+            }
+        }
+        TEST_ASSERT_TRUE(refused_n < 12u); /* the near, round ones are taken */
+    }
+    /* a real ellipse centred beyond the domain: its geometry is refused, not returned */
+    q = mk(1.0f, 0.0f, 1.0f, -4e6f, 0.0f, 1.5e13f); /* centre (4e6, 0), radius 1e6 */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_conic_to_ellipse(&q, &back));
+}
+
+/* Regression (fuzzer finding): one point at (-1e30, 0) against the unit circle gave
+   SBR_OK with rms NaN and max 0 (the max comparison skipped the NaN). */
+static void test_residual_refuses_overflow(void)
+{
+    const sbr_conic_t circle = mk(1.0f, 0.0f, 1.0f, 0.0f, 0.0f, -1.0f);
+    const sbr_point2f_t far[1] = {{-1e30f, 0.0f}};
+    const sbr_point2f_t edge[2] = {{-1e6f, 0.0f}, {0.0f, 1e6f}};
+    const sbr_conic_t huge = mk(3e38f, 0.0f, 3e38f, 0.0f, 0.0f, -1.0f);
+    const sbr_point2f_t two[2] = {{0.0f, 0.0f}, {1e3f, 1e3f}};
+    float rms = -1.0f;
+    float mx = -1.0f;
+    float cov = -1.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_conic_residual(&circle, far, 1u, &rms, &mx));
+    TEST_ASSERT_EQUAL_FLOAT(-1.0f, rms);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_coverage(&circle, far, 1u, 1.0f, &cov));
+    /* at the domain's edge the distance is finite: Sampson's (r^2 - 1) / 2r, about 5e5 */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_residual(&circle, edge, 2u, &rms, &mx));
+    TEST_ASSERT_TRUE(isfinite(rms) && isfinite(mx));
+    TEST_ASSERT_FLOAT_WITHIN(1e2f, 5e5f, mx);
+    /* a conic whose values overflow at the points */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_conic_residual(&huge, two, 2u, &rms, &mx));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_conic_residual(NULL, two, 2u, &rms, &mx));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_conic_residual(&circle, NULL, 2u, &rms, &mx));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_conic_residual(&circle, two, 2u, NULL, &mx));
+}
+
 static void test_residual_and_coverage(void)
 {
     const sbr_ellipse_t el = {100.0f, 80.0f, 60.0f, 30.0f, 0.5f};
@@ -401,6 +488,8 @@ int main(void)
     RUN_TEST(test_ellipse_conic_round_trip);
     RUN_TEST(test_fit_exact_points);
     RUN_TEST(test_fit_degenerate_sets);
+    RUN_TEST(test_ellipse_conic_refuses_what_float_cannot_hold);
+    RUN_TEST(test_residual_refuses_overflow);
     RUN_TEST(test_residual_and_coverage);
     RUN_TEST(test_torch_pose_exact_and_from_fitted_points);
     RUN_TEST(test_torch_pose_rejects_what_the_model_cannot_produce);

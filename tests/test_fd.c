@@ -644,10 +644,43 @@ static void test_check_reports_energy(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_fd_check(NULL, &e));
 }
 
+/* Regression (fuzzer finding): a NaN/Inf centroid passed the check, and sbr_fd_mirror()
+   and sbr_fd_smooth() returned SBR_OK with it. */
+static void test_check_refuses_non_finite_centroid(void)
+{
+    static const float bad[3] = {NAN, INFINITY, -INFINITY};
+    sbr_fd_t fd;
+    sbr_fd_t out;
+    uint32_t i;
+    transform(0.0f, 1.0f, 0.0f, 0.0f, 0u);
+    for (i = 0u; i < 6u; i++) {
+        fd = fd_of(g_tmp, NPTS);
+        if (i < 3u) {
+            fd.cx = bad[i];
+        } else {
+            fd.cy = bad[i - 3u];
+        }
+        memset(&out, 0x5A, sizeof(out));
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_check(&fd, NULL));
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_mirror(&fd, &out));
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_smooth(&fd, 0.05f, &out));
+        {
+            sbr_fd_match_t r;
+            TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE,
+                                  sbr_fd_match(&g_fft_p, &g_cov, &fd, &fd, g_work, 256u, &r));
+        }
+    }
+    fd = fd_of(g_tmp, NPTS);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_mirror(&fd, &out));
+    TEST_ASSERT_TRUE(isfinite(out.cx) && isfinite(out.cy));
+    TEST_ASSERT_EQUAL_FLOAT(-fd.cx, out.cx);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_self_match_is_perfect);
+    RUN_TEST(test_check_refuses_non_finite_centroid);
     RUN_TEST(test_similarity_transforms_recovered);
     RUN_TEST(test_covariant_without_rotation);
     RUN_TEST(test_six_and_nine);

@@ -489,6 +489,25 @@ static void test_refine_values(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_refine(&m, g_f, F, r, r, g_ws, sizeof g_ws));
     r[2] = INFINITY;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_refine(&m, g_f, F, r, r, g_ws, sizeof g_ws));
+    {
+        /* regression (fuzzer finding): a finite box whose width overflows gave SBR_OK
+           with a NaN/Inf box; boxes beyond SBR_PICTO_MAX_COORD are refused, the largest
+           accepted one stays finite at the largest scaling */
+        const float huge[4] = {-3e38f, -3e38f, 3e38f, 3e38f};
+        const float edge[4] = {-SBR_PICTO_MAX_COORD, -SBR_PICTO_MAX_COORD, SBR_PICTO_MAX_COORD,
+                               SBR_PICTO_MAX_COORD};
+        float out[4] = {1.0f, 2.0f, 3.0f, 4.0f};
+        uint32_t k;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_refine(&m, g_f, F, huge, out, g_ws, sizeof g_ws));
+        TEST_ASSERT_EQUAL_FLOAT(1.0f, out[0]); /* nothing written */
+        g_w3[(2u * (F + 1u)) + F] = 5.0f;       /* log w clamped to +0.7 */
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_refine(&m, g_f, F, edge, out, g_ws, sizeof g_ws));
+        for (k = 0u; k < 4u; k++) {
+            TEST_ASSERT_TRUE(isfinite(out[k]));
+        }
+        TEST_ASSERT_TRUE(out[2] > out[0]);
+        g_w3[(2u * (F + 1u)) + F] = 0.0f;
+    }
     g_f[1] = NAN;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_refine(&m, g_f, F, box, r, g_ws, sizeof g_ws));
     g_f[1] = 0.0f;

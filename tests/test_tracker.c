@@ -396,6 +396,99 @@ void test_kitti_model(void)
     }
 }
 
+/* Regression (fuzzer finding): a huge meas_sigma reached the decoder, where the kernel's
+   half width in channels overflowed a uint32_t. The kernel must fit in the window. */
+void test_meas_sigma_bounded_by_window(void)
+{
+    sbr_track_model_t m;
+    sbr_track_config_t cfg;
+    sbr_track_t trk;
+    sbr_track_target_t out[1];
+    sbr_track_detection_t d = {600.0f, 200.0f, 1.0f};
+    uint32_t n = 7u;
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_model_kitti(&m));
+    sbr_track_config_default(&cfg);
+    cfg.model = &m;
+    cfg.max_targets = 1u;
+    cfg.window = 25u;
+    cfg.meas_sigma = 1e12f;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_config_check(&cfg));
+    TEST_ASSERT_EQUAL(0u, sbr_track_workspace_size(&cfg));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_init(&trk, &cfg, g_ws_kitti, sizeof(g_ws_kitti)));
+    /* the bound: 5.53 * sigma / spacing channels <= window (spacing 3.5 px, window 25) */
+    cfg.meas_sigma = (25.0f * m.vel_spacing / 5.53f) * 1.01f;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_config_check(&cfg));
+    cfg.meas_sigma = (25.0f * m.vel_spacing / 5.53f) * 0.99f;
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_config_check(&cfg));
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_init(&trk, &cfg, g_ws_kitti, sizeof(g_ws_kitti)));
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD, &d, 1u, out, 1u, &n));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_TRUE(isfinite(out[0].x) && isfinite(out[0].y));
+    TEST_ASSERT_FLOAT_WITHIN(2.0f, 600.0f, out[0].x);
+    TEST_ASSERT_FLOAT_WITHIN(2.0f, 200.0f, out[0].y);
+}
+
+/* Every documented status of the configuration checks. */
+void test_config_statuses(void)
+{
+    sbr_track_config_t cfg;
+    sbr_channel_config_t rc;
+    sbr_track_model_t bad;
+    make_model();
+    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_config_check(NULL));
+    sbr_track_config_default(&cfg);
+    cfg.model = &g_model;
+    cfg.window = WINDOW;
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_config_check(&cfg));
+    cfg.gate = 0.0f;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_config_check(&cfg));
+    cfg.gate = INFINITY;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_config_check(&cfg));
+    cfg.gate = 4.0f;
+    cfg.confirm_hits = 0u;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_config_check(&cfg));
+    cfg.confirm_hits = 17u;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_config_check(&cfg));
+    cfg.confirm_hits = 16u;
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_config_check(&cfg));
+    cfg.max_misses = 256u;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_config_check(&cfg));
+    cfg.max_misses = 255u;
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_config_check(&cfg));
+    cfg.meas_sigma = NAN;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_config_check(&cfg));
+    cfg.meas_sigma = 3.0f;
+    cfg.window = 6u;
+    TEST_ASSERT_EQUAL(SBR_ERR_SIZE, sbr_track_config_check(&cfg));
+    cfg.window = WINDOW;
+    /* a model error comes through */
+    bad = g_model;
+    bad.vel_count = 4u;
+    cfg.model = &bad;
+    TEST_ASSERT_EQUAL(SBR_ERR_SIZE, sbr_track_config_check(&cfg));
+    /* sbr_track_region_config(): every status */
+    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_region_config(NULL, 0u, &rc));
+    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_region_config(&g_model, 0u, NULL));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_region_config(&g_model, 2u, &rc));
+    bad = g_model;
+    bad.regions[1] = 2u;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_region_config(&bad, 1u, &rc));
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_region_config(&bad, 0u, &rc));
+    bad.regions[1] = SBR_TRACK_MAX_REGIONS + 1u;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_region_config(&bad, 1u, &rc));
+    bad = g_model;
+    bad.extent[0] = NAN;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_region_config(&bad, 0u, &rc));
+    bad.extent[0] = 7.0f;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_region_config(&bad, 0u, &rc));
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_region_config(&g_model, 0u, &rc));
+    /* 3 regions on 1242 px: spacing 1242 / (3 - 2), first centre -621 */
+    TEST_ASSERT_EQUAL_UINT32(3u, rc.count);
+    TEST_ASSERT_EQUAL_FLOAT(1242.0f, rc.spacing);
+    TEST_ASSERT_EQUAL_FLOAT(-621.0f, rc.first_centre);
+    TEST_ASSERT_EQUAL_UINT32(3u, rc.overlap);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -406,5 +499,7 @@ int main(void)
     RUN_TEST(test_clutter_and_longer_dt);
     RUN_TEST(test_bad_input);
     RUN_TEST(test_kitti_model);
+    RUN_TEST(test_meas_sigma_bounded_by_window);
+    RUN_TEST(test_config_statuses);
     return UNITY_END();
 }

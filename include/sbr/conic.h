@@ -61,6 +61,12 @@ typedef enum sbr_conic_class_e {
     SBR_CONIC_INTERSECTING_LINES = 9 /**< det(C22) < 0, det(C) = 0 */
 } sbr_conic_class_t;
 
+/** Largest |coordinate| (pixels) of the points and ellipses the conic functions take:
+    conics of larger coordinates overflow float32 or lose their constant term. */
+#define SBR_CONIC_MAX_COORD 1e6f
+/** Smallest semi-axis (pixels) of an ellipse given to sbr_ellipse_to_conic(). */
+#define SBR_CONIC_MIN_AXIS 1e-3f
+
 /** Default relative tolerance of sbr_conic_classify(): a determinant counts as zero
     when |det| <= tol * |C|^n (n = 2 for det(C22), 3 for det(C); |C| the largest
     absolute entry). */
@@ -77,7 +83,12 @@ sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_c
 
 /**
  * @brief Centre, semi-axes and orientation of a real ellipse.
- * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (non-finite entry);
+ * @param[in]  conic   the conic.
+ * @param[out] ellipse its geometry, written on ::SBR_OK only; always one that
+ *                     sbr_ellipse_to_conic() takes (the two round-trip).
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (a non-finite entry, or an ellipse
+ *         outside what sbr_ellipse_to_conic() takes: centre or semi-major beyond
+ *         ::SBR_CONIC_MAX_COORD, semi-minor below ::SBR_CONIC_MIN_AXIS);
  *         ::SBR_ERR_DEGENERATE when the conic is not a real ellipse (at
  *         ::SBR_CONIC_ZERO_TOL).
  */
@@ -86,8 +97,14 @@ sbr_status_t sbr_conic_to_ellipse(const sbr_conic_t *conic, sbr_ellipse_t *ellip
 /**
  * @brief The conic of an ellipse, scaled so that f = -1 at the centre's origin shift
  *        (a, c of order 1 / axis^2).
- * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (non-finite values, an axis <= 0 or
- *         semi_minor > semi_major).
+ * @param[in]  ellipse the ellipse.
+ * @param[out] conic   its conic, written on ::SBR_OK only: finite, with an ellipse's
+ *                     centre and axes (sbr_conic_classify()'s relative tolerance may still
+ *                     call a small ellipse far from the origin a point ellipse).
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (non-finite values; |cx|, |cy| or
+ *         semi_major above ::SBR_CONIC_MAX_COORD; semi_minor below ::SBR_CONIC_MIN_AXIS
+ *         or above semi_major; or an ellipse so thin for its distance from the origin
+ *         that its float32 conic is no ellipse any more).
  */
 sbr_status_t sbr_ellipse_to_conic(const sbr_ellipse_t *ellipse, sbr_conic_t *conic);
 
@@ -114,9 +131,11 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
 /**
  * @brief Geometric fit residual: the Sampson distance |Q(p)| / |grad Q(p)| of each point
  *        (a first-order approximation of its distance to the conic, in pixels).
- * @param[out] rms     root mean square distance.
+ * @param[in]  points  n points, |coordinate| <= ::SBR_CONIC_MAX_COORD.
+ * @param[out] rms     root mean square distance (finite on ::SBR_OK).
  * @param[out] max_abs largest distance; may be NULL.
- * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n = 0); ::SBR_ERR_RANGE (non-finite).
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n = 0); ::SBR_ERR_RANGE (non-finite
+ *         input, a point beyond ::SBR_CONIC_MAX_COORD, or distances that overflow float32).
  */
 sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_point2f_t *points,
                                 uint32_t n, float *rms, float *max_abs);
@@ -126,7 +145,9 @@ sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_point2f_t *p
  *        that hold a point within `tol` pixels (Sampson distance) of the curve. 1 for a
  *        closed contour, about 0.5 for half an arc.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n = 0); ::SBR_ERR_RANGE (non-finite,
- *         tol <= 0); ::SBR_ERR_DEGENERATE (not a real ellipse).
+ *         a point beyond ::SBR_CONIC_MAX_COORD, tol <= 0, or an ellipse that
+ *         sbr_conic_to_ellipse() refuses as out of range); ::SBR_ERR_DEGENERATE (not a real
+ *         ellipse).
  */
 sbr_status_t sbr_ellipse_coverage(const sbr_conic_t *conic, const sbr_point2f_t *points,
                                   uint32_t n, float tol, float *coverage);

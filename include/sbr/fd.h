@@ -83,7 +83,7 @@ sbr_status_t sbr_fd_from_pointsf(const sbr_fft_t *fft, const sbr_pointf_t *point
 
 /**
  * @brief Check a descriptor as the matcher and the other descriptor functions do: M in
- *        1..::SBR_FD_MAX_M, finite positive scale, finite coefficients.
+ *        1..::SBR_FD_MAX_M, finite positive scale, finite centroid, finite coefficients.
  * @param[out] energy (may be NULL) sum of |C(n)|^2 over the 2M + 1 coefficients (1 for a
  *                    descriptor sbr computed), written on success.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE.

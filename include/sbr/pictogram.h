@@ -71,6 +71,10 @@ extern "C" {
 #define SBR_PICTO_MAX_SHIFT 0.5f
 /** Largest |log scale| one refinement applies (about a factor 2 either way). */
 #define SBR_PICTO_MAX_LOG_SCALE 0.7f
+/** Largest |coordinate| (pixels) of a box given to sbr_picto_refine(): four times the
+    largest image side, so every box of an image (and one that reaches outside it) is in,
+    and the refined box stays finite. */
+#define SBR_PICTO_MAX_COORD (4.0f * (float)SBR_IMAGE_MAX_DIM)
 /** Workspace bytes of sbr_picto_features() and sbr_picto_classify(). */
 #define SBR_PICTO_WORKSPACE_SIZE \
     ((size_t)SBR_PICTO_SIZE * SBR_PICTO_SIZE * 4u * sizeof(float) + \
@@ -173,12 +177,14 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
  *        (w3 = NULL) the box is returned unchanged.
  * @param[in]  model  checked with sbr_picto_check() first.
  * @param[in]  feat   ::SBR_PICTO_FEATURES finite values, of `box`.
- * @param[in]  box    x0, y0, x1, y1 the features came from; finite, x1 > x0, y1 > y0.
- * @param[out] refined x0, y0, x1, y1 (may be the same array as box).
+ * @param[in]  box    x0, y0, x1, y1 the features came from; finite, x1 > x0, y1 > y0,
+ *                    each |coordinate| <= ::SBR_PICTO_MAX_COORD.
+ * @param[out] refined x0, y0, x1, y1 (may be the same array as box); finite, written on
+ *                    ::SBR_OK only.
  * @param[in]  workspace ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (len); ::SBR_ERR_CORRUPT (model
- *         header); ::SBR_ERR_RANGE (a non-finite feature, a box not finite or empty);
- *         ::SBR_ERR_WORKSPACE.
+ *         header); ::SBR_ERR_RANGE (a non-finite feature; a box not finite, empty or beyond
+ *         ::SBR_PICTO_MAX_COORD); ::SBR_ERR_WORKSPACE.
  */
 sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat, uint32_t len,
                               const float box[4], float refined[4], void *workspace,

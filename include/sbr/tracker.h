@@ -115,7 +115,9 @@ typedef struct sbr_track_config_s {
                                Wider: survives longer gaps and harder manoeuvres, costs
                                time and memory linearly. Default 21. */
     float meas_sigma;     /**< detection noise, pixels (> 0): the width of a detection's
-                               kernel. Default 3. */
+                               kernel. The kernel, 5.53 * meas_sigma / vel_spacing
+                               channels, must fit in the window (at most `window`
+                               channels). Default 3. */
     float gate;           /**< association gate in standard deviations, > 0. Default 4. */
     uint32_t confirm_hits;/**< hits that confirm a target, 1 .. 16. Default 2. */
     uint32_t max_misses;  /**< consecutive misses a confirmed target survives, 0 .. 255.
@@ -239,7 +241,8 @@ sbr_status_t sbr_track_model_kitti(sbr_track_model_t *out);
 /**
  * @brief Check a configuration (its model by sbr_track_model_check()).
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (max_targets, window);
- *         ::SBR_ERR_RANGE (meas_sigma, gate, confirm_hits, max_misses); model errors.
+ *         ::SBR_ERR_RANGE (meas_sigma not finite, <= 0 or with a kernel wider than the
+ *         window; gate; confirm_hits; max_misses); model errors.
  */
 sbr_status_t sbr_track_config_check(const sbr_track_config_t *cfg);
 

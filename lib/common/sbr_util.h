@@ -42,17 +42,17 @@ static inline float sbr_util_dot(const float *a, const float *b, size_t n)
     float s1 = 0.0f;
     float s2 = 0.0f;
     float s3 = 0.0f;
-    size_t k = 0u;
-    while ((k + 4u) <= n) {
+    const size_t n4 = n - (n % 4u); /* the four-lane part; the tail loop is then
+                                        visibly bounded by n - n4 < 4 */
+    size_t k;
+    for (k = 0u; k < n4; k += 4u) {
         s0 += a[k] * b[k];
         s1 += a[k + 1u] * b[k + 1u];
         s2 += a[k + 2u] * b[k + 2u];
         s3 += a[k + 3u] * b[k + 3u];
-        k += 4u;
     }
-    while (k < n) {
+    for (k = n4; k < n; k++) {
         s0 += a[k] * b[k];
-        k++;
     }
     return (s0 + s1) + (s2 + s3);
 }

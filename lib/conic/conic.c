@@ -7,7 +7,7 @@
 #include "../common/sbr_util.h"
 
 #define CONIC_PI 3.14159265358979f
-#define FIT_MAX_COORD 1e6f
+#define FIT_MAX_COORD SBR_CONIC_MAX_COORD
 #define COVERAGE_SECTORS 64u
 /* largest rms Sampson distance of a fit, relative to the points' mean distance from
    their centroid */
@@ -263,6 +263,54 @@ static int ellipse_of(const sbr_conic_t *q0, sbr_ellipse_t *el)
     return ok;
 }
 
+/* The conic of an ellipse, unchecked. */
+static sbr_conic_t conic_of(const sbr_ellipse_t *el)
+{
+    const float cs = cosf(el->angle);
+    const float sn = sinf(el->angle);
+    const float ia = 1.0f / (el->semi_major * el->semi_major);
+    const float ib = 1.0f / (el->semi_minor * el->semi_minor);
+    const float a = (cs * cs * ia) + (sn * sn * ib);
+    const float b = cs * sn * (ia - ib);
+    const float c = (sn * sn * ia) + (cs * cs * ib);
+    const float x = el->cx;
+    const float y = el->cy;
+    sbr_conic_t q;
+    q.a = a;
+    q.b = b;
+    q.c = c;
+    q.d = -((a * x) + (b * y));
+    q.e = -((b * x) + (c * y));
+    q.f = ((a * x * x) + (2.0f * b * x * y) + (c * y * y)) - 1.0f;
+    return q;
+}
+
+/* An ellipse in the documented domain whose conic is finite and still has an ellipse's
+   geometry (centre, axes): SBR_OK and the conic, else SBR_ERR_RANGE. */
+static sbr_status_t ellipse_conic_checked(const sbr_ellipse_t *el, sbr_conic_t *out)
+{
+    sbr_status_t st = SBR_OK;
+    if ((isfinite(el->cx) == 0) || (isfinite(el->cy) == 0) || (isfinite(el->angle) == 0) ||
+        (isfinite(el->semi_major) == 0) || (isfinite(el->semi_minor) == 0) ||
+        (fabsf(el->cx) > SBR_CONIC_MAX_COORD) || (fabsf(el->cy) > SBR_CONIC_MAX_COORD) ||
+        (el->semi_minor < SBR_CONIC_MIN_AXIS) || (el->semi_minor > el->semi_major) ||
+        (el->semi_major > SBR_CONIC_MAX_COORD)) {
+        st = SBR_ERR_RANGE;
+    } else {
+        const sbr_conic_t q = conic_of(el);
+        sbr_ellipse_t back;
+        /* float32 cannot hold every such conic (a very thin ellipse far from the origin
+           loses its centre term): refuse one that is not finite or has no ellipse's
+           geometry any more */
+        if ((conic_finite(&q) == 0) || (ellipse_of(&q, &back) == 0)) {
+            st = SBR_ERR_RANGE;
+        } else {
+            *out = q;
+        }
+    }
+    return st;
+}
+
 sbr_status_t sbr_conic_to_ellipse(const sbr_conic_t *conic, sbr_ellipse_t *ellipse)
 {
     sbr_status_t st = SBR_OK;
@@ -270,9 +318,19 @@ sbr_status_t sbr_conic_to_ellipse(const sbr_conic_t *conic, sbr_ellipse_t *ellip
     if ((conic == NULL) || (ellipse == NULL)) {
         st = SBR_ERR_NULL;
     } else {
+        sbr_ellipse_t el = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
         st = sbr_conic_classify(conic, SBR_CONIC_ZERO_TOL, &cls);
-        if ((st == SBR_OK) && ((cls != SBR_CONIC_REAL_ELLIPSE) || (ellipse_of(conic, ellipse) == 0))) {
+        if ((st == SBR_OK) && ((cls != SBR_CONIC_REAL_ELLIPSE) || (ellipse_of(conic, &el) == 0))) {
             st = SBR_ERR_DEGENERATE;
+        }
+        if (st == SBR_OK) {
+            sbr_conic_t back;
+            /* the geometry must be one that sbr_ellipse_to_conic() takes back */
+            if (ellipse_conic_checked(&el, &back) != SBR_OK) {
+                st = SBR_ERR_RANGE;
+            } else {
+                *ellipse = el;
+            }
         }
     }
     return st;
@@ -283,26 +341,8 @@ sbr_status_t sbr_ellipse_to_conic(const sbr_ellipse_t *ellipse, sbr_conic_t *con
     sbr_status_t st = SBR_OK;
     if ((ellipse == NULL) || (conic == NULL)) {
         st = SBR_ERR_NULL;
-    } else if ((isfinite(ellipse->cx) == 0) || (isfinite(ellipse->cy) == 0) ||
-               (isfinite(ellipse->angle) == 0) || (isfinite(ellipse->semi_major) == 0) ||
-               (ellipse->semi_minor <= 0.0f) || (ellipse->semi_minor > ellipse->semi_major)) {
-        st = SBR_ERR_RANGE;
     } else {
-        const float cs = cosf(ellipse->angle);
-        const float sn = sinf(ellipse->angle);
-        const float ia = 1.0f / (ellipse->semi_major * ellipse->semi_major);
-        const float ib = 1.0f / (ellipse->semi_minor * ellipse->semi_minor);
-        const float a = (cs * cs * ia) + (sn * sn * ib);
-        const float b = cs * sn * (ia - ib);
-        const float c = (sn * sn * ia) + (cs * cs * ib);
-        const float x = ellipse->cx;
-        const float y = ellipse->cy;
-        conic->a = a;
-        conic->b = b;
-        conic->c = c;
-        conic->d = -((a * x) + (b * y));
-        conic->e = -((b * x) + (c * y));
-        conic->f = ((a * x * x) + (2.0f * b * x * y) + (c * y * y)) - 1.0f;
+        st = ellipse_conic_checked(ellipse, conic);
     }
     return st;
 }
@@ -620,7 +660,7 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
                 /* conic in normalised coordinates, then back: x' = s (x - mx) */
                 const sbr_conic_t qn = conic_from_reduced(t, best_v);
                 const float miss = normalised_miss(&qn, points, n, mx, my, s);
-                sbr_ellipse_t en;
+                sbr_ellipse_t en = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
                 if ((ellipse_of(&qn, &en) == 0) || (miss > FIT_MAX_MISS) || (isfinite(miss) == 0) ||
                     (hyperbola_fits_better(mm_keep, t, points, n, mx, my, s, miss) != 0)) {
                     st = SBR_ERR_DEGENERATE; /* e.g. the points of a hyperbola */
@@ -635,16 +675,20 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
                                     (2.0f * qn.d * s * mx) - (2.0f * qn.e * s * my) + qn.f;
                     const sbr_conic_t q = {a, b, c2, d, e, f};
                     const float m = max_abs_entry(&q);
-                    if ((m <= 0.0f) || (isfinite(m) == 0)) {
+                    sbr_ellipse_t el;
+                    sbr_conic_t back;
+                    el.cx = (en.cx / s) + mx;
+                    el.cy = (en.cy / s) + my;
+                    el.semi_major = en.semi_major / s;
+                    el.semi_minor = en.semi_minor / s;
+                    el.angle = en.angle;
+                    if ((m <= 0.0f) || (isfinite(m) == 0) ||
+                        (ellipse_conic_checked(&el, &back) != SBR_OK)) {
                         st = SBR_ERR_DEGENERATE;
                     } else {
                         *conic = conic_div(&q, m);
                         if (ellipse != NULL) {
-                            ellipse->cx = (en.cx / s) + mx;
-                            ellipse->cy = (en.cy / s) + my;
-                            ellipse->semi_major = en.semi_major / s;
-                            ellipse->semi_minor = en.semi_minor / s;
-                            ellipse->angle = en.angle;
+                            *ellipse = el;
                         }
                     }
                 }
@@ -656,12 +700,14 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
 
 /* ---------------------------------------------------------------- residual, coverage */
 
+/* Finite points within +-SBR_CONIC_MAX_COORD. */
 static int points_finite(const sbr_point2f_t *p, uint32_t n)
 {
     uint32_t i;
     int ok = 1;
     for (i = 0u; (i < n) && (ok != 0); ++i) {
-        if ((isfinite(p[i].x) == 0) || (isfinite(p[i].y) == 0)) {
+        if ((isfinite(p[i].x) == 0) || (isfinite(p[i].y) == 0) ||
+            (fabsf(p[i].x) > SBR_CONIC_MAX_COORD) || (fabsf(p[i].y) > SBR_CONIC_MAX_COORD)) {
             ok = 0;
         }
     }
@@ -693,11 +739,15 @@ sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_point2f_t *p
         for (i = 0u; i < n; ++i) {
             const float dd = sampson(&q, points[i].x - ox, points[i].y - oy);
             acc += dd * dd;
-            mx = fmaxf(mx, dd);
+            mx = ((dd > mx) || (isnan(dd) != 0)) ? dd : mx; /* a NaN is kept, not skipped */
         }
-        *rms = sqrtf(acc / (float)n);
-        if (max_abs != NULL) {
-            *max_abs = mx;
+        if ((isfinite(acc) == 0) || (isfinite(mx) == 0) || (isnan(mx) != 0)) {
+            st = SBR_ERR_RANGE; /* a conic whose values overflow float32 at these points */
+        } else {
+            *rms = sqrtf(acc / (float)n);
+            if (max_abs != NULL) {
+                *max_abs = mx;
+            }
         }
     }
     return st;
@@ -726,8 +776,8 @@ sbr_status_t sbr_ellipse_coverage(const sbr_conic_t *conic, const sbr_point2f_t 
         const float cs = cosf(el.angle);
         const float sn = sinf(el.angle);
         const sbr_ellipse_t centred = {0.0f, 0.0f, el.semi_major, el.semi_minor, el.angle};
-        (void)sbr_ellipse_to_conic(&centred, &q);
-        for (i = 0u; i < n; ++i) {
+        st = sbr_ellipse_to_conic(&centred, &q);
+        for (i = 0u; (i < n) && (st == SBR_OK); ++i) {
             const float dx = points[i].x - el.cx;
             const float dy = points[i].y - el.cy;
             if (sampson(&q, dx, dy) <= tol) {

@@ -190,7 +190,7 @@ sbr_status_t sbr_fd_check(const sbr_fd_t *fd, float *energy)
         return SBR_ERR_NULL;
     }
     if ((fd->m == 0u) || (fd->m > SBR_FD_MAX_M) || (isfinite(fd->scale) == 0) ||
-        (fd->scale <= 0.0f)) {
+        (fd->scale <= 0.0f) || (isfinite(fd->cx) == 0) || (isfinite(fd->cy) == 0)) {
         return SBR_ERR_RANGE;
     }
     e = coeff_energy(fd); /* finite iff every coefficient is */

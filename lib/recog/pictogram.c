@@ -89,9 +89,15 @@ static int header_ok(const sbr_picto_model_t *model)
 }
 
 /* Rows x columns of the last layer's inputs plus bias. */
+/* The last layers' inputs (without the bias). */
+static size_t last_inputs_n(const sbr_picto_model_t *model)
+{
+    return (size_t)((model->hidden > 0u) ? model->hidden : SBR_PICTO_FEATURES);
+}
+
 static size_t last_cols(const sbr_picto_model_t *model)
 {
-    return (size_t)((model->hidden > 0u) ? model->hidden : SBR_PICTO_FEATURES) + 1u;
+    return last_inputs_n(model) + 1u;
 }
 
 static int all_finite(const float *w, size_t n)
@@ -595,13 +601,15 @@ static void rows_dot(const float *w, size_t stride, uint32_t rows, const float *
     }
 }
 
-/* out[r] = w[r] . [in; 1] for `rows` rows of `cols` (inputs + bias). */
-static void affine(const float *w, const float *in, size_t cols, uint32_t rows, float *out)
+/* out[r] = w[r] . [in; 1] for `rows` rows of `n_in` inputs and a bias (row stride
+   n_in + 1). */
+static void affine(const float *w, const float *in, size_t n_in, uint32_t rows, float *out)
 {
+    const size_t cols = n_in + 1u;
     uint32_t r;
-    rows_dot(w, cols, rows, in, cols - 1u, out);
+    rows_dot(w, cols, rows, in, n_in, out);
     for (r = 0u; r < rows; r++) {
-        out[r] = w[((size_t)r * cols) + (cols - 1u)] + out[r];
+        out[r] = w[((size_t)r * cols) + n_in] + out[r];
     }
 }
 
@@ -611,9 +619,9 @@ static const float *last_inputs(const sbr_picto_model_t *model, const float *fea
 {
     const float *in = feat;
     if (model->hidden > 0u) {
-        const uint32_t cols = SBR_PICTO_FEATURES + 1u; /* inputs + bias */
+        const size_t n_feat = SBR_PICTO_FEATURES;
         uint32_t i;
-        affine(model->w1, feat, (size_t)cols, model->hidden, a);
+        affine(model->w1, feat, n_feat, model->hidden, a);
         for (i = 0u; i < model->hidden; i++) {
             a[i] = (a[i] > 0.0f) ? a[i] : 0.0f;
         }
@@ -641,7 +649,7 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
     if (st != SBR_OK) {
         return st;
     }
-    affine(model->w2, last_inputs(model, feat, (float *)workspace), last_cols(model),
+    affine(model->w2, last_inputs(model, feat, (float *)workspace), last_inputs_n(model),
            SBR_PICTO_OUTPUTS, prob);
     mx = prob[0];
     for (i = 1u; i < SBR_PICTO_OUTPUTS; i++) {
@@ -676,7 +684,9 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
     if (st != SBR_OK) {
         return st;
     }
-    if ((finite4(box) == 0) || (box[2] <= box[0]) || (box[3] <= box[1])) {
+    if ((finite4(box) == 0) || (box[2] <= box[0]) || (box[3] <= box[1]) ||
+        (fabsf(box[0]) > SBR_PICTO_MAX_COORD) || (fabsf(box[1]) > SBR_PICTO_MAX_COORD) ||
+        (fabsf(box[2]) > SBR_PICTO_MAX_COORD) || (fabsf(box[3]) > SBR_PICTO_MAX_COORD)) {
         return SBR_ERR_RANGE;
     }
     cx = 0.5f * (box[0] + box[2]);
@@ -685,7 +695,7 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
     hh = 0.5f * (box[3] - box[1]);
     if (model->w3 != NULL) {
         float d[SBR_PICTO_BOX_OUTPUTS];
-        affine(model->w3, last_inputs(model, feat, (float *)workspace), last_cols(model),
+        affine(model->w3, last_inputs(model, feat, (float *)workspace), last_inputs_n(model),
                SBR_PICTO_BOX_OUTPUTS, d);
         cx += 2.0f * hw * picto_clampf(d[0], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);
         cy += 2.0f * hh * picto_clampf(d[1], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);

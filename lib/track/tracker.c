@@ -268,6 +268,14 @@ sbr_status_t sbr_track_config_check(const sbr_track_config_t *cfg)
         if (st == SBR_OK) {
             st = sbr_track_model_check(cfg->model);
         }
+        if (st == SBR_OK) {
+            /* a detection's kernel, in channels, must fit in a target's window (the
+               decoder's neighbourhood and the channel counts it derives are then bounded) */
+            const float kernel = (TRK_KERNEL_PER_SIGMA * cfg->meas_sigma) / cfg->model->vel_spacing;
+            if ((isfinite(kernel) == 0) || (kernel > (float)cfg->window)) {
+                st = SBR_ERR_RANGE;
+            }
+        }
     }
     return st;
 }
