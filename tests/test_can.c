@@ -403,6 +403,127 @@ static void test_scheduler_priority_and_budget(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_schedule(NULL, &cfg, &cyc, frames, 16u, &n, &dropped));
 }
 
+/* Regression (fuzzer finding): confirmed signs beyond max_signs raised overload but were
+   not counted in `dropped`. */
+static void test_scheduler_counts_signs_beyond_the_limit(void)
+{
+    sbr_can_e2e_tx_t tx;
+    sbr_can_sched_config_t cfg;
+    sbr_can_cycle_t cyc;
+    sbr_can_confirmed_sign_t signs[6];
+    sbr_can_frame_t frames[16];
+    sbr_can_ecu_status_t st;
+    uint32_t n = 0u;
+    uint32_t dropped = 0u;
+    uint32_t i;
+    memset(&cyc, 0, sizeof cyc);
+    memset(signs, 0, sizeof signs);
+    for (i = 0u; i < 6u; i++) {
+        signs[i].class_id = 14u;
+        signs[i].track_id = i;
+        signs[i].speed_kmh = SBR_CAN_SPEED_NONE;
+        signs[i].confidence = 90.0f;
+    }
+    cyc.signs = signs;
+    cyc.sign_count = 6u;
+    sbr_can_sched_config_default(&cfg);
+    cfg.max_signs = 3u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_tx_init(&tx));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_schedule(&tx, &cfg, &cyc, frames, 16u, &n, &dropped));
+    TEST_ASSERT_EQUAL_UINT32(6u, n); /* 3 signs, status, no detection, no object */
+    TEST_ASSERT_EQUAL_UINT32(3u, dropped);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_unpack_ecu_status(&frames[3], &st));
+    TEST_ASSERT_EQUAL_UINT32(1u, st.overload);
+}
+
+/* Regression (fuzzer finding): unpack returned SBR_OK with values outside their signals'
+   ranges (slot 15, class 50, confidence 126 %); every documented status of the unpackers. */
+static void test_unpack_refuses_out_of_range_signals(void)
+{
+    sbr_can_frame_t f;
+    sbr_can_confirmed_sign_t s;
+    sbr_can_detection_t d;
+    sbr_can_object_t o;
+    sbr_can_ecu_status_t e;
+    sbr_can_confirmed_sign_t good;
+    memset(&good, 0, sizeof good);
+    good.class_id = 14u;
+    good.speed_kmh = SBR_CAN_SPEED_NONE;
+    good.track_id = 7u;
+    good.confidence = 80.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_pack_confirmed_sign(&good, &f));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_unpack_confirmed_sign(&f, &s));
+    TEST_ASSERT_EQUAL_UINT32(14u, s.class_id);
+    f.data[1] |= 0xF0u; /* slot (bits 12..15) = 15 */
+    memset(&s, 0x5A, sizeof s);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_unpack_confirmed_sign(&f, &s));
+    TEST_ASSERT_EQUAL_HEX8(0x5Au, ((const uint8_t *)&s)[0]); /* untouched */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_pack_confirmed_sign(&good, &f));
+    f.data[2] = 50u; /* class 50 */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_unpack_confirmed_sign(&f, &s));
+    f.dlc = 7u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_can_unpack_confirmed_sign(&f, &s));
+    f.dlc = 8u;
+    f.id = SBR_CAN_ID_DETECTION;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_unpack_confirmed_sign(&f, &s));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_unpack_confirmed_sign(NULL, &s));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_unpack_confirmed_sign(&f, NULL));
+    /* a detection with confidence 126 % (raw 63 at bits 18..23) */
+    memset(&f, 0, sizeof f);
+    f.id = SBR_CAN_ID_DETECTION;
+    f.dlc = 8u;
+    f.data[2] = 0xFCu;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_unpack_detection(&f, &d));
+    f.data[2] = 0x00u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_unpack_detection(&f, &d));
+    /* objects and status: wrong id, length, NULL */
+    f.id = SBR_CAN_ID_TRACKED_OBJECT;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_unpack_object(&f, &o));
+    f.dlc = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_can_unpack_object(&f, &o));
+    f.dlc = 8u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_unpack_ecu_status(&f, &e));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_unpack_object(NULL, &o));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_unpack_object(&f, NULL));
+    f.id = SBR_CAN_ID_ECU_STATUS;
+    /* processing time raw 65535 = 6553.5 ms, above the signal's 6553.4 */
+    f.data[4] = 0xFFu;
+    f.data[5] = 0xFFu;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_unpack_ecu_status(&f, &e));
+    f.data[5] = 0x00u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_unpack_ecu_status(&f, &e));
+    f.dlc = 9u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_can_unpack_ecu_status(&f, &e));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_unpack_ecu_status(NULL, &e));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_unpack_ecu_status(&f, NULL));
+}
+
+/* Every documented status of sbr_can_e2e_protect(). */
+static void test_e2e_protect_statuses(void)
+{
+    sbr_can_e2e_tx_t tx;
+    sbr_can_frame_t f;
+    sbr_can_detection_t d;
+    memset(&d, 0, sizeof d);
+    d.class_id = SBR_CAN_CLASS_NONE_DET;
+    d.track_id = SBR_CAN_TRACK_NONE_DET;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_tx_init(&tx));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_pack_detection(&d, &f));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_e2e_protect(NULL, &f));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_e2e_protect(&tx, NULL));
+    f.id = 0x123u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_e2e_protect(&tx, &f));
+    f.id = SBR_CAN_ID_DETECTION;
+    f.dlc = 4u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_can_e2e_protect(&tx, &f));
+    f.dlc = 8u;
+    tx.counter[2] = 15u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_can_e2e_protect(&tx, &f));
+    tx.counter[2] = 14u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_protect(&tx, &f));
+    TEST_ASSERT_EQUAL_UINT8(0u, tx.counter[2]); /* 14 wraps to 0 */
+}
+
 static void test_mock_port_and_send(void)
 {
     sbr_can_frame_t store[4];
@@ -473,6 +594,9 @@ int main(void)
     RUN_TEST(test_e2e_counter_sequence);
     RUN_TEST(test_e2e_every_single_bit_flip_is_caught);
     RUN_TEST(test_scheduler_priority_and_budget);
+    RUN_TEST(test_scheduler_counts_signs_beyond_the_limit);
+    RUN_TEST(test_unpack_refuses_out_of_range_signals);
+    RUN_TEST(test_e2e_protect_statuses);
     RUN_TEST(test_mock_port_and_send);
 #ifdef SBR_TEST_CORTEX_M_PORT
     RUN_TEST(test_cortex_m_port_hook);

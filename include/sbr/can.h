@@ -106,8 +106,9 @@ typedef struct sbr_can_ecu_status_s {
 
 /** @name Pack (E2E bytes left zero) and unpack. Pack: ::SBR_OK, ::SBR_ERR_NULL,
  *  ::SBR_ERR_RANGE (a value outside its signal's range or NaN; the frame is untouched).
- *  Unpack: ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE (another message id),
- *  ::SBR_ERR_SIZE (DLC not 8). */
+ *  Unpack: ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE (another message id, or a signal
+ *  whose raw value is outside its range, e.g. class 50 or confidence 126 %: a corrupted
+ *  or foreign frame; `out` is untouched), ::SBR_ERR_SIZE (DLC not 8). */
 /** @{ */
 sbr_status_t sbr_can_pack_detection(const sbr_can_detection_t *in, sbr_can_frame_t *frame);
 sbr_status_t sbr_can_unpack_detection(const sbr_can_frame_t *frame, sbr_can_detection_t *out);

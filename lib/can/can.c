@@ -129,6 +129,8 @@ sbr_status_t sbr_can_unpack_detection(const sbr_can_frame_t *frame, sbr_can_dete
 {
     sbr_status_t st;
     uint64_t v;
+    sbr_can_detection_t r;
+    sbr_can_frame_t scratch;
 
     if ((frame == NULL) || (out == NULL)) {
         return SBR_ERR_NULL;
@@ -138,13 +140,19 @@ sbr_status_t sbr_can_unpack_detection(const sbr_can_frame_t *frame, sbr_can_dete
         return st;
     }
     v = frame_bits(frame->data);
-    out->class_id = get_bits(v, 12u, 6u);
-    out->confidence = 2.0f * (float)get_bits(v, 18u, 6u);
-    out->center_x = 2.0f * (float)get_bits(v, 24u, 10u);
-    out->center_y = 2.0f * (float)get_bits(v, 34u, 10u);
-    out->width = 4.0f * (float)get_bits(v, 44u, 7u);
-    out->height = 4.0f * (float)get_bits(v, 51u, 7u);
-    out->track_id = get_bits(v, 58u, 6u);
+    r.class_id = get_bits(v, 12u, 6u);
+    r.confidence = 2.0f * (float)get_bits(v, 18u, 6u);
+    r.center_x = 2.0f * (float)get_bits(v, 24u, 10u);
+    r.center_y = 2.0f * (float)get_bits(v, 34u, 10u);
+    r.width = 4.0f * (float)get_bits(v, 44u, 7u);
+    r.height = 4.0f * (float)get_bits(v, 51u, 7u);
+    r.track_id = get_bits(v, 58u, 6u);
+    /* a value outside its signal's range (a corrupted or foreign frame) is refused:
+       exactly what the packer would refuse */
+    if (sbr_can_pack_detection(&r, &scratch) != SBR_OK) {
+        return SBR_ERR_RANGE;
+    }
+    *out = r;
     return SBR_OK;
 }
 
@@ -182,6 +190,8 @@ sbr_status_t sbr_can_unpack_confirmed_sign(const sbr_can_frame_t *frame,
 {
     sbr_status_t st;
     uint64_t v;
+    sbr_can_confirmed_sign_t r;
+    sbr_can_frame_t scratch;
 
     if ((frame == NULL) || (out == NULL)) {
         return SBR_ERR_NULL;
@@ -191,13 +201,19 @@ sbr_status_t sbr_can_unpack_confirmed_sign(const sbr_can_frame_t *frame,
         return st;
     }
     v = frame_bits(frame->data);
-    out->slot = get_bits(v, 12u, 4u);
-    out->class_id = get_bits(v, 16u, 8u);
-    out->track_id = get_bits(v, 24u, 8u);
-    out->speed_kmh = get_bits(v, 32u, 8u);
-    out->confidence = (float)get_bits(v, 40u, 7u);
-    out->age_frames = get_bits(v, 48u, 8u);
-    out->count = get_bits(v, 56u, 4u);
+    r.slot = get_bits(v, 12u, 4u);
+    r.class_id = get_bits(v, 16u, 8u);
+    r.track_id = get_bits(v, 24u, 8u);
+    r.speed_kmh = get_bits(v, 32u, 8u);
+    r.confidence = (float)get_bits(v, 40u, 7u);
+    r.age_frames = get_bits(v, 48u, 8u);
+    r.count = get_bits(v, 56u, 4u);
+    /* a value outside its signal's range (a corrupted or foreign frame) is refused:
+       exactly what the packer would refuse */
+    if (sbr_can_pack_confirmed_sign(&r, &scratch) != SBR_OK) {
+        return SBR_ERR_RANGE;
+    }
+    *out = r;
     return SBR_OK;
 }
 
@@ -239,6 +255,8 @@ sbr_status_t sbr_can_unpack_object(const sbr_can_frame_t *frame, sbr_can_object_
 {
     sbr_status_t st;
     uint64_t v;
+    sbr_can_object_t r;
+    sbr_can_frame_t scratch;
 
     if ((frame == NULL) || (out == NULL)) {
         return SBR_ERR_NULL;
@@ -248,13 +266,19 @@ sbr_status_t sbr_can_unpack_object(const sbr_can_frame_t *frame, sbr_can_object_
         return st;
     }
     v = frame_bits(frame->data);
-    out->index = get_bits(v, 12u, 4u);
-    out->track_id = get_bits(v, 16u, 8u);
-    out->x = (float)get_bits(v, 24u, 11u);
-    out->y = (float)get_bits(v, 35u, 10u);
-    out->vx = 4.0f * (float)to_signed(get_bits(v, 45u, 7u), 7u);
-    out->vy = 4.0f * (float)to_signed(get_bits(v, 52u, 7u), 7u);
-    out->certainty = 4.0f * (float)get_bits(v, 59u, 5u);
+    r.index = get_bits(v, 12u, 4u);
+    r.track_id = get_bits(v, 16u, 8u);
+    r.x = (float)get_bits(v, 24u, 11u);
+    r.y = (float)get_bits(v, 35u, 10u);
+    r.vx = 4.0f * (float)to_signed(get_bits(v, 45u, 7u), 7u);
+    r.vy = 4.0f * (float)to_signed(get_bits(v, 52u, 7u), 7u);
+    r.certainty = 4.0f * (float)get_bits(v, 59u, 5u);
+    /* a value outside its signal's range (a corrupted or foreign frame) is refused:
+       exactly what the packer would refuse */
+    if (sbr_can_pack_object(&r, &scratch) != SBR_OK) {
+        return SBR_ERR_RANGE;
+    }
+    *out = r;
     return SBR_OK;
 }
 
@@ -298,6 +322,8 @@ sbr_status_t sbr_can_unpack_ecu_status(const sbr_can_frame_t *frame, sbr_can_ecu
 {
     sbr_status_t st;
     uint64_t v;
+    sbr_can_ecu_status_t r;
+    sbr_can_frame_t scratch;
 
     if ((frame == NULL) || (out == NULL)) {
         return SBR_ERR_NULL;
@@ -307,13 +333,19 @@ sbr_status_t sbr_can_unpack_ecu_status(const sbr_can_frame_t *frame, sbr_can_ecu
         return st;
     }
     v = frame_bits(frame->data);
-    out->overload = get_bits(v, 12u, 1u);
-    out->error = get_bits(v, 13u, 1u);
-    out->capacity_hit = get_bits(v, 14u, 1u);
-    out->frame_counter = get_bits(v, 16u, 16u);
-    out->processing_ms = 0.1f * (float)get_bits(v, 32u, 16u);
-    out->region_count = get_bits(v, 48u, 12u);
-    out->detection_count = get_bits(v, 60u, 4u);
+    r.overload = get_bits(v, 12u, 1u);
+    r.error = get_bits(v, 13u, 1u);
+    r.capacity_hit = get_bits(v, 14u, 1u);
+    r.frame_counter = get_bits(v, 16u, 16u);
+    r.processing_ms = 0.1f * (float)get_bits(v, 32u, 16u);
+    r.region_count = get_bits(v, 48u, 12u);
+    r.detection_count = get_bits(v, 60u, 4u);
+    /* a value outside its signal's range (a corrupted or foreign frame) is refused:
+       exactly what the packer would refuse */
+    if (sbr_can_pack_ecu_status(&r, &scratch) != SBR_OK) {
+        return SBR_ERR_RANGE;
+    }
+    *out = r;
     return SBR_OK;
 }
 
@@ -632,6 +664,7 @@ sbr_status_t sbr_can_schedule(sbr_can_e2e_tx_t *tx, const sbr_can_sched_config_t
             s.count = n_sign;
             sched_emit(&o, sbr_can_pack_confirmed_sign(&s, &f), &f);
         }
+        o.dropped += cycle->sign_count - n_sign; /* beyond max_signs */
     }
     /* 2. status: overload when anything of this cycle will not fit */
     {
