@@ -7,15 +7,33 @@
 
 namespace sbr_host {
 
-namespace {
-
-uint32_t crc32(const unsigned char *p, size_t n) {
+uint32_t crc32_ieee(const void *data, size_t n) {
+    const unsigned char *p = static_cast<const unsigned char *>(data);
     uint32_t c = 0xFFFFFFFFu;
     for (size_t i = 0; i < n; ++i) {
         c ^= p[i];
         for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
     }
     return ~c;
+}
+
+namespace {
+
+uint32_t crc32(const unsigned char *p, size_t n) { return crc32_ieee(p, n); }
+
+std::string read_all(const std::string &path, bool &ok) {
+    std::ifstream f(path, std::ios::binary);
+    ok = static_cast<bool>(f);
+    std::stringstream ss;
+    if (ok) ss << f.rdbuf();
+    return ss.str();
+}
+
+// The file's trailing CRC over every byte before it.
+bool crc_ok(const std::string &s) {
+    uint32_t stored = 0;
+    std::memcpy(&stored, s.data() + s.size() - 4, 4);
+    return crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size() - 4) == stored;
 }
 
 template <typename T>
@@ -94,8 +112,31 @@ void Model::bind() {
     }
 }
 
-std::string save_model(const Model &m, const std::string &path) {
-    std::string s = "SBRM";
+Picto picto_from_view(const sbr_picto_model_t &v) {
+    Picto p;
+    p.hidden = v.hidden;
+    p.threshold = v.threshold;
+    if (v.w1 != nullptr) p.w1.assign(v.w1, v.w1 + picto_w1_len(v.hidden));
+    if (v.w2 != nullptr) p.w2.assign(v.w2, v.w2 + picto_w2_len(v.hidden));
+    if (v.w3 != nullptr) p.w3.assign(v.w3, v.w3 + picto_w3_len(v.hidden));
+    p.bind();
+    return p;
+}
+
+Model model_from_view(const sbr_model_t &v) {
+    Model m;
+    m.fds.assign(v.fds, v.fds + v.proto_count);
+    m.protos.assign(v.protos, v.protos + v.proto_count);
+    m.cascade.assign(v.cascade, v.cascade + v.class_first[SBR_RECOG_CLASSES]);
+    m.has_picto = v.picto.version != 0;
+    if (m.has_picto) m.picto = picto_from_view(v.picto);
+    m.view = v;
+    m.bind();
+    return m;
+}
+
+std::string model_bytes(const Model &m, std::string &s) {
+    s = "SBRM";
     const sbr_model_t &v = m.view;
     put(s, v.version);
     put(s, v.fd_n);
@@ -117,6 +158,13 @@ std::string save_model(const Model &m, const std::string &path) {
         put_picto_weights(s, m.picto);
     }
     put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
+    return "";
+}
+
+std::string save_model(const Model &m, const std::string &path) {
+    std::string s;
+    const std::string e = model_bytes(m, s);
+    if (!e.empty()) return e;
     std::ofstream f(path, std::ios::binary);
     if (!f) return "cannot write " + path;
     f.write(s.data(), static_cast<std::streamsize>(s.size()));
@@ -124,28 +172,31 @@ std::string save_model(const Model &m, const std::string &path) {
 }
 
 std::string load_model(const std::string &path, Model &m) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) return "cannot read " + path;
-    std::stringstream ss;
-    ss << f.rdbuf();
-    const std::string s = ss.str();
-    if (s.size() < 8 || s.compare(0, 4, "SBRM") != 0) return path + ": not an sbr model file";
-    uint32_t stored = 0;
-    std::memcpy(&stored, s.data() + s.size() - 4, 4);
-    if (crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size() - 4) != stored)
-        return path + ": CRC mismatch (corrupted file)";
+    bool ok = false;
+    const std::string s = read_all(path, ok);
+    if (!ok) return "cannot read " + path;
+    return parse_model(s, path, m);
+}
+
+std::string parse_model(const std::string &s, const std::string &path, Model &m) {
+    m = Model{};
+    if (s.size() < 8 || s.compare(0, 4, "SBRM") != 0) return path + ": magic: not an sbr model file";
+    if (!crc_ok(s)) return path + ": crc: mismatch (corrupted or truncated file)";
     size_t off = 4;
     sbr_model_t v{};
     uint32_t np = 0, nc = 0;
-    bool ok = get(s, off, v.version) && get(s, off, v.fd_n) && get(s, off, v.fd_m) &&
-              get(s, off, np) && get(s, off, nc) && get(s, off, v.vote_error) &&
-              get(s, off, v.score_threshold);
+    if (!get(s, off, v.version)) return path + ": sizes: truncated header";
+    if (v.version != SBR_MODEL_VERSION)
+        return path + ": version: format " + std::to_string(v.version) + ", this build reads " +
+               std::to_string(SBR_MODEL_VERSION);
+    bool ok = get(s, off, v.fd_n) && get(s, off, v.fd_m) && get(s, off, np) && get(s, off, nc) &&
+              get(s, off, v.vote_error) && get(s, off, v.score_threshold);
     for (auto &g : v.group_first) ok = ok && get(s, off, g);
     for (auto &c : v.class_first) ok = ok && get(s, off, c);
-    if (!ok || v.version != SBR_MODEL_VERSION) return path + ": unsupported header";
-    if (np > 65535u || nc > 65535u * SBR_RECOG_CLASSES) return path + ": bad counts";
-    const size_t need = off + np * (sizeof(sbr_fd_t) + sizeof(sbr_model_proto_t)) + nc * 2u + 8u;
-    if (need > s.size()) return path + ": size does not match its counts";
+    if (!ok) return path + ": sizes: truncated header";
+    if (np == 0u || np > 65535u || nc > 65535u * SBR_RECOG_CLASSES) return path + ": sizes: bad counts";
+    const size_t need = off + size_t(np) * (sizeof(sbr_fd_t) + sizeof(sbr_model_proto_t)) + size_t(nc) * 2u + 8u;
+    if (need > s.size()) return path + ": sizes: file shorter than its counts";
     m.fds.resize(np);
     m.protos.resize(np);
     m.cascade.resize(nc);
@@ -159,15 +210,19 @@ std::string load_model(const std::string &path, Model &m) {
         const uint32_t hidden = picto - 1u;
         uint32_t box = 0;
         if (hidden > SBR_PICTO_HIDDEN_MAX || !get(s, off, m.picto.threshold) || !get(s, off, box) || box > 1u)
-            return path + ": bad class stage header";
-        if (!get_picto_weights(s, off, hidden, box, m.picto)) return path + ": size does not match its counts";
+            return path + ": sizes: bad class stage header";
+        if (!get_picto_weights(s, off, hidden, box, m.picto)) return path + ": sizes: do not match the counts";
     } else if (off + 4u != s.size()) {
-        return path + ": size does not match its counts";
+        return path + ": sizes: do not match the counts";
     }
     m.view = v;
     m.bind();
     const sbr_status_t st = sbr_model_check(&m.view);
-    if (st != SBR_OK) return path + ": model check failed: " + sbr_status_str(st);
+    if (st != SBR_OK) return path + ": values: sbr_model_check: " + sbr_status_str(st);
+    if (m.has_picto) {
+        const sbr_status_t ps = sbr_picto_check(&m.view.picto);
+        if (ps != SBR_OK) return path + ": values: sbr_picto_check: " + sbr_status_str(ps);
+    }
     return "";
 }
 
@@ -228,9 +283,9 @@ void Picto::bind() {
 }
 
 
-std::string save_picto(const Picto &p, const std::string &path) {
+std::string picto_bytes(const Picto &p, std::string &s) {
     if (!picto_sizes_ok(p)) return "classifier sizes do not match its hidden layer";
-    std::string s = "SBRP";
+    s = "SBRP";
     put(s, uint32_t(SBR_PICTO_VERSION));
     put(s, uint32_t(SBR_PICTO_FEATURES));
     put(s, p.hidden);
@@ -238,6 +293,13 @@ std::string save_picto(const Picto &p, const std::string &path) {
     put(s, uint32_t(p.w3.empty() ? 0u : 1u));
     put_picto_weights(s, p);
     put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
+    return "";
+}
+
+std::string save_picto(const Picto &p, const std::string &path) {
+    std::string s;
+    const std::string e = picto_bytes(p, s);
+    if (!e.empty()) return e;
     std::ofstream f(path, std::ios::binary);
     if (!f) return "cannot write " + path;
     f.write(s.data(), static_cast<std::streamsize>(s.size()));
@@ -245,29 +307,30 @@ std::string save_picto(const Picto &p, const std::string &path) {
 }
 
 std::string load_picto(const std::string &path, Picto &p) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) return "cannot read " + path;
-    std::stringstream ss;
-    ss << f.rdbuf();
-    const std::string s = ss.str();
-    if (s.size() < 24 || s.compare(0, 4, "SBRP") != 0) return path + ": not an sbr classifier file";
-    uint32_t stored = 0;
-    std::memcpy(&stored, s.data() + s.size() - 4, 4);
-    if (crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size() - 4) != stored)
-        return path + ": CRC mismatch (corrupted file)";
+    bool ok = false;
+    const std::string s = read_all(path, ok);
+    if (!ok) return "cannot read " + path;
+    return parse_picto(s, path, p);
+}
+
+std::string parse_picto(const std::string &s, const std::string &path, Picto &p) {
+    p = Picto{};
+    if (s.size() < 8 || s.compare(0, 4, "SBRP") != 0) return path + ": magic: not an sbr classifier file";
+    if (!crc_ok(s)) return path + ": crc: mismatch (corrupted or truncated file)";
     size_t off = 4;
     uint32_t version = 0, features = 0, hidden = 0, box = 0;
-    get(s, off, version);
-    get(s, off, features);
-    get(s, off, hidden);
-    get(s, off, p.threshold);
-    if (!get(s, off, box) || version != SBR_PICTO_VERSION || features != SBR_PICTO_FEATURES ||
-        hidden > SBR_PICTO_HIDDEN_MAX || box > 1u)
-        return path + ": unsupported header";
-    if (!get_picto_weights(s, off, hidden, box, p)) return path + ": size does not match its header";
+    if (!get(s, off, version)) return path + ": sizes: truncated header";
+    if (version != SBR_PICTO_VERSION)
+        return path + ": version: format " + std::to_string(version) + ", this build reads " +
+               std::to_string(SBR_PICTO_VERSION);
+    if (!get(s, off, features) || !get(s, off, hidden) || !get(s, off, p.threshold) || !get(s, off, box))
+        return path + ": sizes: truncated header";
+    if (features != SBR_PICTO_FEATURES || hidden > SBR_PICTO_HIDDEN_MAX || box > 1u)
+        return path + ": sizes: features, hidden units or box flag out of range";
+    if (!get_picto_weights(s, off, hidden, box, p)) return path + ": sizes: do not match the header";
     p.bind();
     const sbr_status_t st = sbr_picto_check(&p.view);
-    if (st != SBR_OK) return path + ": classifier check failed: " + sbr_status_str(st);
+    if (st != SBR_OK) return path + ": values: sbr_picto_check: " + sbr_status_str(st);
     return "";
 }
 

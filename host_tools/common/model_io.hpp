@@ -48,15 +48,28 @@ struct Model {
     void bind();
 };
 
-// Returns "" on success, else the reason.
+// Copies of a model held elsewhere (e.g. the built-in tables), owning their arrays.
+Model model_from_view(const sbr_model_t &v);
+Picto picto_from_view(const sbr_picto_model_t &v);
+
+// CRC-32/IEEE (the file forms' checksum).
+uint32_t crc32_ieee(const void *data, size_t n);
+
+// Returns "" on success, else the reason (naming the check that failed: magic, version,
+// crc, sizes, values).
 std::string save_model(const Model &m, const std::string &path);
+std::string model_bytes(const Model &m, std::string &bytes);
 std::string load_model(const std::string &path, Model &m);
+// The same from the file's bytes (`name` for messages).
+std::string parse_model(const std::string &bytes, const std::string &name, Model &m);
 // The generated C source (const tables and sbr_model_gtsdb(), which fills a caller's struct); `header` lines go into the
 // file's leading comment.
 std::string write_model_c(const Model &m, const std::string &path, const std::string &header);
 
 std::string save_picto(const Picto &p, const std::string &path);
+std::string picto_bytes(const Picto &p, std::string &bytes);
 std::string load_picto(const std::string &path, Picto &p);
+std::string parse_picto(const std::string &bytes, const std::string &name, Picto &p);
 // The generated C source: const tables and sbr_picto_gtsdb().
 std::string write_picto_c(const Picto &p, const std::string &path, const std::string &header);
 

@@ -42,6 +42,8 @@ extern "C" {
 #include "sbr/tracker.h"
 }
 
+#include "track_model_io.hpp"
+
 namespace {
 
 constexpr double kMatchPx = 20.0;
@@ -568,73 +570,7 @@ struct MotScorer {
 
 // ---- the learned model: file form and generated C ---------------------------------------
 
-struct ModelData {
-    sbr_track_model_t m{};
-    std::vector<float> trans, birth;
-    void bind()
-    {
-        m.transition = trans.data();
-        m.birth = birth.data();
-    }
-};
-
-std::string save_model_file(const ModelData &d, const std::string &path)
-{
-    std::ofstream out(path);
-    if (!out) return "cannot write " + path;
-    out << "sbr_track_model 1\n";
-    out << "order " << d.m.order << "\nperiod " << d.m.period << "\nextent " << d.m.extent[0] << " "
-        << d.m.extent[1] << "\nregions " << d.m.regions[0] << " " << d.m.regions[1] << "\nvel_count "
-        << d.m.vel_count << "\nvel_spacing " << d.m.vel_spacing << "\n";
-    out.precision(9);
-    out << "transition " << d.trans.size() << "\n";
-    for (size_t i = 0; i < d.trans.size(); ++i) out << d.trans[i] << ((i + 1) % d.m.vel_count ? ' ' : '\n');
-    out << "birth " << d.birth.size() << "\n";
-    for (size_t i = 0; i < d.birth.size(); ++i) out << d.birth[i] << ((i + 1) % d.m.vel_count ? ' ' : '\n');
-    return out ? "" : "write failed: " + path;
-}
-
-std::string load_model_file(const std::string &path, ModelData &d)
-{
-    std::ifstream in(path);
-    if (!in) return "cannot read " + path;
-    std::string key;
-    unsigned ver = 0;
-    in >> key >> ver;
-    if (key != "sbr_track_model" || ver != 1) return path + ": not an sbr_track_model 1 file";
-    size_t n = 0;
-    while (in >> key) {
-        if (key == "order") in >> d.m.order;
-        else if (key == "period") in >> d.m.period;
-        else if (key == "extent") in >> d.m.extent[0] >> d.m.extent[1];
-        else if (key == "regions") in >> d.m.regions[0] >> d.m.regions[1];
-        else if (key == "vel_count") in >> d.m.vel_count;
-        else if (key == "vel_spacing") in >> d.m.vel_spacing;
-        else if (key == "transition") {
-            in >> n;
-            if (n > 1000000) return path + ": table too large";
-            d.trans.resize(n);
-            for (auto &v : d.trans) in >> v;
-        } else if (key == "birth") {
-            in >> n;
-            if (n > 100000) return path + ": table too large";
-            d.birth.resize(n);
-            for (auto &v : d.birth) in >> v;
-        } else {
-            return path + ": unknown key " + key;
-        }
-        if (!in) return path + ": truncated";
-    }
-    if (d.trans.size() != SBR_TRACK_MODEL_TRANSITION_LEN(d.m.regions[0], d.m.regions[1], d.m.vel_count) ||
-        d.birth.size() != SBR_TRACK_MODEL_BIRTH_LEN(d.m.regions[0], d.m.regions[1], d.m.vel_count))
-        return path + ": table sizes do not match the header";
-    d.bind();
-    const sbr_status_t st = sbr_track_model_check(&d.m);
-    if (st != SBR_OK) return path + ": " + sbr_status_str(st);
-    return "";
-}
-
-std::string write_model_c(const ModelData &d, const std::string &path, const std::string &header)
+std::string write_model_c(const sbr_host::TrackModel &d, const std::string &path, const std::string &header)
 {
     std::ofstream out(path);
     if (!out) return "cannot write " + path;
@@ -712,10 +648,10 @@ std::vector<double> gauss_row(size_t V, double centre, double sigma)
     return g;
 }
 
-ModelData learn(const std::vector<Seq> &seqs, const std::vector<std::vector<std::vector<Det>>> &dets,
+sbr_host::TrackModel learn(const std::vector<Seq> &seqs, const std::vector<std::vector<std::vector<Det>>> &dets,
                 uint32_t vel, float spacing, uint32_t rx, uint32_t ry, long &triples, long &pairs)
 {
-    ModelData d;
+    sbr_host::TrackModel d;
     d.m.order = SBR_TRACK_ORDER;
     d.m.period = kPeriod;
     d.m.extent[0] = static_cast<float>(seqs.front().width);
@@ -1102,13 +1038,13 @@ int main(int argc, char **argv)
         std::vector<std::vector<std::vector<Det>>> dets;
         for (const Seq &s : seqs) dets.push_back(corrupt(s, o.noise, o.miss, o.clutter, o.seed));
         long triples = 0, pairs = 0;
-        ModelData d = learn(seqs, dets, o.vel_count, o.vel_spacing, 10, 5, triples, pairs);
+        sbr_host::TrackModel d = learn(seqs, dets, o.vel_count, o.vel_spacing, 10, 5, triples, pairs);
         const sbr_status_t st = sbr_track_model_check(&d.m);
         std::printf("learned from %zu sequences (%s), %ld detection triples, %ld pairs, no track ids: %s\n",
                     seqs.size(), o.seqs.c_str(), triples, pairs, sbr_status_str(st));
         if (st != SBR_OK) return 1;
         if (!o.model_out.empty()) {
-            const std::string e = save_model_file(d, o.model_out);
+            const std::string e = sbr_host::save_track_model(d, o.model_out);
             if (!e.empty()) { std::cerr << e << "\n"; return 1; }
         }
         if (!o.c_out.empty()) {
@@ -1128,9 +1064,9 @@ int main(int argc, char **argv)
         return 0;
     }
     sbr_track_model_t model{};
-    ModelData loaded;
+    sbr_host::TrackModel loaded;
     if (!o.model_file.empty()) {
-        const std::string e = load_model_file(o.model_file, loaded);
+        const std::string e = sbr_host::load_track_model(o.model_file, loaded);
         if (!e.empty()) { std::cerr << "sbr_track: " << e << "\n"; return 2; }
         model = loaded.m;
     } else if (o.cv_model > 0.0) {
