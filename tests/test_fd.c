@@ -676,11 +676,37 @@ static void test_check_refuses_non_finite_centroid(void)
     TEST_ASSERT_EQUAL_FLOAT(-fd.cx, out.cx);
 }
 
+/* Regression (fuzzer finding): smoothing a damaged descriptor that passes the check (a DC
+   term of 1e19, one tiny coefficient) returned SBR_OK with coefficients whose energy is
+   not finite. */
+static void test_smooth_refuses_non_finite_result(void)
+{
+    sbr_fd_t fd;
+    sbr_fd_t out;
+    float e = 0.0f;
+    memset(&fd, 0, sizeof fd);
+    fd.m = 1u;
+    fd.scale = 1.0f;
+    fd.c[0].re = 1e-19f; /* C(-1) */
+    fd.c[1].re = 1e19f;  /* the DC term, 0 in any descriptor sbr computes */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_check(&fd, &e));
+    memset(&out, 0x5A, sizeof out);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_smooth(&fd, 0.0f, &out));
+    TEST_ASSERT_EQUAL_HEX8(0x5Au, ((const unsigned char *)&out)[0]); /* untouched */
+    /* a sound descriptor still smooths to unit energy */
+    transform(0.0f, 1.0f, 0.0f, 0.0f, 0u);
+    fd = fd_of(g_tmp, NPTS);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_smooth(&fd, 0.1f, &out));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_check(&out, &e));
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, 1.0f, e);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_self_match_is_perfect);
     RUN_TEST(test_check_refuses_non_finite_centroid);
+    RUN_TEST(test_smooth_refuses_non_finite_result);
     RUN_TEST(test_similarity_transforms_recovered);
     RUN_TEST(test_covariant_without_rotation);
     RUN_TEST(test_six_and_nine);

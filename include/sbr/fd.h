@@ -108,8 +108,9 @@ sbr_status_t sbr_fd_mirror(const sbr_fd_t *in, sbr_fd_t *out);
  *
  * @param[in]  in    descriptor.
  * @param[in]  sigma 0 (copy) .. 0.5.
- * @param[out] out   smoothed descriptor; may equal `in`.
- * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a bad descriptor or sigma.
+ * @param[out] out   smoothed descriptor; may equal `in`; written on ::SBR_OK only.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a bad descriptor or sigma, or a
+ *         damaged descriptor whose smoothed, renormalised coefficients are not finite.
  */
 sbr_status_t sbr_fd_smooth(const sbr_fd_t *in, float sigma, sbr_fd_t *out);
 

@@ -236,6 +236,7 @@ sbr_status_t sbr_fd_smooth(const sbr_fd_t *in, float sigma, sbr_fd_t *out)
     float inv;
     uint32_t m;
     uint32_t k;
+    sbr_fd_t r;
 
     if (st != SBR_OK) {
         return st;
@@ -247,25 +248,31 @@ sbr_status_t sbr_fd_smooth(const sbr_fd_t *in, float sigma, sbr_fd_t *out)
         return SBR_ERR_RANGE;
     }
     m = in->m;
-    *out = *in;
+    r = *in;
     for (k = 1u; k <= m; k++) {
         const float fk = (float)k;
         const float w = expf(-g * fk * fk);
-        out->c[m + k].re *= w;
-        out->c[m + k].im *= w;
-        out->c[m - k].re *= w;
-        out->c[m - k].im *= w;
-        energy += (out->c[m + k].re * out->c[m + k].re) + (out->c[m + k].im * out->c[m + k].im) +
-                  (out->c[m - k].re * out->c[m - k].re) + (out->c[m - k].im * out->c[m - k].im);
+        r.c[m + k].re *= w;
+        r.c[m + k].im *= w;
+        r.c[m - k].re *= w;
+        r.c[m - k].im *= w;
+        energy += (r.c[m + k].re * r.c[m + k].re) + (r.c[m + k].im * r.c[m + k].im) +
+                  (r.c[m - k].re * r.c[m - k].re) + (r.c[m - k].im * r.c[m - k].im);
     }
-    if (energy <= 0.0f) {
+    if ((energy <= 0.0f) || (isfinite(energy) == 0)) {
         return SBR_ERR_RANGE;
     }
     inv = 1.0f / sqrtf(energy);
     for (k = 0u; k <= (2u * m); k++) {
-        out->c[k].re *= inv;
-        out->c[k].im *= inv;
+        r.c[k].re *= inv;
+        r.c[k].im *= inv;
     }
+    /* a damaged input (a DC term far from 0, coefficients near the float limits) can
+       leave no finite unit-energy result: refused, `out` untouched */
+    if (isfinite(coeff_energy(&r)) == 0) {
+        return SBR_ERR_RANGE;
+    }
+    *out = r;
     return SBR_OK;
 }
 
