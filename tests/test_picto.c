@@ -295,6 +295,15 @@ static void test_classify_values(void)
     g_f[0] = 0.25f; /* a = 0: uniform */
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
     TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f / 44.0f, p[7]);
+    /* regression (fuzzer finding): finite features so large that a logit overflows gave
+       SBR_OK with NaN probabilities (a = 2 * 3e38 - 1 = inf, logit 3 a = inf) */
+    g_f[0] = 3e38f;
+    p[7] = -1.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    g_f[0] = 1e6f; /* large but representable: one class takes all */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, p[7]);
+    g_f[0] = 0.25f; /* as the uniform case left it */
 }
 
 /* A network with 7 hidden units (the classifier works on blocks of four units and four
@@ -506,6 +515,20 @@ static void test_refine_values(void)
             TEST_ASSERT_TRUE(isfinite(out[k]));
         }
         TEST_ASSERT_TRUE(out[2] > out[0]);
+        /* regression (fuzzer finding): a box narrower than the features take gave an empty
+           refined box through rounding; the smallest accepted box, far out and shrunk
+           as much as allowed, stays a box */
+        {
+            const float thin[4] = {100.0f, 10.0f, 100.0f + 1e-5f, 30.0f};
+            const float small[4] = {6e4f, 6e4f, 6e4f + SBR_PICTO_MIN_BOX, 6e4f + SBR_PICTO_MIN_BOX};
+            TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_refine(&m, g_f, F, thin, out, g_ws, sizeof g_ws));
+            g_w3[(2u * (F + 1u)) + F] = -5.0f; /* log w clamped to -0.7 */
+            g_w3[(3u * (F + 1u)) + F] = -5.0f; /* log h too */
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_refine(&m, g_f, F, small, out, g_ws, sizeof g_ws));
+            TEST_ASSERT_TRUE(out[2] > out[0]);
+            TEST_ASSERT_TRUE(out[3] > out[1]);
+            g_w3[(3u * (F + 1u)) + F] = 0.0f;
+        }
         g_w3[(2u * (F + 1u)) + F] = 0.0f;
     }
     g_f[1] = NAN;

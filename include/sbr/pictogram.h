@@ -71,6 +71,9 @@ extern "C" {
 #define SBR_PICTO_MAX_SHIFT 0.5f
 /** Largest |log scale| one refinement applies (about a factor 2 either way). */
 #define SBR_PICTO_MAX_LOG_SCALE 0.7f
+/** Smallest width and height (pixels) of a box given to sbr_picto_features() and
+    sbr_picto_refine(). */
+#define SBR_PICTO_MIN_BOX 2.0f
 /** Largest |coordinate| (pixels) of a box given to sbr_picto_refine(): four times the
     largest image side, so every box of an image (and one that reaches outside it) is in,
     and the refined box stays finite. */
@@ -122,7 +125,7 @@ sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out);
  *        covers [i, i + 1) x [j, j + 1)). The box may reach outside the image by up to its
  *        own size (samples there repeat the border).
  * @param[in]  img        RGB888 or BGR888 view.
- * @param[in]  box        x0, y0, x1, y1; finite, at least 2 px wide and high.
+ * @param[in]  box        x0, y0, x1, y1; finite, at least ::SBR_PICTO_MIN_BOX wide and high.
  * @param[out] feat       ::SBR_PICTO_FEATURES values.
  * @param[in]  len        length of feat, >= ::SBR_PICTO_FEATURES.
  * @param[in]  workspace  ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
@@ -162,8 +165,9 @@ sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[
  * @param[out] prob   ::SBR_PICTO_OUTPUTS probabilities summing to 1.
  * @param[in]  workspace ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (len or nprob too small);
- *         ::SBR_ERR_CORRUPT (model header); ::SBR_ERR_RANGE (a non-finite feature);
- *         ::SBR_ERR_WORKSPACE.
+ *         ::SBR_ERR_CORRUPT (model header); ::SBR_ERR_RANGE (a non-finite feature, or
+ *         features so large that the logits overflow float32; sbr_picto_features()
+ *         never gives such); ::SBR_ERR_WORKSPACE.
  */
 sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *feat, uint32_t len,
                                 float *prob, uint32_t nprob, void *workspace,
@@ -177,14 +181,16 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
  *        (w3 = NULL) the box is returned unchanged.
  * @param[in]  model  checked with sbr_picto_check() first.
  * @param[in]  feat   ::SBR_PICTO_FEATURES finite values, of `box`.
- * @param[in]  box    x0, y0, x1, y1 the features came from; finite, x1 > x0, y1 > y0,
- *                    each |coordinate| <= ::SBR_PICTO_MAX_COORD.
- * @param[out] refined x0, y0, x1, y1 (may be the same array as box); finite, written on
- *                    ::SBR_OK only.
+ * @param[in]  box    x0, y0, x1, y1 the features came from; finite, at least
+ *                    ::SBR_PICTO_MIN_BOX wide and high, each |coordinate| <=
+ *                    ::SBR_PICTO_MAX_COORD.
+ * @param[out] refined x0, y0, x1, y1 (may be the same array as box); finite and not
+ *                    empty, written on ::SBR_OK only.
  * @param[in]  workspace ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (len); ::SBR_ERR_CORRUPT (model
- *         header); ::SBR_ERR_RANGE (a non-finite feature; a box not finite, empty or beyond
- *         ::SBR_PICTO_MAX_COORD); ::SBR_ERR_WORKSPACE.
+ *         header); ::SBR_ERR_RANGE (a non-finite feature, or features whose regression
+ *         overflows float32; a box not finite, smaller than
+ *         ::SBR_PICTO_MIN_BOX or beyond ::SBR_PICTO_MAX_COORD); ::SBR_ERR_WORKSPACE.
  */
 sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat, uint32_t len,
                               const float box[4], float refined[4], void *workspace,

@@ -415,7 +415,7 @@ sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[
     }
     bw = box[2] - box[0];
     bh = box[3] - box[1];
-    if ((bw < 2.0f) || (bh < 2.0f) || (box[0] < -bw) || (box[1] < -bh) ||
+    if ((bw < SBR_PICTO_MIN_BOX) || (bh < SBR_PICTO_MIN_BOX) || (box[0] < -bw) || (box[1] < -bh) ||
         (box[2] > ((float)img->width + bw)) || (box[3] > ((float)img->height + bh))) {
         return SBR_ERR_RANGE;
     }
@@ -651,6 +651,9 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
     }
     affine(model->w2, last_inputs(model, feat, (float *)workspace), last_inputs_n(model),
            SBR_PICTO_OUTPUTS, prob);
+    if (all_finite(prob, SBR_PICTO_OUTPUTS) == 0) {
+        return SBR_ERR_RANGE; /* features so large that the logits overflow */
+    }
     mx = prob[0];
     for (i = 1u; i < SBR_PICTO_OUTPUTS; i++) {
         if (prob[i] > mx) {
@@ -684,9 +687,10 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
     if (st != SBR_OK) {
         return st;
     }
-    if ((finite4(box) == 0) || (box[2] <= box[0]) || (box[3] <= box[1]) ||
-        (fabsf(box[0]) > SBR_PICTO_MAX_COORD) || (fabsf(box[1]) > SBR_PICTO_MAX_COORD) ||
-        (fabsf(box[2]) > SBR_PICTO_MAX_COORD) || (fabsf(box[3]) > SBR_PICTO_MAX_COORD)) {
+    if ((finite4(box) == 0) || (fabsf(box[0]) > SBR_PICTO_MAX_COORD) ||
+        (fabsf(box[1]) > SBR_PICTO_MAX_COORD) || (fabsf(box[2]) > SBR_PICTO_MAX_COORD) ||
+        (fabsf(box[3]) > SBR_PICTO_MAX_COORD) || ((box[2] - box[0]) < SBR_PICTO_MIN_BOX) ||
+        ((box[3] - box[1]) < SBR_PICTO_MIN_BOX)) {
         return SBR_ERR_RANGE;
     }
     cx = 0.5f * (box[0] + box[2]);
@@ -697,6 +701,9 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
         float d[SBR_PICTO_BOX_OUTPUTS];
         affine(model->w3, last_inputs(model, feat, (float *)workspace), last_inputs_n(model),
                SBR_PICTO_BOX_OUTPUTS, d);
+        if (all_finite(d, SBR_PICTO_BOX_OUTPUTS) == 0) {
+            return SBR_ERR_RANGE; /* features so large that the regression overflows */
+        }
         cx += 2.0f * hw * picto_clampf(d[0], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);
         cy += 2.0f * hh * picto_clampf(d[1], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);
         hw *= expf(picto_clampf(d[2], -SBR_PICTO_MAX_LOG_SCALE, SBR_PICTO_MAX_LOG_SCALE));
