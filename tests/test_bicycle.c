@@ -133,6 +133,16 @@ static void test_model_turns_and_leans(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 0.1f, &out));
 }
 
+
+/* The projected rear (which = 0) or front (1) wheel of state s. */
+static sbr_ellipse_t wheel_of(const sbr_bike_pf_config_t *cfg, const sbr_bike_state_t *s, int which)
+{
+    sbr_ellipse_t rear;
+    sbr_ellipse_t front;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_project(&cfg->camera, &cfg->model, s, &rear, &front));
+    return (which == 0) ? rear : front;
+}
+
 static void test_pairing_groups_tyre_edges_and_rejects_misfits(void)
 {
     const sbr_bike_pf_config_t cfg = config(1u);
@@ -195,6 +205,19 @@ static void test_pairing_groups_tyre_edges_and_rejects_misfits(void)
     el[1].semi_minor = 10.0f;
     el[1].cx = INFINITY;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pair_wheels(el, 5u, &cfg.model, pairs, 4u, &n));
+    /* regression (fuzzer finding): a finite angle of 3.4e38 doubled to inf, and the pair's
+       wheel came out with a NaN angle and SBR_OK */
+    {
+        sbr_ellipse_t two[2];
+        two[0] = wheel_of(&cfg, &s, 0);
+        two[1] = wheel_of(&cfg, &s, 1);
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pair_wheels(two, 2u, &cfg.model, pairs, 4u, &n));
+        TEST_ASSERT_EQUAL_UINT32(1u, n);
+        two[1].angle = 3.4e38f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pair_wheels(two, 2u, &cfg.model, pairs, 4u, &n));
+        two[1].angle = -1e6f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pair_wheels(two, 2u, &cfg.model, pairs, 4u, &n));
+    }
 }
 
 /* A bicycle crossing 12 m ahead at 5 m/s, 25 frames per second, wheel ellipses with

@@ -116,7 +116,8 @@ typedef struct sbr_wheel_pair_s {
  *
  * @param n  0 .. ::SBR_BIKE_MAX_ELLIPSES.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n too large); ::SBR_ERR_RANGE (bad
- *         model, an ellipse not finite or with axes <= 0); ::SBR_ERR_CAPACITY when more
+ *         model, an ellipse not finite, with axes <= 0 or semi_minor > semi_major, or with
+ *         |cx|, |cy|, semi_major or |angle| >= 1e6); ::SBR_ERR_CAPACITY when more
  *         pairs qualified than `capacity` (the best `capacity` are written).
  */
 sbr_status_t sbr_bike_pair_wheels(const sbr_ellipse_t *ellipses, uint32_t n,
@@ -259,7 +260,7 @@ sbr_status_t sbr_bike_pf_init(sbr_bike_pf_t *pf, const sbr_bike_pf_config_t *cfg
  * @param ellipses the ellipses of this frame (may be NULL when n = 0).
  * @return ::SBR_OK (also when no track exists: flags tell); ::SBR_ERR_NULL;
  *         ::SBR_ERR_STATE (pf not initialised or corrupted); ::SBR_ERR_RANGE (dt, or an
- *         ellipse not finite or with axes <= 0); ::SBR_ERR_SIZE (n >
+ *         ellipse refused as by sbr_bike_pair_wheels()); ::SBR_ERR_SIZE (n >
  *         ::SBR_BIKE_MAX_ELLIPSES).
  */
 sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, float dt, const sbr_ellipse_t *ellipses, uint32_t n,

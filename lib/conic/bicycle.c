@@ -54,7 +54,7 @@ static int ellipse_ok(const sbr_ellipse_t *e)
     return (isfinite(e->cx) != 0) && (isfinite(e->cy) != 0) && (isfinite(e->angle) != 0) &&
            (isfinite(e->semi_major) != 0) && (isfinite(e->semi_minor) != 0) &&
            (e->semi_minor > 0.0f) && (e->semi_major >= e->semi_minor) && (e->semi_major < 1e6f) &&
-           (fabsf(e->cx) < 1e6f) && (fabsf(e->cy) < 1e6f);
+           (fabsf(e->cx) < 1e6f) && (fabsf(e->cy) < 1e6f) && (fabsf(e->angle) < 1e6f);
 }
 
 static int ellipses_ok(const sbr_ellipse_t *e, uint32_t n)
