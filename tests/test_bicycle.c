@@ -349,6 +349,25 @@ static void test_filter_rejects_bad_input(void)
     cfg = config(1u);
     cfg.camera.focal = NAN;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_init(&pf, &cfg, g_ws, sizeof g_ws));
+    /* regression (fuzzer finding): a positive but denormal focal length (9e-40) was taken,
+       and the first measurement started a track with a NaN mean and SBR_OK; the camera
+       and model now have physical bounds */
+    cfg.camera.focal = 9.18714e-40f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_config_check(&cfg));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_init(&pf, &cfg, g_ws, sizeof g_ws));
+    cfg.camera.focal = 0.5f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_config_check(&cfg));
+    cfg.camera.focal = 1.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_config_check(&cfg));
+    cfg = config(1u);
+    cfg.camera.height = 1e-30f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_config_check(&cfg));
+    cfg = config(1u);
+    cfg.model.roll_tau = 1e-30f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_config_check(&cfg));
+    cfg = config(1u);
+    cfg.model.wheel_radius = 1e-30f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_config_check(&cfg));
     cfg = config(1u);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_init(&pf, &cfg, g_ws, sizeof g_ws));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, NAN, e, 2u, &r));

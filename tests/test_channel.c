@@ -375,6 +375,42 @@ static void test_2d_points(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_channel2d_config_check(NULL));
 }
 
+/* Regression (fuzzer finding): finite channel values near the float limit gave a window
+   sum of inf and a NaN estimate with SBR_OK. Values and weights are bounded by
+   SBR_CHANNEL_MAX_VALUE; an accumulation that would pass it is refused. */
+static void test_values_bounded_by_max_value(void)
+{
+    sbr_channel_config_t cfg;
+    float hist[10];
+    float value = -1.0f;
+    float cert = -1.0f;
+    int valid = -1;
+    sbr_channel_mode_t modes[4];
+    uint32_t n = 0u;
+    uint32_t k;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_config_default(&cfg));
+    for (k = 0u; k < 10u; k++) {
+        hist[k] = 0.0f;
+    }
+    hist[3] = 3e38f;
+    hist[4] = 3e38f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_channel_decode_window(&cfg, hist, 10u, 3u, &value, &cert, &valid));
+    TEST_ASSERT_EQUAL_FLOAT(-1.0f, value);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_channel_decode(&cfg, hist, 10u, 0.0f, modes, 4u, &n));
+    hist[3] = SBR_CHANNEL_MAX_VALUE;
+    hist[4] = SBR_CHANNEL_MAX_VALUE;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_decode_window(&cfg, hist, 10u, 3u, &value, &cert, &valid));
+    TEST_ASSERT_TRUE(isfinite(value) && isfinite(cert));
+    /* between channels 4 and 5 (centres 1..10): the two equal channels' midpoint */
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 4.5f, value);
+    /* accumulating past the bound adds nothing */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_channel_accumulate(&cfg, 4.0f, SBR_CHANNEL_MAX_VALUE, hist, 10u));
+    TEST_ASSERT_EQUAL_FLOAT(SBR_CHANNEL_MAX_VALUE, hist[3]);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_channel_accumulate(&cfg, 4.0f, 2e30f, hist, 10u));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_channel_encode(&cfg, 4.0f, 2e30f, hist, 10u));
+    TEST_ASSERT_EQUAL_FLOAT(SBR_CHANNEL_MAX_VALUE, hist[3]); /* untouched */
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -390,5 +426,6 @@ int main(void)
     RUN_TEST(test_capacity_keeps_strongest);
     RUN_TEST(test_bad_input_gets_status);
     RUN_TEST(test_2d_points);
+    RUN_TEST(test_values_bounded_by_max_value);
     return UNITY_END();
 }

@@ -40,19 +40,20 @@ extern "C" {
 
 /** A pinhole camera with a horizontal optical axis above a flat ground. */
 typedef struct sbr_camera_s {
-    float focal;  /**< pixels, > 0 */
-    float cx;     /**< principal point, column */
-    float cy;     /**< principal point, row */
-    float height; /**< metres above the ground, > 0 */
+    float focal;  /**< pixels, 1 .. 1e6 */
+    float cx;     /**< principal point, column, |cx| < 1e6 */
+    float cy;     /**< principal point, row, |cy| < 1e6 */
+    float height; /**< metres above the ground, 1e-3 .. 1e3 */
 } sbr_camera_t;
 
 /** Bicycle geometry and roll dynamics. */
 typedef struct sbr_bike_model_s {
-    float wheel_radius; /**< metres, tyre mid-line, > 0. Default 0.34 (28-inch wheel). */
+    float wheel_radius; /**< metres, tyre mid-line, 1e-3 .. 10. Default 0.34 (28-inch
+                             wheel). */
     float wheelbase;    /**< metres between the contact points, > 2 x wheel_radius.
                              Default 1.05. */
-    float roll_tau;     /**< seconds, > 0: how fast the roll follows the balance lean.
-                             Default 0.3. */
+    float roll_tau;     /**< seconds, 1e-3 .. 1e3: how fast the roll follows the balance
+                             lean. Default 0.3. */
 } sbr_bike_model_t;
 
 /** Bicycle state (see the file comment for the conventions). */

@@ -48,6 +48,9 @@ extern "C" {
 #define SBR_CHANNEL_MAX_OVERLAP 8u
 /** Largest channel count per axis (bounds the work of every call). */
 #define SBR_CHANNEL_MAX_COUNT 4096u
+/** Largest channel value (and encoding weight): sums of a window's channels stay finite
+    in float32. */
+#define SBR_CHANNEL_MAX_VALUE 1e30f
 
 /** Layout of one channel axis. */
 typedef struct sbr_channel_config_s {
@@ -109,7 +112,8 @@ sbr_status_t sbr_channel_range(const sbr_channel_config_t *cfg, float *lo, float
  * @brief Encode one value into a fresh channel vector (all other channels set to 0).
  * @param[in]  cfg    configuration.
  * @param[in]  x      value; must lie in the range of sbr_channel_range().
- * @param[in]  weight certainty multiplying the encoding; finite and > 0 (1 for plain).
+ * @param[in]  weight certainty multiplying the encoding; finite, > 0 and at most
+ *                    ::SBR_CHANNEL_MAX_VALUE (1 for plain).
  * @param[out] out    channel vector.
  * @param[in]  len    length of `out`; must be >= cfg->count (only count are written).
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE if `len` < count; ::SBR_ERR_RANGE
@@ -120,7 +124,9 @@ sbr_status_t sbr_channel_encode(const sbr_channel_config_t *cfg, float x, float 
 
 /**
  * @brief Add one weighted encoding into a soft histogram.
- * @return as sbr_channel_encode(); on error nothing is added.
+ * @return as sbr_channel_encode(); ::SBR_ERR_RANGE also when a channel it adds to is not
+ *         a valid value (finite, >= 0) or would exceed ::SBR_CHANNEL_MAX_VALUE; on error
+ *         nothing is added.
  */
 sbr_status_t sbr_channel_accumulate(const sbr_channel_config_t *cfg, float x, float weight,
                                     float *hist, uint32_t len);
@@ -128,7 +134,8 @@ sbr_status_t sbr_channel_accumulate(const sbr_channel_config_t *cfg, float x, fl
 /**
  * @brief Decode one window, valid or not (what the thesis's example tabulates).
  * @param[in]  cfg       configuration.
- * @param[in]  hist      channel vector of `len` >= count values, each finite and >= 0.
+ * @param[in]  hist      channel vector of `len` >= count values, each finite, >= 0 and
+ *                       at most ::SBR_CHANNEL_MAX_VALUE.
  * @param[in]  len       length of `hist`.
  * @param[in]  window    first channel of the window, 0 .. count - M.
  * @param[out] value     the window's estimate (an all-zero window gives its first
@@ -145,7 +152,8 @@ sbr_status_t sbr_channel_decode_window(const sbr_channel_config_t *cfg, const fl
 /**
  * @brief Decode every valid mode whose certainty exceeds `min_certainty`, strongest first.
  * @param[in]  cfg           configuration.
- * @param[in]  hist          channel vector (`len` >= count values, finite, >= 0).
+ * @param[in]  hist          channel vector (`len` >= count values, finite, >= 0, at most
+ *                           ::SBR_CHANNEL_MAX_VALUE).
  * @param[in]  len           length of `hist`.
  * @param[in]  min_certainty modes with certainty <= this are ignored; finite, >= 0.
  * @param[out] modes         result array, sorted by decreasing certainty (ties: by value).
@@ -173,8 +181,9 @@ uint32_t sbr_channel2d_grid_len(const sbr_channel2d_config_t *cfg);
 /**
  * @brief Add one weighted 2-D point into a grid (outer product of the x and y encodings).
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE if `len` < the grid length;
- *         ::SBR_ERR_RANGE if x or y is outside its axis range or the weight is not finite
- *         and > 0 (nothing is added).
+ *         ::SBR_ERR_RANGE if x or y is outside its axis range, the weight is not finite,
+ *         > 0 and at most ::SBR_CHANNEL_MAX_VALUE, or a cell it adds to is not a valid
+ *         value or would exceed ::SBR_CHANNEL_MAX_VALUE (nothing is added).
  */
 sbr_status_t sbr_channel2d_accumulate(const sbr_channel2d_config_t *cfg, float x, float y,
                                       float weight, float *grid, uint32_t len);

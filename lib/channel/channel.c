@@ -97,7 +97,8 @@ static sbr_status_t encode_prepare(const sbr_channel_config_t *cfg, float x, flo
     if (len < cfg->count) {
         return SBR_ERR_SIZE;
     }
-    if ((is_finite_f(x) == 0) || (is_finite_f(weight) == 0) || (weight <= 0.0f)) {
+    if ((is_finite_f(x) == 0) || (is_finite_f(weight) == 0) || (weight <= 0.0f) ||
+        (weight > SBR_CHANNEL_MAX_VALUE)) {
         return SBR_ERR_RANGE;
     }
     u = (x - cfg->first_centre) / cfg->spacing;
@@ -160,6 +161,14 @@ sbr_status_t sbr_channel_accumulate(const sbr_channel_config_t *cfg, float x, fl
     if (st != SBR_OK) {
         return st;
     }
+    /* every channel stays a valid histogram value (finite, >= 0, at most
+       SBR_CHANNEL_MAX_VALUE), or nothing is added */
+    for (k = 0u; k < nvals; k++) {
+        const float h = hist[first + k];
+        if ((is_finite_f(h) == 0) || (h < 0.0f) || ((h + vals[k]) > SBR_CHANNEL_MAX_VALUE)) {
+            return SBR_ERR_RANGE;
+        }
+    }
     for (k = 0u; k < nvals; k++) {
         hist[first + k] += vals[k];
     }
@@ -215,7 +224,7 @@ static sbr_status_t check_hist(const sbr_channel_config_t *cfg, const float *his
         return SBR_ERR_SIZE;
     }
     for (k = 0u; k < cfg->count; k++) {
-        if ((is_finite_f(hist[k]) == 0) || (hist[k] < 0.0f)) {
+        if ((is_finite_f(hist[k]) == 0) || (hist[k] < 0.0f) || (hist[k] > SBR_CHANNEL_MAX_VALUE)) {
             return SBR_ERR_RANGE;
         }
     }
@@ -457,6 +466,15 @@ sbr_status_t sbr_channel2d_accumulate(const sbr_channel2d_config_t *cfg, float x
         return st;
     }
     for (j = 0u; j < ny; j++) {
+        const float *row = &grid[(fy + j) * cfg->x.count];
+        for (i = 0u; i < nx; i++) {
+            const float h = row[fx + i];
+            if ((is_finite_f(h) == 0) || (h < 0.0f) || ((h + (vy[j] * vx[i])) > SBR_CHANNEL_MAX_VALUE)) {
+                return SBR_ERR_RANGE;
+            }
+        }
+    }
+    for (j = 0u; j < ny; j++) {
         float *row = &grid[(fy + j) * cfg->x.count];
         for (i = 0u; i < nx; i++) {
             row[fx + i] += vy[j] * vx[i];
@@ -493,7 +511,8 @@ sbr_status_t sbr_channel2d_decode(const sbr_channel2d_config_t *cfg, const float
             st = SBR_ERR_SIZE;
         }
         for (k = 0u; (st == SBR_OK) && (k < total); k++) {
-            if ((is_finite_f(grid[k]) == 0) || (grid[k] < 0.0f)) {
+            if ((is_finite_f(grid[k]) == 0) || (grid[k] < 0.0f) ||
+                (grid[k] > SBR_CHANNEL_MAX_VALUE)) {
                 st = SBR_ERR_RANGE;
             }
         }
