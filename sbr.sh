@@ -17,7 +17,14 @@
 #                                               filters on KITTI tracking (default 0006-0010)
 #   ./sbr.sh learn-tracker                      relearn the tracker's motion model (0000-0005)
 #   ./sbr.sh test                               every test: native, sanitizers, Cortex-M4
-#                                               (qemu), armhf (qemu user), and the gates
+#                                               (qemu), armhf (qemu user), the gates, the
+#                                               build matrix (every build type, gcc, clang,
+#                                               arm-none-eabi) and a fuzz smoke run
+#   ./sbr.sh fuzz [--minutes N] [--target NAME[,NAME]]
+#                                               the libFuzzer harnesses (tests/fuzz) for N
+#                                               minutes a target (default 5), resuming the
+#                                               corpus in build/fuzz-corpus; a table of
+#                                               executions, coverage and findings
 #   ./sbr.sh setup                              only install what is missing
 #
 # Each command installs the Debian packages it needs (apt-get, as root or through sudo)
@@ -32,7 +39,7 @@ JOBS="$(nproc 2>/dev/null || echo 2)"
 PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip python3-venv can-utils
           gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
           gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user
-          libfftw3-dev libkissfft-dev cppcheck libopencv-dev chromium)
+          libfftw3-dev libkissfft-dev cppcheck libopencv-dev chromium clang libclang-rt-14-dev)
 
 log() { printf '\n== %s\n' "$*"; }
 
@@ -88,7 +95,30 @@ build_native() {
 
 unity_root() { echo "$BUILD/native/_deps/unity"; }
 
+# The fuzz harnesses (clang, libFuzzer + ASan + UBSan) in build/fuzz.
+build_fuzz() {
+  configure_build fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
+    -DCMAKE_CXX_COMPILER=clang++ -DSBR_FUZZ=ON -DSBR_BUILD_TESTS=OFF -DSBR_BUILD_HOST_TOOLS=OFF
+}
+
+# Seed corpora from real data (GTSDB crops, MPEG-7 contours, the models, the DBC's
+# frames) in build/fuzz-seeds; needs the native build (sbr_fuzz_seeds) and the venv.
+make_fuzz_seeds() {
+  local seeds="$BUILD/fuzz-seeds" data="$ROOT/../shared/data"
+  local args=(--out "$seeds")
+  [ -d "$data/gtsdb" ] && args+=(--gtsdb "$data/gtsdb")
+  [ -d "$data/mpeg7" ] && args+=(--mpeg7 "$data/mpeg7")
+  rm -rf "$seeds"
+  "$BUILD/native/host_tools/sbr_fuzz_seeds" "${args[@]}"
+  "$BUILD/venv/bin/python" "$ROOT/tests/fuzz/can_seeds.py" --dbc "$ROOT/dbc/sbr.dbc" --out "$seeds/can"
+}
+
 cmd_test() {
+  case "${1:-}" in
+    -h|--help) sed -n '2,32p' "$0"; return 0 ;;
+    "") ;;
+    *) echo "unknown option $1 (./sbr.sh test takes none)" >&2; return 2 ;;
+  esac
   setup
   mkdir -p "$BUILD"
   local failed=0 summary=()
@@ -101,8 +131,9 @@ cmd_test() {
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUNITY_ROOT="$(unity_root)" -DSBR_HOST_TESTS_DIR="$BUILD/native/tests"
   configure_build cortex-m7 -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-cortex-m7.cmake" \
     -DCMAKE_BUILD_TYPE=MinSizeRel
+  build_fuzz
 
-  local total_pass=0 total_fail=0
+  local total_pass=0 total_fail=0 total_skip=0
   for name in native sanitize cortex-m4 armhf; do
     log "ctest $name"
     local out="$BUILD/$name.ctest.log"
@@ -110,27 +141,82 @@ cmd_test() {
        ctest --test-dir "$BUILD/$name" --output-on-failure -j "$JOBS" > "$out" 2>&1; then :; else failed=1; fi
     grep -E "Test +#|tests passed|FAILED|\*\*\*" "$out" || true
     # ctest's count of executables and gates, and Unity's count of test cases
-    local line passed_n failed_n cases
+    local line passed_n failed_n skipped_n cases skipped_names
     line="$(grep -E "tests passed, [0-9]+ tests failed out of" "$out" | tail -1)"
     failed_n="$(echo "$line" | sed -E 's/.* ([0-9]+) tests failed out of ([0-9]+).*/\1/')"
-    passed_n="$(( $(echo "$line" | sed -E 's/.*out of ([0-9]+).*/\1/') - failed_n ))"
+    # a skipped test (its documented cause only, e.g. no vcan interface) is no pass
+    skipped_n="$(grep -cE "^\s+[0-9]+ - .*\(Skipped\)" "$out" || true)"
+    skipped_names="$(grep -E "^\s+[0-9]+ - .*\(Skipped\)" "$out" | sed -E 's/^\s+[0-9]+ - ([^ ]+).*/\1/' | paste -sd, - || true)"
+    passed_n="$(( $(echo "$line" | sed -E 's/.*out of ([0-9]+).*/\1/') - failed_n - skipped_n ))"
     cases="$(grep -hE "^[0-9]+ Tests [0-9]+ Failures" "$BUILD/$name/Testing/Temporary/LastTest.log" \
              | awk '{t+=$1; f+=$3} END {printf "%d Unity test cases, %d failed", t, f}')"
-    summary+=("$name: ctest $passed_n passed, $failed_n failed ($cases)")
+    summary+=("$name: ctest $passed_n passed, $failed_n failed, $skipped_n skipped${skipped_names:+ ($skipped_names)} ($cases)")
     total_pass=$((total_pass + passed_n)); total_fail=$((total_fail + failed_n))
+    total_skip=$((total_skip + skipped_n))
   done
   log "Cortex-M4 size / static RAM / stack report"
   ctest --test-dir "$BUILD/cortex-m4" -R "report_cortex_m_size_stack|gate_fft_tables_dropped" -V 2>/dev/null \
     | sed -nE 's/^[0-9]+: //p' | grep -vE "^(Test command|Working Directory|Test timeout)" || true
   log "core symbols (no heap / no stdio)"
   for name in native cortex-m4; do
-    ctest --test-dir "$BUILD/$name" -R "^gate_core_symbols$" -V 2>/dev/null | sed -nE 's/^[0-9]+: (OK|FAIL|.*external).*/&/p' | sed -E 's/^[0-9]+: /'"$name"': /'
+    ctest --test-dir "$BUILD/$name" -R "^gate_core_symbols$" -V 2>/dev/null | sed -nE 's/^[0-9]+: (OK|FAIL|.* external references).*/&/p' | sed -E 's/^[0-9]+: /'"$name"': /'
   done
+  # every build type of the core with -Werror: gcc, clang, arm-none-eabi
+  log "build matrix"
+  local matrix_line
+  if python3 "$ROOT/cmake/build_matrix.py" --source "$ROOT" --work "$BUILD/matrix" --jobs "$JOBS" \
+       > "$BUILD/matrix.log" 2>&1; then :; else failed=1; fi
+  grep -vE "^build matrix: " "$BUILD/matrix.log" || true
+  matrix_line="$(grep -E "^build matrix: " "$BUILD/matrix.log" | tail -1)"
+  [ -n "$matrix_line" ] || { cat "$BUILD/matrix.log"; failed=1; matrix_line="build matrix: did not run"; }
+
+  # the fuzz harnesses, a fixed number of runs each after the seeds (fresh corpus)
+  log "fuzz smoke"
+  local fuzz_line
+  make_fuzz_seeds
+  rm -rf "$BUILD/fuzz-smoke"
+  if python3 "$ROOT/tests/fuzz/run_fuzz.py" --bin "$BUILD/fuzz/tests/fuzz" --corpus "$BUILD/fuzz-smoke" \
+       --seeds "$BUILD/fuzz-seeds" --runs "${SBR_FUZZ_SMOKE_RUNS:-3000}" --jobs "$JOBS" \
+       > "$BUILD/fuzz-smoke.log" 2>&1; then :; else failed=1; fi
+  grep -vE "^fuzz: " "$BUILD/fuzz-smoke.log" || true
+  fuzz_line="$(grep -E "^fuzz: " "$BUILD/fuzz-smoke.log" | tail -1)"
+  [ -n "$fuzz_line" ] || { cat "$BUILD/fuzz-smoke.log"; failed=1; fuzz_line="fuzz: did not run"; }
+
   log "summary"
   printf '%s\n' "${summary[@]}"
   echo "cortex-m7: core built (-mcpu=cortex-m7 -mfpu=fpv5-sp-d16), no tests run"
-  echo "total: ${total_pass} passed, ${total_fail} failed"
+  echo "${matrix_line} (core, every build type)"
+  echo "${fuzz_line/fuzz:/fuzz smoke:} (harnesses)"
+  echo "total: ${total_pass} passed, ${total_fail} failed, ${total_skip} skipped"
   return "$failed"
+}
+
+cmd_fuzz() {
+  local minutes=5 targets=""
+  while [ $# -gt 0 ]; do
+    case "$1" in
+      --minutes) minutes="$2"; shift 2 ;;
+      --target) targets="$2"; shift 2 ;;
+      -h|--help) sed -n '2,32p' "$0"; return 0 ;;
+      *) echo "unknown option $1" >&2; return 2 ;;
+    esac
+  done
+  if ! [[ "$minutes" =~ ^[0-9]+$ ]] || [ "$minutes" -lt 1 ] || [ "$minutes" -gt 1440 ]; then
+    echo "--minutes: a whole number of minutes, 1 .. 1440 (got '$minutes')" >&2
+    return 2
+  fi
+  if [ -n "$targets" ] && ! [[ "$targets" =~ ^[a-z_]+(,[a-z_]+)*$ ]]; then
+    echo "--target: harness names separated by commas (got '$targets')" >&2
+    return 2
+  fi
+  setup
+  build_native
+  build_fuzz
+  make_fuzz_seeds
+  log "fuzzing ${targets:-every harness} for $minutes min a target (corpus: $BUILD/fuzz-corpus)"
+  python3 "$ROOT/tests/fuzz/run_fuzz.py" --bin "$BUILD/fuzz/tests/fuzz" --corpus "$BUILD/fuzz-corpus" \
+    --seeds "$BUILD/fuzz-seeds" ${targets:+--targets "$targets"} --seconds "$((minutes * 60))" \
+    --jobs "$JOBS" --report "$BUILD/fuzz-report.md"
 }
 
 cmd_detect() {
@@ -141,7 +227,7 @@ cmd_detect() {
       --out) out="$2"; shift 2 ;;
       --range) range="$2"; shift 2 ;;
       --baseline) baseline="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"; shift 2 ;;
-      -h|--help) sed -n '2,24p' "$0"; return 0 ;;
+      -h|--help) sed -n '2,32p' "$0"; return 0 ;;
       *) echo "unknown option $1" >&2; return 2 ;;
     esac
   done
@@ -223,10 +309,11 @@ cmd_dashboard() {
 case "${1:-}" in
   dashboard) shift; cmd_dashboard "$@" ;;
   test) shift; cmd_test "$@" ;;
+  fuzz) shift; cmd_fuzz "$@" ;;
   detect) shift; cmd_detect "$@" ;;
   train) shift; cmd_train "$@" ;;
   learn-tracker) shift; cmd_learn_tracker "$@" ;;
   track) shift; cmd_track "$@" ;;
   setup) setup ;;
-  *) sed -n '2,24p' "$0"; exit 2 ;;
+  *) sed -n '2,32p' "$0"; exit 2 ;;
 esac

@@ -3,7 +3,9 @@
 static or global data. With --arm also no soft-float double helpers (__aeabi_d*, which
 appear when C code does double arithmetic on a single-precision FPU).
 
-usage: check_archive.py --nm NM [--arm] [--expect-violations a,b,...] ARCHIVE
+usage: check_archive.py --nm NM [--arm] [--require f,g,...] [--expect-violations a,b,...] ARCHIVE
+--require: functions the archive must define (so an empty or wrong archive cannot pass);
+a missing one is reported as the violation "missing:NAME".
 Double-precision libm calls (sin, sqrt, ...) are rejected on every target. Exit 0 when
 clean. With --expect-violations (self-test of this gate) exit 0 only when
 every named symbol is reported as a violation.
@@ -41,6 +43,7 @@ def main():
     ap.add_argument("--nm", default="nm")
     ap.add_argument("--arm", action="store_true")
     ap.add_argument("--expect-violations", default="")
+    ap.add_argument("--require", default="")
     ap.add_argument("archive")
     a = ap.parse_args()
 
@@ -51,6 +54,8 @@ def main():
         return 1
     violations = []
     undefined = set()
+    defined = set()
+    objects = set()
     for line in out.stdout.splitlines():
         parts = line.split()
         if len(parts) < 2:
@@ -60,6 +65,11 @@ def main():
             typ, name = parts[1], None
             continue
         typ, name = parts[-2], parts[-1]
+        # "archive:member:address" (or "archive:member: " for undefined symbols)
+        fields = parts[0].split(":")
+        objects.add(fields[1] if len(fields) > 2 else fields[0])
+        if typ in ("T", "t"):
+            defined.add(name)
         if typ == "U":
             undefined.add(name)
             base = name.split("@")[0]
@@ -73,6 +83,12 @@ def main():
         elif typ in MUTABLE:
             violations.append((name, f"{where}: mutable static/global data '{name}' ({typ})"))
 
+    if not objects:
+        violations.append(("empty", f"{a.archive}: no object with symbols"))
+    for req in (r for r in a.require.split(",") if r):
+        if req not in defined:
+            violations.append((f"missing:{req}", f"{a.archive}: does not define {req}"))
+
     if a.expect_violations:
         want = [w for w in a.expect_violations.split(",") if w]
         found = {v[0] for v in violations}
@@ -85,7 +101,7 @@ def main():
         print(f"OK: the gate detects {', '.join(want)}")
         return 0
 
-    print(f"{a.archive}: {len(undefined)} external references checked")
+    print(f"{a.archive}: {len(objects)} objects, {len(undefined)} external references checked")
     if violations:
         for v in violations:
             print("FAIL:", v[1])

@@ -1,8 +1,9 @@
 /* The whole recogniser with the built-in library and class stage on one small synthetic
    street scene (drawn with integer arithmetic, so every target renders the same pixels):
    a prohibitory-like sign, a mandatory-like blue disc, a danger-like triangle on a noisy
-   gradient. The test checks that it runs within the stated workspace and that its
-   detections are well-formed, and prints them one per line:
+   gradient. The test checks that it runs within the stated workspace, that its
+   detections are well-formed, that each drawn sign is found at the operating point with a
+   class of its superclass and a box of IoU >= 0.5, and prints the detections one per line:
 
      SBRDET class x y width height score_ppm share_ppm parts
 
@@ -69,7 +70,7 @@ static void draw_scene(void)
                     put(x, y, 20u, 60u, 170u);
                 }
             } else if ((ty >= 0) && (ty <= 30) && ((2 * tx) <= ty)) {
-                if ((ty >= 8) && (ty <= 25) && ((2 * tx) <= (ty - 9))) {
+                if ((ty >= 6) && (ty <= 26) && ((2 * tx) <= (ty - 7))) {
                     put(x, y, 240u, 240u, 235u);
                 } else {
                     put(x, y, 205u, 30u, 30u);
@@ -79,6 +80,46 @@ static void draw_scene(void)
             }
         }
     }
+}
+
+/* The drawn signs: their boxes (every pixel the drawing gives them) and GTSDB superclass. */
+typedef struct {
+    uint32_t x, y, w, h;
+    uint32_t superclass; /* 0 prohibitory, 1 mandatory, 2 danger */
+} drawn_sign_t;
+
+static const drawn_sign_t k_signs[3] = {
+    {22u, 28u, 37u, 37u, 0u},  /* disc of radius 18 at (40, 46) */
+    {78u, 24u, 29u, 29u, 1u},  /* disc of radius 14 at (92, 38) */
+    {117u, 34u, 31u, 31u, 2u}, /* triangle, apex (132, 34), 31 rows */
+};
+
+static uint32_t superclass_of(uint32_t c)
+{
+    uint32_t s = 3u; /* other */
+    if ((c <= 5u) || ((c >= 7u) && (c <= 10u)) || (c == 15u) || (c == 16u)) {
+        s = 0u;
+    } else if ((c >= 33u) && (c <= 40u)) {
+        s = 1u;
+    } else if ((c == 11u) || ((c >= 18u) && (c <= 31u))) {
+        s = 2u;
+    }
+    return s;
+}
+
+static float iou(const sbr_rect_t *a, const drawn_sign_t *b)
+{
+    const uint32_t x0 = (a->x > b->x) ? a->x : b->x;
+    const uint32_t y0 = (a->y > b->y) ? a->y : b->y;
+    const uint32_t ax1 = a->x + a->width;
+    const uint32_t ay1 = a->y + a->height;
+    const uint32_t x1 = (ax1 < (b->x + b->w)) ? ax1 : (b->x + b->w);
+    const uint32_t y1 = (ay1 < (b->y + b->h)) ? ay1 : (b->y + b->h);
+    float inter = 0.0f;
+    if ((x1 > x0) && (y1 > y0)) {
+        inter = (float)(x1 - x0) * (float)(y1 - y0);
+    }
+    return inter / (((float)a->width * (float)a->height) + ((float)b->w * (float)b->h) - inter);
 }
 
 static void print_detection(const sbr_detection_t *d)
@@ -139,6 +180,21 @@ static void test_scene(void)
         TEST_ASSERT_TRUE(g_dets[i].box.x + g_dets[i].box.width <= W);
         TEST_ASSERT_TRUE(g_dets[i].box.y + g_dets[i].box.height <= H);
         print_detection(&g_dets[i]);
+    }
+    /* each drawn sign: a detection at the operating point, of its superclass, IoU >= 0.5 */
+    {
+        uint32_t k;
+        for (k = 0u; k < 3u; k++) {
+            int found = 0;
+            for (i = 0u; i < n; i++) {
+                if ((g_dets[i].score >= m.picto.threshold) &&
+                    (superclass_of(g_dets[i].class_id) == k_signs[k].superclass) &&
+                    (iou(&g_dets[i].box, &k_signs[k]) >= 0.5f)) {
+                    found = 1;
+                }
+            }
+            TEST_ASSERT_TRUE_MESSAGE(found, "a drawn sign was not found with its superclass and box");
+        }
     }
 }
 

@@ -29,6 +29,14 @@ std::string read_all(const std::string &path, bool &ok) {
     return ss.str();
 }
 
+// Writes `bytes` to `path`; "" or the reason.
+std::string write_all(const std::string &path, const std::string &bytes) {
+    std::ofstream f(path, std::ios::binary);
+    if (!f) return "cannot write " + path;
+    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return f ? "" : "write failed: " + path;
+}
+
 // The file's trailing CRC over every byte before it.
 bool crc_ok(const std::string &s) {
     uint32_t stored = 0;
@@ -164,11 +172,7 @@ std::string model_bytes(const Model &m, std::string &s) {
 std::string save_model(const Model &m, const std::string &path) {
     std::string s;
     const std::string e = model_bytes(m, s);
-    if (!e.empty()) return e;
-    std::ofstream f(path, std::ios::binary);
-    if (!f) return "cannot write " + path;
-    f.write(s.data(), static_cast<std::streamsize>(s.size()));
-    return f ? "" : "write failed: " + path;
+    return e.empty() ? write_all(path, s) : e;
 }
 
 std::string load_model(const std::string &path, Model &m) {
@@ -299,11 +303,7 @@ std::string picto_bytes(const Picto &p, std::string &s) {
 std::string save_picto(const Picto &p, const std::string &path) {
     std::string s;
     const std::string e = picto_bytes(p, s);
-    if (!e.empty()) return e;
-    std::ofstream f(path, std::ios::binary);
-    if (!f) return "cannot write " + path;
-    f.write(s.data(), static_cast<std::streamsize>(s.size()));
-    return f ? "" : "write failed: " + path;
+    return e.empty() ? write_all(path, s) : e;
 }
 
 std::string load_picto(const std::string &path, Picto &p) {

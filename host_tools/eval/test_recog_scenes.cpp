@@ -1,16 +1,20 @@
 // test_recog_scenes: the recogniser (built-in library and class stage, default options)
-// on real GTSDB frames of the development split, against the annotations.
+// on every real GTSDB frame of a fixed range (default the development split 00400-00599),
+// against the annotations; no hand-picked scene list.
 //
-//   test_recog_scenes --data DIR --scenes N,N,... [--max-fp-rate R]
+//   test_recog_scenes --data DIR [--range A-B] --min-recall R --min-crop-recall R
+//                     [--max-fp-rate F]
 //
-// 1. Scenes: in each listed image every annotated sign is found: a detection at the
-//    operating point with the annotated class and IoU >= 0.5.
-// 2. Crops: the same signs in crops of the frame (4 x the sign's size, the sign off
-//    centre): found again, class equal, box within IoU 0.5 of the annotation moved into
-//    the crop.
-// 3. Sign-free frames: every image of 00400-00599 without annotations; detections at the
-//    operating point per such frame must stay <= --max-fp-rate (default 0.25).
-// Exit 0 when all hold, 1 otherwise, 77 (skip) without the data.
+// 1. Frames with signs: an annotated sign counts as found when a detection at the
+//    operating point has its class and IoU >= 0.5; recall over all signs of the range
+//    must be >= --min-recall.
+// 2. Crops: each annotated sign in a crop of its frame (4 x the sign's size, the sign off
+//    centre): found again (class equal, IoU >= 0.5 with the annotation moved into the
+//    crop); recall over the crops >= --min-crop-recall.
+// 3. Sign-free frames of the range: detections at the operating point per frame
+//    <= --max-fp-rate (default 0.25).
+// A recogniser error on any frame is a failure (never an empty detection list).
+// Exit 0 when all hold, 1 otherwise, 2 for bad options, 77 (skip) without the data.
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
@@ -35,8 +39,9 @@ struct Run {
     sbr_recog_config_t cfg{};
     std::vector<uint64_t> ws;
     std::vector<sbr_detection_t> dets = std::vector<sbr_detection_t>(256);
+    int errors = 0;
 
-    std::vector<sbr_detection_t> detect(const cv::Mat &img, float thr) {
+    std::vector<sbr_detection_t> detect(const cv::Mat &img, float thr, const char *what) {
         const sbr_image_t v = bgr_view(img);
         const size_t need = sbr_recog_workspace_size(v.width, v.height, &cfg);
         if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
@@ -45,7 +50,8 @@ struct Run {
                                                  uint32_t(dets.size()), &n, nullptr);
         std::vector<sbr_detection_t> out;
         if (st != SBR_OK && st != SBR_ERR_CAPACITY) {
-            std::printf("  sbr_recog_detect: %s\n", sbr_status_str(st));
+            std::printf("FAIL %s: sbr_recog_detect: %s\n", what, sbr_status_str(st));
+            ++errors;
             return out;
         }
         for (uint32_t i = 0; i < n; ++i)
@@ -53,6 +59,19 @@ struct Run {
         return out;
     }
 };
+
+// A number option: the whole argument must be a number in [lo, hi].
+bool parse_num(const std::string &opt, const std::string &v, double lo, double hi, double *out) {
+    char *end = nullptr;
+    const double x = std::strtod(v.c_str(), &end);
+    if (v.empty() || end == v.c_str() || *end != '\0' || !(x >= lo && x <= hi)) {
+        std::fprintf(stderr, "test_recog_scenes: %s takes a number in [%g, %g], not '%s'\n", opt.c_str(), lo, hi,
+                     v.c_str());
+        return false;
+    }
+    *out = x;
+    return true;
+}
 
 bool found(const std::vector<sbr_detection_t> &dets, int cls, int l, int t, int r, int b, float *best_iou) {
     *best_iou = 0;
@@ -68,69 +87,90 @@ bool found(const std::vector<sbr_detection_t> &dets, int cls, int l, int t, int 
 }  // namespace
 
 int main(int argc, char **argv) {
-    std::string data, scenes;
-    float max_fp_rate = 0.25f;
+    std::string data;
+    double first = 400, last = 599, min_recall = -1, min_crop_recall = -1, max_fp_rate = 0.25;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-        if (a == "--data") data = next();
-        else if (a == "--scenes") scenes = next();
-        else if (a == "--max-fp-rate") max_fp_rate = std::strtof(next().c_str(), nullptr);
+        if (i + 1 >= argc) { std::fprintf(stderr, "test_recog_scenes: %s needs a value\n", a.c_str()); return 2; }
+        const std::string v = argv[++i];
+        bool ok = true;
+        if (a == "--data") data = v;
+        else if (a == "--range") {
+            const size_t dash = v.find('-');
+            ok = dash != std::string::npos && parse_num(a, v.substr(0, dash), 0, 99999, &first) &&
+                 parse_num(a, v.substr(dash + 1), first, 99999, &last);
+            if (!ok && dash == std::string::npos) std::fprintf(stderr, "test_recog_scenes: --range A-B\n");
+        } else if (a == "--min-recall") ok = parse_num(a, v, 0, 1, &min_recall);
+        else if (a == "--min-crop-recall") ok = parse_num(a, v, 0, 1, &min_crop_recall);
+        else if (a == "--max-fp-rate") ok = parse_num(a, v, 0, 1000, &max_fp_rate);
         else { std::fprintf(stderr, "test_recog_scenes: unknown option %s\n", a.c_str()); return 2; }
+        if (!ok) return 2;
+    }
+    if (min_recall < 0 || min_crop_recall < 0) {
+        std::fprintf(stderr, "test_recog_scenes: --min-recall and --min-crop-recall are required\n");
+        return 2;
     }
     const std::string dir = gtsdb_image_dir(data);
     const auto gt = read_gt(dir + "/gt.txt");
     if (gt.empty()) { std::printf("SKIP: no GTSDB ground truth under %s\n", data.c_str()); return 77; }
     Run run;
-    sbr_model_gtsdb(&run.model);
+    if (sbr_model_gtsdb(&run.model) != SBR_OK) { std::printf("FAIL: sbr_model_gtsdb\n"); return 1; }
     sbr_recog_config_default(&run.cfg);
     const float thr = run.model.picto.threshold;
-    int failures = 0;
 
-    std::vector<int> nums;
-    {
-        std::stringstream ss(scenes);
-        for (std::string t; std::getline(ss, t, ',');) nums.push_back(std::atoi(t.c_str()));
-    }
-    for (int num : nums) {
-        char file[16];
-        std::snprintf(file, sizeof file, "%05d.jpg", num);
-        cv::Mat img = cv::imread(dir + "/" + file, cv::IMREAD_COLOR);
-        if (img.empty() || !gt.count(num)) { std::printf("FAIL %05d: no image or no annotation\n", num); ++failures; continue; }
-        const auto dets = run.detect(img, thr);
+    int signs = 0, found_n = 0, crops = 0, crops_found = 0, frames = 0, fps = 0, images = 0;
+    for (const auto &f : list_images(dir)) {
+        const int num = image_number(f);
+        if (num < int(first) || num > int(last)) continue;
+        cv::Mat img = cv::imread(f, cv::IMREAD_COLOR);
+        if (img.empty()) { std::printf("FAIL %05d: cannot read the image\n", num); ++run.errors; continue; }
+        ++images;
+        char what[32];
+        std::snprintf(what, sizeof what, "frame %05d", num);
+        const auto dets = run.detect(img, thr, what);
+        if (!gt.count(num)) {
+            ++frames;
+            fps += int(dets.size());
+            continue;
+        }
         for (const auto &g : gt.at(num)) {
             float o = 0;
             const bool ok = found(dets, g.class_id, g.left, g.top, g.right, g.bottom, &o);
-            std::printf("%s scene %05d class %d (%s) at %d,%d: best IoU with that class %.2f\n", ok ? "ok  " : "FAIL", num,
-                        g.class_id, class_name(g.class_id), g.left, g.top, double(o));
-            failures += !ok;
+            ++signs;
+            found_n += ok;
+            if (!ok)
+                std::printf("miss  %05d class %d (%s) at %d,%d: best IoU with that class %.2f\n", num, g.class_id,
+                            class_name(g.class_id), g.left, g.top, double(o));
             // the crop: 4 x the sign's size, the sign a quarter off centre
             const int s = std::max(g.right - g.left, g.bottom - g.top) + 1;
             const int x0 = std::clamp(g.left - s - s / 2, 0, img.cols - 1), y0 = std::clamp(g.top - s - s / 4, 0, img.rows - 1);
             const int x1 = std::min(img.cols, x0 + 4 * s), y1 = std::min(img.rows, y0 + 4 * s);
             const cv::Mat crop = img(cv::Rect(x0, y0, x1 - x0, y1 - y0)).clone();
-            const auto cd = run.detect(crop, thr);
+            std::snprintf(what, sizeof what, "crop of %05d", num);
+            const auto cd = run.detect(crop, thr, what);
             const bool cok = found(cd, g.class_id, g.left - x0, g.top - y0, g.right - x0, g.bottom - y0, &o);
-            std::printf("%s crop  %05d class %d, %dx%d px: best IoU with that class %.2f\n", cok ? "ok  " : "FAIL", num,
-                        g.class_id, x1 - x0, y1 - y0, double(o));
-            failures += !cok;
+            ++crops;
+            crops_found += cok;
+            if (!cok)
+                std::printf("miss  crop of %05d class %d, %dx%d px: best IoU with that class %.2f\n", num, g.class_id,
+                            x1 - x0, y1 - y0, double(o));
         }
     }
-
-    int frames = 0, fps = 0;
-    for (const auto &f : list_images(dir)) {
-        const int num = image_number(f);
-        if (num < 400 || num > 599 || gt.count(num)) continue;
-        cv::Mat img = cv::imread(f, cv::IMREAD_COLOR);
-        if (img.empty()) continue;
-        ++frames;
-        fps += int(run.detect(img, thr).size());
-    }
+    int failures = run.errors;
+    const double recall = signs ? double(found_n) / signs : 0.0;
+    const double crop_recall = crops ? double(crops_found) / crops : 0.0;
     const double rate = frames ? double(fps) / frames : 0.0;
-    const bool rok = frames > 0 && rate <= double(max_fp_rate);
+    const bool r_ok = signs > 0 && recall >= min_recall;
+    const bool c_ok = crops > 0 && crop_recall >= min_crop_recall;
+    const bool f_ok = frames > 0 && rate <= max_fp_rate;
+    std::printf("%s frames %05d-%05d: %d images, %d signs, found %d (recall %.3f, floor %.3f)\n", r_ok ? "ok  " : "FAIL",
+                int(first), int(last), images, signs, found_n, recall, min_recall);
+    std::printf("%s crops: %d, found %d (recall %.3f, floor %.3f)\n", c_ok ? "ok  " : "FAIL", crops, crops_found,
+                crop_recall, min_crop_recall);
     std::printf("%s sign-free frames: %d, detections at the operating point %d (%.3f per frame, limit %.2f)\n",
-                rok ? "ok  " : "FAIL", frames, fps, rate, double(max_fp_rate));
-    failures += !rok;
+                f_ok ? "ok  " : "FAIL", frames, fps, rate, max_fp_rate);
+    std::printf("%s recogniser errors: %d\n", run.errors ? "FAIL" : "ok  ", run.errors);
+    failures += !r_ok + !c_ok + !f_ok;
     std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);
     return failures ? 1 : 0;
 }

@@ -9,7 +9,7 @@ double bad_core_math(double x);
 
 double bad_core_math(double x)
 {
-    return cos(x);
+    return (cos(x) * x) + 1.0; /* double arithmetic: __aeabi_dmul/__aeabi_dadd on Cortex-M4F */
 }
 
 static int counter;

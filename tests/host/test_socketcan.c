@@ -1,7 +1,8 @@
 /* SocketCAN port on a real kernel interface: frames sent through sbr's port arrive on a
  * second socket bound to the same interface (vcan0 by default, or argv[1]).
- * Skips itself (exit 77) with a message where the kernel has no CAN support or the
- * interface does not exist; create one with:
+ * Skips itself (exit 77) with a message only where the kernel has no CAN support
+ * (EAFNOSUPPORT) or the interface does not exist (ENODEV); any other error fails. Create
+ * the interface with:
  *   sudo modprobe vcan && sudo ip link add dev vcan0 type vcan && sudo ip link set up vcan0 */
 #include <errno.h>
 #include <stdio.h>
@@ -23,9 +24,16 @@ int main(int argc, char **argv)
     int err = 0;
 
     if (sbr_port_socketcan_open(&rx, ifname, &err) != SBR_OK) {
-        printf("SKIP: SocketCAN not available here (%s: %s)%s\n", ifname, strerror(err),
-               (err == EAFNOSUPPORT) ? " - the kernel has no CAN support (AF_CAN)" : "");
-        return 77;
+        /* only the documented causes skip: no AF_CAN in the kernel, or no such interface;
+           any other failure (a bug in the port included) fails */
+        if ((err == EAFNOSUPPORT) || (err == ENODEV)) {
+            printf("SKIP: SocketCAN not available here (%s: %s)%s\n", ifname, strerror(err),
+                   (err == EAFNOSUPPORT) ? " - the kernel has no CAN support (AF_CAN)"
+                                         : " - no such interface");
+            return 77;
+        }
+        printf("FAIL: opening %s: %s (errno %d)\n", ifname, strerror(err), err);
+        return 1;
     }
     if (sbr_port_socketcan_open(&tx, ifname, &err) != SBR_OK) {
         printf("FAIL: second socket on %s: %s\n", ifname, strerror(err));

@@ -1,0 +1,114 @@
+// Fuzz harness: the bicycle model (predict, project, wheel pairing) and its particle
+// filter. On SBR_OK: states and ellipses finite; pairs within capacity with scores >= 0;
+// filter results with finite means and deviations and an effective sample size within
+// [0, particles].
+#include "fuzz_common.hpp"
+
+#include <cstddef>
+
+extern "C" {
+#include "sbr/bicycle.h"
+}
+
+namespace {
+
+sbr_ellipse_t ellipse_from(FuzzedDataProvider &in)
+{
+    sbr_ellipse_t e;
+    e.cx = fz_float(in, 0.0f, 1280.0f);
+    e.cy = fz_float(in, 0.0f, 720.0f);
+    e.semi_major = fz_float(in, 0.0f, 200.0f);
+    e.semi_minor = fz_float(in, 0.0f, 200.0f);
+    e.angle = fz_float(in, -1.6f, 1.6f);
+    return e;
+}
+
+bool state_ok(const sbr_bike_state_t &s)
+{
+    return fz_finite(s.x) && fz_finite(s.z) && fz_finite(s.heading) && fz_finite(s.speed) && fz_finite(s.steer) &&
+           fz_finite(s.roll);
+}
+
+bool ellipse_ok(const sbr_ellipse_t &e)
+{
+    return fz_finite(e.cx) && fz_finite(e.cy) && fz_finite(e.semi_major) && fz_finite(e.semi_minor) &&
+           fz_finite(e.angle);
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    FuzzedDataProvider in(data, size);
+    sbr_bike_model_t model;
+    sbr_bike_model_default(&model);
+    if (in.ConsumeBool()) {
+        model.wheel_radius = fz_float(in, 0.0f, 1.0f);
+        model.wheelbase = fz_float(in, 0.0f, 3.0f);
+        model.roll_tau = fz_float(in, 0.0f, 2.0f);
+    }
+    sbr_bike_state_t s;
+    s.x = fz_float(in, -10.0f, 10.0f);
+    s.z = fz_float(in, 0.0f, 50.0f);
+    s.heading = fz_float(in, -3.2f, 3.2f);
+    s.speed = fz_float(in, 0.0f, 20.0f);
+    s.steer = fz_float(in, -1.6f, 1.6f);
+    s.roll = fz_float(in, -1.6f, 1.6f);
+    sbr_bike_state_t next;
+    const sbr_status_t ps = sbr_bike_predict_state(&model, &s, fz_float(in, 0.0f, 1.0f), &next);
+    FZ_STATUS(ps, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE);
+    if (ps == SBR_OK) {
+        FZ_CHECK(state_ok(next));
+    }
+    sbr_bike_pf_config_t cfg;
+    sbr_bike_pf_config_default(&cfg);
+    cfg.particles = 64u;
+    fz_edit_fields(in, &cfg, offsetof(sbr_bike_pf_config_t, particles), 2u);
+    fz_edit_fields(in, reinterpret_cast<unsigned char *>(&cfg) + offsetof(sbr_bike_pf_config_t, seed),
+                   sizeof cfg - offsetof(sbr_bike_pf_config_t, seed), 2u);
+    sbr_ellipse_t rear;
+    sbr_ellipse_t front;
+    const sbr_status_t js = sbr_bike_project(&cfg.camera, &model, &s, &rear, &front);
+    FZ_STATUS(js, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE, SBR_ERR_DEGENERATE);
+    if (js == SBR_OK) {
+        FZ_CHECK(ellipse_ok(rear) && ellipse_ok(front));
+    }
+    sbr_ellipse_t ell[10];
+    const uint32_t n = in.ConsumeIntegralInRange<uint32_t>(0u, 10u);
+    for (uint32_t i = 0u; i < n; i++) {
+        ell[i] = (js == SBR_OK && i < 2u && in.ConsumeBool()) ? (i == 0u ? rear : front) : ellipse_from(in);
+    }
+    sbr_wheel_pair_t pairs[6];
+    uint32_t np = 0u;
+    const uint32_t cap = in.ConsumeIntegralInRange<uint32_t>(0u, 6u);
+    const sbr_status_t ws = sbr_bike_pair_wheels(ell, n, &model, pairs, cap, &np);
+    FZ_CHECK(fz_known(ws));
+    if (ws == SBR_OK || ws == SBR_ERR_CAPACITY) {
+        FZ_CHECK(np <= cap);
+        for (uint32_t i = 0u; i < np; i++) {
+            FZ_CHECK(pairs[i].first < n && pairs[i].second < n && pairs[i].first != pairs[i].second);
+            FZ_CHECK(fz_finite(pairs[i].score) && pairs[i].score >= 0.0f);
+            FZ_CHECK(ellipse_ok(pairs[i].wheel[0]) && ellipse_ok(pairs[i].wheel[1]));
+        }
+    }
+    const sbr_status_t cs = sbr_bike_pf_config_check(&cfg);
+    const size_t need = sbr_bike_pf_workspace_size(&cfg);
+    FZ_CHECK((need == 0u) == (cs != SBR_OK));
+    if (cs != SBR_OK || need > ((size_t)16u << 20)) {
+        return 0;
+    }
+    sbr_bike_pf_t pf;
+    FZ_STATUS(sbr_bike_pf_init(&pf, &cfg, fz_workspace(need), need), SBR_OK);
+    const uint32_t steps = in.ConsumeIntegralInRange<uint32_t>(1u, 6u);
+    for (uint32_t k = 0u; k < steps; k++) {
+        sbr_bike_result_t r;
+        const uint32_t m = in.ConsumeIntegralInRange<uint32_t>(0u, n);
+        const sbr_status_t st = sbr_bike_pf_step(&pf, fz_float(in, 0.0f, 0.2f), ell, m, &r);
+        FZ_STATUS(st, SBR_OK, SBR_ERR_NULL, SBR_ERR_STATE, SBR_ERR_RANGE, SBR_ERR_SIZE);
+        if (st == SBR_OK && (r.flags & SBR_BIKE_TRACKING) != 0u) {
+            FZ_CHECK(state_ok(r.mean) && state_ok(r.stddev));
+            FZ_CHECK(fz_finite(r.ess) && r.ess >= 0.0f && r.ess <= (float)cfg.particles * 1.001f);
+        }
+    }
+    return 0;
+}

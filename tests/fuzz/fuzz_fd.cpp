@@ -1,0 +1,183 @@
+// Fuzz harness: FFT, Fourier descriptors (from integer and float points), mirror, smooth,
+// match and table match. On SBR_OK: the FFT's inverse undoes the forward within float
+// rounding; descriptors pass sbr_fd_check() with unit energy; a descriptor matches
+// itself with error ~0; every match has error in [0, 4], rotation in [-pi, pi], shift in
+// [0, 1), a finite positive scale ratio; the table's best is its smallest error.
+#include "fuzz_common.hpp"
+
+#include <algorithm>
+
+extern "C" {
+#include "sbr/fd.h"
+#include "sbr/fft.h"
+}
+
+namespace {
+
+void check_match(const sbr_fd_match_t &r)
+{
+    FZ_CHECK(fz_finite(r.error) && r.error >= 0.0f && r.error <= 4.0f + 1e-4f);
+    FZ_CHECK(fz_finite(r.rotation) && std::fabs(r.rotation) <= 3.1416f);
+    FZ_CHECK(fz_finite(r.shift) && r.shift >= 0.0f && r.shift < 1.0f + 1e-6f);
+    FZ_CHECK(fz_finite(r.scale_ratio) && r.scale_ratio > 0.0f);
+}
+
+void fuzz_fft(FuzzedDataProvider &in)
+{
+    sbr_fft_t fft;
+    const uint32_t n = in.ConsumeBool() ? (1u << in.ConsumeIntegralInRange<uint32_t>(3u, 10u)) : fz_u32(in, 0u, 2048u);
+    const sbr_status_t st = sbr_fft_init(&fft, n);
+    FZ_STATUS(st, SBR_OK, SBR_ERR_SIZE, SBR_ERR_NULL);
+    FZ_CHECK((st == SBR_OK) == (sbr_fft_size_supported(n) != 0));
+    if (st != SBR_OK) {
+        return;
+    }
+    std::vector<sbr_complex_t> x(n), y(n), z(n);
+    float mx = 0.0f;
+    bool finite = true;
+    for (auto &c : x) {
+        c.re = fz_float(in, -1e3f, 1e3f);
+        c.im = fz_float(in, -1e3f, 1e3f);
+        finite = finite && fz_finite(c.re) && fz_finite(c.im);
+        mx = std::max(mx, std::max(std::fabs(c.re), std::fabs(c.im)));
+    }
+    FZ_STATUS(sbr_fft_check(&fft), SBR_OK);
+    const sbr_status_t fs = sbr_fft_forward(&fft, x.data(), y.data());
+    FZ_CHECK(fz_known(fs));
+    if (fs == SBR_OK && finite && mx < 1e30f) {
+        FZ_STATUS(sbr_fft_inverse(&fft, y.data(), z.data()), SBR_OK);
+        for (uint32_t i = 0u; i < n; i++) {
+            // inverse(forward(x)) = x (the inverse is scaled by 1/N)
+            FZ_CHECK(std::fabs(z[i].re - x[i].re) <= 1e-4f * mx * (float)n + 1e-30f);
+            FZ_CHECK(std::fabs(z[i].im - x[i].im) <= 1e-4f * mx * (float)n + 1e-30f);
+        }
+    }
+    // in place and a corrupted instance
+    FZ_CHECK(fz_known(sbr_fft_forward(&fft, x.data(), x.data())));
+    sbr_fft_t bad = fft;
+    std::vector<uint8_t> junk = in.ConsumeBytes<uint8_t>(sizeof bad);
+    if (!junk.empty()) {
+        std::memcpy(&bad, junk.data(), std::min(junk.size(), sizeof bad));
+    }
+    const sbr_status_t bs = sbr_fft_check(&bad);
+    FZ_CHECK(fz_known(bs));
+    if (bs != SBR_OK) {
+        FZ_CHECK(sbr_fft_forward(&bad, x.data(), y.data()) != SBR_OK);
+    }
+}
+
+void fuzz_descriptors(FuzzedDataProvider &in)
+{
+    static sbr_fft_t fft_n[7];
+    static sbr_fft_t fft_p;
+    static bool init = false;
+    if (!init) {
+        for (uint32_t k = 0u; k < 7u; k++) { /* N = 16 .. 1024 */
+            FZ_STATUS(sbr_fft_init(&fft_n[k], 16u << k), SBR_OK);
+        }
+        FZ_STATUS(sbr_fft_init(&fft_p, 64u), SBR_OK);
+        init = true;
+    }
+    const sbr_fft_t &fft = fft_n[in.ConsumeIntegralInRange<uint32_t>(0u, 6u)];
+    const uint32_t m = fz_u32(in, 1u, 20u);
+    const uint32_t count = in.ConsumeIntegralInRange<uint32_t>(0u, 300u);
+    std::vector<sbr_complex_t> work(in.ConsumeBool() ? 1024u : in.ConsumeIntegralInRange<uint32_t>(0u, 1024u));
+    sbr_fd_t a;
+    sbr_fd_t b;
+    sbr_status_t st;
+    if (in.ConsumeBool()) {
+        std::vector<sbr_point_t> p(count);
+        for (auto &q : p) {
+            q.x = in.ConsumeIntegral<int16_t>();
+            q.y = in.ConsumeIntegral<int16_t>();
+        }
+        st = sbr_fd_from_points(&fft, p.data(), count, m, work.data(), (uint32_t)work.size(), &a);
+    } else {
+        std::vector<sbr_pointf_t> p(count);
+        for (auto &q : p) {
+            q.x = fz_float(in, -500.0f, 500.0f);
+            q.y = fz_float(in, -500.0f, 500.0f);
+        }
+        st = sbr_fd_from_pointsf(&fft, p.data(), count, m, work.data(), (uint32_t)work.size(), &a);
+    }
+    FZ_STATUS(st, SBR_OK, SBR_ERR_NULL, SBR_ERR_STATE, SBR_ERR_SIZE, SBR_ERR_DEGENERATE, SBR_ERR_RANGE);
+    if (st != SBR_OK) {
+        // a descriptor from bytes: every function must refuse or stay finite
+        std::vector<uint8_t> raw = in.ConsumeBytes<uint8_t>(sizeof a);
+        std::memset(&a, 0, sizeof a);
+        if (!raw.empty()) {
+            std::memcpy(&a, raw.data(), std::min(raw.size(), sizeof a));
+        }
+    } else {
+        float e = -1.0f;
+        FZ_STATUS(sbr_fd_check(&a, &e), SBR_OK);
+        FZ_CHECK(a.m == m && std::fabs(e - 1.0f) < 1e-3f);
+        FZ_CHECK(fz_finite(a.cx) && fz_finite(a.cy) && fz_finite(a.scale) && a.scale > 0.0f);
+    }
+    const bool valid = sbr_fd_check(&a, nullptr) == SBR_OK;
+    const sbr_status_t ms = sbr_fd_mirror(&a, &b);
+    FZ_STATUS(ms, SBR_OK, SBR_ERR_RANGE, SBR_ERR_NULL);
+    FZ_CHECK((ms == SBR_OK) == valid);
+    if (ms == SBR_OK) {
+        FZ_STATUS(sbr_fd_check(&b, nullptr), SBR_OK);
+    }
+    const float sigma = fz_float(in, 0.0f, 0.5f);
+    const sbr_status_t ss = sbr_fd_smooth(&a, sigma, &b);
+    FZ_STATUS(ss, SBR_OK, SBR_ERR_RANGE, SBR_ERR_NULL);
+    if (ss == SBR_OK) {
+        float e = 0.0f;
+        FZ_STATUS(sbr_fd_check(&b, &e), SBR_OK);
+    }
+    sbr_fd_match_config_t cfg;
+    FZ_STATUS(sbr_fd_match_config_default(&cfg), SBR_OK);
+    if (in.ConsumeBool()) {
+        cfg.mode = static_cast<sbr_fd_mode_t>(in.ConsumeIntegralInRange<uint32_t>(0u, 2u));
+        cfg.max_rotation = fz_float(in, 0.0f, 3.2f);
+        cfg.refine = in.ConsumeIntegralInRange<int>(-1, 2);
+        cfg.max_error = fz_float(in, 0.0f, 2.5f);
+    }
+    std::vector<sbr_complex_t> mw(SBR_FD_TABLE_WORK_LEN(64u));
+    sbr_fd_match_t r;
+    const sbr_status_t xs = sbr_fd_match(&fft_p, &cfg, &a, &a, mw.data(), 64u, &r);
+    FZ_CHECK(fz_known(xs));
+    if (xs == SBR_OK) {
+        check_match(r);
+        if (st == SBR_OK && cfg.max_error == 0.0f && cfg.max_rotation >= 3.1415f) {
+            FZ_CHECK(r.error < 1e-3f); // a descriptor matches itself
+        }
+    }
+    // a table: the descriptor, its mirror, and corrupted copies
+    sbr_fd_t table[6];
+    const uint32_t nt = in.ConsumeIntegralInRange<uint32_t>(0u, 6u);
+    for (uint32_t i = 0u; i < nt; i++) {
+        table[i] = a;
+        if (in.ConsumeIntegral<uint8_t>() > 200u) {
+            table[i].c[in.ConsumeIntegralInRange<uint32_t>(0u, 2u * SBR_FD_MAX_M)].re = fz_float(in, -2.0f, 2.0f);
+        }
+    }
+    sbr_fd_match_t res[6];
+    uint32_t best = 99u;
+    const uint32_t wl = in.ConsumeBool() ? SBR_FD_TABLE_WORK_LEN(64u) : 64u;
+    const sbr_status_t ts = sbr_fd_match_table(&fft_p, &cfg, &a, table, nt, mw.data(), wl, res, &best);
+    FZ_CHECK(fz_known(ts));
+    if (ts == SBR_OK) {
+        FZ_CHECK(best < nt);
+        for (uint32_t i = 0u; i < nt; i++) {
+            check_match(res[i]);
+            FZ_CHECK(res[best].error <= res[i].error);
+        }
+    }
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    FuzzedDataProvider in(data, size);
+    if (in.ConsumeIntegral<uint8_t>() < 64u) {
+        fuzz_fft(in);
+    } else {
+        fuzz_descriptors(in);
+    }
+    return 0;
+}

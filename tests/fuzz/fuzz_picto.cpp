@@ -1,0 +1,66 @@
+// Fuzz harness: pictogram features (box and triangle outline), classification and box
+// refinement with the built-in class stage. On SBR_OK: features finite; probabilities
+// finite in [0, 1] summing to 1; refined boxes finite and not empty.
+#include "fuzz_common.hpp"
+
+extern "C" {
+#include "sbr/pictogram.h"
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    FuzzedDataProvider in(data, size);
+    static sbr_picto_model_t model;
+    static bool have = false;
+    if (!have) {
+        FZ_STATUS(sbr_picto_gtsdb(&model), SBR_OK);
+        FZ_STATUS(sbr_picto_check(&model), SBR_OK);
+        have = true;
+    }
+    std::vector<uint8_t> buf;
+    const sbr_image_t img = fz_image(in, buf, 72u, 72u, SBR_PIXEL_RGB888);
+    float box[4];
+    for (float &b : box) {
+        b = fz_float(in, -40.0f, 110.0f);
+    }
+    const uint32_t outline = in.ConsumeBool() ? 0u : fz_u32(in, 0u, 2u);
+    static float feat[SBR_PICTO_FEATURES + 4u];
+    const uint32_t len = in.ConsumeBool() ? SBR_PICTO_FEATURES : fz_u32(in, 0u, SBR_PICTO_FEATURES + 4u);
+    void *ws = fz_workspace(SBR_PICTO_WORKSPACE_SIZE);
+    const size_t wsz = in.ConsumeIntegral<uint8_t>() < 245u ? SBR_PICTO_WORKSPACE_SIZE : SBR_PICTO_WORKSPACE_SIZE - 4u;
+    const sbr_status_t fs = sbr_picto_features_outline(&img, box, outline, feat, len, ws, wsz);
+    FZ_CHECK(fz_known(fs));
+    if (fs != SBR_OK) {
+        // features as a hostile caller hands them in
+        for (uint32_t i = 0u; i < SBR_PICTO_FEATURES; i++) {
+            feat[i] = (in.remaining_bytes() > 0u) ? fz_float(in, -3.0f, 3.0f) : 0.0f;
+        }
+    } else {
+        for (uint32_t i = 0u; i < SBR_PICTO_FEATURES; i++) {
+            FZ_CHECK(fz_finite(feat[i]));
+        }
+    }
+    float prob[SBR_PICTO_OUTPUTS];
+    const sbr_status_t cs = sbr_picto_classify(&model, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, ws,
+                                               SBR_PICTO_WORKSPACE_SIZE);
+    FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE);
+    if (cs == SBR_OK) {
+        float sum = 0.0f;
+        for (float p : prob) {
+            FZ_CHECK(fz_finite(p) && p >= 0.0f && p <= 1.0f);
+            sum += p;
+        }
+        FZ_CHECK(std::fabs(sum - 1.0f) < 1e-3f);
+    }
+    float refined[4];
+    const sbr_status_t rs = sbr_picto_refine(&model, feat, SBR_PICTO_FEATURES, box, refined, ws,
+                                             SBR_PICTO_WORKSPACE_SIZE);
+    FZ_STATUS(rs, SBR_OK, SBR_ERR_RANGE);
+    if (rs == SBR_OK) {
+        for (float r : refined) {
+            FZ_CHECK(fz_finite(r));
+        }
+        FZ_CHECK(refined[2] > refined[0] && refined[3] > refined[1]);
+    }
+    return 0;
+}

@@ -1,0 +1,81 @@
+// Fuzz harness: the recogniser. Frames from the input (size, stride, format, pixels), a
+// ROI, configuration fields overwritten from the input, the built-in model, a result
+// array of some capacity. On SBR_OK / SBR_ERR_CAPACITY: count <= capacity, every box
+// inside the frame (and the ROI), scores finite in [0, 1], classes of GTSDB.
+#include "fuzz_common.hpp"
+
+#include <cstddef>
+
+extern "C" {
+#include "sbr/recognizer.h"
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    FuzzedDataProvider in(data, size);
+    static sbr_model_t model;
+    static bool have_model = false;
+    if (!have_model) {
+        FZ_STATUS(sbr_model_gtsdb(&model), SBR_OK);
+        have_model = true;
+    }
+    sbr_recog_config_t cfg;
+    sbr_recog_config_default(&cfg);
+    fz_edit_fields(in, &cfg, offsetof(sbr_recog_config_t, clock), 4u);
+    std::vector<uint8_t> buf;
+    const sbr_image_t img = fz_image(in, buf, 96u, 96u, in.ConsumeBool() ? SBR_PIXEL_RGB888 : SBR_PIXEL_BGR888);
+    sbr_rect_t roi;
+    const bool use_roi = in.ConsumeBool();
+    roi.x = fz_u32(in, 0u, img.width);
+    roi.y = fz_u32(in, 0u, img.height);
+    roi.width = fz_u32(in, 1u, img.width);
+    roi.height = fz_u32(in, 1u, img.height);
+    const uint32_t w = use_roi ? roi.width : img.width;
+    const uint32_t h = use_roi ? roi.height : img.height;
+    const sbr_status_t cs = sbr_recog_config_check(&cfg);
+    FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE);
+    size_t need = sbr_recog_workspace_size(w, h, &cfg);
+    if (cs != SBR_OK) {
+        FZ_CHECK(need == 0u); // a bad configuration has no workspace size
+    }
+    if (need > ((size_t)256u << 20)) {
+        return 0; // a configuration asking for more than this harness gives
+    }
+    const bool short_ws = (need > 0u) && (in.ConsumeIntegral<uint8_t>() >= 240u);
+    const size_t given = (need == 0u) ? 4096u : (short_ws ? need - 1u : need);
+    void *ws = fz_workspace(given);
+    const uint32_t capacity = in.ConsumeIntegralInRange<uint32_t>(0u, 16u);
+    sbr_detection_t dets[16];
+    uint32_t count = 12345u;
+    sbr_recog_stats_t stats;
+    const sbr_status_t st = sbr_recog_detect(&img, use_roi ? &roi : nullptr, &cfg, &model, ws, given,
+                                             capacity > 0u ? dets : nullptr, capacity, &count, &stats);
+    FZ_STATUS(st, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE, SBR_ERR_CORRUPT, SBR_ERR_SIZE, SBR_ERR_ALIGN,
+              SBR_ERR_WORKSPACE, SBR_ERR_CAPACITY);
+    if (cs != SBR_OK) {
+        FZ_CHECK(st != SBR_OK && st != SBR_ERR_CAPACITY);
+    }
+    if (short_ws && st != SBR_ERR_NULL && st != SBR_ERR_RANGE && st != SBR_ERR_SIZE && st != SBR_ERR_ALIGN) {
+        FZ_CHECK(st == SBR_ERR_WORKSPACE);
+    }
+    if (st == SBR_OK || st == SBR_ERR_CAPACITY) {
+        FZ_CHECK(count <= capacity);
+        if (st == SBR_ERR_CAPACITY) {
+            FZ_CHECK(count == capacity); // the best `capacity` are written
+        }
+        for (uint32_t i = 0u; i < count; i++) {
+            const sbr_detection_t &d = dets[i];
+            FZ_CHECK(d.box.width > 0u && d.box.height > 0u);
+            FZ_CHECK((uint64_t)d.box.x + d.box.width <= img.width && (uint64_t)d.box.y + d.box.height <= img.height);
+            FZ_CHECK(fz_finite(d.score) && d.score >= 0.0f && d.score <= 1.0f);
+            FZ_CHECK(fz_finite(d.class_share) && d.class_share >= 0.0f && d.class_share <= 1.0f);
+            FZ_CHECK(d.class_id < SBR_RECOG_CLASSES);
+            if (i > 0u) {
+                FZ_CHECK(dets[i - 1u].score >= d.score); // highest score first
+            }
+        }
+    } else {
+        FZ_CHECK(st == SBR_ERR_NULL || count == 0u || count == 12345u);
+    }
+    return 0;
+}

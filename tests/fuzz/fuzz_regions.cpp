@@ -1,0 +1,157 @@
+// Fuzz harness: maps, MSER, region masks, contour tracing and part extraction. Images and
+// configuration fields from the input. On SBR_OK: maps of the promised size; regions
+// inside the map with area within the bounds; masks that contain the seed; contours
+// whose points lie in the mask and whose index ranges fit the point array; parts with
+// finite descriptors inside the image.
+#include "fuzz_common.hpp"
+
+extern "C" {
+#include "sbr/contour.h"
+#include "sbr/fft.h"
+#include "sbr/map.h"
+#include "sbr/mser.h"
+#include "sbr/parts.h"
+}
+
+namespace {
+
+void fuzz_map_mser_contour(FuzzedDataProvider &in)
+{
+    std::vector<uint8_t> buf;
+    const sbr_image_t img = fz_image(in, buf, 64u, 64u, SBR_PIXEL_RGB888);
+    const auto kind = static_cast<sbr_map_kind_t>(in.ConsumeIntegralInRange<uint32_t>(0u, 4u));
+    const uint32_t sub = fz_u32(in, 1u, 3u);
+    std::vector<uint8_t> map(64u * 64u + 64u);
+    const uint32_t mstride = in.ConsumeBool() ? 64u : in.ConsumeIntegralInRange<uint32_t>(0u, 66u);
+    sbr_image_t view;
+    const sbr_status_t ms = sbr_map_make(&img, kind, sub, map.data(), mstride, map.size(), &view);
+    FZ_CHECK(fz_known(ms));
+    if (ms != SBR_OK) {
+        return;
+    }
+    FZ_CHECK(view.width == img.width / sub && view.height == img.height / sub);
+    FZ_CHECK(view.format == SBR_PIXEL_GRAY8 && view.data == map.data() && view.stride == mstride);
+    sbr_mser_config_t cfg;
+    sbr_mser_config_default(&cfg);
+    fz_edit_fields(in, &cfg, sizeof cfg, 3u);
+    const sbr_status_t cs = sbr_mser_config_check(&cfg);
+    const size_t need = sbr_mser_workspace_size(view.width, view.height, &cfg);
+    if (cs != SBR_OK) {
+        FZ_CHECK(need == 0u);
+    }
+    if (need > ((size_t)64u << 20)) {
+        return;
+    }
+    void *ws = fz_workspace(need > 0u ? need : 64u);
+    sbr_mser_region_t regions[64];
+    uint32_t n = 0u;
+    const uint32_t cap = in.ConsumeIntegralInRange<uint32_t>(0u, 64u);
+    const sbr_status_t st = sbr_mser_detect(&view, &cfg, ws, need, regions, cap, &n);
+    FZ_STATUS(st, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE, SBR_ERR_SIZE, SBR_ERR_ALIGN, SBR_ERR_WORKSPACE,
+              SBR_ERR_CAPACITY);
+    if (st != SBR_OK && st != SBR_ERR_CAPACITY) {
+        return;
+    }
+    FZ_CHECK(n <= cap);
+    std::vector<uint8_t> mask;
+    for (uint32_t i = 0u; i < n && i < 8u; i++) {
+        const sbr_mser_region_t &r = regions[i];
+        FZ_CHECK(r.bbox.width > 0u && r.bbox.height > 0u);
+        FZ_CHECK((uint64_t)r.bbox.x + r.bbox.width <= view.width && (uint64_t)r.bbox.y + r.bbox.height <= view.height);
+        FZ_CHECK(r.area >= cfg.min_area && r.area <= cfg.max_area && r.area <= r.bbox.width * r.bbox.height);
+        FZ_CHECK(r.seed_x >= r.bbox.x && r.seed_x < r.bbox.x + r.bbox.width);
+        FZ_CHECK(r.seed_y >= r.bbox.y && r.seed_y < r.bbox.y + r.bbox.height);
+        FZ_CHECK(fz_finite(r.variation) && r.variation >= 0.0f);
+        const size_t mws = SBR_MSER_MASK_WORKSPACE_SIZE(r.bbox.width, r.bbox.height);
+        mask.assign((size_t)r.bbox.width * r.bbox.height, 0u);
+        const sbr_status_t rs = sbr_mser_region_mask(&view, &r, fz_workspace(mws), mws, mask.data(),
+                                                     r.bbox.width, mask.size());
+        FZ_STATUS(rs, SBR_OK);
+        uint32_t on = 0u;
+        for (uint8_t v : mask) {
+            on += (v != 0u) ? 1u : 0u;
+        }
+        FZ_CHECK(on == r.area);
+        FZ_CHECK(mask[(size_t)(r.seed_y - r.bbox.y) * r.bbox.width + (r.seed_x - r.bbox.x)] != 0u);
+        // the region's outer contour
+        sbr_image_t mview;
+        mview.width = r.bbox.width;
+        mview.height = r.bbox.height;
+        mview.stride = r.bbox.width;
+        mview.format = SBR_PIXEL_GRAY8;
+        mview.data = mask.data();
+        const size_t cws = sbr_contour_workspace_size(mview.width, mview.height);
+        sbr_point_t pts[512];
+        sbr_contour_t cont[4];
+        uint32_t nc = 0u;
+        const uint32_t pcap = in.ConsumeIntegralInRange<uint32_t>(0u, 512u);
+        const uint32_t ccap = in.ConsumeIntegralInRange<uint32_t>(0u, 4u);
+        const sbr_status_t ks = sbr_contour_find_external(&mview, fz_workspace(cws), cws, pts, pcap, cont, ccap, &nc);
+        FZ_STATUS(ks, SBR_OK, SBR_ERR_CAPACITY, SBR_ERR_NULL);
+        if (ks == SBR_OK || ks == SBR_ERR_CAPACITY) {
+            FZ_CHECK(nc <= ccap);
+            for (uint32_t c = 0u; c < nc; c++) {
+                FZ_CHECK(cont[c].length >= 1u && (uint64_t)cont[c].first + cont[c].length <= pcap);
+                for (uint32_t k = 0u; k < cont[c].length; k++) {
+                    const sbr_point_t p = pts[cont[c].first + k];
+                    FZ_CHECK(p.x >= 0 && p.y >= 0 && (uint32_t)p.x < mview.width && (uint32_t)p.y < mview.height);
+                    FZ_CHECK(mask[(size_t)p.y * mview.width + (size_t)p.x] != 0u);
+                }
+            }
+            if (ks == SBR_OK) {
+                FZ_CHECK(nc >= 1u || r.area == 0u);
+            }
+        }
+    }
+}
+
+void fuzz_parts(FuzzedDataProvider &in)
+{
+    std::vector<uint8_t> buf;
+    const sbr_image_t img = fz_image(in, buf, 80u, 80u, SBR_PIXEL_RGB888);
+    sbr_parts_config_t cfg;
+    sbr_parts_config_default(&cfg);
+    fz_edit_fields(in, &cfg, sizeof cfg, 3u);
+    sbr_fft_t fft;
+    const uint32_t n_fft = in.ConsumeBool() ? cfg.fd_n : (1u << in.ConsumeIntegralInRange<uint32_t>(2u, 11u));
+    const bool fft_ok = sbr_fft_init(&fft, n_fft) == SBR_OK;
+    const sbr_status_t cs = sbr_parts_config_check(&cfg);
+    FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE, SBR_ERR_SIZE);
+    const size_t need = sbr_parts_workspace_size(img.width, img.height, &cfg);
+    if (cs != SBR_OK) {
+        FZ_CHECK(need == 0u);
+    }
+    if (need > ((size_t)128u << 20)) {
+        return;
+    }
+    static sbr_part_t parts[128];
+    uint32_t n = 0u;
+    sbr_parts_stats_t stats;
+    const uint32_t cap = in.ConsumeIntegralInRange<uint32_t>(0u, 128u);
+    const sbr_status_t st = sbr_parts_extract(&img, &cfg, fft_ok ? &fft : nullptr, fz_workspace(need > 0u ? need : 64u),
+                                              need, parts, cap, &n, &stats);
+    FZ_CHECK(fz_known(st));
+    if (st == SBR_OK || st == SBR_ERR_CAPACITY) {
+        FZ_CHECK(n <= cap);
+        for (uint32_t i = 0u; i < n; i++) {
+            const sbr_part_t &p = parts[i];
+            FZ_STATUS(sbr_fd_check(&p.fd, nullptr), SBR_OK);
+            FZ_CHECK(p.fd.m == cfg.fd_m);
+            FZ_CHECK((uint64_t)p.bbox.x + p.bbox.width <= img.width && (uint64_t)p.bbox.y + p.bbox.height <= img.height);
+            FZ_CHECK(p.map < SBR_MAP_KINDS && (cfg.maps & (1u << p.map)) != 0u);
+        }
+    }
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    FuzzedDataProvider in(data, size);
+    if (in.ConsumeBool()) {
+        fuzz_map_mser_contour(in);
+    } else {
+        fuzz_parts(in);
+    }
+    return 0;
+}
