@@ -308,8 +308,12 @@ static void test_roi_offsets_boxes(void)
     TEST_ASSERT_UINT32_WITHIN(1u, full.box.y, g_dets[0].box.y);
     TEST_ASSERT_UINT32_WITHIN(1u, full.box.width, g_dets[0].box.width);
     roi.x = 100u; /* 100 + 84 > 160 */
-    TEST_ASSERT_TRUE(sbr_recog_detect(&v, &roi, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n,
-                                      NULL) < 0);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, &roi, &g_cfg, &g_model, g_ws, sizeof g_ws,
+                                                          g_dets, 16u, &n, NULL));
+    roi.x = 70u;
+    roi.width = 0u; /* empty */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, &roi, &g_cfg, &g_model, g_ws, sizeof g_ws,
+                                                          g_dets, 16u, &n, NULL));
 }
 
 /* Two signs, room for one: the distinct capacity status, and one detection written. */
@@ -691,7 +695,7 @@ static void test_hostile_frames_builtin(void)
     /* 1 x 1 */
     v.width = 1u;
     v.height = 1u;
-    TEST_ASSERT_TRUE(sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL) <= SBR_OK);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL));
     TEST_ASSERT_EQUAL_UINT32(0u, n);
     /* a huge (corrupted) stride is refused before any pixel is read */
     v = view();

@@ -157,7 +157,8 @@ sbr_status_t sbr_channel_decode_window(const sbr_channel_config_t *cfg, const fl
  * @param[in]  len           length of `hist`.
  * @param[in]  min_certainty modes with certainty <= this are ignored; finite, >= 0.
  * @param[out] modes         result array, sorted by decreasing certainty (ties: by value).
- * @param[in]  capacity      length of `modes` (0 allowed only with modes == NULL: counts).
+ * @param[in]  capacity      length of `modes` (0 allowed only with modes == NULL: then
+ *                           ::SBR_ERR_CAPACITY says that at least one mode qualified).
  * @param[out] count         number of modes written.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE; ::SBR_ERR_RANGE for a bad channel value
  *         or threshold; ::SBR_ERR_CAPACITY if more modes qualified than fit: `modes` then

@@ -125,7 +125,7 @@ typedef struct sbr_fd_match_config_s {
     /** Invariant or covariant (default: covariant, what traffic signs need). */
     sbr_fd_mode_t mode;
     /** Covariant mode only: accept only peaks whose rotation magnitude is at most this
-        (radians, 0 .. pi; pi = no bound, the default). A bound keeps, say, a left arrow
+        (radians, >= 0; pi or more = no bound, pi the default). A bound keeps, say, a left arrow
         from matching a right arrow turned upside down. If no peak qualifies the error
         is 4 (the worst). */
     float max_rotation;

@@ -139,8 +139,8 @@ size_t sbr_mser_workspace_size(uint32_t width, uint32_t height, const sbr_mser_c
  * @param[in]  capacity       length of `regions`.
  * @param[out] count          regions written.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a format other than GRAY8 or a bad
- *         configuration; ::SBR_ERR_SIZE for a map below 3 x 3 (and errors of
- *         sbr_image_check()); ::SBR_ERR_WORKSPACE if the workspace is too small or not
+ *         configuration; ::SBR_ERR_SIZE for a map below 3 x 3 or a capacity of 0 (and
+ *         errors of sbr_image_check()); ::SBR_ERR_WORKSPACE if the workspace is too small or not
  *         4-byte aligned; ::SBR_ERR_CAPACITY if more regions were found than `capacity`
  *         (the first `capacity` are written) or the node bound was reached (regions may
  *         be missing; the others are exact).

@@ -1,0 +1,230 @@
+// The model file forms (--model .sbrm, --picto .sbrp, sbr_track --model text) against
+// damaged files: the built-in models are written, then truncated at many lengths, bit-flipped
+// at many positions, changed with the CRC fixed up (counts, a weight made NaN, a table row
+// made invalid), version-bumped and given a foreign magic. Every damaged file must be
+// refused, and the refusal must name the check that caught it (magic, version, crc, sizes,
+// values, format); the intact files load and save back byte for byte.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "model_io.hpp"
+#include "track_model_io.hpp"
+
+extern "C" {
+#include "sbr/pictogram.h"
+#include "sbr/recognizer.h"
+#include "sbr/tracker.h"
+}
+
+namespace {
+
+int failures = 0;
+int checks = 0;
+
+void expect(bool ok, const std::string &what)
+{
+    ++checks;
+    if (!ok) {
+        ++failures;
+        std::printf("FAIL: %s\n", what.c_str());
+    }
+}
+
+// the refusal names `check` (": magic:", ": crc:", ...)
+void expect_refused(const std::string &err, const char *check, const std::string &what)
+{
+    expect(!err.empty() && err.find(std::string(": ") + check + ":") != std::string::npos,
+           what + " -> '" + err + "' (wanted a " + check + " refusal)");
+}
+
+void fix_crc(std::string &s)
+{
+    const uint32_t c = sbr_host::crc32_ieee(s.data(), s.size() - 4u);
+    std::memcpy(&s[s.size() - 4u], &c, 4u);
+}
+
+template <typename Parse>
+void binary_damage(const std::string &good, const char *name, Parse parse)
+{
+    // truncated: every length of the header, then every 997th byte
+    int n = 0;
+    for (size_t len = 0; len < good.size(); len += (len < 256u ? 1u : 997u), ++n) {
+        const std::string e = parse(good.substr(0, len));
+        expect(!e.empty(), std::string(name) + " truncated to " + std::to_string(len) + " bytes accepted");
+        if (len >= 8u) expect_refused(e, "crc", std::string(name) + " truncated to " + std::to_string(len));
+    }
+    // one bit flipped anywhere: the CRC catches it
+    for (size_t pos = 0; pos < good.size(); pos += 1 + good.size() / 300u) {
+        std::string s = good;
+        s[pos] = static_cast<char>(s[pos] ^ (1 << (pos % 8u)));
+        const std::string e = parse(s);
+        if (pos < 4u)
+            expect_refused(e, "magic", std::string(name) + " bit flip in the magic");
+        else
+            expect_refused(e, "crc", std::string(name) + " bit flip at " + std::to_string(pos));
+    }
+    // truncated with the CRC fixed up: the sizes no longer match the counts
+    {
+        std::string s = good.substr(0, good.size() - 100u);
+        fix_crc(s);
+        expect_refused(parse(s), "sizes", std::string(name) + " truncated, CRC fixed up");
+    }
+    // version bumped, CRC fixed up
+    {
+        std::string s = good;
+        uint32_t v = 0;
+        std::memcpy(&v, &s[4], 4u);
+        ++v;
+        std::memcpy(&s[4], &v, 4u);
+        fix_crc(s);
+        expect_refused(parse(s), "version", std::string(name) + " version bumped");
+    }
+    // a foreign file
+    {
+        std::string s = good;
+        s[0] = 'X';
+        expect_refused(parse(s), "magic", std::string(name) + " foreign magic");
+    }
+    std::printf("%s: %zu bytes, %d truncations, bit flips and fixed-up changes refused\n", name, good.size(), n);
+}
+
+}  // namespace
+
+int main()
+{
+    sbr_model_t mv{};
+    sbr_picto_model_t pv{};
+    sbr_track_model_t tv{};
+    if (sbr_model_gtsdb(&mv) != SBR_OK || sbr_picto_gtsdb(&pv) != SBR_OK || sbr_track_model_kitti(&tv) != SBR_OK) {
+        std::printf("FAIL: built-in models\n");
+        return 1;
+    }
+
+    // ---- the class stage (.sbrp)
+    std::string picto;
+    expect(sbr_host::picto_bytes(sbr_host::picto_from_view(pv), picto).empty(), "write .sbrp");
+    {
+        sbr_host::Picto p;
+        expect(sbr_host::parse_picto(picto, "builtin.sbrp", p).empty(), "the intact .sbrp loads");
+        std::string again;
+        expect(sbr_host::picto_bytes(p, again).empty() && again == picto, "the .sbrp saves back byte for byte");
+    }
+    auto parse_picto = [](const std::string &s) {
+        sbr_host::Picto p;
+        return sbr_host::parse_picto(s, "f.sbrp", p);
+    };
+    binary_damage(picto, ".sbrp", parse_picto);
+    {
+        // a weight made NaN, CRC fixed up: values
+        std::string s = picto;
+        const float nan = NAN;
+        std::memcpy(&s[s.size() - 8u], &nan, 4u);
+        fix_crc(s);
+        expect_refused(parse_picto(s), "values", ".sbrp NaN weight, CRC fixed up");
+        // hidden units above the maximum: sizes
+        s = picto;
+        const uint32_t hidden = SBR_PICTO_HIDDEN_MAX + 1u;
+        std::memcpy(&s[12], &hidden, 4u);
+        fix_crc(s);
+        expect_refused(parse_picto(s), "sizes", ".sbrp hidden units out of range, CRC fixed up");
+    }
+
+    // ---- the part model with its class stage (.sbrm)
+    std::string model;
+    expect(sbr_host::model_bytes(sbr_host::model_from_view(mv), model).empty(), "write .sbrm");
+    {
+        sbr_host::Model m;
+        expect(sbr_host::parse_model(model, "builtin.sbrm", m).empty(), "the intact .sbrm loads");
+        std::string again;
+        expect(sbr_host::model_bytes(m, again).empty() && again == model, "the .sbrm saves back byte for byte");
+    }
+    auto parse_model = [](const std::string &s) {
+        sbr_host::Model m;
+        return sbr_host::parse_model(s, "f.sbrm", m);
+    };
+    binary_damage(model, ".sbrm", parse_model);
+    {
+        // prototype count 0 and far too many, CRC fixed up: sizes
+        for (uint32_t np : {0u, 70000u}) {
+            std::string s = model;
+            std::memcpy(&s[16], &np, 4u);
+            fix_crc(s);
+            expect_refused(parse_model(s), "sizes", ".sbrm prototype count " + std::to_string(np));
+        }
+        // the vote error made NaN: the model check (values)
+        std::string s = model;
+        const float nan = NAN;
+        std::memcpy(&s[24], &nan, 4u);
+        fix_crc(s);
+        expect_refused(parse_model(s), "values", ".sbrm NaN vote error, CRC fixed up");
+    }
+
+    // ---- the tracker's text form
+    sbr_host::TrackModel tm;
+    tm.m = tv;
+    tm.trans.assign(tv.transition, tv.transition + SBR_TRACK_MODEL_TRANSITION_LEN(tv.regions[0], tv.regions[1], tv.vel_count));
+    tm.birth.assign(tv.birth, tv.birth + SBR_TRACK_MODEL_BIRTH_LEN(tv.regions[0], tv.regions[1], tv.vel_count));
+    tm.bind();
+    std::string text;
+    expect(sbr_host::track_model_bytes(tm, text).empty(), "write the tracker model");
+    auto parse_track = [](const std::string &s) {
+        sbr_host::TrackModel t;
+        return sbr_host::parse_track_model(s, "f.stm", t);
+    };
+    expect(parse_track(text).empty(), "the intact tracker model loads");
+    auto with_crc = [](std::string body) {
+        const size_t at = body.rfind("crc32 ");
+        body.resize(at);
+        char line[32];
+        std::snprintf(line, sizeof line, "crc32 %08x\n", sbr_host::crc32_ieee(body.data(), body.size()));
+        return body + line;
+    };
+    int tn = 0;
+    for (size_t len = 0; len < text.size(); len += 1 + text.size() / 200u, ++tn) {
+        const std::string e = parse_track(text.substr(0, len));
+        expect(!e.empty(), "tracker model truncated to " + std::to_string(len) + " accepted");
+        if (len > 40u) expect_refused(e, "crc", "tracker model truncated to " + std::to_string(len));
+    }
+    for (size_t pos = 40; pos + 16u < text.size(); pos += 1 + text.size() / 150u, ++tn) {
+        std::string s = text;
+        if (s[pos] == '\n') continue;
+        s[pos] = (s[pos] == '7') ? '8' : '7';
+        expect_refused(parse_track(s), "crc", "tracker model edited at " + std::to_string(pos));
+    }
+    {
+        std::string s = text;
+        s.replace(s.find(" 2\n"), 3, " 3\n");
+        expect_refused(parse_track(with_crc(s)), "version", "tracker model version bumped");
+        s = text;
+        s.replace(0, 3, "xbr");
+        expect_refused(parse_track(s), "magic", "tracker model foreign magic");
+        // a transition entry made 5 (its row no longer a distribution), CRC fixed up
+        s = text;
+        const size_t row = s.find('\n', s.find("transition ")) + 1u;
+        s.insert(row, "5");
+        expect_refused(parse_track(with_crc(s)), "values", "tracker model row not a distribution");
+        // the header's region count changed: the tables no longer match it
+        s = text;
+        const size_t rg = s.find("regions ");
+        s.replace(rg, s.find('\n', rg) - rg, "regions 10 6");
+        expect_refused(parse_track(with_crc(s)), "sizes", "tracker model header with other region counts");
+        // a table count that swallows the next key: a malformed file
+        s = text;
+        const size_t b = s.find("birth ");
+        s.replace(b, s.find('\n', b) - b, "birth 3");
+        expect_refused(parse_track(with_crc(s)), "format", "tracker model birth table of 3");
+        // a NaN entry, CRC fixed up
+        s = text;
+        s.insert(row, "nan ");
+        const std::string e = parse_track(with_crc(s));
+        expect(!e.empty(), "tracker model with a NaN entry accepted");
+    }
+    std::printf("tracker model: %zu bytes, %d truncations and edits refused\n", text.size(), tn);
+
+    std::printf("model files: %d checks, %d failed\n", checks, failures);
+    std::printf("%d passed, %d failed\n", checks - failures, failures);
+    return failures == 0 ? 0 : 1;
+}
