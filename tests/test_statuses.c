@@ -59,7 +59,7 @@ static void check(const table_t *t)
 static uint8_t g_rgb[16 * 16 * 3];
 static uint8_t g_grey[16 * 16];
 static uint8_t g_out[32 * 32];
-static uint32_t g_ws[40000];
+static uint64_t g_ws[20000]; /* 8-byte aligned on every target */
 
 static sbr_image_t rgb_view(void)
 {

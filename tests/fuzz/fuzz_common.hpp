@@ -128,6 +128,16 @@ inline sbr_image_t fz_image(FuzzedDataProvider &in, std::vector<uint8_t> &buf, u
     return img;
 }
 
+// A configuration's workspace size: 0 for a configuration its check refused (checked);
+// true when the harness can give it (at most `limit_mb` MiB).
+inline bool fz_workspace_fits(sbr_status_t config_status, size_t need, size_t limit_mb)
+{
+    if (config_status != SBR_OK) {
+        FZ_CHECK(need == 0u); // a bad configuration has no workspace size
+    }
+    return need <= (limit_mb << 20);
+}
+
 // 8-byte aligned scratch of at least `bytes` bytes, reused between runs.
 inline void *fz_workspace(size_t bytes)
 {

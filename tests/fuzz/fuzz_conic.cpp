@@ -119,10 +119,7 @@ void fuzz_detect(FuzzedDataProvider &in)
     fz_edit_fields(in, &cfg, sizeof cfg, 3u);
     const sbr_status_t cs = sbr_ellipse_detect_config_check(&cfg);
     const size_t need = sbr_ellipse_detect_workspace_size(img.width, img.height, &cfg);
-    if (cs != SBR_OK) {
-        FZ_CHECK(need == 0u);
-    }
-    if (need > ((size_t)64u << 20)) {
+    if (!fz_workspace_fits(cs, need, 64u)) {
         return;
     }
     sbr_ellipse_det_t det[16];

@@ -35,11 +35,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const sbr_status_t cs = sbr_recog_config_check(&cfg);
     FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE);
     size_t need = sbr_recog_workspace_size(w, h, &cfg);
-    if (cs != SBR_OK) {
-        FZ_CHECK(need == 0u); // a bad configuration has no workspace size
-    }
-    if (need > ((size_t)256u << 20)) {
-        return 0; // a configuration asking for more than this harness gives
+    if (!fz_workspace_fits(cs, need, 256u)) {
+        return 0;
     }
     const bool short_ws = (need > 0u) && (in.ConsumeIntegral<uint8_t>() >= 240u);
     const size_t given = (need == 0u) ? 4096u : (short_ws ? need - 1u : need);

@@ -36,10 +36,7 @@ void fuzz_map_mser_contour(FuzzedDataProvider &in)
     fz_edit_fields(in, &cfg, sizeof cfg, 3u);
     const sbr_status_t cs = sbr_mser_config_check(&cfg);
     const size_t need = sbr_mser_workspace_size(view.width, view.height, &cfg);
-    if (cs != SBR_OK) {
-        FZ_CHECK(need == 0u);
-    }
-    if (need > ((size_t)64u << 20)) {
+    if (!fz_workspace_fits(cs, need, 64u)) {
         return;
     }
     void *ws = fz_workspace(need > 0u ? need : 64u);
@@ -118,10 +115,7 @@ void fuzz_parts(FuzzedDataProvider &in)
     const sbr_status_t cs = sbr_parts_config_check(&cfg);
     FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE, SBR_ERR_SIZE);
     const size_t need = sbr_parts_workspace_size(img.width, img.height, &cfg);
-    if (cs != SBR_OK) {
-        FZ_CHECK(need == 0u);
-    }
-    if (need > ((size_t)128u << 20)) {
+    if (!fz_workspace_fits(cs, need, 128u)) {
         return;
     }
     static sbr_part_t parts[128];
