@@ -2,7 +2,7 @@
 # sbr's one entry point: set-up, the main job and the tests.
 #
 #   ./sbr.sh detect [--input DIR] [--out DIR] [--range A-B] [--baseline FILE]
-#                                               the main job (see README.md): the recogniser
+#                                               the main job (docs/usage/detect.md): the recogniser
 #                                               over a folder of images (default: GTSDB's
 #                                               development split 00400-00599), detections,
 #                                               annotated images, CAN log, summary;
@@ -272,7 +272,7 @@ cmd_train() {
   # the class stage learns from the new library's candidates: rebuild with it first
   cmake --build "$BUILD/native" -j "$JOBS" --target sbr_train_picto
   log "sbr_train_picto on GTSDB 00000-00399 -> lib/models/sbr_picto_gtsdb.c, $BUILD/sbr_picto_gtsdb.sbrp"
-  # seed 2: see sbr_train_picto.cpp (training noise; the README's figures are this seed's)
+  # seed 2: see sbr_train_picto.cpp (training noise; the figures of docs/results/recognition.md are this seed's)
   "$BUILD/native/host_tools/sbr_train_picto" --data "$ROOT/../shared/data/gtsdb" --range 0-399 --seed 2 \
       --out-c "$ROOT/lib/models/sbr_picto_gtsdb.c" --out "$BUILD/sbr_picto_gtsdb.sbrp"
   cmake --build "$BUILD/native" -j "$JOBS"
@@ -315,5 +315,6 @@ case "${1:-}" in
   learn-tracker) shift; cmd_learn_tracker "$@" ;;
   track) shift; cmd_track "$@" ;;
   setup) setup ;;
+  -h|--help|help) sed -n '2,32p' "$0" ;;
   *) sed -n '2,32p' "$0"; exit 2 ;;
 esac

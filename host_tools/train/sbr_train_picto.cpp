@@ -220,7 +220,7 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     rc.triangle_score = 0.0f;
     // every map at full resolution, as the part model was learned (sbr_train): the finest
     // candidates (the recogniser's default runs the blue map at half resolution; the class
-    // stage learned this way scores the same there, see the README)
+    // stage learned this way scores the same there, see docs/results/recognition.md)
     parts_at_full_resolution(rc.parts);
     rc.min_parts = 1;
     rc.min_score = picto != nullptr ? kMineScore : 0.0f;
