@@ -16,8 +16,7 @@
  * (a table: T(0) = 0, T(16) = 64, T(64) = 128, T(255) = 255). The curve stretches the
  * dark end: a sign in shadow under a bright sky, whose pixels a camera exposed for the
  * sky records in 10..60, spans about twice as many grey levels, enough for MSER's
- * stability test (on GTSDB 00400-00599 the recogniser's boxes matched 83 % instead of
- * 77 % of the signs, whatever the class, with the models of the time).
+ * stability test (measured: docs/results/recognition.md).
  *
  * The colour maps are chromaticities: C(d) = 128 + 128 d / (R + G + B + 60), clamped to
  * 0..255. They are 128 for grey pixels of any brightness, rise towards 255 for saturated
@@ -26,11 +25,8 @@
  * same in shadow and in sunlight; the 60 keeps the near-black pixels, whose hue is
  * mostly noise, near 128. Red sign rims are bright regions of the red map, blue
  * mandatory signs bright regions of the blue map, and the white or black inner parts
- * extremal regions of the intensity map. (The earlier opponent maps, (512 + 2B - R - G)
- * / 4 for blue, put a dark blue sign only about 20 levels above a pale sky: on GTSDB
- * 00400-00599, MSER at the recogniser's settings outlined 22 of the 28 mandatory signs
- * in the half-resolution blue map; the chromaticity map outlines 27, and all 28 with
- * the recogniser's smaller blue-map regions, parts.h map_min_area.)
+ * extremal regions of the intensity map. (They replaced opponent maps that put a dark
+ * blue sign only about 20 levels above a pale sky: docs/results/recognition.md.)
  *
  * Output size: floor(width / s) x floor(height / s). Work: one pass over the source.
  */

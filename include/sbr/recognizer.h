@@ -147,16 +147,12 @@ sbr_status_t sbr_model_gtsdb(sbr_model_t *out);
 /** Options. Start from sbr_recog_config_default(); every field is documented there. */
 typedef struct sbr_recog_config_s {
     /** Part extraction (parts.h). fd_n and fd_m must equal the model's. Default:
-        sbr_parts_config_default() with MSER delta 3, max_variation 0.5 and maps =
-        intensity + blue (the built-in library also has red-map prototypes; adding the red
-        map costs about a third more part time and, on GTSDB, did not help), the blue map
-        at half resolution (map_subsample[SBR_MAP_BLUE] = 2: a quarter of its time, same
-        F1 on GTSDB) with regions from 40 of its pixels (map_min_area[SBR_MAP_BLUE] = 40,
-        signs from about 15 px: mser.min_area 60 there lost a 17 px keep-right sign of
-        GTSDB 00400-00599 (00507); the parts stage took about 1 ms a frame more, within
-        the noise of single passes). Trade-off: maps and subsample set most of the time
-        and memory; subsample 2 quarters both and loses signs below about 24 px. GRAY8
-        frames need maps = intensity only. */
+        sbr_parts_config_default() with MSER delta 3, max_variation 0.5, maps = intensity
+        + blue, the blue map at half resolution (map_subsample[SBR_MAP_BLUE] = 2) with
+        regions from 40 of its pixels (map_min_area[SBR_MAP_BLUE] = 40, signs from about
+        15 px). Trade-off: maps and subsample set most of the time and memory; subsample 2
+        quarters both and loses signs below about 24 px. GRAY8 frames need maps =
+        intensity only. Why these: docs/results/recognition.md. */
     sbr_parts_config_t parts;
     /** Correlation size P (a supported FFT size, >= 2M + 1). Default 32. Larger P locates
         the peak on a finer grid before refinement; the cost grows with P log P. */
@@ -196,10 +192,10 @@ typedef struct sbr_recog_config_s {
         hypothesis is a candidate). Larger: less class-stage work, lower recall. */
     float candidate_score;
     /** With a class stage: candidates classified per frame, best part score first
-        (bounds its work: each costs one pictogram, see pictogram.h). Default 256 (a
-        1360 x 800 GTSDB frame has about 580 hypotheses after suppression). Larger: more
-        recall on signs with weak part evidence, more time.
-        Running out is flagged in sbr_recog_stats_t::capacity_hit (bit 4). */
+        (bounds its work: each costs one pictogram, see pictogram.h). Default 256; a
+        1360 x 800 street frame has several hundred hypotheses, so the bound is usually
+        reached: that is its purpose, and stats.capacity_hit bit 4 says so. Larger: more
+        recall on signs with weak part evidence, more time. */
     uint32_t max_candidates;
     /** With a class stage whose classifier has a box regression (sbr_picto_model_t::w3):
         how often a candidate's box is moved to where the classifier places the sign and
@@ -207,15 +203,11 @@ typedef struct sbr_recog_config_s {
         part model put them. Each step costs one more pictogram and the regression. */
     uint32_t refine_steps;
     /** The first refinement needs the sign classes together to be at least this probable
-        at the part model's box, [0, 1]. Default 0: every candidate is refined once. The
-        classifier is sharp about where a sign is: a small sign's box a fifth of its size
-        off is "no sign" to it (probability below 0.001), yet the regression still points
-        at the sign. On the GTSDB development split, 0 instead of 0.1 found 3 more danger
-        signs (33 -> 36 of 39) and 1 more prohibitory sign, and made 9 more false
-        detections, mostly "other" classes (class-level F1 0.884 instead of 0.892, mean
-        superclass AP 0.866 instead of 0.853); the class stage took about 11 ms more a frame
-        (one more pictogram per candidate). Higher: less work, fewer badly placed signs
-        recovered. */
+        at the part model's box, [0, 1]. Default 0: every candidate is refined once (the
+        classifier calls a box a fifth of a sign's size off "no sign", yet its regression
+        still points at the sign). Costs one pictogram per candidate; higher: less work,
+        fewer badly placed signs recovered (0.1 and refine_steps 1: the earlier, cheaper
+        behaviour). Measured: docs/results/recognition.md. */
     float refine_first_score;
     /** Further refinements (steps 2 .. refine_steps) only while the sign classes together
         are at least this probable, [0, 1]. Default 0.001 (after one move, a box near a
@@ -236,17 +228,15 @@ typedef struct sbr_recog_config_s {
         box with only the inside of a danger sign's triangle (sbr_picto_features_outline(),
         ::SBR_PICTO_OUTLINE_TRIANGLE); when that view's most probable sign class is a
         danger sign (GTSDB class 11 or 18..31) and more probable than the candidate's
-        score, it becomes the candidate's class and score. Clutter or a bright sky in
-        the box's top corners had made the classifier call clear danger signs "no sign".
-        0: off. Costs one more pictogram per candidate that passes triangle_score. */
+        score, it becomes the candidate's class and score (clutter in the box's top
+        corners otherwise hides danger signs). 0: off. Costs one more pictogram per
+        candidate that passes triangle_score. */
     uint32_t triangle_view;
     /** With triangle_view: only candidates whose first classification (at the box the
         part model placed) gives the danger classes together at least this probability
-        get the triangle view, [0, 1]. Default 0.001: on the GTSDB development split
-        this skips most candidates (the class stage took 11 instead of 20 ms a frame)
-        and changes no detection at the usual operating point (score 0.5); only a few
-        weak ones below it. 0: every candidate. Higher: less work, fewer danger signs
-        recovered from a box view that called them "no sign". */
+        get the triangle view, [0, 1]. Default 0.001: skips most candidates (about half
+        the class stage's time) with the same detections at the usual operating point.
+        0: every candidate. Higher: less work, fewer danger signs recovered. */
     float triangle_score;
     /** Score floor of reported detections, [0, 1): the class stage's probability, or the
         part score without one. Default 0.3 (below the usual operating point, so
@@ -257,9 +247,8 @@ typedef struct sbr_recog_config_s {
     /** With a class stage: the suppression IoU among the candidates before it, on part
         scores, (0, 1]. Default 1: every hypothesis above the floor is a candidate (up to
         max_candidates, best part score first) and suppression runs once, on the class
-        scores (nms_iou). Lower values classify fewer boxes (0.3, the suppression of
-        earlier versions: class-level F1 on the GTSDB development split 0.861 instead of
-        0.892 with the built-in models, 236 instead of 255 candidates a frame). */
+        scores (nms_iou). Lower values classify fewer boxes and lose signs whose best box
+        had a weaker part score (measured: docs/results/recognition.md). */
     float candidate_iou;
     /** Optional time source for per-stage profiling (e.g. the DWT cycle counter on a
         Cortex-M, a monotonic clock on a host): returns a free-running tick count; the

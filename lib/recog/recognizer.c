@@ -78,14 +78,12 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->parts.mser.delta = 3u;
         cfg->parts.mser.max_variation = 0.5f;
         /* intensity and blue: red rims already stand out in intensity, blue signs need
-           their own map; the red map's parts added false hypotheses and ~45 ms a frame
-           (measured on GTSDB 00400-00599 with a 36 px class stage trained on all three
-           maps: class-level F1 0.795 without it, 0.779 with) */
+           their own map (the red map's parts added false hypotheses and time:
+           docs/results/recognition.md) */
         cfg->parts.maps = (1u << (uint32_t)SBR_MAP_INTENSITY) | (1u << (uint32_t)SBR_MAP_BLUE);
         /* blue at half resolution: a quarter of its MSER time; blue signs small enough to
-           be lost there are still found by their intensity parts (measured on GTSDB
-           00400-00599 with the models learned at full resolution: class-level F1 0.848 at
-           full, 0.847 at half resolution; parts stage about 103 -> 80 ms per frame) */
+           be lost there are still found by their intensity parts (same accuracy, measured
+           in docs/results/recognition.md) */
         cfg->parts.map_subsample[SBR_MAP_BLUE] = 2u;
         cfg->parts.map_min_area[SBR_MAP_BLUE] = 40u;
         cfg->match_p = 32u;
