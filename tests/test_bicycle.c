@@ -4,6 +4,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "test_status_table.h"
 #include "test_support.h"
 #include "unity.h"
 
@@ -386,6 +387,61 @@ static void test_filter_rejects_bad_input(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_bike_pf_step(&pf, 0.04f, e, 2u, &r));
 }
 
+/* bicycle.h: every documented status, in one table. */
+static void test_bicycle_h_statuses(void)
+{
+    status_table_t t;
+    sbr_bike_pf_config_t cfg = config(1u);
+    sbr_bike_pf_config_t bad = config(1u);
+    sbr_bike_pf_config_t few = config(1u);
+    sbr_bike_model_t badm;
+    sbr_bike_state_t s = {0.0f, 10.0f, 0.0f, 5.0f, 0.0f, 0.0f};
+    sbr_bike_state_t behind = {0.0f, -3.0f, 0.0f, 5.0f, 0.0f, 0.0f};
+    sbr_bike_state_t out;
+    sbr_bike_pf_t pf;
+    sbr_bike_pf_t blank;
+    sbr_bike_result_t r;
+    sbr_ellipse_t e[2];
+    sbr_ellipse_t nan_e[1] = {{NAN, 100.0f, 20.0f, 18.0f, 0.0f}};
+    sbr_wheel_pair_t pairs[1];
+    uint32_t n = 0u;
+    memset(&blank, 0, sizeof blank);
+    badm = cfg.model;
+    badm.wheelbase = 0.5f; /* shorter than two wheel radii */
+    bad.meas_px = 0.0f;
+    few.particles = 8u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_project(&cfg.camera, &cfg.model, &s, &e[0], &e[1]));
+    t.n = 0u;
+    ROW(&t, SBR_OK, sbr_bike_predict_state(&cfg.model, &s, 0.1f, &out));
+    ROW(&t, SBR_ERR_NULL, sbr_bike_predict_state(&cfg.model, &s, 0.1f, NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_predict_state(&badm, &s, 0.1f, &out));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_predict_state(&cfg.model, &s, 11.0f, &out));
+    ROW(&t, SBR_OK, sbr_bike_project(&cfg.camera, &cfg.model, &s, &e[0], NULL)); /* either may be NULL */
+    ROW(&t, SBR_ERR_NULL, sbr_bike_project(NULL, &cfg.model, &s, &e[0], &e[1]));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_project(&cfg.camera, &badm, &s, &e[0], &e[1]));
+    ROW(&t, SBR_ERR_DEGENERATE, sbr_bike_project(&cfg.camera, &cfg.model, &behind, &e[0], NULL)); /* behind the camera */
+    ROW(&t, SBR_OK, sbr_bike_pair_wheels(e, 2u, &cfg.model, pairs, 1u, &n));
+    ROW(&t, SBR_ERR_NULL, sbr_bike_pair_wheels(e, 2u, &cfg.model, pairs, 1u, NULL));
+    ROW(&t, SBR_ERR_SIZE, sbr_bike_pair_wheels(e, SBR_BIKE_MAX_ELLIPSES + 1u, &cfg.model, pairs, 1u, &n));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_pair_wheels(nan_e, 1u, &cfg.model, pairs, 1u, &n));
+    ROW(&t, SBR_ERR_CAPACITY, sbr_bike_pair_wheels(e, 2u, &cfg.model, NULL, 0u, &n));
+    ROW(&t, SBR_OK, sbr_bike_pf_config_check(&cfg));
+    ROW(&t, SBR_ERR_NULL, sbr_bike_pf_config_check(NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_pf_config_check(&bad));
+    ROW(&t, SBR_ERR_SIZE, sbr_bike_pf_config_check(&few));
+    ROW(&t, SBR_OK, sbr_bike_pf_init(&pf, &cfg, g_ws, sizeof g_ws));
+    ROW(&t, SBR_ERR_NULL, sbr_bike_pf_init(NULL, &cfg, g_ws, sizeof g_ws));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_pf_init(&blank, &bad, g_ws, sizeof g_ws));
+    ROW(&t, SBR_ERR_WORKSPACE, sbr_bike_pf_init(&blank, &cfg, g_ws, 64u));
+    ROW(&t, SBR_OK, sbr_bike_pf_step(&pf, 0.04f, e, 2u, &r));
+    ROW(&t, SBR_ERR_NULL, sbr_bike_pf_step(&pf, 0.04f, e, 2u, NULL));
+    ROW(&t, SBR_ERR_STATE, sbr_bike_pf_step(&blank, 0.04f, e, 2u, &r));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_pf_step(&pf, NAN, e, 2u, &r));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 0.04f, nan_e, 1u, &r));
+    ROW(&t, SBR_ERR_SIZE, sbr_bike_pf_step(&pf, 0.04f, e, SBR_BIKE_MAX_ELLIPSES + 1u, &r));
+    status_table_check(&t);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -395,5 +451,6 @@ int main(void)
     RUN_TEST(test_filter_keeps_a_crossing_bicycle);
     RUN_TEST(test_filter_drops_a_lost_track_and_restarts);
     RUN_TEST(test_filter_rejects_bad_input);
+    RUN_TEST(test_bicycle_h_statuses);
     return UNITY_END();
 }

@@ -3,6 +3,7 @@
 #include "unity.h"
 #include "sbr/can.h"
 #include "sbr_port_mock.h"
+#include "test_status_table.h"
 #ifdef SBR_TEST_CORTEX_M_PORT
 #include "sbr_port_cortex_m.h"
 #endif
@@ -524,6 +525,110 @@ static void test_e2e_protect_statuses(void)
     TEST_ASSERT_EQUAL_UINT8(0u, tx.counter[2]); /* 14 wraps to 0 */
 }
 
+/* can.h: every documented status, in one table. */
+static void test_can_h_statuses(void)
+{
+    status_table_t t;
+    sbr_can_detection_t d;
+    sbr_can_detection_t dbad;
+    sbr_can_confirmed_sign_t cs;
+    sbr_can_confirmed_sign_t csbad;
+    sbr_can_object_t ob;
+    sbr_can_object_t obbad;
+    sbr_can_ecu_status_t es;
+    sbr_can_ecu_status_t esbad;
+    sbr_can_frame_t f;
+    sbr_can_frame_t fd;
+    sbr_can_frame_t wrong_id;
+    sbr_can_frame_t short_f;
+    sbr_can_frame_t frames[16];
+    sbr_can_e2e_tx_t tx;
+    sbr_can_e2e_rx_t rx;
+    sbr_can_e2e_result_t res;
+    sbr_can_sched_config_t sc;
+    sbr_can_sched_config_t scbad;
+    sbr_can_cycle_t cyc;
+    sbr_can_detection_t cdet[1];
+    sbr_port_mock_t m;
+    sbr_can_frame_t store[2];
+    uint32_t n = 0u;
+    uint32_t dropped = 0u;
+    uint32_t sent = 0u;
+    memset(&d, 0, sizeof d);
+    d.class_id = 14u;
+    d.track_id = SBR_CAN_TRACK_NONE_DET;
+    dbad = d;
+    dbad.confidence = 101.0f;
+    memset(&cs, 0, sizeof cs);
+    cs.class_id = SBR_CAN_CLASS_NONE;
+    cs.track_id = SBR_CAN_TRACK_NONE;
+    cs.speed_kmh = SBR_CAN_SPEED_NONE;
+    csbad = cs;
+    csbad.slot = 4u;
+    memset(&ob, 0, sizeof ob);
+    ob.track_id = SBR_CAN_TRACK_NONE;
+    obbad = ob;
+    obbad.vx = NAN;
+    memset(&es, 0, sizeof es);
+    esbad = es;
+    esbad.overload = 2u;
+    memset(&cyc, 0, sizeof cyc);
+    cdet[0] = d;
+    cdet[0].confidence = 80.0f;
+    cyc.detections = cdet;
+    cyc.detection_count = 1u;
+    sbr_can_sched_config_default(&sc);
+    scbad = sc;
+    scbad.frame_budget = 3u;
+    sbr_port_mock_init(&m, store, 2u);
+    t.n = 0u;
+    ROW(&t, SBR_OK, sbr_can_pack_detection(&d, &fd));
+    ROW(&t, SBR_ERR_NULL, sbr_can_pack_detection(NULL, &f));
+    ROW(&t, SBR_ERR_RANGE, sbr_can_pack_detection(&dbad, &f));
+    ROW(&t, SBR_OK, sbr_can_unpack_detection(&fd, &d));
+    ROW(&t, SBR_ERR_NULL, sbr_can_unpack_detection(&fd, NULL));
+    ROW(&t, SBR_OK, sbr_can_pack_confirmed_sign(&cs, &f));
+    ROW(&t, SBR_ERR_NULL, sbr_can_pack_confirmed_sign(&cs, NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_can_pack_confirmed_sign(&csbad, &f));
+    ROW(&t, SBR_OK, sbr_can_unpack_confirmed_sign(&f, &cs));
+    wrong_id = fd;
+    short_f = f;
+    short_f.dlc = 7u;
+    ROW(&t, SBR_ERR_RANGE, sbr_can_unpack_confirmed_sign(&wrong_id, &cs));
+    ROW(&t, SBR_ERR_SIZE, sbr_can_unpack_confirmed_sign(&short_f, &cs));
+    ROW(&t, SBR_OK, sbr_can_pack_object(&ob, &f));
+    ROW(&t, SBR_ERR_RANGE, sbr_can_pack_object(&obbad, &f));
+    ROW(&t, SBR_OK, sbr_can_unpack_object(&f, &ob));
+    ROW(&t, SBR_ERR_RANGE, sbr_can_unpack_object(&fd, &ob));
+    ROW(&t, SBR_OK, sbr_can_pack_ecu_status(&es, &f));
+    ROW(&t, SBR_ERR_RANGE, sbr_can_pack_ecu_status(&esbad, &f));
+    ROW(&t, SBR_OK, sbr_can_unpack_ecu_status(&f, &es));
+    ROW(&t, SBR_ERR_NULL, sbr_can_unpack_ecu_status(NULL, &es));
+    ROW(&t, SBR_OK, sbr_can_e2e_tx_init(&tx));
+    ROW(&t, SBR_ERR_NULL, sbr_can_e2e_tx_init(NULL));
+    ROW(&t, SBR_OK, sbr_can_e2e_protect(&tx, &fd));
+    ROW(&t, SBR_OK, sbr_can_e2e_rx_init(&rx, SBR_CAN_ID_DETECTION));
+    ROW(&t, SBR_ERR_NULL, sbr_can_e2e_rx_init(NULL, SBR_CAN_ID_DETECTION));
+    ROW(&t, SBR_ERR_RANGE, sbr_can_e2e_rx_init(&rx, 0x7FFu));
+    ROW(&t, SBR_OK, sbr_can_e2e_rx_init(&rx, SBR_CAN_ID_DETECTION));
+    ROW(&t, SBR_OK, sbr_can_e2e_check(&rx, &fd, &res));
+    ROW(&t, SBR_ERR_CORRUPT, sbr_can_e2e_check(&rx, &fd, &res)); /* repeated */
+    ROW(&t, SBR_ERR_NULL, sbr_can_e2e_check(&rx, NULL, &res));
+    ROW(&t, SBR_OK, sbr_can_schedule(&tx, &sc, &cyc, frames, 16u, &n, &dropped));
+    ROW(&t, SBR_ERR_NULL, sbr_can_schedule(&tx, &sc, &cyc, frames, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_can_schedule(&tx, &scbad, &cyc, frames, 16u, &n, &dropped));
+    ROW(&t, SBR_ERR_CAPACITY, sbr_can_schedule(&tx, &sc, &cyc, frames, 15u, &n, &dropped));
+    cdet[0].center_x = 9999.0f; /* a result out of range: left out, reported */
+    ROW(&t, SBR_ERR_RANGE, sbr_can_schedule(&tx, &sc, &cyc, frames, 16u, &n, &dropped));
+    ROW(&t, SBR_OK, sbr_can_send(&sbr_port_mock, &m, frames, 2u, &sent));
+    ROW(&t, SBR_ERR_NULL, sbr_can_send(NULL, &m, frames, 2u, &sent));
+    ROW(&t, SBR_ERR_CAPACITY, sbr_can_send(&sbr_port_mock, &m, frames, 1u, &sent)); /* the port's status */
+    status_table_check(&t);
+    TEST_ASSERT_EQUAL_INT(SBR_E2E_REPEATED, res);
+    TEST_ASSERT_EQUAL_UINT32(0u, sent);
+    TEST_ASSERT_EQUAL_UINT8(0u, sbr_crc8_j1850(NULL, 4u));
+}
+
 static void test_mock_port_and_send(void)
 {
     sbr_can_frame_t store[4];
@@ -598,6 +703,7 @@ int main(void)
     RUN_TEST(test_unpack_refuses_out_of_range_signals);
     RUN_TEST(test_e2e_protect_statuses);
     RUN_TEST(test_mock_port_and_send);
+    RUN_TEST(test_can_h_statuses);
 #ifdef SBR_TEST_CORTEX_M_PORT
     RUN_TEST(test_cortex_m_port_hook);
 #endif

@@ -1,6 +1,7 @@
 /* Unity tests of part extraction (include/sbr/parts.h): maps -> MSER -> contours -> FDs. */
 #include "unity.h"
 #include "sbr/parts.h"
+#include "test_status_table.h"
 #include "test_support.h"
 
 #include <math.h>
@@ -371,6 +372,45 @@ static void test_parts_capacity_and_bad_input(void)
     TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_parts_workspace_size(2u, 5u, &g_cfg));
 }
 
+/* parts.h: every documented status, in one table. */
+static void test_parts_h_statuses(void)
+{
+    status_table_t t;
+    const sbr_image_t v = view();
+    sbr_image_t small = view();
+    sbr_image_t grey = view();
+    sbr_parts_config_t bad = g_cfg;
+    sbr_parts_config_t coarse = g_cfg;
+    sbr_fft_t f64;
+    sbr_fft_t blank;
+    uint32_t n = 0u;
+    draw_ring_sign(30.0f, 32.0f);
+    draw_triangle(70.0f, 32.0f);
+    memset(&blank, 0, sizeof blank);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_init_64(&f64));
+    bad.maps = 0u;
+    coarse.subsample = 8u;
+    small.width = 16u;
+    small.height = 16u;
+    grey.format = SBR_PIXEL_GRAY8;
+    t.n = 0u;
+    ROW(&t, SBR_OK, sbr_parts_config_check(&g_cfg));
+    ROW(&t, SBR_ERR_NULL, sbr_parts_config_check(NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_parts_config_check(&bad));
+    ROW(&t, SBR_OK, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    ROW(&t, SBR_ERR_NULL, sbr_parts_extract(&v, &g_cfg, NULL, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    ROW(&t, SBR_ERR_NULL, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 64u, NULL, NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_parts_extract(&v, &bad, &g_fft, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_parts_extract(&grey, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    ROW(&t, SBR_ERR_SIZE, sbr_parts_extract(&small, &coarse, &g_fft, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    ROW(&t, SBR_ERR_STATE, sbr_parts_extract(&v, &g_cfg, &f64, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    ROW(&t, SBR_ERR_STATE, sbr_parts_extract(&v, &g_cfg, &blank, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
+    ROW(&t, SBR_ERR_WORKSPACE, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, 100u, g_parts, 64u, &n, NULL));
+    ROW(&t, SBR_ERR_CAPACITY, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 1u, &n, NULL));
+    status_table_check(&t);
+    TEST_ASSERT_EQUAL_size_t(0u, sbr_parts_workspace_size(W, H, &bad));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -379,5 +419,6 @@ int main(void)
     RUN_TEST(test_map_subsample_per_kind);
     RUN_TEST(test_map_min_area_per_kind);
     RUN_TEST(test_parts_capacity_and_bad_input);
+    RUN_TEST(test_parts_h_statuses);
     return UNITY_END();
 }

@@ -3,6 +3,7 @@
    built-in model is consistent; bad input gets its status. */
 #include "unity.h"
 #include "sbr/recognizer.h"
+#include "test_status_table.h"
 
 #include <math.h>
 #include <string.h>
@@ -385,8 +386,8 @@ static void test_bad_input(void)
                                                           g_dets, 16u, &n, NULL));
     v = view();
     v.stride = 3u * W - 1u;
-    TEST_ASSERT_TRUE(sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n,
-                                      NULL) < 0);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws,
+                                                          g_dets, 16u, &n, NULL));
     /* corrupted models */
     saved = g_protos[0];
     g_protos[0].weight = NAN;
@@ -415,6 +416,57 @@ static void test_bad_input(void)
     g_model.version = SBR_MODEL_VERSION;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_model_check(NULL));
+}
+
+/* recognizer.h: every documented status, in one table. */
+static void test_recognizer_h_statuses(void)
+{
+    status_table_t t;
+    const sbr_image_t v = view();
+    sbr_image_t grey = view();
+    sbr_image_t odd = view();
+    sbr_image_t tiny = view();
+    sbr_recog_config_t bad = g_cfg;
+    sbr_recog_config_t other_m = g_cfg;
+    sbr_model_t corrupt = g_model;
+    sbr_model_t builtin;
+    const sbr_rect_t outside = {100u, 20u, 84u, 64u};
+    uint32_t n = 0u;
+    draw_sign(40.0f, 48.0f, 14.0f);
+    draw_sign(112.0f, 50.0f, 16.0f);
+    grey.format = SBR_PIXEL_GRAY8;
+    grey.stride = W;
+    odd.stride = 3u * W - 1u;
+    tiny.width = 1u;
+    tiny.height = 1u;
+    bad.nms_iou = 0.0f;
+    other_m.parts.fd_m = 10u;
+    corrupt.version = 99u;
+    t.n = 0u;
+    ROW(&t, SBR_OK, sbr_model_check(&g_model));
+    ROW(&t, SBR_ERR_NULL, sbr_model_check(NULL));
+    ROW(&t, SBR_ERR_CORRUPT, sbr_model_check(&corrupt));
+    ROW(&t, SBR_OK, sbr_model_gtsdb(&builtin));
+    ROW(&t, SBR_ERR_NULL, sbr_model_gtsdb(NULL));
+    ROW(&t, SBR_OK, sbr_recog_config_check(&g_cfg));
+    ROW(&t, SBR_ERR_NULL, sbr_recog_config_check(NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_recog_config_check(&bad));
+    ROW(&t, SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_NULL, sbr_recog_detect(NULL, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_NULL, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, NULL, NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &bad, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &other_m, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_recog_detect(&grey, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_recog_detect(&v, &outside, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &g_cfg, &corrupt, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_SIZE, sbr_recog_detect(&tiny, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_SIZE, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 0u, &n, NULL));
+    ROW(&t, SBR_ERR_ALIGN, sbr_recog_detect(&odd, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_WORKSPACE, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, 1000u, g_dets, 16u, &n, NULL));
+    ROW(&t, SBR_ERR_CAPACITY, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 1u, &n, NULL));
+    status_table_check(&t);
+    TEST_ASSERT_EQUAL_UINT32(1u, n); /* the best one written */
+    TEST_ASSERT_EQUAL_size_t(0u, sbr_recog_workspace_size(W, H, &bad));
 }
 
 /* A class stage relabels and rescores the part model's detection: a classifier that
@@ -771,6 +823,7 @@ int main(void)
     RUN_TEST(test_roi_offsets_boxes);
     RUN_TEST(test_capacity);
     RUN_TEST(test_bad_input);
+    RUN_TEST(test_recognizer_h_statuses);
     RUN_TEST(test_builtin_model_and_sizes);
     RUN_TEST(test_class_stage);
     RUN_TEST(test_hostile_frames_builtin);

@@ -1,9 +1,10 @@
 /* Every documented status, header by header: one table-driven test per public header
    (image, fft, map, contour, mser, fd, conic, channel, pictogram, status). Each row is a
    call and the status its header documents for it; the rows are evaluated in order and
-   every one is checked, so a failure names the call. The statuses of the recogniser,
-   parts, tracker, bicycle and CAN headers are triggered in their own test files
-   (test_recog.c, test_parts.c, test_tracker.c, test_bicycle.c, test_can.c). */
+   every one is checked, so a failure names the call. The tables of the recogniser,
+   parts, tracker, bicycle and CAN headers are in their own test files (they need those
+   tests' scenes and models): test_recog.c, test_parts.c, test_tracker.c,
+   test_bicycle.c, test_can.c, each a test_<header>_h_statuses(). */
 #include <math.h>
 #include <string.h>
 
@@ -17,43 +18,11 @@
 #include "sbr/mser.h"
 #include "sbr/pictogram.h"
 #include "sbr/status.h"
+#include "test_status_table.h"
 #include "unity.h"
 
 void setUp(void) {}
 void tearDown(void) {}
-
-#define MAX_ROWS 64u
-
-typedef struct {
-    const char *call;
-    sbr_status_t want;
-    sbr_status_t got;
-} row_t;
-
-typedef struct {
-    row_t rows[MAX_ROWS];
-    uint32_t n;
-} table_t;
-
-static void add(table_t *t, const char *call, sbr_status_t want, sbr_status_t got)
-{
-    TEST_ASSERT_TRUE(t->n < MAX_ROWS);
-    t->rows[t->n].call = call;
-    t->rows[t->n].want = want;
-    t->rows[t->n].got = got;
-    t->n++;
-}
-
-/* ROW(t, want, call): the call is evaluated here, in sequence */
-#define ROW(t, want, call) add((t), #call, (want), (call))
-
-static void check(const table_t *t)
-{
-    uint32_t i;
-    for (i = 0u; i < t->n; i++) {
-        TEST_ASSERT_EQUAL_INT_MESSAGE(t->rows[i].want, t->rows[i].got, t->rows[i].call);
-    }
-}
 
 /* a 16 x 16 RGB frame: a dark disc on a bright ground */
 static uint8_t g_rgb[16 * 16 * 3];
@@ -96,7 +65,7 @@ static sbr_image_t grey_view(void)
 
 static void test_image_h(void)
 {
-    table_t t;
+    status_table_t t;
     sbr_image_t v = rgb_view();
     sbr_image_t bad;
     sbr_image_t out;
@@ -131,7 +100,7 @@ static void test_image_h(void)
     bad = v;
     bad.width = 0u;
     ROW(&t, SBR_ERR_SIZE, sbr_image_roi(&bad, &roi, &out)); /* as sbr_image_check() */
-    check(&t);
+    status_table_check(&t);
     TEST_ASSERT_EQUAL_UINT32(3u, sbr_image_bytes_per_pixel(SBR_PIXEL_RGB888));
     TEST_ASSERT_EQUAL_UINT32(1u, sbr_image_bytes_per_pixel(SBR_PIXEL_GRAY8));
     TEST_ASSERT_EQUAL_UINT32(0u, sbr_image_bytes_per_pixel((sbr_pixel_format_t)9));
@@ -139,7 +108,7 @@ static void test_image_h(void)
 
 static void test_fft_h(void)
 {
-    table_t t;
+    status_table_t t;
     sbr_fft_t fft;
     sbr_fft_t bad;
     sbr_complex_t a[64];
@@ -166,7 +135,7 @@ static void test_fft_h(void)
     memset(&bad, 0x5A, sizeof bad); /* overwritten */
     ROW(&t, SBR_ERR_STATE, sbr_fft_check(&bad));
     ROW(&t, SBR_ERR_STATE, sbr_fft_inverse(&bad, a, b));
-    check(&t);
+    status_table_check(&t);
     TEST_ASSERT_EQUAL_INT(1, sbr_fft_size_supported(1024u));
     TEST_ASSERT_EQUAL_INT(0, sbr_fft_size_supported(2048u));
     TEST_ASSERT_EQUAL_INT(0, sbr_fft_size_supported(8u));
@@ -174,7 +143,7 @@ static void test_fft_h(void)
 
 static void test_map_h(void)
 {
-    table_t t;
+    status_table_t t;
     const sbr_image_t v = rgb_view();
     const sbr_image_t gv = grey_view();
     sbr_image_t bad = v;
@@ -199,12 +168,12 @@ static void test_map_h(void)
     /* the output over the source's own pixels */
     self = gv;
     ROW(&t, SBR_ERR_OVERLAP, sbr_map_make(&self, SBR_MAP_INTENSITY, 1u, g_grey, 16u, sizeof g_grey, &out));
-    check(&t);
+    status_table_check(&t);
 }
 
 static void test_contour_h(void)
 {
-    table_t t;
+    status_table_t t;
     const sbr_image_t gv = grey_view();
     sbr_image_t mask = gv;
     sbr_image_t rgb = rgb_view();
@@ -233,12 +202,12 @@ static void test_contour_h(void)
     ROW(&t, SBR_ERR_NULL, sbr_contour_area2(NULL, 4u, &a2));
     ROW(&t, SBR_ERR_NULL, sbr_contour_area2(pts, 4u, NULL));
     ROW(&t, SBR_ERR_SIZE, sbr_contour_area2(pts, 0u, &a2));
-    check(&t);
+    status_table_check(&t);
 }
 
 static void test_mser_h(void)
 {
-    table_t t;
+    status_table_t t;
     const sbr_image_t gv = grey_view();
     sbr_image_t small = gv;
     sbr_image_t rgb = rgb_view();
@@ -269,7 +238,7 @@ static void test_mser_h(void)
     ROW(&t, SBR_ERR_WORKSPACE, sbr_mser_detect(&gv, &cfg, g_ws, ws - 1u, r, 8u, &n));
     ROW(&t, SBR_ERR_WORKSPACE, sbr_mser_detect(&gv, &cfg, (uint8_t *)g_ws + 1, ws, r, 8u, &n));
     ROW(&t, SBR_ERR_SIZE, sbr_mser_detect(&gv, &cfg, g_ws, ws, r, 0u, &n));
-    check(&t);
+    status_table_check(&t);
     /* the node bound reached: a distinct status, the regions found so far exact */
     {
         sbr_mser_config_t few = cfg;
@@ -299,13 +268,13 @@ static void test_mser_h(void)
         moved = r[0];
         moved.area += 1u; /* not the region of this map */
         ROW(&t, SBR_ERR_CORRUPT, sbr_mser_region_mask(&gv, &moved, g_ws, mws, g_out, mst, sizeof g_out));
-        check(&t);
+        status_table_check(&t);
     }
 }
 
 static void test_fd_h(void)
 {
-    table_t t;
+    status_table_t t;
     static sbr_fft_t fft;
     static sbr_fft_t p;
     static sbr_fft_t none;
@@ -375,12 +344,12 @@ static void test_fd_h(void)
     ROW(&t, SBR_ERR_NULL, sbr_fd_match_table(&p, &cfg, &b, table, 2u, work, 64u, r, NULL));
     table[1].scale = 0.0f;
     ROW(&t, SBR_ERR_RANGE, sbr_fd_match_table(&p, &cfg, &b, table, 2u, work, 64u, r, &best));
-    check(&t);
+    status_table_check(&t);
 }
 
 static void test_conic_h(void)
 {
-    table_t t;
+    status_table_t t;
     const sbr_conic_t circle = {1.0f, 0.0f, 1.0f, 0.0f, 0.0f, -100.0f}; /* radius 10 */
     const sbr_conic_t zero = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
     const sbr_conic_t hyper = {1.0f, 0.0f, -1.0f, 0.0f, 0.0f, -1.0f};
@@ -457,13 +426,13 @@ static void test_conic_h(void)
     ROW(&t, SBR_ERR_RANGE, sbr_ellipse_detect(&gv, &bad_dc, g_ws, ws, det, 4u, &n));
     ROW(&t, SBR_ERR_RANGE, sbr_ellipse_detect(&rgb, &dc, g_ws, ws, det, 4u, &n));
     ROW(&t, SBR_ERR_WORKSPACE, sbr_ellipse_detect(&gv, &dc, g_ws, ws - 1u, det, 4u, &n));
-    check(&t);
+    status_table_check(&t);
     TEST_ASSERT_EQUAL_size_t(0u, sbr_ellipse_detect_workspace_size(16u, 16u, &bad_dc));
 }
 
 static void test_channel_h(void)
 {
-    table_t t;
+    status_table_t t;
     sbr_channel_config_t c;
     sbr_channel_config_t bad;
     sbr_channel_mode_t modes[2];
@@ -515,12 +484,12 @@ static void test_channel_h(void)
     ROW(&t, SBR_ERR_CAPACITY, sbr_channel_decode(&c, hist, 10u, 0.1f, modes, 1u, &n));
     hist[5] = -1.0f;
     ROW(&t, SBR_ERR_RANGE, sbr_channel_decode(&c, hist, 10u, 0.1f, modes, 2u, &n));
-    check(&t);
+    status_table_check(&t);
 }
 
 static void test_pictogram_h(void)
 {
-    table_t t;
+    status_table_t t;
     sbr_picto_model_t m;
     sbr_picto_model_t bad;
     const sbr_image_t v = rgb_view();
@@ -559,7 +528,7 @@ static void test_pictogram_h(void)
     feat[7] = NAN;
     ROW(&t, SBR_ERR_RANGE, sbr_picto_classify(&m, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, ws, sizeof ws));
     ROW(&t, SBR_ERR_RANGE, sbr_picto_refine(&m, feat, SBR_PICTO_FEATURES, box, refined, ws, sizeof ws));
-    check(&t);
+    status_table_check(&t);
 }
 
 static void test_status_h(void)

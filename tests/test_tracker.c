@@ -5,6 +5,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "test_status_table.h"
 #include "test_support.h"
 #include "unity.h"
 
@@ -489,6 +490,73 @@ void test_config_statuses(void)
     TEST_ASSERT_EQUAL_UINT32(3u, rc.overlap);
 }
 
+/* tracker.h: every documented status, in one table. */
+void test_tracker_h_statuses(void)
+{
+    status_table_t t;
+    sbr_track_model_t bad;
+    sbr_track_model_t k;
+    sbr_track_config_t cfg;
+    sbr_track_t trk;
+    sbr_track_t blank;
+    sbr_track_target_t out[2];
+    sbr_track_detection_t d[2] = {{600.0f, 200.0f, 1.0f}, {300.0f, 100.0f, 1.0f}};
+    sbr_track_detection_t outside = {2000.0f, 200.0f, 1.0f};
+    sbr_track_model_t m;
+    uint32_t n = 0u;
+    static float tr[SBR_TRACK_MODEL_TRANSITION_LEN(3u, 3u, VEL)];
+    static float bi[SBR_TRACK_MODEL_BIRTH_LEN(3u, 3u, VEL)];
+    make_model();
+    memset(&blank, 0, sizeof blank);
+    sbr_track_config_default(&cfg);
+    cfg.model = &g_model;
+    cfg.max_targets = 1u;
+    cfg.window = WINDOW;
+    t.n = 0u;
+    ROW(&t, SBR_OK, sbr_track_model_check(&g_model));
+    ROW(&t, SBR_ERR_NULL, sbr_track_model_check(NULL));
+    bad = g_model;
+    bad.vel_count = 6u;
+    ROW(&t, SBR_ERR_SIZE, sbr_track_model_check(&bad));
+    bad = g_model;
+    bad.period = 0.0f;
+    ROW(&t, SBR_ERR_RANGE, sbr_track_model_check(&bad));
+    bad = g_model;
+    bad.transition = NULL;
+    ROW(&t, SBR_ERR_NULL, sbr_track_model_check(&bad));
+    g_trans[3] += 0.5f; /* a row that no longer sums to 1 */
+    ROW(&t, SBR_ERR_CORRUPT, sbr_track_model_check(&g_model));
+    g_trans[3] -= 0.5f;
+    ROW(&t, SBR_OK, sbr_track_model_cv(&m, 1242.0f, 375.0f, PERIOD, VEL, SPACING, 1.5f, 10.0f, tr,
+                                       sizeof tr / sizeof tr[0], bi, sizeof bi / sizeof bi[0]));
+    ROW(&t, SBR_ERR_NULL, sbr_track_model_cv(&m, 1242.0f, 375.0f, PERIOD, VEL, SPACING, 1.5f, 10.0f, NULL,
+                                             sizeof tr / sizeof tr[0], bi, sizeof bi / sizeof bi[0]));
+    ROW(&t, SBR_ERR_SIZE, sbr_track_model_cv(&m, 1242.0f, 375.0f, PERIOD, VEL, SPACING, 1.5f, 10.0f, tr,
+                                             (sizeof tr / sizeof tr[0]) - 1u, bi, sizeof bi / sizeof bi[0]));
+    ROW(&t, SBR_ERR_SIZE, sbr_track_model_cv(&m, 1242.0f, 375.0f, PERIOD, 4u, SPACING, 1.5f, 10.0f, tr,
+                                             sizeof tr / sizeof tr[0], bi, sizeof bi / sizeof bi[0]));
+    ROW(&t, SBR_ERR_RANGE, sbr_track_model_cv(&m, 1242.0f, 375.0f, NAN, VEL, SPACING, 1.5f, 10.0f, tr,
+                                              sizeof tr / sizeof tr[0], bi, sizeof bi / sizeof bi[0]));
+    ROW(&t, SBR_OK, sbr_track_model_kitti(&k));
+    ROW(&t, SBR_ERR_NULL, sbr_track_model_kitti(NULL));
+    make_model(); /* g_trans / g_birth as the tests expect them */
+    ROW(&t, SBR_OK, sbr_track_init(&trk, &cfg, g_ws, sizeof(g_ws)));
+    ROW(&t, SBR_ERR_NULL, sbr_track_init(NULL, &cfg, g_ws, sizeof(g_ws)));
+    ROW(&t, SBR_ERR_WORKSPACE, sbr_track_init(&trk, &cfg, g_ws, 16u));
+    cfg.window = 4u;
+    ROW(&t, SBR_ERR_SIZE, sbr_track_init(&blank, &cfg, g_ws, sizeof(g_ws))); /* a configuration error */
+    cfg.window = WINDOW;
+    ROW(&t, SBR_OK, sbr_track_step(&trk, PERIOD, d, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_NULL, sbr_track_step(&trk, PERIOD, d, 1u, out, 2u, NULL));
+    ROW(&t, SBR_ERR_NULL, sbr_track_step(&trk, PERIOD, NULL, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_STATE, sbr_track_step(&blank, PERIOD, d, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_RANGE, sbr_track_step(&trk, -PERIOD, d, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD, &outside, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_SIZE, sbr_track_step(&trk, PERIOD, d, SBR_TRACK_MAX_DETECTIONS + 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_CAPACITY, sbr_track_step(&trk, PERIOD, d, 2u, out, 2u, &n)); /* room for 1 target */
+    status_table_check(&t);
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -501,5 +569,6 @@ int main(void)
     RUN_TEST(test_kitti_model);
     RUN_TEST(test_meas_sigma_bounded_by_window);
     RUN_TEST(test_config_statuses);
+    RUN_TEST(test_tracker_h_statuses);
     return UNITY_END();
 }

@@ -337,7 +337,8 @@ size_t sbr_recog_workspace_size(uint32_t width, uint32_t height, const sbr_recog
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad configuration, or model and
  *         configuration disagree on fd_n/fd_m or the model exceeds max_model_protos);
  *         ::SBR_ERR_CORRUPT (model fails sbr_model_check()); ::SBR_ERR_SIZE / ::SBR_ERR_ALIGN
- *         (bad view: size, or a stride; a frame or ROI too small for the maps);
+ *         (bad view: size, or a stride; a frame or ROI too small for the maps; SIZE also
+ *         for a capacity of 0);
  *         ::SBR_ERR_RANGE also for a ROI that is empty or leaves the frame;
  *         ::SBR_ERR_WORKSPACE;
  *         ::SBR_ERR_CAPACITY when `dets` ran full (the best `capacity` are written).
