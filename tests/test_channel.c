@@ -411,6 +411,27 @@ static void test_values_bounded_by_max_value(void)
     TEST_ASSERT_EQUAL_FLOAT(SBR_CHANNEL_MAX_VALUE, hist[3]); /* untouched */
 }
 
+/* Regression (fuzzer finding, campaign): first centre -3.4e38 and spacing 6.2e35 passed
+   the check (the last centre was finite), and a window's estimate half a channel below
+   the first centre came out as -inf with SBR_OK. Centres one kernel beyond either end
+   must be finite. */
+static void test_config_keeps_decoded_values_finite(void)
+{
+    sbr_channel_config_t c;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_config_default(&c));
+    c.first_centre = -3.4e38f;
+    c.spacing = 6.23676e35f;
+    c.count = 19u;
+    c.overlap = 8u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_channel_config_check(&c));
+    c.first_centre = 3.0e38f; /* the upper end overflows */
+    c.spacing = 1.0e37f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_channel_config_check(&c));
+    c.first_centre = -1.0e30f; /* far out but with room */
+    c.spacing = 1.0e28f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_config_check(&c));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -427,5 +448,6 @@ int main(void)
     RUN_TEST(test_bad_input_gets_status);
     RUN_TEST(test_2d_points);
     RUN_TEST(test_values_bounded_by_max_value);
+    RUN_TEST(test_config_keeps_decoded_values_finite);
     return UNITY_END();
 }

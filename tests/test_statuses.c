@@ -135,6 +135,20 @@ static void test_fft_h(void)
     memset(&bad, 0x5A, sizeof bad); /* overwritten */
     ROW(&t, SBR_ERR_STATE, sbr_fft_check(&bad));
     ROW(&t, SBR_ERR_STATE, sbr_fft_inverse(&bad, a, b));
+    /* regression (fuzzer finding, campaign): an instance whose integrity word was right
+       but whose table pointer was overwritten was dereferenced (SEGV); every field is in
+       the seal now, checked before a table is read */
+    bad = fft;
+    bad.bitrev = (const uint16_t *)(const void *)&a[3];
+    ROW(&t, SBR_ERR_STATE, sbr_fft_check(&bad));
+    bad = fft;
+    bad.twiddle[0] = &a[0];
+    ROW(&t, SBR_ERR_STATE, sbr_fft_forward(&bad, a, b));
+    bad = fft;
+    bad.stages += 1u;
+    ROW(&t, SBR_ERR_STATE, sbr_fft_check(&bad));
+    bad = fft; /* a copy of a sound instance is sound */
+    ROW(&t, SBR_OK, sbr_fft_check(&bad));
     status_table_check(&t);
     TEST_ASSERT_EQUAL_INT(1, sbr_fft_size_supported(1024u));
     TEST_ASSERT_EQUAL_INT(0, sbr_fft_size_supported(2048u));

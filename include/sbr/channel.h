@@ -92,9 +92,9 @@ sbr_status_t sbr_channel_config_default(sbr_channel_config_t *cfg);
 /**
  * @brief Check a configuration.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a non-finite centre, a spacing that
- *         is not finite and > 0, an overlap outside 3..8, or a last centre that is not
- *         finite; ::SBR_ERR_SIZE for a count below the overlap or above
- *         ::SBR_CHANNEL_MAX_COUNT.
+ *         is not finite and > 0, an overlap outside 3..8, or centres that are not finite
+ *         one kernel (overlap x spacing) beyond either end (decoded values lie there);
+ *         ::SBR_ERR_SIZE for a count below the overlap or above ::SBR_CHANNEL_MAX_COUNT.
  */
 sbr_status_t sbr_channel_config_check(const sbr_channel_config_t *cfg);
 

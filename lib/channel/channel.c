@@ -40,8 +40,13 @@ sbr_status_t sbr_channel_config_check(const sbr_channel_config_t *cfg)
     if ((cfg->count < cfg->overlap) || (cfg->count > SBR_CHANNEL_MAX_COUNT)) {
         return SBR_ERR_SIZE;
     }
-    if (is_finite_f(cfg->first_centre + (cfg->spacing * (float)cfg->count)) == 0) {
-        return SBR_ERR_RANGE;
+    /* every value a window can decode to, a whole kernel beyond either end, stays finite */
+    {
+        const uint32_t reach = cfg->count + cfg->overlap;
+        if ((is_finite_f(cfg->first_centre + (cfg->spacing * (float)reach)) == 0) ||
+            (is_finite_f(cfg->first_centre - (cfg->spacing * (float)cfg->overlap)) == 0)) {
+            return SBR_ERR_RANGE;
+        }
     }
     return SBR_OK;
 }

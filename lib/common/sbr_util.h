@@ -31,6 +31,15 @@ static inline int sbr_util_aligned(const void *p, uint32_t align)
     return ok;
 }
 
+/* The address p folded to 32 bits, for integrity words; never converted back to a pointer
+   (MISRA.md, 11.6). */
+static inline uint32_t sbr_util_addr32(const void *p)
+{
+    const uintptr_t a = (uintptr_t)p;
+    const uintptr_t folded = a ^ ((a >> 16u) >> 16u);
+    return (uint32_t)folded;
+}
+
 /* a . b over n elements in four interleaved partial sums: element k goes to sum k mod 4
    (the tail after the last whole group of four to sum 0), and the result is
    (s0 + s1) + (s2 + s3). Independent additions the FPU can pipeline (one vector register

@@ -30,7 +30,7 @@ sbr_status_t sbr_fft_check(const sbr_fft_t *fft)
     if (fft == NULL) {
         return SBR_ERR_NULL;
     }
-    if ((sbr_fft_size_supported(fft->n) == 0) || (fft->check != (SBR_FFT_CHECK_KEY ^ fft->n)) ||
+    if ((sbr_fft_size_supported(fft->n) == 0) || (fft->check != sbr_fft_priv_seal(fft)) ||
         ((1u << (fft->log2n & 31u)) != fft->n) || (fft->bitrev == NULL) ||
         (fft->stages > SBR_FFT_MAX_STAGES)) {
         return SBR_ERR_STATE;

@@ -1,4 +1,5 @@
 #include "fft_internal.h"
+#include "../common/sbr_util.h"
 
 sbr_status_t sbr_fft_priv_setup(sbr_fft_t *fft, uint32_t n, const uint16_t *bitrev,
                                 const sbr_complex_t *tw0, const sbr_complex_t *tw1,
@@ -34,6 +35,20 @@ sbr_status_t sbr_fft_priv_setup(sbr_fft_t *fft, uint32_t n, const uint16_t *bitr
     fft->twiddle[1] = tw1;
     fft->twiddle[2] = tw2;
     fft->twiddle[3] = tw3;
-    fft->check = SBR_FFT_CHECK_KEY ^ n;
+    fft->check = sbr_fft_priv_seal(fft);
     return SBR_OK;
+}
+
+uint32_t sbr_fft_priv_seal(const sbr_fft_t *fft)
+{
+    const uint32_t mul = 0x9E3779B1u; /* odd: every step is a bijection of the word */
+    uint32_t h = SBR_FFT_CHECK_KEY ^ fft->n;
+    uint32_t s;
+    h = (h * mul) ^ fft->log2n;
+    h = (h * mul) ^ fft->stages;
+    h = (h * mul) ^ sbr_util_addr32(fft->bitrev);
+    for (s = 0u; s < SBR_FFT_MAX_STAGES; s++) {
+        h = (h * mul) ^ sbr_util_addr32(fft->twiddle[s]);
+    }
+    return h;
 }
