@@ -429,6 +429,38 @@ void test_meas_sigma_bounded_by_window(void)
     TEST_ASSERT_FLOAT_WITHIN(2.0f, 200.0f, out[0].y);
 }
 
+/* Regression (fuzzer finding, campaign): a velocity spacing of 1.7e38 px passed the
+   model check, and the decoder's kernel width 3 s overflowed to inf before a float to
+   uint32_t conversion (UB). Spacings above the image and extents above
+   SBR_TRACK_MAX_EXTENT are refused. */
+void test_model_spacing_and_extent_bounded(void)
+{
+    sbr_track_model_t bad;
+    sbr_track_model_t m;
+    static float tr[SBR_TRACK_MODEL_TRANSITION_LEN(3u, 3u, 37u)];
+    static float bi[SBR_TRACK_MODEL_BIRTH_LEN(3u, 3u, 37u)];
+    make_model();
+    bad = g_model;
+    bad.vel_spacing = 1.70141e38f;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_model_check(&bad));
+    bad.vel_spacing = 1243.0f; /* above the larger extent, 1242 */
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_model_check(&bad));
+    bad.vel_spacing = 1242.0f;
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_model_check(&bad));
+    bad = g_model;
+    bad.extent[1] = 2.0e6f;
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_model_check(&bad));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE,
+                      sbr_track_model_cv(&m, 373.66f, 125.176f, 0.94f, 37u, 1.70141e38f, 1.0f, 5.0f, tr,
+                                         sizeof tr / sizeof tr[0], bi, sizeof bi / sizeof bi[0]));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE,
+                      sbr_track_model_cv(&m, 2.0e6f, 125.0f, 0.94f, 37u, 3.0f, 1.0f, 5.0f, tr,
+                                         sizeof tr / sizeof tr[0], bi, sizeof bi / sizeof bi[0]));
+    TEST_ASSERT_EQUAL(SBR_OK,
+                      sbr_track_model_cv(&m, 373.66f, 125.176f, 0.94f, 37u, 3.0f, 1.0f, 5.0f, tr,
+                                         sizeof tr / sizeof tr[0], bi, sizeof bi / sizeof bi[0]));
+}
+
 /* Every documented status of the configuration checks. */
 void test_config_statuses(void)
 {
@@ -568,6 +600,7 @@ int main(void)
     RUN_TEST(test_bad_input);
     RUN_TEST(test_kitti_model);
     RUN_TEST(test_meas_sigma_bounded_by_window);
+    RUN_TEST(test_model_spacing_and_extent_bounded);
     RUN_TEST(test_config_statuses);
     RUN_TEST(test_tracker_h_statuses);
     return UNITY_END();

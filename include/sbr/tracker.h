@@ -76,6 +76,8 @@ extern "C" {
 #define SBR_TRACK_MAX_VEL 127u
 /** Most region channels per axis. */
 #define SBR_TRACK_MAX_REGIONS 32u
+/** Largest image extent (pixels) of a model. */
+#define SBR_TRACK_MAX_EXTENT 1.0e6f
 /** The model order this implementation supports: p(x_t | x_{t-1}, x_{t-2}). */
 #define SBR_TRACK_ORDER 2u
 
@@ -96,10 +98,12 @@ extern "C" {
 typedef struct sbr_track_model_s {
     uint32_t order;          /**< ::SBR_TRACK_ORDER (others are refused). */
     float period;            /**< seconds between the frames the model describes, > 0. */
-    float extent[2];         /**< image width and height in pixels (the grid), >= 8. */
+    float extent[2];         /**< image width and height in pixels (the grid), 8 ..
+                                  ::SBR_TRACK_MAX_EXTENT. */
     uint32_t regions[2];     /**< region channels per axis, 3 .. ::SBR_TRACK_MAX_REGIONS. */
     uint32_t vel_count;      /**< V, odd, 5 .. ::SBR_TRACK_MAX_VEL. */
-    float vel_spacing;       /**< s, pixels (per period), > 0: also the position spacing. */
+    float vel_spacing;       /**< s, pixels (per period), > 0 and at most the larger extent:
+                                  also the position spacing. */
     /** T: axis x first (regions[0] blocks of V x V, row j = previous velocity), then
         axis y. Every row non-negative, finite, summing to 1 (within 1e-3). */
     const float *transition;

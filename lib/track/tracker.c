@@ -132,8 +132,10 @@ static sbr_status_t trk_model_header(const sbr_track_model_t *model)
     } else if ((model->order != SBR_TRACK_ORDER) || (isfinite(model->period) == 0) ||
                (model->period <= 0.0f) || (isfinite(model->extent[0]) == 0) ||
                (isfinite(model->extent[1]) == 0) || (model->extent[0] < 8.0f) ||
-               (model->extent[1] < 8.0f) || (isfinite(model->vel_spacing) == 0) ||
-               (model->vel_spacing <= 0.0f)) {
+               (model->extent[1] < 8.0f) || (model->extent[0] > SBR_TRACK_MAX_EXTENT) ||
+               (model->extent[1] > SBR_TRACK_MAX_EXTENT) || (isfinite(model->vel_spacing) == 0) ||
+               (model->vel_spacing <= 0.0f) ||
+               (model->vel_spacing > fmaxf(model->extent[0], model->extent[1]))) {
         st = SBR_ERR_RANGE;
     } else {
         st = SBR_OK;
@@ -187,8 +189,10 @@ sbr_status_t sbr_track_model_cv(sbr_track_model_t *model, float width, float hei
                (birth_len < SBR_TRACK_MODEL_BIRTH_LEN(3u, 3u, vel_count))) {
         st = SBR_ERR_SIZE;
     } else if ((isfinite(width) == 0) || (isfinite(height) == 0) || (width < 8.0f) ||
-               (height < 8.0f) || (isfinite(period) == 0) || (period <= 0.0f) ||
+               (height < 8.0f) || (width > SBR_TRACK_MAX_EXTENT) ||
+               (height > SBR_TRACK_MAX_EXTENT) || (isfinite(period) == 0) || (period <= 0.0f) ||
                (isfinite(vel_spacing) == 0) || (vel_spacing <= 0.0f) ||
+               (vel_spacing > fmaxf(width, height)) ||
                (isfinite(accel_sigma) == 0) || (accel_sigma <= 0.0f) ||
                (isfinite(birth_sigma) == 0) || (birth_sigma <= 0.0f)) {
         st = SBR_ERR_RANGE;
