@@ -51,6 +51,12 @@ sbr_status_t sbr_channel_config_check(const sbr_channel_config_t *cfg)
     return SBR_OK;
 }
 
+/* A valid channel value: finite, >= 0, at most SBR_CHANNEL_MAX_VALUE. */
+static int value_ok(float h)
+{
+    return ((is_finite_f(h) != 0) && (h >= 0.0f) && (h <= SBR_CHANNEL_MAX_VALUE)) ? 1 : 0;
+}
+
 /* Representable interval in channel coordinates u = (x - first_centre) / spacing. */
 static void range_u(const sbr_channel_config_t *cfg, float *lo, float *hi)
 {
@@ -170,7 +176,7 @@ sbr_status_t sbr_channel_accumulate(const sbr_channel_config_t *cfg, float x, fl
        SBR_CHANNEL_MAX_VALUE), or nothing is added */
     for (k = 0u; k < nvals; k++) {
         const float h = hist[first + k];
-        if ((is_finite_f(h) == 0) || (h < 0.0f) || ((h + vals[k]) > SBR_CHANNEL_MAX_VALUE)) {
+        if ((value_ok(h) == 0) || (value_ok(h + vals[k]) == 0)) {
             return SBR_ERR_RANGE;
         }
     }
@@ -229,7 +235,7 @@ static sbr_status_t check_hist(const sbr_channel_config_t *cfg, const float *his
         return SBR_ERR_SIZE;
     }
     for (k = 0u; k < cfg->count; k++) {
-        if ((is_finite_f(hist[k]) == 0) || (hist[k] < 0.0f) || (hist[k] > SBR_CHANNEL_MAX_VALUE)) {
+        if (value_ok(hist[k]) == 0) {
             return SBR_ERR_RANGE;
         }
     }
@@ -474,7 +480,7 @@ sbr_status_t sbr_channel2d_accumulate(const sbr_channel2d_config_t *cfg, float x
         const float *row = &grid[(fy + j) * cfg->x.count];
         for (i = 0u; i < nx; i++) {
             const float h = row[fx + i];
-            if ((is_finite_f(h) == 0) || (h < 0.0f) || ((h + (vy[j] * vx[i])) > SBR_CHANNEL_MAX_VALUE)) {
+            if ((value_ok(h) == 0) || (value_ok(h + (vy[j] * vx[i])) == 0)) {
                 return SBR_ERR_RANGE;
             }
         }
@@ -516,8 +522,7 @@ sbr_status_t sbr_channel2d_decode(const sbr_channel2d_config_t *cfg, const float
             st = SBR_ERR_SIZE;
         }
         for (k = 0u; (st == SBR_OK) && (k < total); k++) {
-            if ((is_finite_f(grid[k]) == 0) || (grid[k] < 0.0f) ||
-                (grid[k] > SBR_CHANNEL_MAX_VALUE)) {
+            if (value_ok(grid[k]) == 0) {
                 st = SBR_ERR_RANGE;
             }
         }

@@ -7,7 +7,6 @@
 #include "../common/sbr_util.h"
 
 #define CONIC_PI 3.14159265358979f
-#define FIT_MAX_COORD SBR_CONIC_MAX_COORD
 #define COVERAGE_SECTORS 64u
 /* largest rms Sampson distance of a fit, relative to the points' mean distance from
    their centroid */
@@ -517,7 +516,7 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
     } else {
         for (i = 0u; (i < n) && (st == SBR_OK); ++i) {
             if ((isfinite(points[i].x) == 0) || (isfinite(points[i].y) == 0) ||
-                (fabsf(points[i].x) > FIT_MAX_COORD) || (fabsf(points[i].y) > FIT_MAX_COORD)) {
+                (fabsf(points[i].x) > SBR_CONIC_MAX_COORD) || (fabsf(points[i].y) > SBR_CONIC_MAX_COORD)) {
                 st = SBR_ERR_RANGE;
             }
         }
@@ -739,9 +738,10 @@ sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_point2f_t *p
         for (i = 0u; i < n; ++i) {
             const float dd = sampson(&q, points[i].x - ox, points[i].y - oy);
             acc += dd * dd;
-            mx = ((dd > mx) || (isnan(dd) != 0)) ? dd : mx; /* a NaN is kept, not skipped */
+            mx = fmaxf(mx, dd);
         }
-        if ((isfinite(acc) == 0) || (isfinite(mx) == 0) || (isnan(mx) != 0)) {
+        /* a NaN or infinite distance makes the sum non-finite, whatever fmaxf kept */
+        if (isfinite(acc) == 0) {
             st = SBR_ERR_RANGE; /* a conic whose values overflow float32 at these points */
         } else {
             *rms = sqrtf(acc / (float)n);
@@ -775,9 +775,11 @@ sbr_status_t sbr_ellipse_coverage(const sbr_conic_t *conic, const sbr_point2f_t 
         uint32_t i;
         const float cs = cosf(el.angle);
         const float sn = sinf(el.angle);
+        /* el passed sbr_conic_to_ellipse()'s checks, so its axes give a finite conic at
+           the origin: no second check */
         const sbr_ellipse_t centred = {0.0f, 0.0f, el.semi_major, el.semi_minor, el.angle};
-        st = sbr_ellipse_to_conic(&centred, &q);
-        for (i = 0u; (i < n) && (st == SBR_OK); ++i) {
+        q = conic_of(&centred);
+        for (i = 0u; i < n; ++i) {
             const float dx = points[i].x - el.cx;
             const float dy = points[i].y - el.cy;
             if (sampson(&q, dx, dy) <= tol) {

@@ -88,8 +88,7 @@ static int header_ok(const sbr_picto_model_t *model)
     return ok;
 }
 
-/* Rows x columns of the last layer's inputs plus bias. */
-/* The last layers' inputs (without the bias). */
+/* Inputs of the last layers (without the bias), and their row length with it. */
 static size_t last_inputs_n(const sbr_picto_model_t *model)
 {
     return (size_t)((model->hidden > 0u) ? model->hidden : SBR_PICTO_FEATURES);
