@@ -2,6 +2,7 @@
 # sbr's one entry point: set-up, the main job and the tests.
 #
 #   ./sbr.sh detect [--input DIR] [--out DIR] [--range A-B] [--baseline FILE]
+#                   [--model FILE.sbrm --picto FILE.sbrp]
 #                                               the main job (docs/usage/detect.md): the recogniser
 #                                               over a folder of images (default: GTSDB's
 #                                               development split 00400-00599), detections,
@@ -11,8 +12,16 @@
 #   ./sbr.sh dashboard [--log FILE | --socketcan IF | --virtual CH] [options]
 #                                               the reference dashboard (dashboard/), default:
 #                                               replay out/sbr_can.log; --help for options
-#   ./sbr.sh train                              relearn the built-in prototype library and
-#                                               its class stage (pictogram classifier)
+#   ./sbr.sh train [--range A-B[,C-D]] [--out DIR]
+#                                               relearn the built-in prototype library and
+#                                               its class stage (pictogram classifier) on
+#                                               GTSDB 00000-00599 (lib/models); another
+#                                               --range writes model files only (build/)
+#   ./sbr.sh crossval [--out DIR] [--baseline DIR] [--models DIR] [--*-args "..."]
+#                                               3-fold cross-validation on GTSDB 00000-00599
+#                                               (docs/usage/crossval.md): both models
+#                                               trained per fold, figures per fold and
+#                                               summed; --baseline: an earlier run's DIR
 #   ./sbr.sh track [sbr_track options]          the channel tracker against Kalman and particle
 #                                               filters on KITTI tracking (default 0006-0010)
 #   ./sbr.sh learn-tracker                      relearn the tracker's motion model (0000-0005)
@@ -42,6 +51,9 @@ PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip python3-
           libfftw3-dev libkissfft-dev cppcheck libopencv-dev chromium clang libclang-rt-14-dev)
 
 log() { printf '\n== %s\n' "$*"; }
+
+# The images of GTSDB that the built-in models (lib/models) are trained on.
+SHIPPED_TRAINING="0-599"
 
 # install_packages P...: the Debian packages of the list that are missing.
 install_packages() {
@@ -115,7 +127,7 @@ make_fuzz_seeds() {
 
 cmd_test() {
   case "${1:-}" in
-    -h|--help) sed -n '2,32p' "$0"; return 0 ;;
+    -h|--help) sed -n '2,40p' "$0"; return 0 ;;
     "") ;;
     *) echo "unknown option $1 (./sbr.sh test takes none)" >&2; return 2 ;;
   esac
@@ -197,7 +209,7 @@ cmd_fuzz() {
     case "$1" in
       --minutes) minutes="$2"; shift 2 ;;
       --target) targets="$2"; shift 2 ;;
-      -h|--help) sed -n '2,32p' "$0"; return 0 ;;
+      -h|--help) sed -n '2,40p' "$0"; return 0 ;;
       *) echo "unknown option $1" >&2; return 2 ;;
     esac
   done
@@ -220,22 +232,29 @@ cmd_fuzz() {
 }
 
 cmd_detect() {
-  local input="" out="$ROOT/out" range="" baseline=""
+  local input="" out="$ROOT/out" range="" baseline="" models=() note=""
   while [ $# -gt 0 ]; do
     case "$1" in
       --input) input="$2"; shift 2 ;;
+      --model|--picto) models+=("$1" "$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"); shift 2 ;;
       --out) out="$2"; shift 2 ;;
       --range) range="$2"; shift 2 ;;
       --baseline) baseline="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"; shift 2 ;;
-      -h|--help) sed -n '2,32p' "$0"; return 0 ;;
+      -h|--help) sed -n '2,40p' "$0"; return 0 ;;
       *) echo "unknown option $1" >&2; return 2 ;;
     esac
   done
   if [ -z "$input" ]; then
     if [ -d "$ROOT/../shared/data/gtsdb" ]; then
       input="$ROOT/../shared/data/gtsdb"
-      # the development split by default: the built-in library was trained on 00000-00399
+      # the development split by default (a fixed, quick set of 200 images)
       [ -n "$range" ] || range="400-599"
+      if [ "${#models[@]}" -eq 0 ]; then
+        note="note: the built-in models are trained on GTSDB 00000-00599 (./sbr.sh train), these images
+included: the figures are training-set figures, not what unseen images give. For those, see
+./sbr.sh crossval (docs/usage/crossval.md); for the development-split figures, models trained
+on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model ... --picto ...."
+      fi
     else
       echo "no --input folder given and no GTSDB copy in ../shared/data/gtsdb" >&2
       return 2
@@ -248,7 +267,12 @@ cmd_detect() {
   log "sbr_detect over $input${range:+ (images $range)}"
   "$tools/sbr_detect" --input "$input" ${range:+--range "$range"} \
       --detections "$out/detections.txt" --all-detections "$out/detections_all.txt" \
-      --annotated "$out/annotated" --canlog "$out/sbr_can.log" --summary "$out/summary.txt"
+      --annotated "$out/annotated" --canlog "$out/sbr_can.log" --summary "$out/summary.txt" \
+      ${models[@]+"${models[@]}"}
+  if [ -n "$note" ]; then
+    { echo "$note"; echo; cat "$out/summary.txt"; } > "$out/summary.txt.new" && mv "$out/summary.txt.new" "$out/summary.txt"
+    printf '\n%s\n' "$note"
+  fi
   local gt=""
   for g in "$input/gt.txt" "$input/FullIJCNN2013/gt.txt"; do [ -f "$g" ] && gt="$g" && break; done
   if [ -n "$gt" ]; then
@@ -257,25 +281,65 @@ cmd_detect() {
     thr="$(sed -nE 's/.*operating point score >= ([0-9.]+).*/\1/p' "$out/summary.txt" | head -1)"
     "$tools/sbr_eval" --detections "$out/detections_all.txt" --gt "$gt" \
         ${range:+--range "$range"} --threshold "${thr:-0}" --plot "$out/pr_curve.png" \
-        ${baseline:+--baseline "$baseline"} | tee "$out/evaluation.txt"
-    { echo; echo "evaluation (sbr_eval, operating point score >= ${thr:-0}):"; cat "$out/evaluation.txt"; } >> "$out/summary.txt"
+        ${baseline:+--baseline "$baseline"} > "$out/evaluation.txt.new"
+    { [ -z "$note" ] || printf '%s\n\n' "$note"; cat "$out/evaluation.txt.new"; } | tee "$out/evaluation.txt"
+    { echo; echo "evaluation (sbr_eval, operating point score >= ${thr:-0}):"; cat "$out/evaluation.txt.new"; } >> "$out/summary.txt"
+    rm -f "$out/evaluation.txt.new"
   fi
   log "wrote $out: detections.txt, detections_all.txt, annotated/, sbr_can.log, summary.txt${gt:+, evaluation.txt, pr_curve.png}"
 }
 
 cmd_train() {
+  local range="$SHIPPED_TRAINING" out="" args=()
+  while [ $# -gt 0 ]; do
+    case "$1" in
+      --range) range="$2"; shift 2 ;;
+      --out) out="$2"; shift 2 ;;
+      *) args+=("$1"); shift ;;
+    esac
+  done
   setup
   build_native
-  log "sbr_train on GTSDB 00000-00399 -> lib/models/sbr_model_gtsdb.c, $BUILD/sbr_gtsdb.sbrm"
-  "$BUILD/native/host_tools/sbr_train" --data "$ROOT/../shared/data/gtsdb" --range 0-399 \
-      --out-c "$ROOT/lib/models/sbr_model_gtsdb.c" --out-model "$BUILD/sbr_gtsdb.sbrm" "$@"
-  # the class stage learns from the new library's candidates: rebuild with it first
-  cmake --build "$BUILD/native" -j "$JOBS" --target sbr_train_picto
-  log "sbr_train_picto on GTSDB 00000-00399 -> lib/models/sbr_picto_gtsdb.c, $BUILD/sbr_picto_gtsdb.sbrp"
-  # seed 2: see sbr_train_picto.cpp (training noise; the figures of docs/results/recognition.md are this seed's)
-  "$BUILD/native/host_tools/sbr_train_picto" --data "$ROOT/../shared/data/gtsdb" --range 0-399 --seed 2 \
-      --out-c "$ROOT/lib/models/sbr_picto_gtsdb.c" --out "$BUILD/sbr_picto_gtsdb.sbrp"
-  cmake --build "$BUILD/native" -j "$JOBS"
+  local tools="$BUILD/native/host_tools" data="$ROOT/../shared/data/gtsdb" c_model=() c_picto=()
+  if [ "$range" = "$SHIPPED_TRAINING" ] && [ -z "$out" ]; then
+    # the shipped models: the generated tables in lib/models and their files in build/
+    out="$BUILD"
+    c_model=(--out-c "$ROOT/lib/models/sbr_model_gtsdb.c")
+    c_picto=(--out-c "$ROOT/lib/models/sbr_picto_gtsdb.c")
+  else
+    # other images (e.g. --range 0-399 for the development-split figures): model files
+    # only, for sbr_detect --model/--picto and ./sbr.sh detect --model/--picto
+    out="${out:-$BUILD/models-$range}"
+  fi
+  mkdir -p "$out"
+  log "sbr_train on GTSDB $range -> $out/sbr_gtsdb.sbrm${c_model:+, lib/models/sbr_model_gtsdb.c}"
+  "$tools/sbr_train" --data "$data" --range "$range" "${c_model[@]}" --out-model "$out/sbr_gtsdb.sbrm" \
+      ${args[@]+"${args[@]}"}
+  # the class stage learns from the new library's candidates (its file, so no rebuild)
+  log "sbr_train_picto on GTSDB $range -> $out/sbr_picto_gtsdb.sbrp${c_picto:+, lib/models/sbr_picto_gtsdb.c}"
+  # seed 2: see docs/results/recognition.md (training noise; the shipped figures are this seed's)
+  "$tools/sbr_train_picto" --data "$data" --range "$range" --seed 2 --model "$out/sbr_gtsdb.sbrm" \
+      "${c_picto[@]}" --out "$out/sbr_picto_gtsdb.sbrp"
+  if [ "${#c_model[@]}" -gt 0 ]; then
+    cmake --build "$BUILD/native" -j "$JOBS"
+  else
+    log "use them with: ./sbr.sh detect --model $out/sbr_gtsdb.sbrm --picto $out/sbr_picto_gtsdb.sbrp"
+  fi
+}
+
+cmd_crossval() {
+  setup
+  build_native
+  local out="$ROOT/out/crossval" args=()
+  while [ $# -gt 0 ]; do
+    case "$1" in
+      --out) out="$2"; shift 2 ;;
+      *) args+=("$1"); shift ;;
+    esac
+  done
+  log "cross-validation on GTSDB 00000-00599 -> $out"
+  python3 "$ROOT/host_tools/crossval/sbr_crossval.py" --tools "$BUILD/native/host_tools" \
+      --data "$ROOT/../shared/data/gtsdb" --out "$out" ${args[@]+"${args[@]}"}
 }
 
 cmd_learn_tracker() {
@@ -312,9 +376,10 @@ case "${1:-}" in
   fuzz) shift; cmd_fuzz "$@" ;;
   detect) shift; cmd_detect "$@" ;;
   train) shift; cmd_train "$@" ;;
+  crossval) shift; cmd_crossval "$@" ;;
   learn-tracker) shift; cmd_learn_tracker "$@" ;;
   track) shift; cmd_track "$@" ;;
   setup) setup ;;
-  -h|--help|help) sed -n '2,32p' "$0" ;;
-  *) sed -n '2,32p' "$0"; exit 2 ;;
+  -h|--help|help) sed -n '2,40p' "$0" ;;
+  *) sed -n '2,40p' "$0"; exit 2 ;;
 esac

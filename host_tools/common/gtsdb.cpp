@@ -1,6 +1,7 @@
 #include "gtsdb.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -84,6 +85,44 @@ int image_number(const std::string &path) {
     const std::string stem = fs::path(path).stem().string();
     if (stem.empty() || !std::all_of(stem.begin(), stem.end(), ::isdigit)) return -1;
     return std::atoi(stem.c_str());
+}
+
+bool ImageRanges::contains(int n) const {
+    for (const auto &r : spans)
+        if (n >= r.first && n <= r.second) return true;
+    return false;
+}
+
+std::string ImageRanges::str(bool padded) const {
+    if (spans.empty()) return "all";
+    std::string s;
+    char b[32];
+    for (const auto &r : spans) {
+        std::snprintf(b, sizeof b, padded ? "%s%05d-%05d" : "%s%d-%d", s.empty() ? "" : ",", r.first, r.second);
+        s += b;
+    }
+    return s;
+}
+
+bool parse_image_ranges(const std::string &s, ImageRanges &out) {
+    std::vector<std::pair<int, int>> v;
+    std::stringstream ss(s);
+    std::string part;
+    while (std::getline(ss, part, ',')) {
+        int a = -1, b = -1;
+        char tail = 0;
+        if (std::sscanf(part.c_str(), "%d-%d%c", &a, &b, &tail) != 2 || a < 0 || b < a) return false;
+        v.emplace_back(a, b);
+    }
+    if (v.empty() || s.back() == ',') return false;
+    std::sort(v.begin(), v.end());
+    std::vector<std::pair<int, int>> m;
+    for (const auto &r : v) {
+        if (!m.empty() && r.first <= m.back().second + 1) m.back().second = std::max(m.back().second, r.second);
+        else m.push_back(r);
+    }
+    out.spans = m;
+    return true;
 }
 
 sbr_image_t bgr_view(const cv::Mat &m) {

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -53,6 +54,20 @@ std::vector<std::string> list_images(const std::string &dir);
 
 // Image number of a file name like "00123.jpg" (-1 if it has none).
 int image_number(const std::string &path);
+
+// A set of image numbers given as inclusive spans "A-B[,C-D...]", e.g. "0-199,400-599"
+// (the training folds of a cross-validation). Spans are kept sorted and merged.
+struct ImageRanges {
+    std::vector<std::pair<int, int>> spans;
+    bool empty() const { return spans.empty(); }
+    bool contains(int n) const;
+    // "0-199,400-599" (as --range takes it), padded: "00000-00199,00400-00599"; "all"
+    // when empty
+    std::string str(bool padded = false) const;
+};
+// False (and out untouched) unless s is one or more spans A-B with 0 <= A <= B,
+// separated by commas.
+bool parse_image_ranges(const std::string &s, ImageRanges &out);
 
 // FNV-1a (64 bit) of n bytes, continuing from h (start: kFnvStart): checksums with which
 // benchmarks show that two builds computed bit-identical results.

@@ -115,7 +115,7 @@ void annotate(cv::Mat &img, const std::vector<sbr_detection_t> &dets) {
 int main(int argc, char **argv) {
     std::string input, det_path, all_path, annotated, canlog, model_path, summary_path, picto_path;
     bool no_picto = false;
-    int r0 = -1, r1 = -1;
+    ImageRanges range;
     float threshold = -1.0f;
     uint32_t subsample = 1;
     bool use_roi = false, quiet = false;
@@ -164,7 +164,7 @@ int main(int argc, char **argv) {
         else if (a == "--verify-error") verify_error = std::strtof(next().c_str(), nullptr);
         else if (a == "--min-score") min_score = std::strtof(next().c_str(), nullptr);
         else if (a == "--range") {
-            if (std::sscanf(next().c_str(), "%d-%d", &r0, &r1) != 2) { std::fprintf(stderr, "--range wants A-B\n"); return 2; }
+            if (!parse_image_ranges(next(), range)) { std::fprintf(stderr, "--range wants A-B[,C-D...]\n"); return 2; }
         } else if (a == "--roi") {
             unsigned x, y, w, h;
             if (std::sscanf(next().c_str(), "%u,%u,%u,%u", &x, &y, &w, &h) != 4) { std::fprintf(stderr, "--roi wants X,Y,W,H\n"); return 2; }
@@ -240,7 +240,7 @@ int main(int argc, char **argv) {
     std::vector<std::string> files;
     for (const auto &f : list_images(dir)) {
         const int n = image_number(f);
-        if (r0 < 0 || (n >= r0 && n <= r1)) files.push_back(f);
+        if (range.empty() || range.contains(n)) files.push_back(f);
     }
     if (files.empty()) { std::fprintf(stderr, "sbr_detect: no images in %s\n", dir.c_str()); return 1; }
     std::ofstream det(det_path), all;

@@ -2,7 +2,7 @@
 //
 //   sbr_eval --detections FILE --gt gt.txt [--range A-B] [--images DIR] [--iou 0.5]
 //            [--threshold T] [--plot pr.png] [--confusion N]
-//            [--baseline FILE [--max-drop D] [--list N]]
+//            [--baseline FILE [--max-drop D] [--list N]] [--json FILE]
 //
 // Files: NNNNN.ext;left;top;right;bottom;class_id[;score] (GTSDB's format; gt has no
 // score, a detection without one counts as 1). The images evaluated: --range A-B (image
@@ -34,6 +34,9 @@
 //  - false detections at class level that are new (no false detection of the baseline
 //    in the same image with the same class at IoU >= --iou) and those that are gone;
 //  - up to --list N lines of each list (default 20; the counts are always complete).
+// --json FILE: the same figures as one JSON object (superclasses, class level, per class,
+// and with --baseline the baseline's figures and the signs gained and lost), for scripts
+// such as the cross-validation (host_tools/crossval).
 // --max-drop D: the exit status is 3 when class-level F1, or any superclass's recall,
 // precision or AP with ground truth in the images, is more than D below the baseline's
 // (a regression gate for scripts; without --max-drop the status does not depend on it).
@@ -277,6 +280,67 @@ std::vector<const Box *> unmatched_fps(const std::vector<Box> &a, const Eval &ea
     return out;
 }
 
+// Signs found at class level by `now` and not by `base` (gained), and the reverse (lost).
+void changed_signs(const Eval &base, const Eval &now, std::vector<size_t> &gained, std::vector<size_t> &lost) {
+    gained.clear();
+    lost.clear();
+    for (size_t g = 0; g < now.hit_cls.size(); ++g) {
+        if (now.hit_cls[g] && !base.hit_cls[g]) gained.push_back(g);
+        if (!now.hit_cls[g] && base.hit_cls[g]) lost.push_back(g);
+    }
+}
+
+void json_prf(std::ostream &o, const Prf &p) {
+    o << "\"tp\": " << p.tp << ", \"fp\": " << p.fp << ", \"fn\": " << p.fn << ", \"precision\": " << prec(p)
+      << ", \"recall\": " << rec(p) << ", \"f1\": " << f1(p);
+}
+
+void json_eval(std::ostream &o, const Eval &e) {
+    o << "{\"superclasses\": {";
+    for (int s = 0; s < 4; ++s) {
+        o << (s ? ", " : "") << "\"" << kSuper[s] << "\": {\"gt\": " << e.n_gt[s] << ", ";
+        json_prf(o, e.sp[s]);
+        o << ", \"ap\": " << e.ap[s] << "}";
+    }
+    o << "}, \"class_level\": {";
+    json_prf(o, e.total);
+    size_t found_any = 0;
+    for (char h : e.hit_any) found_any += h != 0;
+    o << "}, \"any_class_found\": " << found_any << ", \"classes\": {";
+    bool first = true;
+    for (const auto &kv : e.cp) {
+        o << (first ? "" : ", ") << "\"" << kv.first << "\": {";
+        json_prf(o, kv.second);
+        o << "}";
+        first = false;
+    }
+    o << "}}";
+}
+
+bool write_json(const std::string &path, const Eval &e, const Eval *base, const std::vector<Box> &gts, size_t images,
+                size_t dets, double score_thr, double iou_thr) {
+    std::ofstream o(path);
+    o.precision(6);
+    o << "{\"images\": " << images << ", \"gt\": " << gts.size() << ", \"detections\": " << dets
+      << ", \"threshold\": " << score_thr << ", \"iou\": " << iou_thr << ", \"eval\": ";
+    json_eval(o, e);
+    if (base != nullptr) {
+        o << ", \"baseline\": ";
+        json_eval(o, *base);
+        std::vector<size_t> gained, lost;
+        changed_signs(*base, e, gained, lost);
+        auto list = [&](const char *name, const std::vector<size_t> &v) {
+            o << ", \"" << name << "\": [";
+            for (size_t k = 0; k < v.size(); ++k) o << (k ? ", " : "") << "\"" << box_text(gts[v[k]]) << "\"";
+            o << "]";
+        };
+        list("gained", gained);
+        list("lost", lost);
+    }
+    o << "}\n";
+    return bool(o);
+}
+
 // Prints the comparison with the baseline; returns the largest drop of class-level F1 and
 // of each superclass's recall, precision and AP (superclasses with ground truth only).
 double print_baseline(const std::string &path, const Eval &base, const Eval &now, const std::vector<Box> &base_dets,
@@ -297,10 +361,7 @@ double print_baseline(const std::string &path, const Eval &base, const Eval &now
                 f1(now.total) - f1(base.total));
     drop(f1(base.total), f1(now.total));
     std::vector<size_t> gained, lost;
-    for (size_t g = 0; g < gts.size(); ++g) {
-        if (now.hit_cls[g] && !base.hit_cls[g]) gained.push_back(g);
-        if (!now.hit_cls[g] && base.hit_cls[g]) lost.push_back(g);
-    }
+    changed_signs(base, now, gained, lost);
     auto list_signs = [&](const char *what, const std::vector<size_t> &v) {
         std::printf("signs %s: %zu (image;left;top;right;bottom;gt class: baseline | this file)\n", what, v.size());
         for (size_t k = 0; k < std::min(list_n, v.size()); ++k) {
@@ -324,10 +385,10 @@ double print_baseline(const std::string &path, const Eval &base, const Eval &now
 }  // namespace
 
 int main(int argc, char **argv) {
-    std::string det_path, gt_path, images_dir, plot_path = "pr_curve.png", base_path;
+    std::string det_path, gt_path, images_dir, plot_path = "pr_curve.png", base_path, json_path;
     double max_drop = -1.0;
     size_t list_n = 20;
-    int range_a = -1, range_b = -1;
+    sbr_host::ImageRanges range;
     double iou_thr = 0.5, score_thr = 0.0;
     size_t confusion_n = 10;
     for (int i = 1; i < argc; ++i) {
@@ -340,6 +401,7 @@ int main(int argc, char **argv) {
         else if (a == "--iou") iou_thr = std::atof(next().c_str());
         else if (a == "--threshold") score_thr = std::atof(next().c_str());
         else if (a == "--baseline") base_path = next();
+        else if (a == "--json") json_path = next();
         else if (a == "--max-drop") {
             max_drop = std::atof(next().c_str());
             if (!(max_drop >= 0.0)) {
@@ -351,14 +413,14 @@ int main(int argc, char **argv) {
         else if (a == "--confusion") confusion_n = static_cast<size_t>(std::atoi(next().c_str()));
         else if (a == "--range") {
             const std::string r = next();
-            if (std::sscanf(r.c_str(), "%d-%d", &range_a, &range_b) != 2 || range_a < 0 || range_b < range_a) {
-                std::fprintf(stderr, "sbr_eval: --range wants A-B\n");
+            if (!sbr_host::parse_image_ranges(r, range)) {
+                std::fprintf(stderr, "sbr_eval: --range wants A-B[,C-D...]\n");
                 return 2;
             }
         } else {
             std::fprintf(stderr, "usage: %s --detections FILE --gt gt.txt [--range A-B] [--images DIR] "
                                  "[--iou 0.5] [--threshold T] [--plot pr.png] [--confusion N] "
-                                 "[--baseline FILE [--max-drop D] [--list N]]\n", argv[0]);
+                                 "[--baseline FILE [--max-drop D] [--list N]] [--json FILE]\n", argv[0]);
             return 2;
         }
     }
@@ -377,8 +439,9 @@ int main(int argc, char **argv) {
         return 1;
     }
     std::set<int> image_set;
-    if (range_a >= 0) {
-        for (int k = range_a; k <= range_b; ++k) image_set.insert(k);
+    if (!range.empty()) {
+        for (const auto &sp : range.spans)
+            for (int k = sp.first; k <= sp.second; ++k) image_set.insert(k);
     } else if (!images_dir.empty()) {
         for (const auto &e : fs::directory_iterator(images_dir)) {
             const std::string ext = e.path().extension().string();
@@ -429,16 +492,23 @@ int main(int argc, char **argv) {
     plot_pr(plot_path, e.curves, ap);
     std::printf("precision-recall plot: %s\n", plot_path.c_str());
     double worst = 0.0;
+    Eval base_eval;
     if (!base_path.empty()) {
         const std::vector<Box> base = select(base_all, image_set, score_thr);
         // any score, for what lies on a changed sign
         const double any = -std::numeric_limits<double>::infinity();
-        worst = print_baseline(base_path, evaluate(base, gts, iou_thr), e, base, dets,
+        base_eval = evaluate(base, gts, iou_thr);
+        worst = print_baseline(base_path, base_eval, e, base, dets,
                                select(base_all, image_set, any), select(dets_all, image_set, any), gts, iou_thr,
                                list_n);
         if (max_drop >= 0.0)
             std::printf("largest drop against the baseline %.4f (allowed %.4f): %s\n", worst, max_drop,
                         worst > max_drop ? "REGRESSION" : "ok");
+    }
+    if (!json_path.empty() && !write_json(json_path, e, base_path.empty() ? nullptr : &base_eval, gts,
+                                          image_set.size(), dets.size(), score_thr, iou_thr)) {
+        std::fprintf(stderr, "sbr_eval: cannot write %s\n", json_path.c_str());
+        return 1;
     }
     std::printf("superclass_ap prohibitory=%.4f mandatory=%.4f danger=%.4f other=%.4f mean=%.4f\n", ap[0], ap[1],
                 ap[2], ap[3], ap_mean);

@@ -20,6 +20,7 @@ sign's line, and the exit status of --max-drop just below and just above the lar
 usage: test_sbr_eval.py --eval PATH --gt gt.txt --work DIR     (exit 77 without the data)
 """
 import argparse
+import json
 import os
 import re
 import subprocess
@@ -189,8 +190,9 @@ def main():
         worst = max(worst, r0 - r1, p0 - p1)
     bpath = os.path.join(a.work, "baseline.txt")
     write_dets(bpath, base)
+    js = os.path.join(a.work, "eval.json")
     cmd = [a.eval, "--detections", det, "--gt", a.gt, "--range", "400-599", "--plot", png,
-           "--baseline", bpath, "--list", "1000"]
+           "--baseline", bpath, "--list", "1000", "--json", js]
     loose = subprocess.run(cmd + ["--max-drop", f"{worst + 0.001:.4f}"], capture_output=True, text=True)
     tight = subprocess.run(cmd + ["--max-drop", f"{worst - 0.001:.4f}"], capture_output=True, text=True)
     res = loose.stdout
@@ -210,6 +212,38 @@ def main():
             f"FN {bcls['fn']} -> {cls['fn']}, F1 {prf(bcls)[2]:.4f} -> {prf(cls)[2]:.4f}")
     print(f"expecting '{line}' and '{lost_example}'")
     ok &= line in res and lost_example in res.splitlines()
+    # --json: the same counts for scripts (the cross-validation), this file's and the baseline's
+    with open(js) as f:
+        j = json.load(f)
+    jgot = ({k: (v["tp"], v["fp"], v["fn"], v["gt"]) for k, v in j["eval"]["superclasses"].items()},
+            {k: (v["tp"], v["fp"], v["fn"], v["gt"]) for k, v in j["baseline"]["superclasses"].items()},
+            tuple(j["eval"]["class_level"][k] for k in ("tp", "fp", "fn")),
+            tuple(j["baseline"]["class_level"][k] for k in ("tp", "fp", "fn")),
+            len(j["gained"]), len(j["lost"]), j["images"])
+    jwant = ({k: (v["tp"], v["fp"], v["fn"], v["n"]) for k, v in exp.items()},
+             {k: (v["tp"], v["fp"], v["fn"], v["n"]) for k, v in bexp.items()},
+             (cls["tp"], cls["fp"], cls["fn"]), (bcls["tp"], bcls["fp"], bcls["fn"]), gained, lost, 200)
+    print(f"json: got {jgot}\n      expected {jwant}")
+    ok &= jgot == jwant and abs(j["eval"]["class_level"]["f1"] - prf(cls)[2]) < 1e-5
+    ok &= lost_example.split(":")[0].strip() in j["lost"]
+    # --range with two spans: the union of both (two halves of the split give its figures)
+    halves = subprocess.run([a.eval, "--detections", det, "--gt", a.gt, "--range", "500-599,400-499",
+                             "--plot", png, "--json", js], capture_output=True, text=True)
+    with open(js) as f:
+        jh = json.load(f)
+    print(f"--range 500-599,400-499: exit {halves.returncode}, images {jh['images']}, class level "
+          f"{jh['eval']['class_level']['tp']}/{jh['eval']['class_level']['fp']}/{jh['eval']['class_level']['fn']}")
+    ok &= halves.returncode == 0 and jh["images"] == 200 and jh["eval"] == j["eval"]
+    one = subprocess.run([a.eval, "--detections", det, "--gt", a.gt, "--range", "400-499", "--plot", png,
+                          "--json", js], capture_output=True, text=True)
+    with open(js) as f:
+        j1 = json.load(f)
+    ok &= one.returncode == 0 and j1["images"] == 100 and j1["gt"] < j["gt"]
+    for r in ("400-", "400-599,", "5-3", "1-2,x"):
+        refused = subprocess.run([a.eval, "--detections", det, "--gt", a.gt, "--range", r],
+                                 capture_output=True, text=True)
+        print(f"--range {r!r}: exit {refused.returncode}")
+        ok &= refused.returncode == 2
     print(f"largest drop {worst:.4f}: exit {loose.returncode} with a looser gate, "
           f"{tight.returncode} with a tighter one")
     ok &= worst > 0.01 and loose.returncode == 0 and tight.returncode == 3
