@@ -82,6 +82,8 @@ static void hand_model(sbr_picto_model_t *m)
     m->w1 = NULL;
     m->w2 = g_w2;
     m->w3 = NULL;
+    m->rim_shape = NULL;
+    m->rim_floor = NULL;
 }
 
 static sbr_status_t feats(const sbr_image_t *v, float x0, float y0, float x1, float y1, float *f)
@@ -434,6 +436,138 @@ static void test_builtin_and_corrupt(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_check(NULL));
 }
 
+/* The rim outlines of pictogram.h, written out independently: (u, v) of the unit box
+   inside `shape` shrunk to k about its centroid. */
+static int rim_in(uint32_t shape, float u, float v, float k)
+{
+    float cy = 0.5f;
+    float x;
+    float y;
+    if (shape == (uint32_t)SBR_PICTO_RIM_TRIANGLE) {
+        cy = 2.0f / 3.0f;
+    } else if (shape == (uint32_t)SBR_PICTO_RIM_TRIANGLE_DOWN) {
+        cy = 1.0f / 3.0f;
+    }
+    x = 0.5f + ((u - 0.5f) / k);
+    y = cy + ((v - cy) / k);
+    if (shape == (uint32_t)SBR_PICTO_RIM_DISC) {
+        return (((x - 0.5f) * (x - 0.5f)) + ((y - 0.5f) * (y - 0.5f))) <= 0.25f;
+    }
+    if (shape == (uint32_t)SBR_PICTO_RIM_TRIANGLE) {
+        return (y <= 1.0f) && (fabsf(x - 0.5f) <= (0.5f * y));
+    }
+    return (y >= 0.0f) && (fabsf(x - 0.5f) <= (0.5f * (1.0f - y)));
+}
+
+/* A sign of `shape` painted into the 64 x 64 box at (8, 16): a pure red rim, a white
+   middle, mid-grey elsewhere (the band between rim and middle included). Pixel (x, y) is
+   classified at ((x - 8) / 64, (y - 16) / 64), where sbr_picto_rim_contrast()'s grid
+   samples land on whole pixels. */
+static void paint_rim_sign(uint32_t shape)
+{
+    const float k_in = (shape == (uint32_t)SBR_PICTO_RIM_DISC) ? 0.75f : 0.6f;
+    const float k_mid = (shape == (uint32_t)SBR_PICTO_RIM_DISC) ? 0.6f : 0.45f;
+    uint32_t x;
+    uint32_t y;
+    fill(128u, 128u, 128u);
+    for (y = 16u; y < 80u; y++) {
+        for (x = 8u; x < 72u; x++) {
+            const float u = (float)(x - 8u) / 64.0f;
+            const float v = (float)(y - 16u) / 64.0f;
+            if ((rim_in(shape, u, v, 1.0f) != 0) && (rim_in(shape, u, v, k_in) == 0)) {
+                g_rgb[y][x][0] = 255u;
+                g_rgb[y][x][1] = 0u;
+                g_rgb[y][x][2] = 0u;
+            } else if (rim_in(shape, u, v, k_mid) != 0) {
+                (void)memset(g_rgb[y][x], 255, 3u);
+            } else {
+                /* grey */
+            }
+        }
+    }
+}
+
+/* Colour check: a red rim around a white middle gives redness 255 / 258 - 0 for each
+   outline; the same pixels read as BGR (the "red" is then blue) give the negative; a
+   grey image gives exactly 0; a box twice as large around the same sign samples other
+   pixels and gives less. Bad input gets its status and leaves *contrast alone. */
+static void test_rim_contrast(void)
+{
+    const float box[4] = {8.0f, 16.0f, 72.0f, 80.0f};
+    const float wide[4] = {-24.0f, -16.0f, 104.0f, 112.0f};
+    const float red = 255.0f / 258.0f;
+    uint32_t shape;
+    float c = 0.0f;
+    sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
+    for (shape = 1u; shape <= 3u; shape++) {
+        paint_rim_sign(shape);
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_rim_contrast(&v, box, shape, &c));
+        TEST_ASSERT_FLOAT_WITHIN(1e-5f, red, c);
+        v.format = SBR_PIXEL_BGR888;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_rim_contrast(&v, box, shape, &c));
+        TEST_ASSERT_FLOAT_WITHIN(1e-5f, -red, c);
+        v.format = SBR_PIXEL_RGB888;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_rim_contrast(&v, wide, shape, &c));
+        TEST_ASSERT_TRUE(c < 0.5f * red);
+    }
+    fill(128u, 128u, 128u);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_rim_contrast(&v, box, 3u, &c));
+    TEST_ASSERT_EQUAL_FLOAT(0.0f, c);
+    /* bad input */
+    c = 7.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_rim_contrast(NULL, box, 1u, &c));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_rim_contrast(&v, NULL, 1u, &c));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_rim_contrast(&v, box, 1u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_rim_contrast(&v, box, 0u, &c));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_rim_contrast(&v, box, 4u, &c));
+    {
+        float b[4] = {8.0f, 16.0f, 9.0f, 80.0f}; /* 1 px wide */
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_rim_contrast(&v, b, 1u, &c));
+        b[2] = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_rim_contrast(&v, b, 1u, &c));
+        b[2] = 2.0f * SBR_PICTO_MAX_COORD;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_rim_contrast(&v, b, 1u, &c));
+    }
+    v.format = SBR_PIXEL_GRAY8;
+    v.stride = W;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_rim_contrast(&v, box, 1u, &c));
+    v.format = SBR_PIXEL_RGB888;
+    v.stride = 3u * W - 1u;
+    TEST_ASSERT_NOT_EQUAL(SBR_OK, sbr_picto_rim_contrast(&v, box, 1u, &c));
+    TEST_ASSERT_EQUAL_FLOAT(7.0f, c);
+}
+
+/* The colour check's tables in sbr_picto_check(): both or neither, outlines in range,
+   floors finite in [-2, 2]. */
+static void test_rim_tables_checked(void)
+{
+    static uint8_t shape[SBR_PICTO_CLASSES];
+    static float floor_[SBR_PICTO_CLASSES];
+    sbr_picto_model_t m;
+    hand_model(&m);
+    (void)memset(shape, 0, sizeof shape);
+    (void)memset(floor_, 0, sizeof floor_);
+    shape[13] = (uint8_t)SBR_PICTO_RIM_TRIANGLE_DOWN;
+    floor_[13] = 0.01f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+    m.rim_shape = shape;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m)); /* one table alone */
+    m.rim_floor = floor_;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+    m.rim_shape = NULL;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m));
+    m.rim_shape = shape;
+    shape[42] = 4u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m));
+    shape[42] = 0u;
+    floor_[0] = 2.5f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m));
+    floor_[0] = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m));
+    floor_[0] = -2.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+}
+
 /* Box regression: hand-made rows move and scale the box by the stated amounts, clamped
    to SBR_PICTO_MAX_SHIFT and SBR_PICTO_MAX_LOG_SCALE; the hidden layer feeds it; without
    w3 the box stays; non-finite weights are refused by the check. */
@@ -618,5 +752,7 @@ int main(void)
     RUN_TEST(test_refine_values);
     RUN_TEST(test_triangle_outline);
     RUN_TEST(test_bad_input);
+    RUN_TEST(test_rim_contrast);
+    RUN_TEST(test_rim_tables_checked);
     return UNITY_END();
 }

@@ -12,6 +12,7 @@
 #include "unity.h"
 #include "sbr/recognizer.h"
 
+#include <math.h>
 #include <string.h>
 
 #define W 160u
@@ -143,6 +144,28 @@ static void print_detection(const sbr_detection_t *d)
     UNITY_PRINT_EOL();
 }
 
+/* The scene's view and a configuration whose workspace fits g_ws; every classified
+   candidate reported (min_score 0). */
+static void scene_setup(sbr_image_t *v, sbr_recog_config_t *c)
+{
+    draw_scene();
+    v->width = W;
+    v->height = H;
+    v->stride = 3u * W;
+    v->format = SBR_PIXEL_RGB888;
+    v->data = &g_rgb[0][0][0];
+    sbr_recog_config_default(c);
+    c->parts.max_side = 48u;
+    c->parts.max_regions = 256u;
+    c->parts.max_contour = 512u;
+    c->parts.mser.max_nodes = 4000u;
+    c->max_parts = 128u;
+    c->max_votes = 2048u;
+    c->max_hypotheses = 64u;
+    c->min_score = 0.0f;
+    TEST_ASSERT_TRUE(sbr_recog_workspace_size(W, H, c) <= sizeof g_ws);
+}
+
 /* Every classified candidate is reported (min_score 0), so the comparison covers the
    part model, the class stage and the box refinement, not only the final few. */
 static void test_scene(void)
@@ -153,23 +176,8 @@ static void test_scene(void)
     sbr_image_t v;
     uint32_t n = 0u;
     uint32_t i;
-    draw_scene();
-    v.width = W;
-    v.height = H;
-    v.stride = 3u * W;
-    v.format = SBR_PIXEL_RGB888;
-    v.data = &g_rgb[0][0][0];
+    scene_setup(&v, &c);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
-    sbr_recog_config_default(&c);
-    c.parts.max_side = 48u;
-    c.parts.max_regions = 256u;
-    c.parts.max_contour = 512u;
-    c.parts.mser.max_nodes = 4000u;
-    c.max_parts = 128u;
-    c.max_votes = 2048u;
-    c.max_hypotheses = 64u;
-    c.min_score = 0.0f;
-    TEST_ASSERT_TRUE(sbr_recog_workspace_size(W, H, &c) <= sizeof g_ws);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
     TEST_ASSERT_TRUE(n >= 1u); /* something to compare */
     TEST_ASSERT_TRUE(st.classified >= n);
@@ -198,9 +206,56 @@ static void test_scene(void)
     }
 }
 
+/* The class stage's colour check (sbr_picto_model_t::rim_floor) on the same scene: with
+   every class's outline checked and the lowest floor (-2) nothing changes; with the
+   highest (2) no candidate of a checked class is left (the classes without an outline,
+   the diamond and the octagon, stay) and each one dropped is counted. */
+static void test_scene_colour_check(void)
+{
+    static sbr_detection_t plain[CAP];
+    static uint8_t shape[SBR_PICTO_CLASSES];
+    static float floor_[SBR_PICTO_CLASSES];
+    sbr_model_t m;
+    sbr_recog_config_t c;
+    sbr_recog_stats_t st;
+    sbr_image_t v;
+    uint32_t n0 = 0u;
+    uint32_t n = 0u;
+    uint32_t i;
+    uint32_t k;
+    scene_setup(&v, &c);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, plain, CAP, &n0, &st));
+    TEST_ASSERT_EQUAL_UINT32(0u, st.rim_rejected);
+    for (k = 0u; k < SBR_PICTO_CLASSES; k++) {
+        shape[k] = (uint8_t)(((k == 12u) || (k == 14u)) ? SBR_PICTO_RIM_NONE
+                             : ((superclass_of(k) == 2u) ? SBR_PICTO_RIM_TRIANGLE
+                                                                    : SBR_PICTO_RIM_DISC));
+        floor_[k] = -2.0f;
+    }
+    shape[13] = (uint8_t)SBR_PICTO_RIM_TRIANGLE_DOWN;
+    m.picto.rim_shape = shape;
+    m.picto.rim_floor = floor_;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(n0, n);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.rim_rejected);
+    TEST_ASSERT_EQUAL_MEMORY(plain, g_dets, n * sizeof g_dets[0]);
+    for (k = 0u; k < SBR_PICTO_CLASSES; k++) {
+        floor_[k] = 2.0f;
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_TRUE(st.rim_rejected >= 1u);
+    for (i = 0u; i < n; i++) {
+        TEST_ASSERT_EQUAL_UINT8(SBR_PICTO_RIM_NONE, shape[g_dets[i].class_id]);
+    }
+    floor_[0] = NAN; /* a corrupted table: the model check refuses the whole call */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_scene);
+    RUN_TEST(test_scene_colour_check);
     return UNITY_END();
 }

@@ -542,6 +542,14 @@ static void test_pictogram_h(void)
     feat[7] = NAN;
     ROW(&t, SBR_ERR_RANGE, sbr_picto_classify(&m, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, ws, sizeof ws));
     ROW(&t, SBR_ERR_RANGE, sbr_picto_refine(&m, feat, SBR_PICTO_FEATURES, box, refined, ws, sizeof ws));
+    {
+        float contrast = 0.0f;
+        ROW(&t, SBR_OK, sbr_picto_rim_contrast(&v, box, SBR_PICTO_RIM_DISC, &contrast));
+        ROW(&t, SBR_ERR_NULL, sbr_picto_rim_contrast(&v, box, SBR_PICTO_RIM_DISC, NULL));
+        ROW(&t, SBR_ERR_RANGE, sbr_picto_rim_contrast(&v, box, SBR_PICTO_RIM_NONE, &contrast));
+        ROW(&t, SBR_ERR_RANGE, sbr_picto_rim_contrast(&v, tiny, SBR_PICTO_RIM_TRIANGLE, &contrast));
+        ROW(&t, SBR_ERR_RANGE, sbr_picto_rim_contrast(&gv, box, SBR_PICTO_RIM_TRIANGLE_DOWN, &contrast));
+    }
     status_table_check(&t);
 }
 

@@ -66,25 +66,40 @@ size_t picto_w3_len(uint32_t hidden) {
 }
 bool picto_sizes_ok(const Picto &p) {
     return p.w1.size() == picto_w1_len(p.hidden) && p.w2.size() == picto_w2_len(p.hidden) &&
-           (p.w3.empty() || p.w3.size() == picto_w3_len(p.hidden));
+           (p.w3.empty() || p.w3.size() == picto_w3_len(p.hidden)) &&
+           p.rim_shape.size() == p.rim_floor.size() &&
+           (p.rim_shape.empty() || p.rim_shape.size() == SBR_PICTO_CLASSES);
+}
+// The flags word after the class stage's threshold: bit 0 box regression, bit 1 colour
+// check tables.
+uint32_t picto_flags(const Picto &p) {
+    return (p.w3.empty() ? 0u : 1u) | (p.rim_shape.empty() ? 0u : 2u);
 }
 // The class stage's weights after its header (threshold and box flag written already).
 void put_picto_weights(std::string &s, const Picto &p) {
     for (float w : p.w1) put(s, w);
     for (float w : p.w2) put(s, w);
     for (float w : p.w3) put(s, w);
+    for (uint8_t c : p.rim_shape) put(s, c);
+    for (float f : p.rim_floor) put(s, f);
 }
-// Sizes the weight arrays for `hidden` and `box`; reads them when they fit in s exactly
-// (up to the trailing CRC). Returns false when the size does not match.
-bool get_picto_weights(const std::string &s, size_t &off, uint32_t hidden, uint32_t box, Picto &p) {
+// Sizes the weight arrays for `hidden` and `flags` (picto_flags()); reads them when they
+// fit in s exactly (up to the trailing CRC). Returns false when the size does not match.
+bool get_picto_weights(const std::string &s, size_t &off, uint32_t hidden, uint32_t flags, Picto &p) {
     p.hidden = hidden;
     p.w1.assign(picto_w1_len(hidden), 0.0f);
     p.w2.assign(picto_w2_len(hidden), 0.0f);
-    p.w3.assign(box != 0 ? picto_w3_len(hidden) : 0u, 0.0f);
-    if (off + 4u * (p.w1.size() + p.w2.size() + p.w3.size()) + 4u != s.size()) return false;
+    p.w3.assign((flags & 1u) != 0 ? picto_w3_len(hidden) : 0u, 0.0f);
+    p.rim_shape.assign((flags & 2u) != 0 ? SBR_PICTO_CLASSES : 0u, 0u);
+    p.rim_floor.assign(p.rim_shape.size(), 0.0f);
+    if (off + 4u * (p.w1.size() + p.w2.size() + p.w3.size() + p.rim_floor.size()) + p.rim_shape.size() + 4u !=
+        s.size())
+        return false;
     for (auto &w : p.w1) get(s, off, w);
     for (auto &w : p.w2) get(s, off, w);
     for (auto &w : p.w3) get(s, off, w);
+    for (auto &c : p.rim_shape) get(s, off, c);
+    for (auto &f : p.rim_floor) get(s, off, f);
     return true;
 }
 
@@ -127,6 +142,10 @@ Picto picto_from_view(const sbr_picto_model_t &v) {
     if (v.w1 != nullptr) p.w1.assign(v.w1, v.w1 + picto_w1_len(v.hidden));
     if (v.w2 != nullptr) p.w2.assign(v.w2, v.w2 + picto_w2_len(v.hidden));
     if (v.w3 != nullptr) p.w3.assign(v.w3, v.w3 + picto_w3_len(v.hidden));
+    if (v.rim_shape != nullptr && v.rim_floor != nullptr) {
+        p.rim_shape.assign(v.rim_shape, v.rim_shape + SBR_PICTO_CLASSES);
+        p.rim_floor.assign(v.rim_floor, v.rim_floor + SBR_PICTO_CLASSES);
+    }
     p.bind();
     return p;
 }
@@ -162,7 +181,7 @@ std::string model_bytes(const Model &m, std::string &s) {
     if (m.has_picto) {
         if (!picto_sizes_ok(m.picto)) return "classifier sizes do not match its hidden layer";
         put(s, m.picto.threshold);
-        put(s, uint32_t(m.picto.w3.empty() ? 0u : 1u));
+        put(s, picto_flags(m.picto));
         put_picto_weights(s, m.picto);
     }
     put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
@@ -213,7 +232,7 @@ std::string parse_model(const std::string &s, const std::string &path, Model &m)
     if (m.has_picto) {
         const uint32_t hidden = picto - 1u;
         uint32_t box = 0;
-        if (hidden > SBR_PICTO_HIDDEN_MAX || !get(s, off, m.picto.threshold) || !get(s, off, box) || box > 1u)
+        if (hidden > SBR_PICTO_HIDDEN_MAX || !get(s, off, m.picto.threshold) || !get(s, off, box) || box > 3u)
             return path + ": sizes: bad class stage header";
         if (!get_picto_weights(s, off, hidden, box, m.picto)) return path + ": sizes: do not match the counts";
     } else if (off + 4u != s.size()) {
@@ -284,6 +303,8 @@ void Picto::bind() {
     view.w1 = hidden > 0 ? w1.data() : nullptr;
     view.w2 = w2.data();
     view.w3 = w3.empty() ? nullptr : w3.data();
+    view.rim_shape = rim_shape.empty() ? nullptr : rim_shape.data();
+    view.rim_floor = rim_floor.empty() ? nullptr : rim_floor.data();
 }
 
 
@@ -294,7 +315,7 @@ std::string picto_bytes(const Picto &p, std::string &s) {
     put(s, uint32_t(SBR_PICTO_FEATURES));
     put(s, p.hidden);
     put(s, p.threshold);
-    put(s, uint32_t(p.w3.empty() ? 0u : 1u));
+    put(s, picto_flags(p));
     put_picto_weights(s, p);
     put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
     return "";
@@ -325,8 +346,8 @@ std::string parse_picto(const std::string &s, const std::string &path, Picto &p)
                std::to_string(SBR_PICTO_VERSION);
     if (!get(s, off, features) || !get(s, off, hidden) || !get(s, off, p.threshold) || !get(s, off, box))
         return path + ": sizes: truncated header";
-    if (features != SBR_PICTO_FEATURES || hidden > SBR_PICTO_HIDDEN_MAX || box > 1u)
-        return path + ": sizes: features, hidden units or box flag out of range";
+    if (features != SBR_PICTO_FEATURES || hidden > SBR_PICTO_HIDDEN_MAX || box > 3u)
+        return path + ": sizes: features, hidden units or flags out of range";
     if (!get_picto_weights(s, off, hidden, box, p)) return path + ": sizes: do not match the header";
     p.bind();
     const sbr_status_t st = sbr_picto_check(&p.view);
@@ -347,11 +368,20 @@ std::string write_picto_c(const Picto &p, const std::string &path, const std::st
     if (p.hidden > 0) table("picto_w1", p.w1);
     table("picto_w2", p.w2);
     if (!p.w3.empty()) table("picto_w3", p.w3);
+    const bool rim = !p.rim_shape.empty();
+    if (rim) {
+        o << "    static const uint8_t picto_rim_shape[" << p.rim_shape.size() << "] = {";
+        for (size_t i = 0; i < p.rim_shape.size(); ++i) o << (i % 16 ? " " : "\n        ") << unsigned(p.rim_shape[i]) << "u,";
+        o << "\n    };\n";
+        table("picto_rim_floor", p.rim_floor);
+    }
     o << "    if (out == NULL) {\n        return SBR_ERR_NULL;\n    }\n"
       << "    out->version = SBR_PICTO_VERSION;\n    out->features = SBR_PICTO_FEATURES;\n"
       << "    out->hidden = " << p.hidden << "u;\n    out->threshold = " << flit(p.threshold) << ";\n"
       << "    out->w1 = " << (p.hidden > 0 ? "picto_w1" : "NULL") << ";\n    out->w2 = picto_w2;\n"
       << "    out->w3 = " << (p.w3.empty() ? "NULL" : "picto_w3") << ";\n"
+      << "    out->rim_shape = " << (rim ? "picto_rim_shape" : "NULL") << ";\n"
+      << "    out->rim_floor = " << (rim ? "picto_rim_floor" : "NULL") << ";\n"
       << "    return SBR_OK;\n}\n";
     std::ofstream f(path);
     if (!f) return "cannot write " + path;

@@ -5,9 +5,7 @@
 //   f32 vote_error | f32 score_threshold | u16 group_first[9] | u16 class_first[44] |
 //   sbr_fd_t fds[proto_count] | sbr_model_proto_t protos[proto_count] |
 //   u16 cascade[cascade_count] | u32 picto (0: no class stage, else hidden + 1) |
-//   [f32 threshold | u32 box (1: with box regression) |
-//    f32 w1[hidden * (features + 1)] | f32 w2[outputs * (hidden or features, + 1)] |
-//    f32 w3[4 * (hidden or features, + 1)] when box] |
+//   [f32 threshold | u32 flags | the class stage's weights and tables as in .sbrp] |
 //   u32 CRC-32 (IEEE) of every byte before it.
 // A loaded model is checked with sbr_model_check() as well.
 #pragma once
@@ -25,14 +23,17 @@ namespace sbr_host {
 
 // Owns the weights a sbr_picto_model_t points into (the class stage, pictogram.h).
 // File form (.sbrp), little-endian: "SBRP" | u32 version | u32 features | u32 hidden |
-//   f32 threshold | u32 box (1: with box regression) |
+//   f32 threshold | u32 flags (bit 0: box regression, bit 1: colour check) |
 //   f32 w1[hidden * (features + 1)] | f32 w2[outputs * (hidden or features, + 1)] |
-//   f32 w3[4 * (hidden or features, + 1)] when box |
+//   f32 w3[4 * (hidden or features, + 1)] with bit 0 |
+//   u8 rim_shape[43] | f32 rim_floor[43] with bit 1 |
 //   u32 CRC-32 (IEEE) of every byte before it. Checked with sbr_picto_check() as well.
 struct Picto {
     uint32_t hidden = 0;
     float threshold = 0.5f;
     std::vector<float> w1, w2, w3;  // w3 empty: no box regression
+    std::vector<uint8_t> rim_shape;  // colour check (pictogram.h): empty or 43 entries each
+    std::vector<float> rim_floor;
     sbr_picto_model_t view{};  // pointers refreshed by bind()
     void bind();
 };

@@ -7,7 +7,8 @@
 //                   [--rotate | --no-rotate]
 //                   [--bg-swap off|round|triangle|all] [--bg-fill off|round|triangle|all]
 //                   [--no-triangle-view] [--no-box]
-//                   [--box-jitter N] [--rounds R] [--out-c FILE] [--out FILE] [--eval-range A-B]
+//                   [--box-jitter N] [--rare N] [--rim-check C[,C] | none] [--rounds R]
+//                   [--out-c FILE] [--out FILE] [--eval-range A-B] [--from-picto FILE]
 //
 // Defaults: --data ../shared/data/gtsdb, --range 0-399 (the training split; the
 // development split 400-599 is never read for training), --hidden 128, --epochs 20,
@@ -121,6 +122,16 @@
 // minibatch SGD with momentum (deterministic: fixed seed; two threads share each minibatch
 // and their gradients are added in a fixed order). Background samples are weighted so
 // they count as much as all signs together.
+//
+// Colour check (--rim-check, default 13: the yield sign): for each class listed, the floor
+// of its rim contrast (pictogram.h sbr_picto_rim_contrast(): how much redder the rim is
+// than the inside) is learned from its training signs (the 3 % quantile) and stored with
+// the classifier; the recogniser drops candidates of that class below it. Measured on the
+// cross-validation: docs/results/crossval.md. --from-picto FILE: no training, only the
+// colour check learned on --range and added to the class stage in FILE (--out).
+// --rare N: classes with fewer than N training signs get ceil(N / n) - 1 more rounds (at
+// most 4) of jitter copies, synthesised: perspective, exposure, blur, partial occlusion,
+// often smaller (synth_copy()).
 //
 // --eval-range: a diagnostic on other images (normally the development split): class
 // accuracy on their annotated boxes and the most frequent confusions. Nothing from it
@@ -503,12 +514,143 @@ bool bg_applies(BgSwap m, int c) {
 
 }  // namespace
 
+// The colour check's outline of class c (pictogram.h): discs and triangles; none for the
+// diamond and the octagon.
+sbr_picto_rim_t rim_outline(int c) {
+    switch (sign_shape(c)) {
+    case Shape::triangle: return SBR_PICTO_RIM_TRIANGLE;
+    case Shape::inverted: return SBR_PICTO_RIM_TRIANGLE_DOWN;
+    case Shape::disc: return SBR_PICTO_RIM_DISC;
+    default: return SBR_PICTO_RIM_NONE;
+    }
+}
+
+// --rim-check: the floor of a class's rim contrast, the kRimQuantile quantile of its
+// training signs' contrasts at their annotated boxes (a few of a class's signs are
+// faded or backlit: the floor lets them pass).
+constexpr double kRimQuantile = 0.03;
+bool learn_rim_floors(const std::vector<std::string> &files, const std::map<int, std::vector<GtBox>> &gt,
+                      const std::vector<int> &classes, Picto &out) {
+    std::map<int, std::vector<float>> seen;
+    for (const auto &file : files) {
+        const int num = image_number(file);
+        if (!gt.count(num)) continue;
+        cv::Mat img;
+        for (const auto &g : gt.at(num)) {
+            if (std::find(classes.begin(), classes.end(), g.class_id) == classes.end()) continue;
+            if (img.empty()) img = cv::imread(file, cv::IMREAD_COLOR);
+            if (img.empty()) break;
+            const sbr_image_t v = bgr_view(img);
+            const PixBox b = gt_pixbox(g);
+            const float box[4] = {float(b.x0), float(b.y0), float(b.x1), float(b.y1)};
+            float c = 0.0f;
+            if (sbr_picto_rim_contrast(&v, box, uint32_t(rim_outline(g.class_id)), &c) == SBR_OK)
+                seen[g.class_id].push_back(c);
+        }
+    }
+    out.rim_shape.assign(SBR_PICTO_CLASSES, uint8_t(SBR_PICTO_RIM_NONE));
+    out.rim_floor.assign(SBR_PICTO_CLASSES, -2.0f);
+    for (int c : classes) {
+        auto &v = seen[c];
+        if (v.size() < 5) {
+            std::fprintf(stderr, "sbr_train_picto: --rim-check %d: %zu training signs, too few for a floor\n", c,
+                         v.size());
+            return false;
+        }
+        std::sort(v.begin(), v.end());
+        out.rim_shape[size_t(c)] = uint8_t(rim_outline(c));
+        out.rim_floor[size_t(c)] = v[size_t(kRimQuantile * double(v.size()))];
+        std::fprintf(stderr, "sbr_train_picto: colour check of class %d: rim contrast floor %.4f (%zu signs, median %.4f)\n",
+                     c, double(out.rim_floor[size_t(c)]), v.size(), double(v[v.size() / 2]));
+    }
+    out.bind();
+    return true;
+}
+
+// --rare: at most this many rounds of synthetic copies (jitter copies each) per sign.
+constexpr int kRareMax = 4;
+
+// One synthetic copy of the sign b (paper D built its prototypes from synthetic sign
+// images): its neighbourhood `near` (at mx0, my0 in img) warped by a random perspective
+// (each corner of the sign moved up to 7 % of its size), a random exposure (gamma 0.6 to
+// 1.7, contrast 0.6 to 1), a Gaussian blur (sigma up to 1.5 px) and with a third chance
+// a piece of another place of the frame (no sign in it) over up to a fifth of the sign's
+// area from one side; then, half the time, shrunk 1.5 to 3 times (while the sign stays
+// >= 12 px). Returns the image and the sign's box in it (qs); empty if nothing fit.
+cv::Mat synth_copy(const cv::Mat &img, const cv::Mat &near, const Box &b, const std::vector<Box> &gts, int mx0,
+                   int my0, std::mt19937 &rng, Box &qs) {
+    std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+    const float w = float(b.x1 - b.x0), h = float(b.y1 - b.y0);
+    const cv::Point2f src[4] = {{float(b.x0) - float(mx0), float(b.y0) - float(my0)},
+                                {float(b.x1) - float(mx0), float(b.y0) - float(my0)},
+                                {float(b.x1) - float(mx0), float(b.y1) - float(my0)},
+                                {float(b.x0) - float(mx0), float(b.y1) - float(my0)}};
+    cv::Point2f dst[4];
+    for (int k = 0; k < 4; ++k) dst[k] = src[k] + cv::Point2f(0.07f * w * U(rng), 0.07f * h * U(rng));
+    cv::Mat seen;
+    cv::warpPerspective(near, seen, cv::getPerspectiveTransform(src, dst), near.size(), cv::INTER_LINEAR,
+                        cv::BORDER_REFLECT);
+    float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+    for (const auto &d : dst) {
+        x0 = std::min(x0, d.x); y0 = std::min(y0, d.y);
+        x1 = std::max(x1, d.x); y1 = std::max(y1, d.y);
+    }
+    x0 = std::max(0.0f, x0); y0 = std::max(0.0f, y0);
+    x1 = std::min(float(seen.cols), x1); y1 = std::min(float(seen.rows), y1);
+    if (x1 - x0 < 8.0f || y1 - y0 < 8.0f) return {};
+    qs = {x0, y0, x1, y1};
+    const float gam = std::exp(0.5f * U(rng)), con = 0.8f + 0.2f * U(rng);
+    cv::Mat lut(1, 256, CV_8U);
+    for (int k = 0; k < 256; ++k) {
+        const float t = 255.0f * std::pow(float(k) / 255.0f, gam);
+        lut.at<uint8_t>(k) = cv::saturate_cast<uint8_t>(128.0f + con * (t - 128.0f));
+    }
+    cv::LUT(seen, lut, seen);
+    const float sigma = 0.75f * (U(rng) + 1.0f);
+    if (sigma > 0.3f) cv::GaussianBlur(seen, seen, cv::Size(), double(sigma));
+    if (U(rng) < -1.0f / 3.0f) {
+        // occluder: a strip from one side of the sign over up to a fifth of its area,
+        // filled from a sign-free place of the frame
+        const int side = int(2.0f * (U(rng) + 1.0f)) & 3;
+        const float frac = 0.1f + 0.05f * (U(rng) + 1.0f);
+        cv::Rect r;
+        const int iw = int(x1 - x0), ih = int(y1 - y0);
+        if (side == 0) r = cv::Rect(int(x0), int(y0), std::max(1, int(frac * float(iw))), ih);
+        else if (side == 1) r = cv::Rect(int(x1) - std::max(1, int(frac * float(iw))), int(y0), std::max(1, int(frac * float(iw))), ih);
+        else if (side == 2) r = cv::Rect(int(x0), int(y1) - std::max(1, int(frac * float(ih))), iw, std::max(1, int(frac * float(ih))));
+        else r = cv::Rect(int(x0), int(y0), iw, std::max(1, int(frac * float(ih))));
+        r &= cv::Rect(0, 0, seen.cols, seen.rows);
+        for (int t = 0; t < 20 && r.area() > 0 && r.width < img.cols && r.height < img.rows; ++t) {
+            const int bx = int(float(img.cols - r.width) * 0.5f * (U(rng) + 1.0f));
+            const int by = int(float(img.rows - r.height) * 0.5f * (U(rng) + 1.0f));
+            bool clear = true;
+            for (const Box &o : gts)
+                if (float(bx) < o.x1 && o.x0 < float(bx + r.width) && float(by) < o.y1 && o.y0 < float(by + r.height))
+                    clear = false;
+            if (!clear) continue;
+            img(cv::Rect(bx, by, r.width, r.height)).copyTo(seen(r));
+            break;
+        }
+    }
+    const float shrink = 1.5f + 0.75f * (U(rng) + 1.0f);
+    if (U(rng) > 0.0f && (x1 - x0) / shrink >= 12.0f) {
+        cv::Mat small;
+        cv::resize(seen, small, cv::Size(), 1.0 / shrink, 1.0 / shrink, cv::INTER_AREA);
+        const float fx = float(small.cols) / float(seen.cols), fy = float(small.rows) / float(seen.rows);
+        qs = {qs.x0 * fx, qs.y0 * fy, qs.x1 * fx, qs.y1 * fy};
+        return small;
+    }
+    return seen;
+}
+
 int main(int argc, char **argv) {
     std::string data = "../shared/data/gtsdb", cand_path, out_c, out_file, model_path;
     int hidden = 128, epochs = 20, jitter = 20, box_jitter = 0;
     ImageRanges range{{{0, 399}}}, eval_range;
     float lr = 0.01f, threshold = 0.5f, bg_fraction = 0.3f, dropout = 0.5f, decay = 1e-4f, balance = 0.0f;
-    int rounds = 2;
+    int rounds = 2, rare = 0;
+    std::vector<int> rim_classes{13};  // --rim-check: classes that get a colour check
+    std::string from_picto;        // --from-picto: only the colour check, added to this file
     bool box = true, exposure = false, mirror = false, rotate = true, tview = true;
     BgSwap bg_swap = BgSwap::round, bg_fill = BgSwap::off;
     unsigned seed = 1;
@@ -548,13 +690,28 @@ int main(int argc, char **argv) {
         else if (a == "--triangle-view") tview = true;
         else if (a == "--no-triangle-view") tview = false;
         else if (a == "--balance") balance = std::strtof(next().c_str(), nullptr);
+        else if (a == "--rare") rare = std::atoi(next().c_str());
+        else if (a == "--from-picto") from_picto = next();
+        else if (a == "--rim-check") {
+            const std::string list = next();
+            std::stringstream ss(list == "none" ? "" : list);
+            rim_classes.clear();
+            for (std::string c; std::getline(ss, c, ',');) {
+                const int k = std::atoi(c.c_str());
+                if (c.empty() || k < 0 || k >= int(SBR_PICTO_CLASSES) || rim_outline(k) == SBR_PICTO_RIM_NONE) {
+                    std::fprintf(stderr, "--rim-check wants class ids of discs or triangles, e.g. 13, or none\n");
+                    return 2;
+                }
+                rim_classes.push_back(k);
+            }
+        }
         else if (a == "--rounds") rounds = std::atoi(next().c_str());
         else if (a == "--seed") seed = unsigned(std::atoi(next().c_str()));
         else if (a == "--out-c") out_c = next();
         else if (a == "--out") out_file = next();
         else { std::fprintf(stderr, "sbr_train_picto: unknown option %s (see the file's header)\n", a.c_str()); return 2; }
     }
-    if (hidden < 0 || hidden > int(SBR_PICTO_HIDDEN_MAX) || epochs < 1 || rounds < 1 || box_jitter < 0 || !(bg_fraction > 0.0f && bg_fraction <= 1.0f) ||
+    if (hidden < 0 || hidden > int(SBR_PICTO_HIDDEN_MAX) || epochs < 1 || rounds < 1 || box_jitter < 0 || rare < 0 || !(bg_fraction > 0.0f && bg_fraction <= 1.0f) ||
         !(dropout >= 0.0f && dropout <= 0.9f) || !(decay >= 0.0f && decay < 1.0f) || !(balance >= 0.0f && balance <= 2.0f)) {
         std::fprintf(stderr, "sbr_train_picto: --hidden 0..%u, --epochs >= 1, --rounds >= 1, --box-jitter >= 0, --bg-fraction in (0, 1], "
                              "--dropout in [0, 0.9], --decay in [0, 1), --balance in [0, 2]\n",
@@ -587,6 +744,30 @@ int main(int argc, char **argv) {
         const int n = image_number(f);
         if (range.contains(n)) files.push_back(f);
     }
+    if (!from_picto.empty()) {
+        // no training: the colour check of --rim-check learned on these images and added
+        // to a class stage trained before (to measure the check alone)
+        Picto out;
+        const std::string e = load_picto(from_picto, out);
+        if (!e.empty()) { std::fprintf(stderr, "sbr_train_picto: %s\n", e.c_str()); return 1; }
+        if (rim_classes.empty() || out_file.empty()) {
+            std::fprintf(stderr, "sbr_train_picto: --from-picto needs --rim-check and --out\n");
+            return 2;
+        }
+        if (!learn_rim_floors(files, gt, rim_classes, out)) return 1;
+        return report_write("sbr_train_picto", out_file, save_picto(out, out_file)) ? 0 : 1;
+    }
+    // --rare N: training signs per class, and how many rounds of synthetic copies a class
+    // with fewer than N signs gets (ceil(N / n) - 1, at most kRareMax)
+    std::map<int, int> per_class;
+    for (const auto &f : files)
+        if (gt.count(image_number(f)))
+            for (const auto &g : gt.at(image_number(f))) ++per_class[g.class_id];
+    auto rare_rounds = [&](int c) {
+        const int n = per_class.count(c) ? per_class.at(c) : 0;
+        if (rare <= 0 || n == 0 || n >= rare) return 0;
+        return std::min(kRareMax, (rare + n - 1) / n - 1);
+    };
     std::vector<Sample> samples;
     std::mutex mu;
     std::atomic<size_t> next{0};
@@ -732,6 +913,21 @@ int main(int argc, char **argv) {
                     }
                     // --triangle-view: every fourth copy also as the triangle view
                     if (tview && j % 4 == 0 && features(sv, qs, f, kTriangle)) local.push_back({f, label});
+                }
+                // --rare: synthetic copies of a rare class's sign, from their own random
+                // stream (the copies above stay as they were): the neighbourhood seen in
+                // perspective, blurred, under another exposure, partly occluded and often
+                // farther away (synth_copy()); for the class only (no box target)
+                const int extra = mine == nullptr ? rare_rounds(cls[g]) * jitter : 0;
+                std::mt19937 srng(seed * 100003u + unsigned(num) * 977u + unsigned(g) + 11u);
+                for (int j = 0; j < extra; ++j) {
+                    Box qs;
+                    const cv::Mat seen = synth_copy(img, near, b, gts, mx0, my0, srng, qs);
+                    if (seen.empty()) continue;
+                    const sbr_image_t sv = bgr_view(seen);
+                    if (!features(sv, qs, f)) continue;
+                    local.push_back({f, cls[g]});
+                    if (tview && j % 4 == 0 && features(sv, qs, f, kTriangle)) local.push_back({f, cls[g]});
                 }
                 // --box-jitter: copies placed farther off (centre up to 25 % of the sign's
                 // size away, scale 0.74 to 1.35) for the box regression only, from their
@@ -894,8 +1090,15 @@ int main(int argc, char **argv) {
         if (!fit(out)) { std::fprintf(stderr, "sbr_train_picto: trained weights fail the check\n"); return 1; }
     }
 
-    char bal[32] = "";
+    if (!rim_classes.empty() && !learn_rim_floors(files, gt, rim_classes, out)) return 1;
+    char bal[96] = "";
     if (balance > 0.0f) std::snprintf(bal, sizeof bal, " --balance %g", double(balance));
+    if (!rim_classes.empty()) {
+        std::string r = " --rim-check ";
+        for (size_t i = 0; i < rim_classes.size(); ++i) r += (i ? "," : "") + std::to_string(rim_classes[i]);
+        std::snprintf(bal + std::strlen(bal), sizeof bal - std::strlen(bal), "%s", r.c_str());
+    }
+    if (rare > 0) std::snprintf(bal + std::strlen(bal), sizeof bal - std::strlen(bal), " --rare %d", rare);
     auto mode_name = [](BgSwap m) {
         return m == BgSwap::all ? "all" : m == BgSwap::round ? "round" : m == BgSwap::triangle ? "triangle" : "off";
     };

@@ -74,6 +74,20 @@ extern "C" {
 /** Smallest width and height (pixels) of a box given to sbr_picto_features() and
     sbr_picto_refine(). */
 #define SBR_PICTO_MIN_BOX 2.0f
+/** Sample grid side of sbr_picto_rim_contrast() (its work per box is this squared). */
+#define SBR_PICTO_RIM_GRID 32u
+/** Sign classes with a colour check entry (sbr_picto_model_t::rim_shape): the outputs
+    without the background. */
+#define SBR_PICTO_CLASSES (SBR_PICTO_OUTPUTS - 1u)
+
+/** The outline of a sign class whose rim is checked for colour (sbr_picto_rim_contrast()). */
+typedef enum sbr_picto_rim_e {
+    SBR_PICTO_RIM_NONE = 0,          /**< no colour check for this class */
+    SBR_PICTO_RIM_DISC = 1,          /**< a disc inscribed in the box */
+    SBR_PICTO_RIM_TRIANGLE = 2,      /**< apex up, base along the box's bottom side */
+    SBR_PICTO_RIM_TRIANGLE_DOWN = 3  /**< apex down, base along the box's top side (yield) */
+} sbr_picto_rim_t;
+
 /** Largest |coordinate| (pixels) of a box given to sbr_picto_refine(): four times the
     largest image side, so every box of an image (and one that reaches outside it) is in,
     and the refined box stays finite. */
@@ -103,13 +117,22 @@ typedef struct sbr_picto_model_s {
     const float *w2;   /**< SBR_PICTO_OUTPUTS x (hidden or features, + 1) */
     const float *w3;   /**< SBR_PICTO_BOX_OUTPUTS x (hidden or features, + 1), or NULL (no
                             box regression: sbr_picto_refine() keeps the box) */
+    /** Colour check (optional; both NULL: none): per sign class (::SBR_PICTO_CLASSES
+        entries) the outline of its red rim (::sbr_picto_rim_t) and the floor of its rim
+        contrast (sbr_picto_rim_contrast(), in [-2, 2]), learned from the class's training
+        signs. The recogniser drops a candidate of a class with an outline whose contrast
+        lies below the floor: a sign without the red rim its class always has (e.g. grey
+        triangles of a pylon as "yield"). */
+    const uint8_t *rim_shape;
+    const float *rim_floor;
 } sbr_picto_model_t;
 
 /**
- * @brief Check a classifier's header (version, sizes, threshold in (0, 1)) and that every
- *        weight is finite.
- * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_CORRUPT (version, sizes, a NULL table or a
- *         non-finite weight).
+ * @brief Check a classifier's header (version, sizes, threshold in (0, 1)), that every
+ *        weight is finite, and its colour check tables (both or neither; outlines in
+ *        range, floors finite in [-2, 2]).
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_CORRUPT (version, sizes, a NULL table, a
+ *         non-finite weight, one colour table without the other or a value out of range).
  */
 sbr_status_t sbr_picto_check(const sbr_picto_model_t *model);
 
@@ -156,6 +179,28 @@ typedef enum sbr_picto_outline_e {
 sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[4],
                                         uint32_t outline, float *feat, uint32_t len,
                                         void *workspace, size_t workspace_size);
+
+/**
+ * @brief How much redder a sign's rim is than its inside: the mean redness
+ *        (R - max(G, B)) / (R + G + B + 3) of the rim (inside the outline, outside the
+ *        outline shrunk to 0.6 of its size about its centroid; 0.75 for a disc) minus the
+ *        mean redness of the middle (inside the outline shrunk to 0.45; 0.6 for a disc).
+ *        A red-rimmed sign with a white or pale inside gives about 0.1 to 0.2, grey
+ *        clutter about 0. Bounded work: the box is sampled on a grid of
+ *        ::SBR_PICTO_RIM_GRID x ::SBR_PICTO_RIM_GRID points (nearest pixel; points outside
+ *        the image repeat its border).
+ * @param[in]  img       RGB888 or BGR888 view.
+ * @param[in]  box       x0, y0, x1, y1 (pixel units as sbr_picto_features()); finite, at
+ *                       least ::SBR_PICTO_MIN_BOX wide and high, each |coordinate| <=
+ *                       ::SBR_PICTO_MAX_COORD.
+ * @param[in]  shape     ::SBR_PICTO_RIM_DISC, ::SBR_PICTO_RIM_TRIANGLE or
+ *                       ::SBR_PICTO_RIM_TRIANGLE_DOWN.
+ * @param[out] contrast  in [-2, 2]; written on ::SBR_OK only.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; errors of sbr_image_check(); ::SBR_ERR_RANGE (a grey
+ *         image, a shape out of range, a box not finite, too small or too far out).
+ */
+sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], uint32_t shape,
+                                    float *contrast);
 
 /**
  * @brief Class probabilities of a feature vector.

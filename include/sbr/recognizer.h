@@ -290,6 +290,8 @@ typedef struct sbr_recog_stats_s {
     uint32_t classified;      /**< candidates the class stage examined */
     uint32_t refined;         /**< box refinements the class stage applied */
     uint32_t views;           /**< extra views the class stage classified (config.views) */
+    uint32_t rim_rejected;    /**< candidates dropped by the class stage's colour check
+                                   (sbr_picto_model_t::rim_floor) */
     uint32_t capacity_hit;    /**< bit 0 parts, bit 1 votes, bit 2 hypotheses, bit 3 MSER,
                                    bit 4 candidates */
     uint32_t stage_ticks[SBR_RECOG_STAGES]; /**< clock ticks per ::sbr_recog_stage_t

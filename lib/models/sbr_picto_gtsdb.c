@@ -17122,5 +17122,7 @@ sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)
     out->w1 = picto_w1;
     out->w2 = picto_w2;
     out->w3 = picto_w3;
+    out->rim_shape = NULL;
+    out->rim_floor = NULL;
     return SBR_OK;
 }

@@ -111,6 +111,28 @@ static int all_finite(const float *w, size_t n)
     return ok;
 }
 
+/* The colour check tables: both absent, or both present with outlines in range and
+   finite floors in [-2, 2]. */
+static int rim_tables_ok(const sbr_picto_model_t *model)
+{
+    int ok = 1;
+    if ((model->rim_shape == NULL) || (model->rim_floor == NULL)) {
+        if ((model->rim_shape != NULL) || (model->rim_floor != NULL)) {
+            ok = 0;
+        }
+    } else {
+        uint32_t c;
+        for (c = 0u; (c < SBR_PICTO_CLASSES) && (ok != 0); c++) {
+            const float f = model->rim_floor[c];
+            if ((model->rim_shape[c] > (uint8_t)SBR_PICTO_RIM_TRIANGLE_DOWN) ||
+                (isfinite(f) == 0) || (f < -2.0f) || (f > 2.0f)) {
+                ok = 0;
+            }
+        }
+    }
+    return ok;
+}
+
 sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
 {
     if (model == NULL) {
@@ -126,6 +148,9 @@ sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
     }
     if ((model->w3 != NULL) &&
         (all_finite(model->w3, (size_t)SBR_PICTO_BOX_OUTPUTS * last_cols(model)) == 0)) {
+        return SBR_ERR_CORRUPT;
+    }
+    if (rim_tables_ok(model) == 0) {
         return SBR_ERR_CORRUPT;
     }
     return SBR_OK;
@@ -666,6 +691,121 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
     for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
         prob[i] /= sum;
     }
+    return SBR_OK;
+}
+
+/* Whether the point (u, v) of the unit box lies inside the rim outline `shape` shrunk to
+   k of its size about its centroid. */
+static int in_outline(uint32_t shape, float u, float v, float k)
+{
+    int in = 0;
+    const float x = 0.5f + ((u - 0.5f) / k);
+    if (shape == (uint32_t)SBR_PICTO_RIM_DISC) {
+        const float y = 0.5f + ((v - 0.5f) / k);
+        if ((((x - 0.5f) * (x - 0.5f)) + ((y - 0.5f) * (y - 0.5f))) <= 0.25f) {
+            in = 1;
+        }
+    } else if (shape == (uint32_t)SBR_PICTO_RIM_TRIANGLE) {
+        const float y = (2.0f / 3.0f) + ((v - (2.0f / 3.0f)) / k);
+        if ((y <= 1.0f) && (fabsf(x - 0.5f) <= (0.5f * y))) {
+            in = 1;
+        }
+    } else {
+        const float y = (1.0f / 3.0f) + ((v - (1.0f / 3.0f)) / k);
+        if ((y >= 0.0f) && (fabsf(x - 0.5f) <= (0.5f * (1.0f - y)))) {
+            in = 1;
+        }
+    }
+    return in;
+}
+
+/* Nearest pixel index of coordinate p along an axis of n pixels, the border repeated. */
+static uint32_t clamp_index(float p, uint32_t n)
+{
+    uint32_t i = 0u;
+    if (p >= (float)n) {
+        i = n - 1u;
+    } else if (p > 0.0f) {
+        i = (uint32_t)p;
+    } else {
+        i = 0u;
+    }
+    return i;
+}
+
+sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], uint32_t shape,
+                                    float *contrast)
+{
+    sbr_status_t st;
+    float bw;
+    float bh;
+    float rim = 0.0f;
+    float mid = 0.0f;
+    uint32_t n_rim = 0u;
+    uint32_t n_mid = 0u;
+    uint32_t i;
+    uint32_t j;
+    uint32_t ir;
+    uint32_t ib;
+    float k_in;
+    float k_mid;
+    if ((img == NULL) || (box == NULL) || (contrast == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = sbr_image_check(img);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if (((img->format != SBR_PIXEL_RGB888) && (img->format != SBR_PIXEL_BGR888)) ||
+        (shape < (uint32_t)SBR_PICTO_RIM_DISC) || (shape > (uint32_t)SBR_PICTO_RIM_TRIANGLE_DOWN) ||
+        (finite4(box) == 0)) {
+        return SBR_ERR_RANGE;
+    }
+    for (i = 0u; i < 4u; i++) {
+        if (fabsf(box[i]) > SBR_PICTO_MAX_COORD) {
+            return SBR_ERR_RANGE;
+        }
+    }
+    bw = box[2] - box[0];
+    bh = box[3] - box[1];
+    if ((bw < SBR_PICTO_MIN_BOX) || (bh < SBR_PICTO_MIN_BOX)) {
+        return SBR_ERR_RANGE;
+    }
+    ir = 2u; /* BGR888 */
+    if (img->format == SBR_PIXEL_RGB888) {
+        ir = 0u;
+    }
+    ib = 2u - ir;
+    k_in = (shape == (uint32_t)SBR_PICTO_RIM_DISC) ? 0.75f : 0.6f;
+    k_mid = (shape == (uint32_t)SBR_PICTO_RIM_DISC) ? 0.6f : 0.45f;
+    for (j = 0u; j < SBR_PICTO_RIM_GRID; j++) {
+        const float v = ((float)j + 0.5f) / (float)SBR_PICTO_RIM_GRID;
+        const uint8_t *row = &img->data[(size_t)clamp_index(box[1] + (v * bh), img->height) *
+                                        img->stride];
+        for (i = 0u; i < SBR_PICTO_RIM_GRID; i++) {
+            const float u = ((float)i + 0.5f) / (float)SBR_PICTO_RIM_GRID;
+            if (in_outline(shape, u, v, 1.0f) != 0) {
+                const uint8_t *px = &row[(size_t)clamp_index(box[0] + (u * bw), img->width) * 3u];
+                const float r = (float)px[ir];
+                const float g = (float)px[1];
+                const float b = (float)px[ib];
+                const float red = (r - ((g > b) ? g : b)) / (r + g + b + 3.0f);
+                if (in_outline(shape, u, v, k_in) == 0) {
+                    rim += red;
+                    n_rim++;
+                } else if (in_outline(shape, u, v, k_mid) != 0) {
+                    mid += red;
+                    n_mid++;
+                } else {
+                    /* between rim and middle: neither */
+                }
+            }
+        }
+    }
+    if ((n_rim == 0u) || (n_mid == 0u)) {
+        return SBR_ERR_RANGE; /* not reached: a 32 x 32 grid holds both of every outline */
+    }
+    *contrast = (rim / (float)n_rim) - (mid / (float)n_mid);
     return SBR_OK;
 }
 

@@ -1008,6 +1008,29 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     return 1;
 }
 
+/* The class stage's colour check (sbr_picto_model_t::rim_floor): 1 when the model has one
+   for the candidate's class and the rim of its box is less red against its inside than
+   the class's floor (or cannot be measured). */
+static int rim_fails(const recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm)
+{
+    int fails = 0;
+    if ((pm->rim_shape != NULL) && (pm->rim_floor != NULL) && (h->class_id < SBR_PICTO_CLASSES) &&
+        (pm->rim_shape[h->class_id] != (uint8_t)SBR_PICTO_RIM_NONE)) {
+        float box[4];
+        float contrast = 0.0f;
+        box[0] = h->mx - (0.5f * h->mw);
+        box[1] = h->my - (0.5f * h->mh);
+        box[2] = h->mx + (0.5f * h->mw);
+        box[3] = h->my + (0.5f * h->mh);
+        if ((sbr_picto_rim_contrast(view, box, (uint32_t)pm->rim_shape[h->class_id], &contrast) !=
+             SBR_OK) ||
+            (contrast < pm->rim_floor[h->class_id])) {
+            fails = 1;
+        }
+    }
+    return fails;
+}
+
 sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
                               const sbr_recog_config_t *cfg, const sbr_model_t *model,
                               void *workspace, size_t workspace_size, sbr_detection_t *dets,
@@ -1169,7 +1192,9 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
             if (classify_hyp(h, &view, &model->picto, cfg, &pb, &c.st) == 0) {
                 continue;
             }
-            if (h->score >= cfg->min_score) {
+            if ((h->score >= cfg->min_score) && (rim_fails(h, &view, &model->picto) != 0)) {
+                c.st.rim_rejected++;
+            } else if (h->score >= cfg->min_score) {
                 h->keep = 1u;
             } else {
                 c.st.rejected++;

@@ -62,5 +62,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         FZ_CHECK(refined[2] > refined[0] && refined[3] > refined[1]);
     }
+    // the colour check on the same box and image, any shape a caller may pass
+    float contrast = 7.0f;
+    const uint32_t shape = fz_u32(in, 0u, 4u);
+    const sbr_status_t ks = sbr_picto_rim_contrast(&img, box, shape, &contrast);
+    FZ_CHECK(fz_known(ks));
+    if (ks == SBR_OK) {
+        FZ_CHECK(contrast >= -2.0f && contrast <= 2.0f);
+    } else {
+        FZ_CHECK(contrast == 7.0f);
+    }
     return 0;
 }

@@ -132,6 +132,52 @@ int main()
         expect_refused(parse_picto(s), "sizes", ".sbrp hidden units out of range, CRC fixed up");
     }
 
+    {
+        // the colour check's tables (pictogram.h rim_shape, rim_floor; flags bit 1): they
+        // load and save back; without them the file is the same minus the tables (older
+        // files load); damaged tables are refused
+        sbr_host::Picto with = sbr_host::picto_from_view(pv), without = with;
+        with.rim_shape.assign(SBR_PICTO_CLASSES, uint8_t(SBR_PICTO_RIM_NONE));
+        with.rim_floor.assign(SBR_PICTO_CLASSES, -2.0f);
+        with.rim_shape[13] = uint8_t(SBR_PICTO_RIM_TRIANGLE_DOWN);
+        with.rim_floor[13] = 0.0125f;
+        without.rim_shape.clear();
+        without.rim_floor.clear();
+        with.bind();
+        without.bind();
+        std::string a, b;
+        expect(sbr_host::picto_bytes(with, a).empty() && sbr_host::picto_bytes(without, b).empty(), "write both");
+        expect(a.size() == b.size() + 5u * SBR_PICTO_CLASSES, ".sbrp with the tables is 43 bytes + 43 floats longer");
+        sbr_host::Picto back;
+        expect(sbr_host::parse_picto(a, "rim.sbrp", back).empty() && back.rim_shape == with.rim_shape &&
+                   back.rim_floor == with.rim_floor && back.view.rim_shape != nullptr,
+               "the tables load");
+        expect(sbr_host::parse_picto(b, "plain.sbrp", back).empty() && back.rim_shape.empty() &&
+                   back.view.rim_shape == nullptr && back.view.rim_floor == nullptr,
+               "a file without them loads without a colour check");
+        const size_t shapes_at = a.size() - 4u - 4u * SBR_PICTO_CLASSES - SBR_PICTO_CLASSES;
+        std::string d = a;
+        d[shapes_at + 13u] = 9;  // no such outline
+        fix_crc(d);
+        expect_refused(parse_picto(d), "values", ".sbrp rim outline 9, CRC fixed up");
+        d = a;
+        const float big = 3.0f;
+        std::memcpy(&d[a.size() - 8u], &big, 4u);  // class 42's floor beyond 2
+        fix_crc(d);
+        expect_refused(parse_picto(d), "values", ".sbrp rim floor 3, CRC fixed up");
+        d = a;
+        const uint32_t flags = 7u;
+        std::memcpy(&d[20], &flags, 4u);
+        fix_crc(d);
+        expect_refused(parse_picto(d), "sizes", ".sbrp flags 7, CRC fixed up");
+        d = b;
+        const uint32_t rim_flag = 3u;  // says tables follow, none do
+        std::memcpy(&d[20], &rim_flag, 4u);
+        fix_crc(d);
+        expect_refused(parse_picto(d), "sizes", ".sbrp flag without tables, CRC fixed up");
+        binary_damage(a, ".sbrp with colour check", parse_picto);
+    }
+
     // ---- the part model with its class stage (.sbrm)
     std::string model;
     expect(sbr_host::model_bytes(sbr_host::model_from_view(mv), model).empty(), "write .sbrm");
