@@ -149,7 +149,7 @@ def report(a, folds, pooled, spans, elapsed):
                                       ("sbr_detect", a.detect_args)) if v]
     p("options: " + ("; ".join(extra) if extra else "defaults") + f"; class stage seed {a.seed}")
     p("")
-    head = f"{'':24s}" + "".join(f"{'fold ' + str(f['fold']):>16s}" for f in folds) + f"{'mean ± sd':>18s}{'summed':>16s}"
+    head = f"{'':24s}" + "".join(f"{'fold ' + str(f['fold']):>16s}" for f in folds) + f"{'mean ± sd':>18s}{'summed':>17s}"
     p(head)
 
     def row(name, get, count=None):
@@ -169,7 +169,7 @@ def report(a, folds, pooled, spans, elapsed):
         s = "-" if v is None else f"{v:.3f}"
         if count:
             s += f" ({count(pooled['eval'])})"
-        p(f"{name:24s}" + "".join(cells) + f"{ms:>18s}{s:>16s}")
+        p(f"{name:24s}" + "".join(cells) + f"{ms:>18s}{s:>17s}")
 
     def rec(x):
         return x["recall"] if x["tp"] + x["fn"] else None

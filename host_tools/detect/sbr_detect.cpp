@@ -260,7 +260,7 @@ int main(int argc, char **argv) {
     std::vector<std::vector<double>> ms_stage(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
     size_t capacity_kind[5] = {0, 0, 0, 0, 0};
-    size_t classified = 0, refined = 0, views = 0, frames_run = 0;
+    size_t classified = 0, refined = 0, views = 0, rim_rejected = 0, frames_run = 0;
     uint64_t parts_total = 0;
     double sum_ms = 0;
     for (size_t i = 0; i < files.size(); ++i) {
@@ -310,6 +310,7 @@ int main(int argc, char **argv) {
             classified += stats.classified;
             refined += stats.refined;
             views += stats.views;
+            rim_rejected += stats.rim_rejected;
             ++frames_run;
             for (uint32_t k = 0; k < n; ++k) {
                 const auto &d = dets[k];
@@ -367,10 +368,11 @@ int main(int argc, char **argv) {
       << ", votes " << capacity_kind[1] << ", hypotheses " << capacity_kind[2] << ", MSER " << capacity_kind[3]
       << ", candidates " << capacity_kind[4] << ")\n";
     if (frames_run > 0 && classified > 0) {
-        char cbuf[160];
-        std::snprintf(cbuf, sizeof cbuf, "class stage per frame (mean): %.1f candidates classified, %.1f boxes refined, %.1f extra views\n",
+        char cbuf[256];
+        std::snprintf(cbuf, sizeof cbuf, "class stage per frame (mean): %.1f candidates classified, %.1f boxes refined, %.1f extra views; "
+                      "colour check: %zu candidates dropped in all\n",
                       double(classified) / double(frames_run), double(refined) / double(frames_run),
-                      double(views) / double(frames_run));
+                      double(views) / double(frames_run), rim_rejected);
         s << cbuf;
     }
     if (can) s << "CAN log: " << canlog << " (" << can->frames_written() << " frames)\n";
