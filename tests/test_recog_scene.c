@@ -1,6 +1,6 @@
 /* The whole recogniser with the built-in library and class stage on one small synthetic
    street scene (drawn with integer arithmetic, so every target renders the same pixels):
-   a prohibitory-like sign, a mandatory-like blue disc, a danger-like triangle on a noisy
+   a prohibitory-like sign, a blue "ahead only" disc, a danger-like triangle on a noisy
    gradient. The test checks that it runs within the stated workspace, that its
    detections are well-formed, that each drawn sign is found at the operating point with a
    class of its superclass and a box of IoU >= 0.5, and prints the detections one per line:
@@ -64,9 +64,9 @@ static void draw_scene(void)
                     put(x, y, 200u, 25u, 35u);
                 }
             } else if (d2 <= sq(14)) {
-                if ((((py >= 36) && (py <= 40)) && (px >= 84) && (px <= 100)) ||
-                    ((px >= 96) && (px <= 102) && ((sq(py - 38) * 4) <= sq(102 - px)))) {
-                    put(x, y, 240u, 240u, 240u); /* an arrow */
+                if (((px >= 90) && (px <= 94) && (py >= 33) && (py <= 49)) ||
+                    ((py >= 26) && (py <= 33) && (((px > 92) ? (px - 92) : (92 - px)) <= (py - 26)))) {
+                    put(x, y, 240u, 240u, 240u); /* an arrow pointing up: "ahead only" */
                 } else {
                     put(x, y, 20u, 60u, 170u);
                 }
@@ -206,8 +206,9 @@ static void test_scene(void)
     }
 }
 
-/* The class stage's colour check (sbr_picto_model_t::rim_floor) on the same scene: with
-   every class's outline checked and the lowest floor (-2) nothing changes; with the
+/* The class stage's colour check (sbr_picto_model_t::rim_floor) on the same scene: the
+   built-in class stage has one for the yield sign; without tables nothing is dropped;
+   with every class's outline checked and the lowest floor (-2) nothing changes; with the
    highest (2) no candidate of a checked class is left (the classes without an outline,
    the diamond and the octagon, stay) and each one dropped is counted. */
 static void test_scene_colour_check(void)
@@ -225,6 +226,11 @@ static void test_scene_colour_check(void)
     uint32_t k;
     scene_setup(&v, &c);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
+    /* the built-in class stage checks the yield sign's rim */
+    TEST_ASSERT_NOT_NULL(m.picto.rim_shape);
+    TEST_ASSERT_EQUAL_UINT8(SBR_PICTO_RIM_TRIANGLE_DOWN, m.picto.rim_shape[13]);
+    m.picto.rim_shape = NULL;
+    m.picto.rim_floor = NULL;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, plain, CAP, &n0, &st));
     TEST_ASSERT_EQUAL_UINT32(0u, st.rim_rejected);
     for (k = 0u; k < SBR_PICTO_CLASSES; k++) {
