@@ -527,7 +527,8 @@ sbr_picto_rim_t rim_outline(int c) {
 
 // --rim-check: the floor of a class's rim contrast, the kRimQuantile quantile of its
 // training signs' contrasts at their annotated boxes (a few of a class's signs are
-// faded or backlit: the floor lets them pass).
+// faded or backlit: the floor lets them pass). A class with fewer than 5 training signs
+// goes unchecked; with no class checked the classifier has no tables.
 constexpr double kRimQuantile = 0.03;
 bool learn_rim_floors(const std::vector<std::string> &files, const std::map<int, std::vector<GtBox>> &gt,
                       const std::vector<int> &classes, Picto &out) {
@@ -553,15 +554,20 @@ bool learn_rim_floors(const std::vector<std::string> &files, const std::map<int,
     for (int c : classes) {
         auto &v = seen[c];
         if (v.size() < 5) {
-            std::fprintf(stderr, "sbr_train_picto: --rim-check %d: %zu training signs, too few for a floor\n", c,
-                         v.size());
-            return false;
+            // a floor from so few signs would say nothing: that class goes unchecked
+            std::fprintf(stderr, "sbr_train_picto: --rim-check %d: %zu training signs, too few for a floor: no colour check for it\n",
+                         c, v.size());
+            continue;
         }
         std::sort(v.begin(), v.end());
         out.rim_shape[size_t(c)] = uint8_t(rim_outline(c));
         out.rim_floor[size_t(c)] = v[size_t(kRimQuantile * double(v.size()))];
         std::fprintf(stderr, "sbr_train_picto: colour check of class %d: rim contrast floor %.4f (%zu signs, median %.4f)\n",
                      c, double(out.rim_floor[size_t(c)]), v.size(), double(v[v.size() / 2]));
+    }
+    if (std::all_of(out.rim_shape.begin(), out.rim_shape.end(), [](uint8_t k) { return k == SBR_PICTO_RIM_NONE; })) {
+        out.rim_shape.clear();  // no class checked: no tables
+        out.rim_floor.clear();
     }
     out.bind();
     return true;
