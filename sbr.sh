@@ -253,7 +253,7 @@ cmd_detect() {
         note="note: the built-in models are trained on GTSDB 00000-00599 (./sbr.sh train), these images
 included: the figures are training-set figures, not what unseen images give. For those, see
 ./sbr.sh crossval (docs/usage/crossval.md); for the development-split figures, models trained
-on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model ... --picto ...."
+on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model FILE --picto FILE."
       fi
     else
       echo "no --input folder given and no GTSDB copy in ../shared/data/gtsdb" >&2
