@@ -576,6 +576,16 @@ bool learn_rim_floors(const std::vector<std::string> &files, const std::map<int,
 // --rare: at most this many rounds of synthetic copies (jitter copies each) per sign.
 constexpr int kRareMax = 4;
 
+// img through gamma `gam` and contrast `con` about mid-grey, into out (may be img).
+void expose(const cv::Mat &img, float gam, float con, cv::Mat &out) {
+    cv::Mat lut(1, 256, CV_8U);
+    for (int k = 0; k < 256; ++k) {
+        const float t = 255.0f * std::pow(float(k) / 255.0f, gam);
+        lut.at<uint8_t>(k) = cv::saturate_cast<uint8_t>(128.0f + con * (t - 128.0f));
+    }
+    cv::LUT(img, lut, out);
+}
+
 // One synthetic copy of the sign b (paper D built its prototypes from synthetic sign
 // images): its neighbourhood `near` (at mx0, my0 in img) warped by a random perspective
 // (each corner of the sign moved up to 7 % of its size), a random exposure (gamma 0.6 to
@@ -606,12 +616,7 @@ cv::Mat synth_copy(const cv::Mat &img, const cv::Mat &near, const Box &b, const 
     if (x1 - x0 < 8.0f || y1 - y0 < 8.0f) return {};
     qs = {x0, y0, x1, y1};
     const float gam = std::exp(0.5f * U(rng)), con = 0.8f + 0.2f * U(rng);
-    cv::Mat lut(1, 256, CV_8U);
-    for (int k = 0; k < 256; ++k) {
-        const float t = 255.0f * std::pow(float(k) / 255.0f, gam);
-        lut.at<uint8_t>(k) = cv::saturate_cast<uint8_t>(128.0f + con * (t - 128.0f));
-    }
-    cv::LUT(seen, lut, seen);
+    expose(seen, gam, con, seen);
     const float sigma = 0.75f * (U(rng) + 1.0f);
     if (sigma > 0.3f) cv::GaussianBlur(seen, seen, cv::Size(), double(sigma));
     if (U(rng) < -1.0f / 3.0f) {
@@ -836,12 +841,7 @@ int main(int argc, char **argv) {
                         // another exposure: the neighbourhood's values through a random
                         // gamma (0.5 to 2) and contrast (0.5 to 1) about mid-grey
                         const float gam = std::exp(0.6931472f * U(rng)), con = 0.75f + 0.25f * U(rng);
-                        cv::Mat lut(1, 256, CV_8U);
-                        for (int k = 0; k < 256; ++k) {
-                            const float t = 255.0f * std::pow(float(k) / 255.0f, gam);
-                            lut.at<uint8_t>(k) = cv::saturate_cast<uint8_t>(128.0f + con * (t - 128.0f));
-                        }
-                        cv::LUT(near, lut, seen);
+                        expose(near, gam, con, seen);
                         qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
                     } else if (j % 4 == 2 && (swapped(cls[g]) || filled(cls[g]))) {
                         // the sign in front of another background: the neighbourhood outside

@@ -694,6 +694,20 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
     return SBR_OK;
 }
 
+/* A box sbr_picto_refine() and sbr_picto_rim_contrast() take: finite, each |coordinate|
+   <= SBR_PICTO_MAX_COORD, at least SBR_PICTO_MIN_BOX wide and high. */
+static int box_in_domain(const float box[4])
+{
+    int ok = 0;
+    if ((finite4(box) != 0) && (fabsf(box[0]) <= SBR_PICTO_MAX_COORD) &&
+        (fabsf(box[1]) <= SBR_PICTO_MAX_COORD) && (fabsf(box[2]) <= SBR_PICTO_MAX_COORD) &&
+        (fabsf(box[3]) <= SBR_PICTO_MAX_COORD) && ((box[2] - box[0]) >= SBR_PICTO_MIN_BOX) &&
+        ((box[3] - box[1]) >= SBR_PICTO_MIN_BOX)) {
+        ok = 1;
+    }
+    return ok;
+}
+
 /* Whether the point (u, v) of the unit box lies inside the rim outline `shape` shrunk to
    k of its size about its centroid. */
 static int in_outline(uint32_t shape, float u, float v, float k)
@@ -758,19 +772,11 @@ sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], 
     }
     if (((img->format != SBR_PIXEL_RGB888) && (img->format != SBR_PIXEL_BGR888)) ||
         (shape < (uint32_t)SBR_PICTO_RIM_DISC) || (shape > (uint32_t)SBR_PICTO_RIM_TRIANGLE_DOWN) ||
-        (finite4(box) == 0)) {
+        (box_in_domain(box) == 0)) {
         return SBR_ERR_RANGE;
-    }
-    for (i = 0u; i < 4u; i++) {
-        if (fabsf(box[i]) > SBR_PICTO_MAX_COORD) {
-            return SBR_ERR_RANGE;
-        }
     }
     bw = box[2] - box[0];
     bh = box[3] - box[1];
-    if ((bw < SBR_PICTO_MIN_BOX) || (bh < SBR_PICTO_MIN_BOX)) {
-        return SBR_ERR_RANGE;
-    }
     ir = 2u; /* BGR888 */
     if (img->format == SBR_PIXEL_RGB888) {
         ir = 0u;
@@ -826,10 +832,7 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
     if (st != SBR_OK) {
         return st;
     }
-    if ((finite4(box) == 0) || (fabsf(box[0]) > SBR_PICTO_MAX_COORD) ||
-        (fabsf(box[1]) > SBR_PICTO_MAX_COORD) || (fabsf(box[2]) > SBR_PICTO_MAX_COORD) ||
-        (fabsf(box[3]) > SBR_PICTO_MAX_COORD) || ((box[2] - box[0]) < SBR_PICTO_MIN_BOX) ||
-        ((box[3] - box[1]) < SBR_PICTO_MIN_BOX)) {
+    if (box_in_domain(box) == 0) {
         return SBR_ERR_RANGE;
     }
     cx = 0.5f * (box[0] + box[2]);

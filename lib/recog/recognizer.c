@@ -856,6 +856,15 @@ typedef struct recog_picto_buf_s {
     void *ws;
 } recog_picto_buf_t;
 
+/* The box of a hypothesis's centre and size, x0, y0, x1, y1 (unclipped). */
+static void centre_box(const recog_hyp_t *h, float box[4])
+{
+    box[0] = h->mx - (0.5f * h->mw);
+    box[1] = h->my - (0.5f * h->mh);
+    box[2] = h->mx + (0.5f * h->mw);
+    box[3] = h->my + (0.5f * h->mh);
+}
+
 /* Features and class probabilities of one box; 0 when it cannot be sampled. */
 static int picto_box(const sbr_image_t *view, const sbr_picto_model_t *pm, const float box[4],
                      recog_picto_buf_t *b)
@@ -964,10 +973,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     float danger; /* the danger classes' probability at the first box */
     uint32_t step = 0u;
     uint32_t steps = 0u;
-    box[0] = h->mx - (0.5f * h->mw);
-    box[1] = h->my - (0.5f * h->mh);
-    box[2] = h->mx + (0.5f * h->mw);
-    box[3] = h->my + (0.5f * h->mh);
+    centre_box(h, box);
     if (picto_box(view, pm, box, b) == 0) {
         return 0;
     }
@@ -1010,7 +1016,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
 
 /* The class stage's colour check (sbr_picto_model_t::rim_floor): 1 when the model has one
    for the candidate's class and the rim of its box is less red against its inside than
-   the class's floor (or cannot be measured). */
+   the class's threshold, or when it cannot be measured. */
 static int rim_fails(const recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm)
 {
     int fails = 0;
@@ -1018,10 +1024,7 @@ static int rim_fails(const recog_hyp_t *h, const sbr_image_t *view, const sbr_pi
         (pm->rim_shape[h->class_id] != (uint8_t)SBR_PICTO_RIM_NONE)) {
         float box[4];
         float contrast = 0.0f;
-        box[0] = h->mx - (0.5f * h->mw);
-        box[1] = h->my - (0.5f * h->mh);
-        box[2] = h->mx + (0.5f * h->mw);
-        box[3] = h->my + (0.5f * h->mh);
+        centre_box(h, box);
         if ((sbr_picto_rim_contrast(view, box, (uint32_t)pm->rim_shape[h->class_id], &contrast) !=
              SBR_OK) ||
             (contrast < pm->rim_floor[h->class_id])) {
