@@ -22,6 +22,12 @@
 #                                               (docs/usage/crossval.md): both models
 #                                               trained per fold, figures per fold and
 #                                               summed; --baseline: an earlier run's DIR
+#   ./sbr.sh cost [--range A-B] [--out DIR] [--no-wall] [--no-m4] [-- sbr_detect options]
+#                                               the cost benchmark (docs/usage/cost.md):
+#                                               instructions per frame and per stage under
+#                                               callgrind (x86-64) and qemu -icount
+#                                               (Cortex-M4F) on 00400-00419, wall clock of
+#                                               sbr_detect --repeat 3 on 00400-00599
 #   ./sbr.sh track [sbr_track options]          the channel tracker against Kalman and particle
 #                                               filters on KITTI tracking (default 0006-0010)
 #   ./sbr.sh learn-tracker                      relearn the tracker's motion model (0000-0005)
@@ -48,7 +54,7 @@ JOBS="$(nproc 2>/dev/null || echo 2)"
 PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip python3-venv can-utils
           gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
           gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user
-          libfftw3-dev libkissfft-dev cppcheck libopencv-dev chromium clang libclang-rt-14-dev)
+          libfftw3-dev libkissfft-dev cppcheck libopencv-dev chromium clang libclang-rt-14-dev valgrind)
 
 log() { printf '\n== %s\n' "$*"; }
 
@@ -127,7 +133,7 @@ make_fuzz_seeds() {
 
 cmd_test() {
   case "${1:-}" in
-    -h|--help) sed -n '2,40p' "$0"; return 0 ;;
+    -h|--help) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0"; return 0 ;;
     "") ;;
     *) echo "unknown option $1 (./sbr.sh test takes none)" >&2; return 2 ;;
   esac
@@ -209,7 +215,7 @@ cmd_fuzz() {
     case "$1" in
       --minutes) minutes="$2"; shift 2 ;;
       --target) targets="$2"; shift 2 ;;
-      -h|--help) sed -n '2,40p' "$0"; return 0 ;;
+      -h|--help) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0"; return 0 ;;
       *) echo "unknown option $1" >&2; return 2 ;;
     esac
   done
@@ -240,7 +246,7 @@ cmd_detect() {
       --out) out="$2"; shift 2 ;;
       --range) range="$2"; shift 2 ;;
       --baseline) baseline="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"; shift 2 ;;
-      -h|--help) sed -n '2,40p' "$0"; return 0 ;;
+      -h|--help) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0"; return 0 ;;
       *) echo "unknown option $1" >&2; return 2 ;;
     esac
   done
@@ -342,6 +348,25 @@ cmd_crossval() {
       --data "$ROOT/../shared/data/gtsdb" --out "$out" ${args[@]+"${args[@]}"}
 }
 
+cmd_cost() {
+  case "${1:-}" in -h|--help) python3 "$ROOT/host_tools/bench_cost/sbr_cost.py" --help; return 0 ;; esac
+  setup
+  build_native
+  configure_build cortex-m4 -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-cortex-m4f.cmake" \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUNITY_ROOT="$(unity_root)" -DSBR_HOST_TESTS_DIR="$BUILD/native/tests"
+  local out="$ROOT/out/cost" args=()
+  while [ $# -gt 0 ]; do
+    case "$1" in
+      --out) out="$2"; shift 2 ;;
+      *) args+=("$1"); shift ;;
+    esac
+  done
+  log "cost benchmark -> $out"
+  python3 "$ROOT/host_tools/bench_cost/sbr_cost.py" --bin "$BUILD/native/host_tools" \
+      --m4-elf "$BUILD/cortex-m4/ports/cortex_m/sbr_cost_m4.elf" --gtsdb "$ROOT/../shared/data/gtsdb" \
+      --out "$out" ${args[@]+"${args[@]}"}
+}
+
 cmd_learn_tracker() {
   setup
   build_native
@@ -377,9 +402,10 @@ case "${1:-}" in
   detect) shift; cmd_detect "$@" ;;
   train) shift; cmd_train "$@" ;;
   crossval) shift; cmd_crossval "$@" ;;
+  cost) shift; cmd_cost "$@" ;;
   learn-tracker) shift; cmd_learn_tracker "$@" ;;
   track) shift; cmd_track "$@" ;;
   setup) setup ;;
-  -h|--help|help) sed -n '2,40p' "$0" ;;
-  *) sed -n '2,40p' "$0"; exit 2 ;;
+  -h|--help|help) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0" ;;
+  *) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0"; exit 2 ;;
 esac

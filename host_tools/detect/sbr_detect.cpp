@@ -3,10 +3,10 @@
 //   sbr_detect --input DIR --detections FILE [--annotated DIR] [--canlog FILE]
 //              [--all-detections FILE] [--summary FILE] [--model FILE] [--picto FILE]
 //              [--no-picto] [--range A-B]
-//              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N]
+//              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N] [--callgrind]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
 //              [--refine-first-score S] [--refine-score S] [--views N] [--view-score S] [--maps MASK]
-//              [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S]
+//              [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S]
 //              [--candidate-iou U] [--triangle-view 0|1] [--triangle-score S]
 //
 // --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
@@ -32,8 +32,9 @@
 //   override the recogniser's options of those names
 //   (include/sbr/recognizer.h), for tuning and regression; --maps sets parts.maps (bit k =
 //   map kind k of include/sbr/map.h; 0x1 intensity only), --map-subsample
-//   parts.map_subsample (per kind, in the order intensity, red, blue, yellow; kinds not
-//   given keep their defaults), --max-nodes parts.mser.max_nodes (MSER tree nodes, most of
+//   parts.map_subsample and --map-min-area parts.map_min_area (per kind, in the order
+//   intensity, red, blue, yellow; kinds not given keep their defaults; an area of 0 means
+//   the MSER default), --max-nodes parts.mser.max_nodes (MSER tree nodes, most of
 //   the workspace; 0 = the worst case) and --max-candidates the class stage's candidate
 //   bound.
 // Time is measured per frame on one core (the tool is single-threaded). --repeat N runs the
@@ -42,6 +43,9 @@
 //   time, so the fastest of a few runs is the figure that repeats from one run of the
 //   tool to the next. The output is the same for every run (the recogniser is
 //   deterministic); the summary says how many runs each frame had.
+// --callgrind: for `./sbr.sh cost` (host_tools/bench_cost): run under valgrind's callgrind
+//   with --collect-atstart=no; instructions are collected inside sbr_recog_detect only and
+//   a dump is written at each stage boundary (one run per frame).
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -60,6 +64,13 @@
 #include "gtsdb.hpp"
 #include "model_io.hpp"
 
+#if defined(__has_include)
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define SBR_HAVE_CALLGRIND 1
+#endif
+#endif
+
 extern "C" {
 #include "sbr/recognizer.h"
 }
@@ -73,6 +84,24 @@ uint32_t host_clock(void *) {
     return static_cast<uint32_t>(std::chrono::duration_cast<std::chrono::microseconds>(
                                      std::chrono::steady_clock::now().time_since_epoch())
                                      .count());
+}
+
+// --callgrind: the recogniser's stage clock ends a callgrind dump at every stage boundary
+// (the ticks it returns only number the dumps), so each dump holds one stage's instructions.
+struct CallgrindClock {
+    std::string frame;
+    uint32_t tick = 0;
+};
+
+uint32_t callgrind_clock(void *ctx) {
+    auto *c = static_cast<CallgrindClock *>(ctx);
+#ifdef SBR_HAVE_CALLGRIND
+    // the first call ends the set-up (checks, workspace layout), call k + 1 ends stage k
+    const std::string label =
+        "frame " + c->frame + (c->tick == 0 ? std::string(" setup") : " stage " + std::to_string(c->tick - 1));
+    CALLGRIND_DUMP_STATS_AT(label.c_str());
+#endif
+    return ++c->tick;
 }
 
 double percentile(std::vector<double> v, double p) {
@@ -121,8 +150,9 @@ int main(int argc, char **argv) {
     bool use_roi = false, quiet = false;
     int repeat = 1;
     int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1, triangle_view = -1, max_nodes = -1;
-    bool sequence = false;
+    bool sequence = false, callgrind = false;
     std::vector<unsigned> map_sub;  // --map-subsample: per map kind, empty = defaults
+    std::vector<unsigned> map_area;  // --map-min-area: per map kind, empty = defaults
     float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, refine_first_score = -1.0f, view_score = -1.0f, triangle_score = -1.0f, candidate_score = -1.0f, candidate_iou = -1.0f;
     sbr_rect_t roi{};
     for (int i = 1; i < argc; ++i) {
@@ -142,6 +172,7 @@ int main(int argc, char **argv) {
         else if (a == "--quiet") quiet = true;
         else if (a == "--repeat") repeat = std::atoi(next().c_str());
         else if (a == "--sequence") sequence = true;
+        else if (a == "--callgrind") callgrind = true;
         else if (a == "--min-parts") min_parts = std::atoi(next().c_str());
         else if (a == "--refine-steps") refine_steps = std::atoi(next().c_str());
         else if (a == "--refine-score") refine_score = std::strtof(next().c_str(), nullptr);
@@ -154,6 +185,11 @@ int main(int argc, char **argv) {
             const int got = std::sscanf(next().c_str(), "%u,%u,%u,%u", &f[0], &f[1], &f[2], &f[3]);
             if (got < 1) { std::fprintf(stderr, "--map-subsample wants I[,R[,B[,Y]]]\n"); return 2; }
             map_sub.assign(f, f + got);
+        } else if (a == "--map-min-area") {
+            unsigned f[4] = {0, 0, 0, 0};
+            const int got = std::sscanf(next().c_str(), "%u,%u,%u,%u", &f[0], &f[1], &f[2], &f[3]);
+            if (got < 1) { std::fprintf(stderr, "--map-min-area wants I[,R[,B[,Y]]]\n"); return 2; }
+            map_area.assign(f, f + got);
         } else if (a == "--maps") maps = int(std::strtol(next().c_str(), nullptr, 0));
         else if (a == "--max-nodes") max_nodes = std::atoi(next().c_str());
         else if (a == "--max-candidates") max_candidates = std::atoi(next().c_str());
@@ -174,9 +210,9 @@ int main(int argc, char **argv) {
             std::fprintf(stderr,
                          "usage: %s --input DIR --detections FILE [--annotated DIR] [--canlog FILE]\n"
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
-                         "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N]\n"
+                         "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N] [--callgrind]\n"
                          "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
-                         "          [--refine-steps N] [--refine-first-score S] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--triangle-score S] [--picto FILE | --no-picto]\n", argv[0]);
+                         "          [--refine-steps N] [--refine-first-score S] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--triangle-score S] [--picto FILE | --no-picto]\n", argv[0]);
             return 2;
         }
     }
@@ -184,6 +220,12 @@ int main(int argc, char **argv) {
         std::fprintf(stderr, "sbr_detect: --input and --detections are required (--help)\n");
         return 2;
     }
+#ifndef SBR_HAVE_CALLGRIND
+    if (callgrind) {
+        std::fprintf(stderr, "sbr_detect: --callgrind: built without valgrind/callgrind.h\n");
+        return 2;
+    }
+#endif
     if (repeat < 1 || repeat > 20) {
         std::fprintf(stderr, "sbr_detect: --repeat wants 1..20\n");
         return 2;
@@ -224,6 +266,7 @@ int main(int argc, char **argv) {
     if (candidate_score >= 0.0f) cfg.candidate_score = candidate_score;
     if (candidate_iou >= 0.0f) cfg.candidate_iou = candidate_iou;
     for (size_t k = 0; k < map_sub.size(); ++k) cfg.parts.map_subsample[k] = map_sub[k];
+    for (size_t k = 0; k < map_area.size(); ++k) cfg.parts.map_min_area[k] = map_area[k];
     if (maps >= 0) cfg.parts.maps = uint32_t(maps);
     if (max_nodes >= 0) cfg.parts.mser.max_nodes = uint32_t(max_nodes);
     if (max_candidates >= 0) cfg.max_candidates = uint32_t(max_candidates);
@@ -232,7 +275,13 @@ int main(int argc, char **argv) {
     if (triangle_score >= 0.0f) cfg.triangle_score = triangle_score;
     if (vote_error >= 0.0f) cfg.vote_error = vote_error;
     if (verify_error >= 0.0f) cfg.verify_error = verify_error;
+    CallgrindClock cg;
     cfg.clock = host_clock;
+    if (callgrind) {
+        cfg.clock = callgrind_clock;
+        cfg.clock_ctx = &cg;
+        repeat = 1;
+    }
     sbr_status_t st = sbr_recog_config_check(&cfg);
     if (st != SBR_OK) { std::fprintf(stderr, "sbr_detect: bad configuration: %s\n", sbr_status_str(st)); return 2; }
 
@@ -285,8 +334,23 @@ int main(int argc, char **argv) {
             for (int r = 0; r < repeat; ++r) {
                 sbr_recog_stats_t run_stats{};
                 const auto t0 = std::chrono::steady_clock::now();
+#ifdef SBR_HAVE_CALLGRIND
+                if (callgrind) {  // collect only inside sbr_recog_detect
+                    cg.frame = fs::path(files[i]).stem().string();
+                    cg.tick = 0;
+                    CALLGRIND_ZERO_STATS;
+                    CALLGRIND_TOGGLE_COLLECT;
+                }
+#endif
                 st = sbr_recog_detect(&v, use_roi ? &roi : nullptr, &cfg, model, ws.data(), ws.size() * 8,
                                       dets.data(), uint32_t(dets.size()), &n, &run_stats);
+#ifdef SBR_HAVE_CALLGRIND
+                if (callgrind) {
+                    const std::string label = "frame " + cg.frame + " end";
+                    CALLGRIND_DUMP_STATS_AT(label.c_str());
+                    CALLGRIND_TOGGLE_COLLECT;
+                }
+#endif
                 const double run_ms =
                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
                 if (r == 0 || run_ms < ms) {

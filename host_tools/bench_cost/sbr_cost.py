@@ -1,0 +1,298 @@
+#!/usr/bin/env python3
+"""sbr's cost benchmark (./sbr.sh cost; docs/usage/cost.md).
+
+Instructions per frame of sbr_recog_detect, which do not depend on the machine's load:
+  - host (x86-64): valgrind's callgrind on fixed frames, collected inside sbr_recog_detect
+    only (sbr_detect --callgrind), one dump per stage; the part stage is split into maps
+    (sbr_map_make), regions (sbr_mser_detect) and contours + FDs (the rest: region masks,
+    tracing, descriptors) by callgrind_annotate's inclusive counts;
+  - Cortex-M4F: the bench image ports/cortex_m/sbr_cost_m4.c on qemu mps2-an386 with
+    -icount shift=0 (1 instruction = 1 ns of virtual time, read from a timer), the same
+    frames as PPM, built-in model and default options; its detections are compared with
+    the host's on the same pixels (box edges within 1 px, scores within 1e-3, the
+    tolerance of the scene test, cmake/compare_scene.py);
+next to wall-clock figures of sbr_detect --repeat N on the development split (these do
+depend on the machine; the fastest of N runs per frame).
+
+usage: sbr_cost.py --bin DIR --m4-elf ELF --gtsdb DIR [--range A-B] [--m4-range A-B]
+                   [--wall-range A-B] [--repeat N] [--out DIR] [--no-wall] [--no-m4]
+                   [-- sbr_detect options...]
+Options after -- (e.g. --model F --picto F, --max-candidates N) go to the host runs; the
+Cortex-M4 image always runs the built-in model with the default options.
+Prints the tables and writes cost.txt and cost.json into --out.
+"""
+import argparse
+import json
+import os
+import re
+import shutil
+import statistics
+import subprocess
+import sys
+import time
+
+STAGES = ["maps", "regions", "contours+FDs", "matching+votes", "grouping+cascade",
+          "class stage", "set-up+output"]
+
+
+def run(cmd, **kw):
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kw)
+    if r.returncode != 0:
+        sys.exit("sbr_cost: %s failed (exit %d):\n%s%s" % (" ".join(cmd), r.returncode,
+                                                           r.stdout[-2000:], r.stderr[-2000:]))
+    return r.stdout
+
+
+def parse_range(text):
+    m = re.fullmatch(r"(\d+)-(\d+)", text)
+    if not m or int(m.group(1)) > int(m.group(2)):
+        sys.exit("sbr_cost: a range is A-B, A <= B: %s" % text)
+    return int(m.group(1)), int(m.group(2))
+
+
+def frames_of(gtsdb, rng):
+    img_dir = os.path.join(gtsdb, "FullIJCNN2013") if os.path.isdir(os.path.join(gtsdb, "FullIJCNN2013")) else gtsdb
+    lo, hi = rng
+    out = []
+    for n in range(lo, hi + 1):
+        for ext in (".ppm", ".jpg", ".png"):
+            p = os.path.join(img_dir, "%05d%s" % (n, ext))
+            if os.path.exists(p):
+                out.append(p)
+                break
+    if not out:
+        sys.exit("sbr_cost: no images %05d-%05d in %s" % (lo, hi, img_dir))
+    return out
+
+
+def inclusive(cg_file, functions):
+    """Inclusive instructions of the named functions in one callgrind dump."""
+    text = run(["callgrind_annotate", "--inclusive=yes", "--threshold=100", cg_file])
+    got = {f: 0 for f in functions}
+    for line in text.splitlines():
+        m = re.match(r"\s*([\d,]+) \([^)]*\)\s+\S*:(\w+)", line)
+        if m and m.group(2) in got:
+            got[m.group(2)] = max(got[m.group(2)], int(m.group(1).replace(",", "")))
+    return got
+
+
+def host_callgrind(args, extra, work):
+    cg_dir = os.path.join(work, "callgrind")
+    shutil.rmtree(cg_dir, ignore_errors=True)
+    os.makedirs(cg_dir)
+    lo, hi = args.range
+    cmd = ["valgrind", "--tool=callgrind", "--collect-atstart=no",
+           "--callgrind-out-file=" + os.path.join(cg_dir, "cg.out"),
+           os.path.join(args.bin, "sbr_detect"), "--input", args.gtsdb, "--range", "%d-%d" % (lo, hi),
+           "--detections", os.path.join(work, "callgrind_detections.txt"), "--callgrind", "--quiet"] + extra
+    run(cmd)
+    frames = {}
+    for name in sorted(os.listdir(cg_dir)):
+        path = os.path.join(cg_dir, name)
+        desc = summary = None
+        with open(path) as f:
+            for line in f:
+                if line.startswith("desc: Trigger: Client Request: "):
+                    desc = line[len("desc: Trigger: Client Request: "):].strip()
+                elif line.startswith("summary: "):
+                    summary = int(line.split()[1])
+                    break
+        if desc is None or summary is None:
+            continue  # the program-termination dump
+        m = re.fullmatch(r"frame (\S+) (setup|stage (\d)|end)", desc)
+        if not m:
+            continue
+        fr = frames.setdefault(m.group(1), {s: 0 for s in STAGES})
+        if m.group(2) in ("setup", "end"):
+            fr["set-up+output"] += summary
+            continue
+        k = int(m.group(3))
+        if k == 0:
+            inc = inclusive(path, ["sbr_map_make", "sbr_mser_detect"])
+            fr["maps"] += inc["sbr_map_make"]
+            fr["regions"] += inc["sbr_mser_detect"]
+            fr["contours+FDs"] += summary - inc["sbr_map_make"] - inc["sbr_mser_detect"]
+        elif k == 1:
+            fr["matching+votes"] += summary
+        elif k in (2, 3, 4):
+            fr["grouping+cascade"] += summary
+        else:
+            fr["class stage"] += summary
+    for fr in frames.values():
+        fr["total"] = sum(fr[s] for s in STAGES)
+    return frames
+
+
+def wall_clock(args, extra, work):
+    lo, hi = args.wall_range
+    summary = os.path.join(work, "wall_summary.txt")
+    run([os.path.join(args.bin, "sbr_detect"), "--input", args.gtsdb, "--range", "%d-%d" % (lo, hi),
+         "--detections", os.path.join(work, "wall_detections.txt"), "--repeat", str(args.repeat),
+         "--quiet", "--summary", summary] + extra)
+    with open(summary) as f:
+        text = f.read()
+    m = re.search(r"time per frame \(one core[^)]*\): median ([\d.]+) ms, 95th percentile ([\d.]+) ms", text)
+    ws = re.search(r"workspace: (\d+) bytes", text)
+    return {"median_ms": float(m.group(1)), "p95_ms": float(m.group(2)),
+            "workspace": int(ws.group(1)) if ws else None, "frames": hi - lo + 1, "repeat": args.repeat}
+
+
+def read_dets(lines):
+    out = []
+    for line in lines:
+        f = line.strip().split(";")
+        if len(f) >= 6:
+            out.append([int(f[-6]), int(f[-5]), int(f[-4]), int(f[-3]), int(f[-2]), float(f[-1])])
+    return out
+
+
+def same_dets(a, b):
+    if len(a) != len(b):
+        return False
+    free = list(range(len(b)))
+    for d in a:
+        j = next((j for j in free if b[j][4] == d[4] and all(abs(b[j][i] - d[i]) <= 1 for i in range(4))
+                  and abs(b[j][5] - d[5]) <= 1e-3), None)
+        if j is None:
+            return False
+        free.remove(j)
+    return True
+
+
+def cortex_m4(args, work):
+    ppm_dir = os.path.join(work, "ppm")
+    shutil.rmtree(ppm_dir, ignore_errors=True)
+    files = frames_of(args.gtsdb, args.m4_range)
+    run([os.path.join(args.bin, "sbr_to_ppm"), "--out", ppm_dir] + files)
+    # the host's detections on the same pixels, built-in model, default options (floor 0.3)
+    host_det = os.path.join(work, "m4_host_detections.txt")
+    run([os.path.join(args.bin, "sbr_detect"), "--input", ppm_dir, "--detections", host_det,
+         "--threshold", "0.3", "--min-score", "0.3", "--quiet"])
+    host = {}
+    with open(host_det) as f:
+        for line in f:
+            host.setdefault(line.split(";")[0][:5], []).append(line)
+    frames = {}
+    run_dir = os.path.join(work, "qemu")
+    os.makedirs(run_dir, exist_ok=True)
+    for name in sorted(os.listdir(ppm_dir)):
+        stem = name[:-4]
+        link = os.path.join(run_dir, "frame.ppm")
+        if os.path.lexists(link):
+            os.remove(link)
+        os.symlink(os.path.abspath(os.path.join(ppm_dir, name)), link)
+        out = run(["qemu-system-arm", "-M", "mps2-an386", "-cpu", "cortex-m4", "-nographic",
+                   "-icount", "shift=0", "-semihosting-config", "enable=on,target=native",
+                   "-kernel", os.path.abspath(args.m4_elf)], cwd=run_dir, timeout=1800)
+        fr = {"stages": {}, "dets": []}
+        for line in out.splitlines():
+            if line.startswith("stage "):
+                k, v = line[6:].split(":")
+                fr["stages"][int(k)] = int(float(v))
+            elif line.startswith("total: "):
+                fr["total"] = int(float(line.split()[1]))
+            elif line.startswith("view: "):
+                fr["view"] = line[6:]
+            elif line.startswith("workspace: "):
+                fr["workspace"] = int(line.split()[1])
+            elif line.startswith("calibration: "):
+                fr["calibration"] = float(line.split()[1])
+            elif line.startswith("status: "):
+                fr["status"] = line.split()[1]
+            elif line.startswith("det: "):
+                fr["dets"].append(line[5:])
+        fr["same_as_host"] = same_dets(read_dets(host.get(stem, [])), read_dets(fr["dets"]))
+        fr["host_dets"] = len(host.get(stem, []))
+        frames[stem] = fr
+    return frames
+
+
+def mega(v):
+    return "%.1f" % (v / 1e6)
+
+
+def main():
+    argv = sys.argv[1:]
+    extra = []
+    if "--" in argv:
+        i = argv.index("--")
+        argv, extra = argv[:i], argv[i + 1:]
+    ap = argparse.ArgumentParser(description="sbr's cost benchmark", usage=__doc__)
+    ap.add_argument("--bin", required=True, help="folder with sbr_detect and sbr_to_ppm")
+    ap.add_argument("--m4-elf", help="ports/cortex_m sbr_cost_m4.elf")
+    ap.add_argument("--gtsdb", required=True)
+    ap.add_argument("--range", type=parse_range, default=(400, 419))
+    ap.add_argument("--m4-range", type=parse_range, default=None)
+    ap.add_argument("--wall-range", type=parse_range, default=(400, 599))
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--out", default="cost")
+    ap.add_argument("--no-wall", action="store_true")
+    ap.add_argument("--no-m4", action="store_true")
+    args = ap.parse_args(argv)
+    if args.m4_range is None:
+        args.m4_range = args.range
+    os.makedirs(args.out, exist_ok=True)
+    t0 = time.time()
+    report = {"range": "%05d-%05d" % args.range, "options": extra}
+    lines = ["sbr cost benchmark: sbr_recog_detect, instructions per frame (inclusive)",
+             "options: %s" % (" ".join(extra) if extra else "defaults, built-in model")]
+
+    host = host_callgrind(args, extra, args.out)
+    report["host"] = host
+    lines.append("")
+    lines.append("x86-64 (valgrind callgrind), frames %05d-%05d (%d), millions of instructions:"
+                 % (args.range[0], args.range[1], len(host)))
+    cols = STAGES + ["total"]
+    lines.append("  %-8s" % "frame" + "".join("%17s" % c for c in cols))
+    for name in sorted(host):
+        lines.append("  %-8s" % name + "".join("%17s" % mega(host[name][c]) for c in cols))
+    med = {c: statistics.median([host[n][c] for n in host]) for c in cols}
+    mean = {c: statistics.mean([host[n][c] for n in host]) for c in cols}
+    lines.append("  %-8s" % "median" + "".join("%17s" % mega(med[c]) for c in cols))
+    lines.append("  %-8s" % "mean" + "".join("%17s" % mega(mean[c]) for c in cols))
+    share = "  share of the mean: " + ", ".join("%s %.0f %%" % (c, 100.0 * mean[c] / mean["total"]) for c in STAGES)
+    lines.append(share)
+    report["host_median"] = med
+    report["host_mean"] = mean
+    lines.append("host median: %.3f x 10^9 instructions per frame" % (med["total"] / 1e9))
+
+    if not args.no_m4 and args.m4_elf:
+        m4 = cortex_m4(args, args.out)
+        report["cortex_m4"] = m4
+        lines.append("")
+        lines.append("Cortex-M4F (qemu mps2-an386, -icount shift=0), built-in model, default options,"
+                     " frames %05d-%05d, millions of instructions:" % args.m4_range)
+        names = ["parts", "votes", "grouping", "cascade", "NMS", "class stage"]
+        lines.append("  %-8s" % "frame" + "".join("%13s" % c for c in names) + "%13s%10s  %s" % ("total", "same dets", "view"))
+        for name in sorted(m4):
+            fr = m4[name]
+            lines.append("  %-8s" % name + "".join("%13s" % mega(fr["stages"].get(k, 0)) for k in range(6))
+                         + "%13s%10s  %s" % (mega(fr.get("total", 0)), "yes" if fr["same_as_host"] else "NO",
+                                             fr.get("view", "?")))
+        tot = [m4[n].get("total", 0) for n in m4]
+        same = sum(1 for n in m4 if m4[n]["same_as_host"])
+        lines.append("Cortex-M4 median: %.3f x 10^9 instructions per frame; workspace %s bytes;"
+                     " detections the same as the host's (1 px, 1e-3) on %d of %d frames"
+                     % (statistics.median(tot) / 1e9, next(iter(m4.values())).get("workspace"), same, len(m4)))
+        report["cortex_m4_median"] = statistics.median(tot)
+
+    if not args.no_wall:
+        w = wall_clock(args, extra, args.out)
+        report["wall"] = w
+        lines.append("")
+        lines.append("wall clock, this machine, one core, sbr_detect --repeat %d (fastest run per frame), "
+                     "frames %05d-%05d: median %.1f ms, 95th percentile %.1f ms; workspace %s bytes"
+                     % (w["repeat"], args.wall_range[0], args.wall_range[1], w["median_ms"], w["p95_ms"], w["workspace"]))
+    lines.append("")
+    lines.append("time: %.1f min" % ((time.time() - t0) / 60.0))
+    text = "\n".join(lines) + "\n"
+    sys.stdout.write(text)
+    with open(os.path.join(args.out, "cost.txt"), "w") as f:
+        f.write(text)
+    with open(os.path.join(args.out, "cost.json"), "w") as f:
+        json.dump(report, f, indent=1, sort_keys=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,160 @@
+/*
+ * sbr_cost_m4: instructions per frame of the recogniser on the emulated Cortex-M4F
+ * (qemu mps2-an386 with -icount shift=0), for `./sbr.sh cost` (host_tools/bench_cost).
+ *
+ * The frame is read through semihosting from `frame.ppm` (binary PPM, P6, maxval 255) in
+ * qemu's working folder into the board's 16 MiB PSRAM at 0x21000000; the recogniser's
+ * workspace follows it. When both do not fit, the largest band of full rows (centred
+ * vertically) that fits is processed and said so. The recogniser runs with its defaults
+ * and the built-in model (lib/models), its stage clock reading the CMSDK APB timer 0
+ * (25 MHz, counting down). With -icount shift=0 qemu advances virtual time by 1 ns per
+ * instruction, so a timer tick is a fixed number of instructions: it is calibrated at
+ * start against a loop of known length (2 instructions per iteration) and every figure is
+ * printed in instructions.
+ *
+ * Output lines (parsed by host_tools/bench_cost/sbr_cost.py):
+ *   calibration: <instructions per tick>
+ *   view: <x> <y> <w> <h> of <W> <H>
+ *   workspace: <bytes>
+ *   status: <sbr_status_str>
+ *   stage <k>: <instructions>          (k = 0 .. SBR_RECOG_STAGES - 1)
+ *   total: <instructions>              (the whole sbr_recog_detect call)
+ *   det: <left>;<top>;<right>;<bottom>;<class>;<score>
+ * This is a bench image, not part of the core: it uses stdio (semihosting) and a timer.
+ */
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sbr/recognizer.h"
+
+#define PSRAM_BASE 0x21000000u
+#define PSRAM_BYTES (16u * 1024u * 1024u)
+
+/* CMSDK APB timer 0 */
+#define TIMER0_CTRL (*(volatile uint32_t *)0x40000000u)
+#define TIMER0_VALUE (*(volatile uint32_t *)0x40000004u)
+#define TIMER0_RELOAD (*(volatile uint32_t *)0x40000008u)
+
+static uint32_t ticks_now(void)
+{
+    return 0xFFFFFFFFu - TIMER0_VALUE;
+}
+
+static uint32_t timer_clock(void *ctx)
+{
+    (void)ctx;
+    return ticks_now();
+}
+
+/* Ticks for a loop of 2 * n instructions (subs + bne per iteration). */
+static uint32_t loop_ticks(uint32_t n)
+{
+    const uint32_t t0 = ticks_now();
+    __asm volatile("1: subs %0, %0, #1\n\tbne 1b" : "+r"(n) : : "cc");
+    return ticks_now() - t0;
+}
+
+static int read_token(FILE *f, uint32_t *v)
+{
+    int ch = fgetc(f);
+    uint32_t x = 0u;
+    int digits = 0;
+    while ((ch == ' ') || (ch == '\n') || (ch == '\r') || (ch == '\t') || (ch == '#')) {
+        if (ch == '#') {
+            while ((ch != '\n') && (ch != EOF)) {
+                ch = fgetc(f);
+            }
+        }
+        ch = fgetc(f);
+    }
+    while ((ch >= '0') && (ch <= '9') && (digits < 9)) {
+        x = x * 10u + (uint32_t)(ch - '0');
+        digits++;
+        ch = fgetc(f);
+    }
+    *v = x;
+    return digits > 0;
+}
+
+int main(void)
+{
+    FILE *f = fopen("frame.ppm", "rb");
+    uint32_t w = 0u, h = 0u, maxval = 0u;
+    uint8_t *const frame = (uint8_t *)PSRAM_BASE;
+    sbr_recog_config_t cfg;
+    sbr_model_t model;
+    sbr_image_t img;
+    sbr_rect_t roi;
+    sbr_recog_stats_t stats;
+    static sbr_detection_t dets[64];
+    uint32_t n = 0u, k, band, t0, t1;
+    size_t frame_bytes, ws_bytes = 0u, ws_off;
+    float per_tick;
+    sbr_status_t st;
+
+    TIMER0_CTRL = 0u;
+    TIMER0_RELOAD = 0xFFFFFFFFu;
+    TIMER0_VALUE = 0xFFFFFFFFu;
+    TIMER0_CTRL = 1u;
+    per_tick = (float)(2u * 2000000u) / (float)(loop_ticks(2000000u) - 0u);
+    printf("calibration: %.3f\n", (double)per_tick);
+
+    if ((f == NULL) || (fgetc(f) != 'P') || (fgetc(f) != '6') || !read_token(f, &w) ||
+        !read_token(f, &h) || !read_token(f, &maxval) || (maxval != 255u) || (w == 0u) ||
+        (h == 0u) || (w > 4096u) || (h > 4096u)) {
+        printf("error: cannot read frame.ppm (binary PPM, maxval 255)\n");
+        return 1;
+    }
+    frame_bytes = (size_t)w * h * 3u;
+    if ((frame_bytes >= PSRAM_BYTES) || (fread(frame, 1u, frame_bytes, f) != frame_bytes)) {
+        printf("error: frame.ppm too large or short\n");
+        return 1;
+    }
+    (void)fclose(f);
+
+    sbr_recog_config_default(&cfg);
+    cfg.clock = timer_clock;
+    (void)sbr_model_gtsdb(&model);
+    ws_off = (frame_bytes + 7u) & ~(size_t)7u;
+    /* the largest band of full rows whose workspace fits beside the frame */
+    for (band = h; band >= 16u; band -= 8u) {
+        ws_bytes = sbr_recog_workspace_size(w, band, &cfg);
+        if ((ws_bytes != 0u) && (ws_off + ws_bytes <= PSRAM_BYTES)) {
+            break;
+        }
+    }
+    if (band < 16u) {
+        printf("error: no band of the frame fits in the PSRAM\n");
+        return 1;
+    }
+    img.data = frame;
+    img.width = w;
+    img.height = h;
+    img.stride = w * 3u;
+    img.format = SBR_PIXEL_RGB888;
+    roi.x = 0u;
+    roi.y = (h - band) / 2u;
+    roi.width = w;
+    roi.height = band;
+    printf("view: %u %u %u %u of %u %u\n", (unsigned)roi.x, (unsigned)roi.y, (unsigned)roi.width,
+           (unsigned)roi.height, (unsigned)w, (unsigned)h);
+    printf("workspace: %u\n", (unsigned)ws_bytes);
+
+    t0 = ticks_now();
+    st = sbr_recog_detect(&img, (band == h) ? NULL : &roi, &cfg, &model,
+                          (void *)(PSRAM_BASE + ws_off), ws_bytes, dets, 64u, &n, &stats);
+    t1 = ticks_now();
+    printf("status: %s\n", sbr_status_str(st));
+    for (k = 0u; k < (uint32_t)SBR_RECOG_STAGES; k++) {
+        printf("stage %u: %.0f\n", (unsigned)k, (double)((float)stats.stage_ticks[k] * per_tick));
+    }
+    printf("total: %.0f\n", (double)((float)(t1 - t0) * per_tick));
+    for (k = 0u; k < n; k++) {
+        const sbr_detection_t *d = &dets[k];
+        printf("det: %u;%u;%u;%u;%u;%.4f\n", (unsigned)d->box.x, (unsigned)d->box.y,
+               (unsigned)(d->box.x + d->box.width - 1u), (unsigned)(d->box.y + d->box.height - 1u),
+               (unsigned)d->class_id, (double)d->score);
+    }
+    return ((st == SBR_OK) || (st == SBR_ERR_CAPACITY)) ? 0 : 1;
+}
