@@ -108,7 +108,8 @@ configure_build() {
 
 # The native build with tests and host tools (the test command, detect and train share it).
 build_native() {
-  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
+  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python" \
+    -DSBR_COST_M4_ELF="$BUILD/cortex-m4/ports/cortex_m/sbr_cost_m4.elf"
 }
 
 unity_root() { echo "$BUILD/native/_deps/unity"; }

@@ -285,6 +285,54 @@ static void test_map_subsample_per_kind(void)
     }
 }
 
+/* The map and MSER buffers follow the finest selected map: every selected kind at
+   map_subsample 2 needs the workspace of subsample 2, less than full resolution, and
+   gives the same parts as subsample 2 in exactly that many bytes. */
+static void test_workspace_follows_finest_map(void)
+{
+    static sbr_part_t ref[64];
+    const sbr_image_t v = view();
+    sbr_parts_config_t c = g_cfg;
+    sbr_parts_config_t c2 = g_cfg;
+    size_t full;
+    size_t half;
+    uint32_t n = 0u;
+    uint32_t nr = 0u;
+    uint32_t i;
+    draw_ring_sign(48.0f, 32.0f);
+    g_cfg.mser.min_area = 20u;
+    g_cfg.min_side = 4u;
+    g_cfg.maps = (1u << SBR_MAP_INTENSITY) | (1u << SBR_MAP_RED);
+    c = g_cfg;
+    c.map_subsample[SBR_MAP_INTENSITY] = 2u;
+    c.map_subsample[SBR_MAP_RED] = 2u;
+    c2 = g_cfg;
+    c2.subsample = 2u;
+    full = sbr_parts_workspace_size(W, H, &g_cfg);
+    half = sbr_parts_workspace_size(W, H, &c);
+    TEST_ASSERT_TRUE(half > 0u);
+    TEST_ASSERT_TRUE(half < full);
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)sbr_parts_workspace_size(W, H, &c2), (uint32_t)half);
+    /* one map at full resolution sizes it for full resolution again */
+    c.map_subsample[SBR_MAP_RED] = 1u;
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)full, (uint32_t)sbr_parts_workspace_size(W, H, &c));
+    c.map_subsample[SBR_MAP_RED] = 2u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &c2, &g_fft, g_ws, half, ref, 64u, &nr,
+                                                    NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_parts_extract(&v, &c, &g_fft, g_ws, half - 1u,
+                                                               g_parts, 64u, &n, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &c, &g_fft, g_ws, half, g_parts, 64u, &n,
+                                                    NULL));
+    TEST_ASSERT_TRUE(nr >= 2u);
+    TEST_ASSERT_EQUAL_UINT32(nr, n);
+    for (i = 0u; i < n; i++) {
+        TEST_ASSERT_EQUAL_UINT32(ref[i].bbox.x, g_parts[i].bbox.x);
+        TEST_ASSERT_EQUAL_UINT32(ref[i].bbox.height, g_parts[i].bbox.height);
+        TEST_ASSERT_EQUAL_UINT32(ref[i].area, g_parts[i].area);
+        TEST_ASSERT_EQUAL_FLOAT(ref[i].fd.cx, g_parts[i].fd.cx);
+    }
+}
+
 /* parts.map_min_area: a smaller region bound for one map kind keeps that map's small
    regions; the other maps keep mser.min_area. */
 static void test_map_min_area_per_kind(void)
@@ -418,6 +466,7 @@ int main(void)
     RUN_TEST(test_subsample_keeps_input_coordinates);
     RUN_TEST(test_map_subsample_per_kind);
     RUN_TEST(test_map_min_area_per_kind);
+    RUN_TEST(test_workspace_follows_finest_map);
     RUN_TEST(test_parts_capacity_and_bad_input);
     RUN_TEST(test_parts_h_statuses);
     return UNITY_END();

@@ -6,7 +6,8 @@
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N] [--callgrind]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
 //              [--refine-first-score S] [--refine-score S] [--views N] [--view-score S] [--maps MASK]
-//              [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S]
+//              [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N]
+//              [--max-parts N] [--max-votes N] [--max-hypotheses N] [--candidate-score S]
 //              [--candidate-iou U] [--triangle-view 0|1] [--triangle-score S]
 //
 // --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
@@ -35,8 +36,9 @@
 //   parts.map_subsample and --map-min-area parts.map_min_area (per kind, in the order
 //   intensity, red, blue, yellow; kinds not given keep their defaults; an area of 0 means
 //   the MSER default), --max-nodes parts.mser.max_nodes (MSER tree nodes, most of
-//   the workspace; 0 = the worst case) and --max-candidates the class stage's candidate
-//   bound.
+//   the workspace; 0 = the worst case), --max-candidates the class stage's candidate
+//   bound and --max-parts, --max-votes, --max-hypotheses the recogniser's bounds of those
+//   names (smaller: less workspace).
 // Time is measured per frame on one core (the tool is single-threaded). --repeat N runs the
 //   recogniser N times on each frame (1..20, default 1) and keeps each frame's fastest run
 //   and that run's stage times: a shared or virtual machine's interruptions only ever add
@@ -149,6 +151,7 @@ int main(int argc, char **argv) {
     uint32_t subsample = 1;
     bool use_roi = false, quiet = false;
     int repeat = 1;
+    int max_parts = -1, max_votes = -1, max_hyps = -1;
     int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1, triangle_view = -1, max_nodes = -1;
     bool sequence = false, callgrind = false;
     std::vector<unsigned> map_sub;  // --map-subsample: per map kind, empty = defaults
@@ -193,6 +196,9 @@ int main(int argc, char **argv) {
         } else if (a == "--maps") maps = int(std::strtol(next().c_str(), nullptr, 0));
         else if (a == "--max-nodes") max_nodes = std::atoi(next().c_str());
         else if (a == "--max-candidates") max_candidates = std::atoi(next().c_str());
+        else if (a == "--max-parts") max_parts = std::atoi(next().c_str());
+        else if (a == "--max-votes") max_votes = std::atoi(next().c_str());
+        else if (a == "--max-hypotheses") max_hyps = std::atoi(next().c_str());
         else if (a == "--views") views_opt = std::atoi(next().c_str());
         else if (a == "--triangle-view") triangle_view = std::atoi(next().c_str());
         else if (a == "--triangle-score") triangle_score = std::strtof(next().c_str(), nullptr);
@@ -212,7 +218,7 @@ int main(int argc, char **argv) {
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
                          "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N] [--callgrind]\n"
                          "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
-                         "          [--refine-steps N] [--refine-first-score S] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--triangle-score S] [--picto FILE | --no-picto]\n", argv[0]);
+                         "          [--refine-steps N] [--refine-first-score S] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N] [--max-parts N] [--max-votes N] [--max-hypotheses N] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--triangle-score S] [--picto FILE | --no-picto]\n", argv[0]);
             return 2;
         }
     }
@@ -270,6 +276,9 @@ int main(int argc, char **argv) {
     if (maps >= 0) cfg.parts.maps = uint32_t(maps);
     if (max_nodes >= 0) cfg.parts.mser.max_nodes = uint32_t(max_nodes);
     if (max_candidates >= 0) cfg.max_candidates = uint32_t(max_candidates);
+    if (max_parts >= 0) cfg.max_parts = uint32_t(max_parts);
+    if (max_votes >= 0) cfg.max_votes = uint32_t(max_votes);
+    if (max_hyps >= 0) cfg.max_hypotheses = uint32_t(max_hyps);
     if (views_opt >= 0) cfg.views = uint32_t(views_opt);
     if (triangle_view >= 0) cfg.triangle_view = uint32_t(triangle_view);
     if (triangle_score >= 0.0f) cfg.triangle_score = triangle_score;

@@ -49,7 +49,8 @@ typedef struct sbr_parts_config_s {
         blocks of subsample x map_subsample[k] pixels, at most ::SBR_MAP_MAX_SUBSAMPLE
         (region filters and MSER areas stay in that map's pixels). A map whose objects are
         large enough anyway costs a quarter of the time at 2. Default 1 for every kind.
-        The workspace is sized by `subsample` alone (the finest map). */
+        The map and MSER buffers of the workspace are sized by the finest selected map
+        (the smallest subsample x map_subsample[k] over the kinds in `maps`). */
     uint32_t map_subsample[SBR_MAP_KINDS];
     /** Smallest MSER region of one map kind (index ::sbr_map_kind_t), in that map's pixels;
         0 = mser.min_area. A subsampled map's signs have a quarter of the area, so a smaller

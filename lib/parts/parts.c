@@ -83,15 +83,30 @@ typedef struct parts_layout_s {
     size_t total;
 } parts_layout_t;
 
+/* The subsampling of the finest selected map (it sizes the map and MSER buffers). */
+static uint32_t finest_subsample(const sbr_parts_config_t *cfg)
+{
+    uint32_t finest = SBR_MAP_MAX_SUBSAMPLE;
+    uint32_t k;
+    for (k = 0u; k < SBR_MAP_KINDS; k++) {
+        const uint32_t s = cfg->subsample * cfg->map_subsample[k];
+        if (((cfg->maps & (1u << k)) != 0u) && (s < finest)) {
+            finest = s;
+        }
+    }
+    return finest;
+}
+
 static int parts_layout(uint32_t width, uint32_t height, const sbr_parts_config_t *cfg,
                         parts_layout_t *l)
 {
-    const uint32_t mw = width / cfg->subsample;
-    const uint32_t mh = height / cfg->subsample;
+    const uint32_t fs = finest_subsample(cfg);
+    const uint32_t mw = width / fs;
+    const uint32_t mh = height / fs;
     const size_t side = (size_t)cfg->max_side;
     size_t ms;
     uint32_t k;
-    if ((mw < 3u) || (mh < 3u)) {
+    if (((width / cfg->subsample) < 3u) || ((height / cfg->subsample) < 3u)) {
         return 0;
     }
     for (k = 0u; k < SBR_MAP_KINDS; k++) {

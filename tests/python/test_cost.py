@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+"""Smoke test of the cost benchmark (host_tools/bench_cost/sbr_cost.py) on one frame.
+
+usage: test_cost.py --bin DIR --gtsdb DIR [--m4-elf ELF] --work DIR
+
+Checks what the figures must satisfy whatever the code's speed (no timing is asserted):
+  - callgrind saw every stage of the frame: maps, regions, contours + FDs, matching +
+    votes, grouping + cascade and the class stage each executed instructions, and the
+    stages add up to the frame's total;
+  - the total is a plausible count for a 1360 x 800 frame (10^7 .. 10^11);
+  - on the emulated Cortex-M4F (when the image is given): the timer calibration is
+    qemu's 40 instructions a tick (-icount shift=0, 25 MHz), the stage figures are at
+    most the call's total, the whole frame fitted, and the detections are the host's on
+    the same pixels.
+Exit 0 on success, 1 on a failed check, 77 (skipped) without valgrind.
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TOOL = os.path.join(HERE, "..", "..", "host_tools", "bench_cost", "sbr_cost.py")
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bin", required=True)
+    ap.add_argument("--gtsdb", required=True)
+    ap.add_argument("--m4-elf")
+    ap.add_argument("--work", required=True)
+    a = ap.parse_args()
+    if shutil.which("valgrind") is None or shutil.which("callgrind_annotate") is None:
+        print("valgrind not installed: skipped")
+        return 77
+    shutil.rmtree(a.work, ignore_errors=True)
+    cmd = [sys.executable, TOOL, "--bin", a.bin, "--gtsdb", a.gtsdb, "--range", "400-400",
+           "--no-wall", "--out", a.work]
+    if a.m4_elf and os.path.exists(a.m4_elf):
+        cmd += ["--m4-elf", a.m4_elf]
+    else:
+        cmd += ["--no-m4"]
+    r = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=1200)
+    print(r.stdout)
+    if r.returncode != 0:
+        print("FAIL: sbr_cost.py exited %d" % r.returncode)
+        return 1
+    with open(os.path.join(a.work, "cost.json")) as f:
+        rep = json.load(f)
+    bad = []
+    fr = rep["host"].get("00400")
+    if fr is None:
+        print("FAIL: no callgrind figures for frame 00400")
+        return 1
+    stages = ["maps", "regions", "contours+FDs", "matching+votes", "grouping+cascade", "class stage"]
+    for s in stages:
+        if fr[s] <= 0:
+            bad.append("stage %s has no instructions" % s)
+    if fr["total"] != sum(fr[s] for s in stages + ["set-up+output"]):
+        bad.append("stages do not add up to the total")
+    if not 1e7 <= fr["total"] <= 1e11:
+        bad.append("implausible total %d" % fr["total"])
+    if "cortex_m4" in rep:
+        m4 = rep["cortex_m4"]["00400"]
+        if abs(m4["calibration"] - 40.0) > 0.5:
+            bad.append("Cortex-M4 calibration %.3f, not 40" % m4["calibration"])
+        if sum(m4["stages"].values()) > m4["total"] or m4["total"] <= 0:
+            bad.append("Cortex-M4 stages exceed the total")
+        if not m4["view"].startswith("0 0 1360 800"):
+            bad.append("Cortex-M4 did not process the whole frame: %s" % m4["view"])
+        if m4["status"] != "SBR_OK":
+            bad.append("Cortex-M4 status %s" % m4["status"])
+        if not m4["same_as_host"] or m4["host_dets"] == 0:
+            bad.append("Cortex-M4 detections differ from the host's (%d on the host)" % m4["host_dets"])
+    for b in bad:
+        print("FAIL: " + b)
+    if not bad:
+        print("cost smoke: OK")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
