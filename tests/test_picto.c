@@ -84,6 +84,9 @@ static void hand_model(sbr_picto_model_t *m)
     m->w3 = NULL;
     m->rim_shape = NULL;
     m->rim_floor = NULL;
+    m->gate = NULL;
+    m->gate_hidden = 0u;
+    m->gate_threshold = 0.0f;
 }
 
 static sbr_status_t feats(const sbr_image_t *v, float x0, float y0, float x1, float y1, float *f)
@@ -740,6 +743,133 @@ static void test_bad_input(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
 }
 
+/* The gate's features: a uniform box gives a zero grey grid and zero edges and the grey
+   chromaticity 1/3 * sum / (sum + 30); a vertical step edge gives grey values of opposite
+   signs on its two halves and edge energy only in the +x bin; RGB and BGR views agree. */
+#define GGRID SBR_PICTO_GATE_GRID
+#define GCOLOUR (GGRID * GGRID)
+#define GEDGES (GCOLOUR + 32u)
+static float g_gf[SBR_PICTO_GATE_FEATURES];
+static float g_gf2[SBR_PICTO_GATE_FEATURES];
+static float g_gate[SBR_PICTO_GATE_FEATURES + 1u];
+
+static void test_gate_features(void)
+{
+    const float box[4] = {20.0f, 10.0f, 68.0f, 58.0f};
+    sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
+    sbr_image_t vb = view(g_bgr, SBR_PIXEL_BGR888);
+    uint32_t i;
+    uint32_t x;
+    uint32_t y;
+    float pos = 0.0f;
+    float other = 0.0f;
+    fill(120u, 120u, 120u);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gate_features(&v, box, g_gf, SBR_PICTO_GATE_FEATURES,
+                                                          g_ws, SBR_PICTO_GATE_WORKSPACE_SIZE));
+    for (i = 0u; i < GCOLOUR; i++) {
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, g_gf[i]);
+    }
+    for (i = 0u; i < 32u; i++) {
+        TEST_ASSERT_FLOAT_WITHIN(1e-5f, 120.0f / 390.0f, g_gf[GCOLOUR + i]);
+    }
+    for (i = 0u; i < 72u; i++) {
+        TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, g_gf[GEDGES + i]);
+    }
+    /* dark left half, bright right half of the box */
+    step_edge(20u, 10u, 48u);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gate_features(&v, box, g_gf, SBR_PICTO_GATE_FEATURES,
+                                                          g_ws, SBR_PICTO_GATE_WORKSPACE_SIZE));
+    TEST_ASSERT_TRUE(g_gf[0] < -0.5f);
+    TEST_ASSERT_TRUE(g_gf[GGRID - 1u] > 0.5f);
+    for (i = 0u; i < 9u; i++) {
+        pos += g_gf[GEDGES + (i * 8u)];
+        other += g_gf[GEDGES + (i * 8u) + 1u] + g_gf[GEDGES + (i * 8u) + 2u] +
+                 g_gf[GEDGES + (i * 8u) + 3u];
+    }
+    TEST_ASSERT_TRUE(pos > 0.5f);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, other);
+    /* the same pixels as BGR */
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            g_rgb[y][x][0] = (uint8_t)(x * 2u);
+            g_rgb[y][x][1] = (uint8_t)(y * 2u);
+            g_rgb[y][x][2] = (uint8_t)(x + y);
+            g_bgr[y][x][0] = g_rgb[y][x][2];
+            g_bgr[y][x][1] = g_rgb[y][x][1];
+            g_bgr[y][x][2] = g_rgb[y][x][0];
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gate_features(&v, box, g_gf, SBR_PICTO_GATE_FEATURES,
+                                                          g_ws, SBR_PICTO_GATE_WORKSPACE_SIZE));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gate_features(&vb, box, g_gf2, SBR_PICTO_GATE_FEATURES,
+                                                          g_ws, SBR_PICTO_GATE_WORKSPACE_SIZE));
+    TEST_ASSERT_EQUAL_FLOAT_ARRAY(g_gf, g_gf2, SBR_PICTO_GATE_FEATURES);
+    TEST_ASSERT_TRUE(g_gf[GCOLOUR] != g_gf[GCOLOUR + 1u]); /* red and blue differ here */
+}
+
+/* The gate's score is its weights' dot product with the features plus the bias; the
+   check refuses non-finite gate weights and thresholds; bad input gets its status. */
+static void test_gate_score_and_bad_input(void)
+{
+    sbr_picto_model_t m;
+    const float box[4] = {20.0f, 10.0f, 68.0f, 58.0f};
+    const float tiny[4] = {20.0f, 10.0f, 21.0f, 58.0f};
+    const sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
+    sbr_image_t grey = v;
+    float score = 0.0f;
+    double ref = 0.0;
+    uint32_t i;
+    hand_model(&m);
+    step_edge(20u, 10u, 48u);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gate_features(&v, box, g_gf, SBR_PICTO_GATE_FEATURES,
+                                                          g_ws, SBR_PICTO_GATE_WORKSPACE_SIZE));
+    for (i = 0u; i <= SBR_PICTO_GATE_FEATURES; i++) {
+        g_gate[i] = 0.01f * (float)((int)(i % 7u) - 3);
+    }
+    for (i = 0u; i < SBR_PICTO_GATE_FEATURES; i++) {
+        ref += (double)g_gate[i] * (double)g_gf[i];
+    }
+    ref += (double)g_gate[SBR_PICTO_GATE_FEATURES];
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_gate(&m, g_gf, SBR_PICTO_GATE_FEATURES, &score));
+    m.gate = g_gate;
+    m.gate_threshold = 0.25f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gate(&m, g_gf, SBR_PICTO_GATE_FEATURES, &score));
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, (float)ref, score);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_gate(&m, g_gf, SBR_PICTO_GATE_FEATURES - 1u, &score));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_gate(&m, NULL, SBR_PICTO_GATE_FEATURES, &score));
+    g_gf2[0] = g_gf[0];
+    (void)memcpy(g_gf2, g_gf, sizeof g_gf2);
+    g_gf2[5] = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_gate(&m, g_gf2, SBR_PICTO_GATE_FEATURES, &score));
+    m.gate_threshold = INFINITY;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m));
+    m.gate_threshold = 0.0f;
+    g_gate[17] = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m));
+    g_gate[17] = 0.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+    /* features: NULLs, grey images, boxes out of the domain, short output, workspace */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_gate_features(NULL, box, g_gf, SBR_PICTO_GATE_FEATURES,
+                                                                g_ws, SBR_PICTO_GATE_WORKSPACE_SIZE));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_gate_features(&v, box, NULL, SBR_PICTO_GATE_FEATURES,
+                                                                g_ws, SBR_PICTO_GATE_WORKSPACE_SIZE));
+    grey.format = SBR_PIXEL_GRAY8;
+    grey.stride = W;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_gate_features(&grey, box, g_gf, SBR_PICTO_GATE_FEATURES,
+                                                                 g_ws, SBR_PICTO_GATE_WORKSPACE_SIZE));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_gate_features(&v, tiny, g_gf, SBR_PICTO_GATE_FEATURES,
+                                                                 g_ws, SBR_PICTO_GATE_WORKSPACE_SIZE));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_gate_features(&v, box, g_gf, SBR_PICTO_GATE_FEATURES - 1u,
+                                                                g_ws, SBR_PICTO_GATE_WORKSPACE_SIZE));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
+                          sbr_picto_gate_features(&v, box, g_gf, SBR_PICTO_GATE_FEATURES, g_ws,
+                                                  SBR_PICTO_GATE_WORKSPACE_SIZE - 1u));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
+                          sbr_picto_gate_features(&v, box, g_gf, SBR_PICTO_GATE_FEATURES,
+                                                  (uint8_t *)g_ws + 1, SBR_PICTO_GATE_WORKSPACE_SIZE));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -754,5 +884,7 @@ int main(void)
     RUN_TEST(test_bad_input);
     RUN_TEST(test_rim_contrast);
     RUN_TEST(test_rim_tables_checked);
+    RUN_TEST(test_gate_features);
+    RUN_TEST(test_gate_score_and_bad_input);
     return UNITY_END();
 }

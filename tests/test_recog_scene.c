@@ -258,10 +258,62 @@ static void test_scene_colour_check(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
 }
 
+/* The class stage's gate: one that passes everything gives the detections without it,
+   one that passes nothing leaves no detection and counts every candidate as gated,
+   cfg.gate = 0 ignores it, and a corrupted gate is refused. */
+static void test_scene_gate(void)
+{
+    static sbr_detection_t plain[CAP];
+    static float gate[SBR_PICTO_GATE_WEIGHTS(2u)];
+    sbr_model_t m;
+    sbr_recog_config_t c;
+    sbr_recog_stats_t st;
+    sbr_recog_stats_t st0;
+    sbr_image_t v;
+    uint32_t n0 = 0u;
+    uint32_t n = 0u;
+    uint32_t i;
+    scene_setup(&v, &c);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
+    TEST_ASSERT_NULL(m.picto.gate); /* the built-in class stage has none */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, plain, CAP, &n0, &st0));
+    TEST_ASSERT_TRUE(n0 >= 1u);
+    TEST_ASSERT_EQUAL_UINT32(0u, st0.gated);
+    for (i = 0u; i < SBR_PICTO_GATE_WEIGHTS(2u); i++) {
+        gate[i] = 0.01f * (float)((int)(i % 5u) - 2);
+    }
+    m.picto.gate = gate;
+    m.picto.gate_hidden = 2u;
+    m.picto.gate_threshold = -1.0e30f; /* every candidate passes */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(n0, n);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.gated);
+    TEST_ASSERT_EQUAL_UINT32(st0.classified, st.classified);
+    TEST_ASSERT_EQUAL_MEMORY(plain, g_dets, n * sizeof g_dets[0]);
+    m.picto.gate_threshold = 1.0e30f; /* none does */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    TEST_ASSERT_EQUAL_UINT32(st0.classified, st.gated);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.refined);
+    c.gate = 0u; /* off: the detections without a gate */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(n0, n);
+    TEST_ASSERT_EQUAL_MEMORY(plain, g_dets, n * sizeof g_dets[0]);
+    c.gate = 2u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    c.gate = 1u;
+    m.picto.gate_hidden = SBR_PICTO_GATE_HIDDEN_MAX + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    m.picto.gate_hidden = 2u;
+    gate[3] = INFINITY;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_scene);
     RUN_TEST(test_scene_colour_check);
+    RUN_TEST(test_scene_gate);
     return UNITY_END();
 }

@@ -68,12 +68,14 @@ bool picto_sizes_ok(const Picto &p) {
     return p.w1.size() == picto_w1_len(p.hidden) && p.w2.size() == picto_w2_len(p.hidden) &&
            (p.w3.empty() || p.w3.size() == picto_w3_len(p.hidden)) &&
            p.rim_shape.size() == p.rim_floor.size() &&
-           (p.rim_shape.empty() || p.rim_shape.size() == SBR_PICTO_CLASSES);
+           (p.rim_shape.empty() || p.rim_shape.size() == SBR_PICTO_CLASSES) &&
+           (p.gate.empty() || (p.gate_hidden <= SBR_PICTO_GATE_HIDDEN_MAX &&
+                                p.gate.size() == SBR_PICTO_GATE_WEIGHTS(p.gate_hidden)));
 }
 // The flags word after the class stage's threshold: bit 0 box regression, bit 1 colour
-// check tables.
+// check tables, bit 2 gate.
 uint32_t picto_flags(const Picto &p) {
-    return (p.w3.empty() ? 0u : 1u) | (p.rim_shape.empty() ? 0u : 2u);
+    return (p.w3.empty() ? 0u : 1u) | (p.rim_shape.empty() ? 0u : 2u) | (p.gate.empty() ? 0u : 4u);
 }
 // The class stage's weights after its header (threshold and box flag written already).
 void put_picto_weights(std::string &s, const Picto &p) {
@@ -82,6 +84,11 @@ void put_picto_weights(std::string &s, const Picto &p) {
     for (float w : p.w3) put(s, w);
     for (uint8_t c : p.rim_shape) put(s, c);
     for (float f : p.rim_floor) put(s, f);
+    if (!p.gate.empty()) {
+        put(s, p.gate_hidden);
+        put(s, p.gate_threshold);
+        for (float w : p.gate) put(s, w);
+    }
 }
 // Sizes the weight arrays for `hidden` and `flags` (picto_flags()); reads them when they
 // fit in s exactly (up to the trailing CRC). Returns false when the size does not match.
@@ -92,14 +99,27 @@ bool get_picto_weights(const std::string &s, size_t &off, uint32_t hidden, uint3
     p.w3.assign((flags & 1u) != 0 ? picto_w3_len(hidden) : 0u, 0.0f);
     p.rim_shape.assign((flags & 2u) != 0 ? SBR_PICTO_CLASSES : 0u, 0u);
     p.rim_floor.assign(p.rim_shape.size(), 0.0f);
-    if (off + 4u * (p.w1.size() + p.w2.size() + p.w3.size() + p.rim_floor.size()) + p.rim_shape.size() + 4u !=
-        s.size())
-        return false;
+    const size_t before_gate = off + 4u * (p.w1.size() + p.w2.size() + p.w3.size() + p.rim_floor.size()) +
+                               p.rim_shape.size();
+    p.gate.clear();
+    p.gate_hidden = 0;
+    if ((flags & 4u) != 0) {
+        size_t at = before_gate;
+        if (!get(s, at, p.gate_hidden) || p.gate_hidden > SBR_PICTO_GATE_HIDDEN_MAX) return false;
+        p.gate.assign(SBR_PICTO_GATE_WEIGHTS(p.gate_hidden), 0.0f);
+    }
+    const size_t gate_bytes = p.gate.empty() ? 0u : 4u * (p.gate.size() + 2u);
+    if (before_gate + gate_bytes + 4u != s.size()) return false;
     for (auto &w : p.w1) get(s, off, w);
     for (auto &w : p.w2) get(s, off, w);
     for (auto &w : p.w3) get(s, off, w);
     for (auto &c : p.rim_shape) get(s, off, c);
     for (auto &f : p.rim_floor) get(s, off, f);
+    if (!p.gate.empty()) {
+        get(s, off, p.gate_hidden);
+        get(s, off, p.gate_threshold);
+        for (auto &w : p.gate) get(s, off, w);
+    }
     return true;
 }
 
@@ -145,6 +165,11 @@ Picto picto_from_view(const sbr_picto_model_t &v) {
     if (v.rim_shape != nullptr && v.rim_floor != nullptr) {
         p.rim_shape.assign(v.rim_shape, v.rim_shape + SBR_PICTO_CLASSES);
         p.rim_floor.assign(v.rim_floor, v.rim_floor + SBR_PICTO_CLASSES);
+    }
+    if (v.gate != nullptr && v.gate_hidden <= SBR_PICTO_GATE_HIDDEN_MAX) {
+        p.gate.assign(v.gate, v.gate + SBR_PICTO_GATE_WEIGHTS(v.gate_hidden));
+        p.gate_hidden = v.gate_hidden;
+        p.gate_threshold = v.gate_threshold;
     }
     p.bind();
     return p;
@@ -232,7 +257,7 @@ std::string parse_model(const std::string &s, const std::string &path, Model &m)
     if (m.has_picto) {
         const uint32_t hidden = picto - 1u;
         uint32_t box = 0;
-        if (hidden > SBR_PICTO_HIDDEN_MAX || !get(s, off, m.picto.threshold) || !get(s, off, box) || box > 3u)
+        if (hidden > SBR_PICTO_HIDDEN_MAX || !get(s, off, m.picto.threshold) || !get(s, off, box) || box > 7u)
             return path + ": sizes: bad class stage header";
         if (!get_picto_weights(s, off, hidden, box, m.picto)) return path + ": sizes: do not match the counts";
     } else if (off + 4u != s.size()) {
@@ -305,6 +330,9 @@ void Picto::bind() {
     view.w3 = w3.empty() ? nullptr : w3.data();
     view.rim_shape = rim_shape.empty() ? nullptr : rim_shape.data();
     view.rim_floor = rim_floor.empty() ? nullptr : rim_floor.data();
+    view.gate = gate.empty() ? nullptr : gate.data();
+    view.gate_hidden = gate.empty() ? 0u : gate_hidden;
+    view.gate_threshold = gate.empty() ? 0.0f : gate_threshold;
 }
 
 
@@ -346,7 +374,7 @@ std::string parse_picto(const std::string &s, const std::string &path, Picto &p)
                std::to_string(SBR_PICTO_VERSION);
     if (!get(s, off, features) || !get(s, off, hidden) || !get(s, off, p.threshold) || !get(s, off, box))
         return path + ": sizes: truncated header";
-    if (features != SBR_PICTO_FEATURES || hidden > SBR_PICTO_HIDDEN_MAX || box > 3u)
+    if (features != SBR_PICTO_FEATURES || hidden > SBR_PICTO_HIDDEN_MAX || box > 7u)
         return path + ": sizes: features, hidden units or flags out of range";
     if (!get_picto_weights(s, off, hidden, box, p)) return path + ": sizes: do not match the header";
     p.bind();
@@ -375,6 +403,7 @@ std::string write_picto_c(const Picto &p, const std::string &path, const std::st
         o << "\n    };\n";
         table("picto_rim_floor", p.rim_floor);
     }
+    if (!p.gate.empty()) table("picto_gate", p.gate);
     o << "    if (out == NULL) {\n        return SBR_ERR_NULL;\n    }\n"
       << "    out->version = SBR_PICTO_VERSION;\n    out->features = SBR_PICTO_FEATURES;\n"
       << "    out->hidden = " << p.hidden << "u;\n    out->threshold = " << flit(p.threshold) << ";\n"
@@ -382,6 +411,9 @@ std::string write_picto_c(const Picto &p, const std::string &path, const std::st
       << "    out->w3 = " << (p.w3.empty() ? "NULL" : "picto_w3") << ";\n"
       << "    out->rim_shape = " << (rim ? "picto_rim_shape" : "NULL") << ";\n"
       << "    out->rim_floor = " << (rim ? "picto_rim_floor" : "NULL") << ";\n"
+      << "    out->gate = " << (p.gate.empty() ? "NULL" : "picto_gate") << ";\n"
+      << "    out->gate_hidden = " << (p.gate.empty() ? 0u : p.gate_hidden) << "u;\n"
+      << "    out->gate_threshold = " << flit(p.gate.empty() ? 0.0f : p.gate_threshold) << ";\n"
       << "    return SBR_OK;\n}\n";
     std::ofstream f(path);
     if (!f) return "cannot write " + path;

@@ -23,10 +23,12 @@ namespace sbr_host {
 
 // Owns the weights a sbr_picto_model_t points into (the class stage, pictogram.h).
 // File form (.sbrp), little-endian: "SBRP" | u32 version | u32 features | u32 hidden |
-//   f32 threshold | u32 flags (bit 0: box regression, bit 1: colour check) |
+//   f32 threshold | u32 flags (bit 0: box regression, bit 1: colour check, bit 2: gate) |
 //   f32 w1[hidden * (features + 1)] | f32 w2[outputs * (hidden or features, + 1)] |
 //   f32 w3[4 * (hidden or features, + 1)] with bit 0 |
 //   u8 rim_shape[43] | f32 rim_floor[43] with bit 1 |
+//   u32 gate_hidden | f32 gate_threshold | f32 gate[SBR_PICTO_GATE_WEIGHTS(gate_hidden)]
+//   with bit 2 |
 //   u32 CRC-32 (IEEE) of every byte before it. Checked with sbr_picto_check() as well.
 struct Picto {
     uint32_t hidden = 0;
@@ -34,6 +36,9 @@ struct Picto {
     std::vector<float> w1, w2, w3;  // w3 empty: no box regression
     std::vector<uint8_t> rim_shape;  // colour check (pictogram.h): empty or 43 entries each
     std::vector<float> rim_floor;
+    std::vector<float> gate;  // the class stage's gate (pictogram.h): empty or its weights
+    uint32_t gate_hidden = 0;
+    float gate_threshold = 0.0f;
     sbr_picto_model_t view{};  // pointers refreshed by bind()
     void bind();
 };

@@ -7,7 +7,7 @@
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
 //              [--refine-first-score S] [--refine-score S] [--views N] [--view-score S] [--maps MASK]
 //              [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N]
-//              [--max-parts N] [--max-votes N] [--max-hypotheses N] [--candidate-score S]
+//              [--max-parts N] [--max-votes N] [--max-hypotheses N] [--gate 0|1] [--candidate-score S]
 //              [--candidate-iou U] [--triangle-view 0|1] [--triangle-score S]
 //
 // --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
@@ -38,7 +38,8 @@
 //   the MSER default), --max-nodes parts.mser.max_nodes (MSER tree nodes, most of
 //   the workspace; 0 = the worst case), --max-candidates the class stage's candidate
 //   bound and --max-parts, --max-votes, --max-hypotheses the recogniser's bounds of those
-//   names (smaller: less workspace).
+//   names (smaller: less workspace); --gate 0 turns the class stage's gate off (it is used
+//   when the class stage has one).
 // Time is measured per frame on one core (the tool is single-threaded). --repeat N runs the
 //   recogniser N times on each frame (1..20, default 1) and keeps each frame's fastest run
 //   and that run's stage times: a shared or virtual machine's interruptions only ever add
@@ -156,6 +157,7 @@ int main(int argc, char **argv) {
     bool sequence = false, callgrind = false;
     std::vector<unsigned> map_sub;  // --map-subsample: per map kind, empty = defaults
     std::vector<unsigned> map_area;  // --map-min-area: per map kind, empty = defaults
+    int gate_opt = -1;
     float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, refine_first_score = -1.0f, view_score = -1.0f, triangle_score = -1.0f, candidate_score = -1.0f, candidate_iou = -1.0f;
     sbr_rect_t roi{};
     for (int i = 1; i < argc; ++i) {
@@ -197,6 +199,7 @@ int main(int argc, char **argv) {
         else if (a == "--max-nodes") max_nodes = std::atoi(next().c_str());
         else if (a == "--max-candidates") max_candidates = std::atoi(next().c_str());
         else if (a == "--max-parts") max_parts = std::atoi(next().c_str());
+        else if (a == "--gate") gate_opt = std::atoi(next().c_str());
         else if (a == "--max-votes") max_votes = std::atoi(next().c_str());
         else if (a == "--max-hypotheses") max_hyps = std::atoi(next().c_str());
         else if (a == "--views") views_opt = std::atoi(next().c_str());
@@ -218,7 +221,7 @@ int main(int argc, char **argv) {
                          "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
                          "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N] [--callgrind]\n"
                          "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
-                         "          [--refine-steps N] [--refine-first-score S] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N] [--max-parts N] [--max-votes N] [--max-hypotheses N] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--triangle-score S] [--picto FILE | --no-picto]\n", argv[0]);
+                         "          [--refine-steps N] [--refine-first-score S] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N] [--max-parts N] [--max-votes N] [--max-hypotheses N] [--gate 0|1] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--triangle-score S] [--picto FILE | --no-picto]\n", argv[0]);
             return 2;
         }
     }
@@ -277,6 +280,7 @@ int main(int argc, char **argv) {
     if (max_nodes >= 0) cfg.parts.mser.max_nodes = uint32_t(max_nodes);
     if (max_candidates >= 0) cfg.max_candidates = uint32_t(max_candidates);
     if (max_parts >= 0) cfg.max_parts = uint32_t(max_parts);
+    if (gate_opt >= 0) cfg.gate = uint32_t(gate_opt);
     if (max_votes >= 0) cfg.max_votes = uint32_t(max_votes);
     if (max_hyps >= 0) cfg.max_hypotheses = uint32_t(max_hyps);
     if (views_opt >= 0) cfg.views = uint32_t(views_opt);
@@ -318,7 +322,7 @@ int main(int argc, char **argv) {
     std::vector<std::vector<double>> ms_stage(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
     size_t capacity_kind[5] = {0, 0, 0, 0, 0};
-    size_t classified = 0, refined = 0, views = 0, rim_rejected = 0, frames_run = 0;
+    size_t classified = 0, refined = 0, views = 0, rim_rejected = 0, gated = 0, frames_run = 0;
     uint64_t parts_total = 0;
     double sum_ms = 0;
     for (size_t i = 0; i < files.size(); ++i) {
@@ -384,6 +388,7 @@ int main(int argc, char **argv) {
             refined += stats.refined;
             views += stats.views;
             rim_rejected += stats.rim_rejected;
+            gated += stats.gated;
             ++frames_run;
             for (uint32_t k = 0; k < n; ++k) {
                 const auto &d = dets[k];
@@ -442,10 +447,10 @@ int main(int argc, char **argv) {
       << ", candidates " << capacity_kind[4] << ")\n";
     if (frames_run > 0 && classified > 0) {
         char cbuf[256];
-        std::snprintf(cbuf, sizeof cbuf, "class stage per frame (mean): %.1f candidates classified, %.1f boxes refined, %.1f extra views; "
-                      "colour check: %zu candidates dropped in all\n",
+        std::snprintf(cbuf, sizeof cbuf, "class stage per frame (mean): %.1f candidates classified, %.1f boxes refined, %.1f extra views, "
+                      "%.1f rejected by the gate; colour check: %zu candidates dropped in all\n",
                       double(classified) / double(frames_run), double(refined) / double(frames_run),
-                      double(views) / double(frames_run), rim_rejected);
+                      double(views) / double(frames_run), double(gated) / double(frames_run), rim_rejected);
         s << cbuf;
     }
     if (can) s << "CAN log: " << canlog << " (" << can->frames_written() << " frames)\n";

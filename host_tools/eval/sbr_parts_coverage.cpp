@@ -1,6 +1,7 @@
 // sbr_parts_coverage: how many annotated signs the recogniser's front end can see whole.
 //   sbr_parts_coverage --data DIR [--range A-B] [--delta D] [--variation V] [--diversity X]
-//                      [--min-area A] [--min-fill F] [--maps MASK] [--list]
+//                      [--min-area A] [--min-fill F] [--maps MASK] [--map-subsample I,R,B,Y]
+//                      [--map-min-area I,R,B,Y] [--list]
 // For every ground-truth box of the images in range it extracts the parts exactly as the
 // recogniser does (sbr_recog_config_default()'s part configuration, or the options given)
 // and reports the best intersection-over-union between the sign's box and any part's
@@ -30,7 +31,8 @@ namespace {
 void usage(const char *argv0) {
     std::fprintf(stderr,
                  "usage: %s --data DIR [--range A-B] [--delta D] [--variation V] [--diversity X]\n"
-                 "          [--min-area A] [--min-fill F] [--maps MASK] [--list]\n",
+                 "          [--min-area A] [--min-fill F] [--maps MASK] [--map-subsample I,R,B,Y]\n"
+                 "          [--map-min-area I,R,B,Y] [--list]\n",
                  argv0);
 }
 
@@ -61,7 +63,15 @@ int main(int argc, char **argv) {
         else if (a == "--min-area") cfg.mser.min_area = static_cast<uint32_t>(std::atoi(v));
         else if (a == "--min-fill") cfg.min_fill = static_cast<float>(std::atof(v));
         else if (a == "--maps") cfg.maps = static_cast<uint32_t>(std::strtoul(v, nullptr, 0));
-        else { usage(argv[0]); return 2; }
+        else if (a == "--map-subsample" || a == "--map-min-area") {
+            unsigned f[4] = {0, 0, 0, 0};
+            const int got = std::sscanf(v, "%u,%u,%u,%u", &f[0], &f[1], &f[2], &f[3]);
+            if (got < 1) { usage(argv[0]); return 2; }
+            for (int k = 0; k < got; ++k) {
+                if (a == "--map-subsample") cfg.map_subsample[k] = f[k];
+                else cfg.map_min_area[k] = f[k];
+            }
+        } else { usage(argv[0]); return 2; }
     }
     if (data.empty()) { usage(argv[0]); return 2; }
     if (sbr_parts_config_check(&cfg) != SBR_OK) {

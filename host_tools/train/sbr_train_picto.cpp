@@ -9,6 +9,7 @@
 //                   [--no-triangle-view] [--no-box]
 //                   [--box-jitter N] [--rare N] [--rim-check C[,C] | none] [--rounds R]
 //                   [--out-c FILE] [--out FILE] [--eval-range A-B] [--from-picto FILE]
+//                   [--gate [--gate-hidden H] [--gate-recall R]]
 //
 // Defaults: --data ../shared/data/gtsdb, --range 0-399 (the training split; the
 // development split 400-599 is never read for training), --hidden 128, --epochs 20,
@@ -128,7 +129,14 @@
 // than the inside) is learned from its training signs (the 3 % quantile) and stored with
 // the classifier; the recogniser drops candidates of that class below it. Measured on the
 // cross-validation: docs/results/crossval.md. --from-picto FILE: no training, only the
-// colour check learned on --range and added to the class stage in FILE (--out).
+// colour check (and with --gate the gate) learned on --range and added to the class stage
+// in FILE (--out).
+// Gate (--gate; off by default): the class stage's cheap first look (pictogram.h
+// sbr_picto_model_t::gate) learned after the classifier, on its candidates of the training
+// images (learn_gate()): --gate-hidden rectified units (default 32, 0..32; 0 = linear),
+// threshold passing --gate-recall of the positive training candidates (default 0.995).
+// Measured on the cross-validation: docs/results/realtime.md (it saves most of the class
+// stage's work and loses a few signs, so the built-in class stage has none).
 // --rare N: classes with fewer than N training signs get ceil(N / n) - 1 more rounds (at
 // most 4) of jitter copies, synthesised: perspective, exposure, blur, partial occlusion,
 // often smaller (synth_copy()).
@@ -573,6 +581,205 @@ bool learn_rim_floors(const std::vector<std::string> &files, const std::map<int,
     return true;
 }
 
+// --gate: the class stage's gate (pictogram.h sbr_picto_model_t::gate), learned on the
+// candidates the class stage sees on the training images: the recogniser's default part
+// stage (no class stage, every hypothesis, best part score first, the first
+// max_candidates). A candidate is a positive when it covers a sign (IoU >= 0.3) or when
+// the trained class stage `out` finds it at least kGateMass sign-like at its first look
+// (what the recogniser's refinement and extra views start from); the others are
+// negatives. (Also counting candidates the box regression moves onto a sign as positives
+// lost one sign more on the cross-validation: docs/results/realtime.md.) A logistic regression on the gate features (standardised, positives weighted
+// up to the negatives' count, minibatch SGD with a fixed seed), folded back to raw
+// features; the threshold passes `recall` of the positives.
+constexpr float kGateMass = 0.0003f;
+constexpr int kGF = int(SBR_PICTO_GATE_FEATURES);
+
+bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::vector<GtBox>> &gt,
+                const sbr_model_t &model, Picto &out, float recall, int hidden, unsigned seed) {
+    std::vector<std::vector<float>> xs;
+    std::vector<int> ys;
+    std::mutex mu;
+    std::atomic<size_t> next{0};
+    auto work = [&]() {
+        std::vector<uint64_t> ws;
+        alignas(8) static thread_local float pws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
+        std::vector<float> f(kF), g(kGF);
+        float prob[SBR_PICTO_OUTPUTS];
+        for (size_t i; (i = next++) < files.size();) {
+            cv::Mat img = cv::imread(files[i], cv::IMREAD_COLOR);
+            if (img.empty()) continue;
+            const sbr_image_t v = bgr_view(img);
+            const int num = image_number(files[i]);
+            sbr_recog_config_t rc;
+            sbr_recog_config_default(&rc);
+            const uint32_t keep = rc.max_candidates;
+            rc.min_score = 0.0f;
+            rc.nms_iou = 1.0f;  // every hypothesis, as the class stage's candidates
+            sbr_model_t m = model;
+            m.picto.version = 0;
+            const size_t need = sbr_recog_workspace_size(v.width, v.height, &rc);
+            if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
+            std::vector<sbr_detection_t> dets(4096);
+            uint32_t n = 0;
+            sbr_recog_detect(&v, nullptr, &rc, &m, ws.data(), ws.size() * 8, dets.data(), uint32_t(dets.size()), &n,
+                             nullptr);
+            std::vector<std::vector<float>> lx;
+            std::vector<int> ly;
+            for (uint32_t k = 0; k < n && k < keep; ++k) {
+                const Box b = rect_pixbox(dets[k].box);
+                const float box[4] = {float(b.x0), float(b.y0), float(b.x1), float(b.y1)};
+                if (sbr_picto_gate_features(&v, box, g.data(), uint32_t(kGF), pws, sizeof pws) != SBR_OK) continue;
+                // positive: it covers a sign, or the class stage finds it sign-like at its
+                // first look
+                int label = 0;
+                if (gt.count(num))
+                    for (const auto &t : gt.at(num))
+                        if (box_iou(b, gt_pixbox(t)) >= 0.3) label = 1;
+                if (label == 0 && sbr_picto_features(&v, box, f.data(), uint32_t(kF), pws, sizeof pws) == SBR_OK &&
+                    sbr_picto_classify(&out.view, f.data(), uint32_t(kF), prob, SBR_PICTO_OUTPUTS, pws, sizeof pws) ==
+                        SBR_OK &&
+                    1.0f - prob[SBR_PICTO_BACKGROUND] >= kGateMass)
+                    label = 1;
+                lx.push_back(g);
+                ly.push_back(label);
+            }
+            std::lock_guard<std::mutex> lock(mu);
+            for (size_t k = 0; k < lx.size(); ++k) {
+                xs.push_back(std::move(lx[k]));
+                ys.push_back(ly[k]);
+            }
+        }
+    };
+    std::vector<std::thread> pool;
+    const unsigned nt = std::max(1u, std::thread::hardware_concurrency());
+    for (unsigned t = 0; t < nt; ++t) pool.emplace_back(work);
+    for (auto &t : pool) t.join();
+    // a deterministic order, whatever order the threads collected them in
+    std::vector<size_t> order(xs.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+        return ys[a] != ys[b] ? ys[a] < ys[b] : xs[a] < xs[b];
+    });
+    const size_t npos = size_t(std::count(ys.begin(), ys.end(), 1)), nneg = ys.size() - npos;
+    if (npos < 10 || nneg < 10) {
+        std::fprintf(stderr, "sbr_train_picto: --gate: %zu positive and %zu negative candidates, too few\n", npos, nneg);
+        return false;
+    }
+    // standardise
+    std::vector<double> mean(kGF, 0.0), sd(kGF, 0.0);
+    for (const auto &x : xs)
+        for (int j = 0; j < kGF; ++j) mean[j] += x[j];
+    for (auto &m : mean) m /= double(xs.size());
+    for (const auto &x : xs)
+        for (int j = 0; j < kGF; ++j) sd[j] += (x[j] - mean[j]) * (x[j] - mean[j]);
+    for (auto &v : sd) v = std::sqrt(v / double(xs.size())) + 1e-6;
+    // one layer of `hidden` rectified units (0: logistic regression on the features)
+    const int H = hidden;
+    const size_t nw = H == 0 ? size_t(kGF + 1) : size_t(H) * (kGF + 1) + size_t(H) + 1;
+    std::vector<float> w(nw, 0.0f), vel(nw, 0.0f), grad(nw);
+    std::mt19937 rng(seed);
+    {
+        std::normal_distribution<float> N(0.0f, std::sqrt(2.0f / float(kGF)));
+        if (H > 0) {
+            for (int r = 0; r < H; ++r)
+                for (int j = 0; j < kGF; ++j) w[size_t(r) * (kGF + 1) + size_t(j)] = N(rng);
+            std::normal_distribution<float> N2(0.0f, std::sqrt(1.0f / float(H)));
+            for (int r = 0; r < H; ++r) w[size_t(H) * (kGF + 1) + size_t(r)] = N2(rng);
+        }
+    }
+    const float wpos = float(std::min(50.0, double(nneg) / double(npos)));
+    const int epochs = 30;
+    const size_t batch = 256;
+    std::vector<float> z(kGF), a(size_t(std::max(H, 1))), dh(size_t(std::max(H, 1)));
+    auto score_of = [&](const std::vector<float> &zz) {
+        if (H == 0) {
+            float v = w[kGF];
+            for (int j = 0; j < kGF; ++j) v += w[size_t(j)] * zz[size_t(j)];
+            return v;
+        }
+        const float *w2 = &w[size_t(H) * (kGF + 1)];
+        float v = w2[H];
+        for (int r = 0; r < H; ++r) {
+            const float *row = &w[size_t(r) * (kGF + 1)];
+            float t = row[kGF];
+            for (int j = 0; j < kGF; ++j) t += row[j] * zz[size_t(j)];
+            a[size_t(r)] = t > 0.0f ? t : 0.0f;
+            v += w2[r] * a[size_t(r)];
+        }
+        return v;
+    };
+    for (int e = 0; e < epochs; ++e) {
+        std::shuffle(order.begin(), order.end(), rng);
+        const float lr = 0.05f * (1.0f - float(e) / float(epochs)) + 0.002f;
+        for (size_t b0 = 0; b0 < order.size(); b0 += batch) {
+            std::fill(grad.begin(), grad.end(), 0.0f);
+            float wsum = 0.0f;
+            for (size_t k = b0; k < std::min(order.size(), b0 + batch); ++k) {
+                const auto &x = xs[order[k]];
+                for (int j = 0; j < kGF; ++j) z[size_t(j)] = float((x[size_t(j)] - mean[size_t(j)]) / sd[size_t(j)]);
+                const float sc = score_of(z);
+                const float p = 1.0f / (1.0f + std::exp(-std::max(-30.0f, std::min(30.0f, sc))));
+                const float sw = ys[order[k]] ? wpos : 1.0f;
+                const float d = sw * (p - float(ys[order[k]]));
+                wsum += sw;
+                if (H == 0) {
+                    for (int j = 0; j < kGF; ++j) grad[size_t(j)] += d * z[size_t(j)];
+                    grad[kGF] += d;
+                    continue;
+                }
+                float *g2 = &grad[size_t(H) * (kGF + 1)];
+                const float *w2 = &w[size_t(H) * (kGF + 1)];
+                for (int r = 0; r < H; ++r) {
+                    g2[r] += d * a[size_t(r)];
+                    if (a[size_t(r)] <= 0.0f) continue;
+                    const float dr = d * w2[r];
+                    float *gr = &grad[size_t(r) * (kGF + 1)];
+                    for (int j = 0; j < kGF; ++j) gr[j] += dr * z[size_t(j)];
+                    gr[kGF] += dr;
+                }
+                g2[H] += d;
+            }
+            for (size_t j = 0; j < nw; ++j) {
+                const float gj = grad[j] / wsum + 1e-4f * w[j];
+                vel[j] = 0.9f * vel[j] - lr * gj;
+                w[j] += vel[j];
+            }
+        }
+    }
+    // fold the standardisation into the first layer
+    out.gate = w;
+    out.gate_hidden = uint32_t(H);
+    const int rows = H == 0 ? 1 : H;
+    for (int r = 0; r < rows; ++r) {
+        float *row = &out.gate[size_t(r) * (kGF + 1)];
+        double bias = row[kGF];
+        for (int j = 0; j < kGF; ++j) {
+            bias -= double(row[j]) * mean[size_t(j)] / sd[size_t(j)];
+            row[j] = float(double(row[j]) / sd[size_t(j)]);
+        }
+        row[kGF] = float(bias);
+    }
+    out.gate_threshold = 0.0f;
+    out.bind();
+    std::vector<float> pos, neg;
+    for (size_t i = 0; i < xs.size(); ++i) {
+        float sc = 0.0f;
+        sbr_picto_gate(&out.view, xs[i].data(), uint32_t(kGF), &sc);
+        (ys[i] ? pos : neg).push_back(sc);
+    }
+    std::sort(pos.begin(), pos.end());
+    out.gate_threshold = pos[size_t(double(1.0f - recall) * double(pos.size()))];
+    out.bind();
+    const size_t rejected = size_t(std::count_if(neg.begin(), neg.end(), [&](float v) { return v < out.gate_threshold; }));
+    const size_t kept = size_t(std::count_if(pos.begin(), pos.end(), [&](float v) { return v >= out.gate_threshold; }));
+    std::fprintf(stderr,
+                 "sbr_train_picto: gate: %zu candidates (%zu positive), threshold %.4f: %zu of %zu positives pass (%.4f), "
+                 "%zu of %zu negatives rejected (%.4f)\n",
+                 xs.size(), npos, double(out.gate_threshold), kept, npos, double(kept) / double(npos), rejected, nneg,
+                 double(rejected) / double(nneg));
+    return true;
+}
+
 // --rare: at most this many rounds of synthetic copies (jitter copies each) per sign.
 constexpr int kRareMax = 4;
 
@@ -662,6 +869,9 @@ int main(int argc, char **argv) {
     int rounds = 2, rare = 0;
     std::vector<int> rim_classes{13};  // --rim-check: classes that get a colour check
     std::string from_picto;        // --from-picto: only the colour check, added to this file
+    bool gate = false;             // --gate: learn the class stage's gate (with --from-picto)
+    float gate_recall = 0.995f;    // --gate-recall: share of positive candidates it passes
+    int gate_hidden = 32;          // --gate-hidden: its rectified units (0: linear)
     bool box = true, exposure = false, mirror = false, rotate = true, tview = true;
     BgSwap bg_swap = BgSwap::round, bg_fill = BgSwap::off;
     unsigned seed = 1;
@@ -703,6 +913,9 @@ int main(int argc, char **argv) {
         else if (a == "--balance") balance = std::strtof(next().c_str(), nullptr);
         else if (a == "--rare") rare = std::atoi(next().c_str());
         else if (a == "--from-picto") from_picto = next();
+        else if (a == "--gate") gate = true;
+        else if (a == "--gate-recall") gate_recall = std::strtof(next().c_str(), nullptr);
+        else if (a == "--gate-hidden") gate_hidden = std::atoi(next().c_str());
         else if (a == "--rim-check") {
             const std::string list = next();
             std::stringstream ss(list == "none" ? "" : list);
@@ -723,8 +936,10 @@ int main(int argc, char **argv) {
         else { std::fprintf(stderr, "sbr_train_picto: unknown option %s (see the file's header)\n", a.c_str()); return 2; }
     }
     if (hidden < 0 || hidden > int(SBR_PICTO_HIDDEN_MAX) || epochs < 1 || rounds < 1 || box_jitter < 0 || rare < 0 || !(bg_fraction > 0.0f && bg_fraction <= 1.0f) ||
-        !(dropout >= 0.0f && dropout <= 0.9f) || !(decay >= 0.0f && decay < 1.0f) || !(balance >= 0.0f && balance <= 2.0f)) {
+        !(dropout >= 0.0f && dropout <= 0.9f) || !(decay >= 0.0f && decay < 1.0f) || !(balance >= 0.0f && balance <= 2.0f) ||
+        gate_hidden < 0 || gate_hidden > int(SBR_PICTO_GATE_HIDDEN_MAX) || !(gate_recall > 0.0f && gate_recall <= 1.0f)) {
         std::fprintf(stderr, "sbr_train_picto: --hidden 0..%u, --epochs >= 1, --rounds >= 1, --box-jitter >= 0, --bg-fraction in (0, 1], "
+                             "--gate-hidden 0..32, --gate-recall in (0, 1], "
                              "--dropout in [0, 0.9], --decay in [0, 1), --balance in [0, 2]\n",
                      SBR_PICTO_HIDDEN_MAX);
         return 2;
@@ -761,11 +976,12 @@ int main(int argc, char **argv) {
         Picto out;
         const std::string e = load_picto(from_picto, out);
         if (!e.empty()) { std::fprintf(stderr, "sbr_train_picto: %s\n", e.c_str()); return 1; }
-        if (rim_classes.empty() || out_file.empty()) {
-            std::fprintf(stderr, "sbr_train_picto: --from-picto needs --rim-check and --out\n");
+        if ((rim_classes.empty() && !gate) || out_file.empty()) {
+            std::fprintf(stderr, "sbr_train_picto: --from-picto needs --rim-check or --gate, and --out\n");
             return 2;
         }
-        if (!learn_rim_floors(files, gt, rim_classes, out)) return 1;
+        if (!rim_classes.empty() && !learn_rim_floors(files, gt, rim_classes, out)) return 1;
+        if (gate && !learn_gate(files, gt, *pm, out, gate_recall, gate_hidden, seed)) return 1;
         return report_write("sbr_train_picto", out_file, save_picto(out, out_file)) ? 0 : 1;
     }
     // --rare N: training signs per class, and how many rounds of synthetic copies a class
@@ -1111,7 +1327,7 @@ int main(int argc, char **argv) {
     std::string swap_flag = std::string(" --bg-swap ") + mode_name(bg_swap);
     if (bg_fill != BgSwap::off) swap_flag += std::string(" --bg-fill ") + mode_name(bg_fill);
     if (!tview) swap_flag += " --no-triangle-view";
-    char head[640];
+    char head[768];
     std::snprintf(head, sizeof head,
                   "Class stage (pictogram classifier) of sbr's recogniser. GENERATED by sbr_train_picto - do not edit.\n"
                   "Regenerate: ./sbr.sh train   (runs sbr_train_picto --range %s --hidden %d --epochs %d --jitter %d\n"
@@ -1123,6 +1339,12 @@ int main(int argc, char **argv) {
                   box ? "" : " --no-box", exposure ? " --exposure" : "", swap_flag.c_str(),
                   mirror ? (rotate ? " --mirror" : " --mirror --no-rotate") : (rotate ? "" : " --no-rotate"),
                   bal, rounds, seed, range.str(true).c_str(), nfg, nbg, nreg);
+    if (gate) {
+        if (!learn_gate(files, gt, *pm, out, gate_recall, gate_hidden, seed)) return 1;
+        std::snprintf(head + std::strlen(head), sizeof head - std::strlen(head),
+                      "\nGate (--gate --gate-hidden %d --gate-recall %g): threshold %.4f.", gate_hidden,
+                      double(gate_recall), double(out.gate_threshold));
+    }
     if (!out_c.empty() && !report_write("sbr_train_picto", out_c, write_picto_c(out, out_c, head))) return 1;
     if (!out_file.empty() && !report_write("sbr_train_picto", out_file, save_picto(out, out_file))) return 1;
 

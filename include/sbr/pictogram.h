@@ -74,6 +74,22 @@ extern "C" {
 /** Smallest width and height (pixels) of a box given to sbr_picto_features() and
     sbr_picto_refine(). */
 #define SBR_PICTO_MIN_BOX 2.0f
+/** Sample grid side of the gate's features (sbr_picto_gate_features()). */
+#define SBR_PICTO_GATE_GRID 12u
+/** Gate features: the contrast-normalised grey grid (12 x 12), red and blue chromaticity
+    per cell of a 4 x 4 grid (32) and signed edge orientations (8) per cell of a 3 x 3
+    grid, L2-normalised (72). */
+#define SBR_PICTO_GATE_FEATURES \
+    ((SBR_PICTO_GATE_GRID * SBR_PICTO_GATE_GRID) + 32u + 72u)
+/** Largest hidden layer of the gate. */
+#define SBR_PICTO_GATE_HIDDEN_MAX 32u
+/** Gate weights for `hidden` rectified units (0: a linear gate). */
+#define SBR_PICTO_GATE_WEIGHTS(hidden) \
+    (((hidden) == 0u) ? (SBR_PICTO_GATE_FEATURES + 1u) \
+                      : (((hidden) * (SBR_PICTO_GATE_FEATURES + 1u)) + (hidden) + 1u))
+/** Workspace bytes of sbr_picto_gate_features(): four grids of floats. */
+#define SBR_PICTO_GATE_WORKSPACE_SIZE \
+    ((size_t)4u * SBR_PICTO_GATE_GRID * SBR_PICTO_GATE_GRID * sizeof(float))
 /** Sample grid side of sbr_picto_rim_contrast() (its work per box is this squared). */
 #define SBR_PICTO_RIM_GRID 32u
 /** Sign classes with a colour check entry (sbr_picto_model_t::rim_shape): the outputs
@@ -125,12 +141,24 @@ typedef struct sbr_picto_model_s {
         triangles of a pylon as "yield"). */
     const uint8_t *rim_shape;
     const float *rim_floor;
+    /** Gate (optional; NULL: none): the class stage's cheap first look, a score of the
+        gate features g (sbr_picto_gate_features()): with gate_hidden = 0 the linear
+        gate . [g; 1] (::SBR_PICTO_GATE_FEATURES + 1 weights, the bias last); with
+        gate_hidden = H > 0, a = max(0, W1 [g; 1]) with W1 the first H (features + 1)
+        weights (rows contiguous, bias last), then score = w2 . [a; 1] with the last H + 1
+        (::SBR_PICTO_GATE_WEIGHTS(H) in all). The recogniser classifies a candidate with
+        the full classifier only when its score reaches gate_threshold; the trainer sets
+        the threshold so that nearly all training candidates that cover a sign, or that
+        the classifier finds sign-like, pass (sbr_train_picto --gate). */
+    const float *gate;
+    uint32_t gate_hidden; /**< 0 .. ::SBR_PICTO_GATE_HIDDEN_MAX */
+    float gate_threshold; /**< finite; ignored without a gate */
 } sbr_picto_model_t;
 
 /**
  * @brief Check a classifier's header (version, sizes, threshold in (0, 1)), that every
- *        weight is finite, and its colour check tables (both or neither; outlines in
- *        range, floors finite in [-2, 2]).
+ *        weight is finite, its colour check tables (both or neither; outlines in
+ *        range, floors finite in [-2, 2]) and its gate (finite weights and threshold).
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_CORRUPT (version, sizes, a NULL table, a
  *         non-finite weight, one colour table without the other or a value out of range).
  */
@@ -201,6 +229,39 @@ sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[
  */
 sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], uint32_t shape,
                                     float *contrast);
+
+/**
+ * @brief The gate's features of a box (sbr_picto_model_t::gate): the box is sampled on a
+ *        ::SBR_PICTO_GATE_GRID x ::SBR_PICTO_GATE_GRID grid, each cell the mean of 2 x 2
+ *        bilinear samples (points outside the image repeat its border), about a tenth of
+ *        the work of sbr_picto_features(). Features as ::SBR_PICTO_GATE_FEATURES says, all
+ *        invariant to brightness and contrast except the chromaticities.
+ * @param[in]  img       RGB888 or BGR888 view.
+ * @param[in]  box       x0, y0, x1, y1 as for sbr_picto_features(); finite, at least
+ *                       ::SBR_PICTO_MIN_BOX wide and high, each |coordinate| <=
+ *                       ::SBR_PICTO_MAX_COORD.
+ * @param[out] feat      ::SBR_PICTO_GATE_FEATURES values (len at least that), written on
+ *                       ::SBR_OK only.
+ * @param[in]  workspace ::SBR_PICTO_GATE_WORKSPACE_SIZE bytes, 4-byte aligned.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; errors of sbr_image_check(); ::SBR_ERR_RANGE (a grey
+ *         image, a box not finite, too small or too far out); ::SBR_ERR_SIZE (len);
+ *         ::SBR_ERR_WORKSPACE.
+ */
+sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4], float *feat,
+                                     uint32_t len, void *workspace, size_t workspace_size);
+
+/**
+ * @brief The gate's score of gate features (sbr_picto_model_t::gate).
+ * @param[in]  model  checked with sbr_picto_check() first; with a gate.
+ * @param[in]  feat   ::SBR_PICTO_GATE_FEATURES finite values (len at least that).
+ * @param[out] score  written on ::SBR_OK only; the candidate passes when
+ *                    score >= model->gate_threshold.
+ * @return ::SBR_OK; ::SBR_ERR_NULL (also a model without a gate); ::SBR_ERR_SIZE (len);
+ *         ::SBR_ERR_CORRUPT (gate_hidden above ::SBR_PICTO_GATE_HIDDEN_MAX);
+ *         ::SBR_ERR_RANGE (a non-finite feature, or a score that overflows float32).
+ */
+sbr_status_t sbr_picto_gate(const sbr_picto_model_t *model, const float *feat, uint32_t len,
+                            float *score);
 
 /**
  * @brief Class probabilities of a feature vector.

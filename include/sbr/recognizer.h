@@ -250,6 +250,12 @@ typedef struct sbr_recog_config_s {
         scores (nms_iou). Lower values classify fewer boxes and lose signs whose best box
         had a weaker part score (measured: docs/results/recognition.md). */
     float candidate_iou;
+    /** With a class stage whose classifier has a gate (sbr_picto_model_t::gate): 1
+        (default) looks at each candidate with the gate first (sbr_picto_gate_features(),
+        about a tenth of a pictogram's work) and classifies only the candidates that pass
+        it; 0: every candidate goes to the full classifier. The candidate bound
+        (max_candidates) counts the candidates looked at, passed or not. */
+    uint32_t gate;
     /** Optional time source for per-stage profiling (e.g. the DWT cycle counter on a
         Cortex-M, a monotonic clock on a host): returns a free-running tick count; the
         stats report differences modulo 2^32. NULL (default): no profiling. */
@@ -292,6 +298,7 @@ typedef struct sbr_recog_stats_s {
     uint32_t views;           /**< extra views the class stage classified (config.views) */
     uint32_t rim_rejected;    /**< candidates dropped by the class stage's colour check
                                    (sbr_picto_model_t::rim_floor) */
+    uint32_t gated;           /**< candidates the class stage's gate rejected (config.gate) */
     uint32_t capacity_hit;    /**< bit 0 parts, bit 1 votes, bit 2 hypotheses, bit 3 MSER,
                                    bit 4 candidates */
     uint32_t stage_ticks[SBR_RECOG_STAGES]; /**< clock ticks per ::sbr_recog_stage_t

@@ -17139,5 +17139,8 @@ sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)
     out->w3 = picto_w3;
     out->rim_shape = picto_rim_shape;
     out->rim_floor = picto_rim_floor;
+    out->gate = NULL;
+    out->gate_hidden = 0u;
+    out->gate_threshold = 0.000000000e+00f;
     return SBR_OK;
 }

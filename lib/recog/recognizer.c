@@ -112,6 +112,7 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->min_score = 0.3f;
         cfg->nms_iou = 0.3f;
         cfg->candidate_iou = 1.0f;
+        cfg->gate = 1u;
         cfg->clock = NULL;
         cfg->clock_ctx = NULL;
     }
@@ -144,7 +145,8 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (cfg->max_model_protos == 0u) || (cfg->max_model_protos > 65535u) ||
         (cfg->cascade_depth > 65535u) || (cfg->min_parts > 65535u) ||
         (cfg->max_candidates > 1000000u) || (cfg->refine_steps > SBR_RECOG_MAX_REFINE) ||
-        (cfg->views == 0u) || (cfg->views > SBR_RECOG_MAX_VIEWS) || (cfg->triangle_view > 1u)) {
+        (cfg->views == 0u) || (cfg->views > SBR_RECOG_MAX_VIEWS) || (cfg->triangle_view > 1u) ||
+        (cfg->gate > 1u)) {
         return SBR_ERR_RANGE;
     }
     if ((in_range(cfg->vote_error, 0.0f, 4.0f) == 0) ||
@@ -1017,6 +1019,24 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
 /* The class stage's colour check (sbr_picto_model_t::rim_floor): 1 when the model has one
    for the candidate's class and the rim of its box is less red against its inside than
    the class's threshold, or when it cannot be measured. */
+/* Does a candidate pass the class stage's gate (sbr_picto_model_t::gate)? A box the gate
+   cannot look at (outside the domain of the class stage's boxes) does not. */
+static int gate_passes(const recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
+                       recog_picto_buf_t *pb)
+{
+    float box[4];
+    float score = 0.0f;
+    int pass = 0;
+    centre_box(h, box);
+    if ((sbr_picto_gate_features(view, box, pb->feat, SBR_PICTO_FEATURES, pb->ws,
+                                 SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
+        (sbr_picto_gate(pm, pb->feat, SBR_PICTO_FEATURES, &score) == SBR_OK) &&
+        (score >= pm->gate_threshold)) {
+        pass = 1;
+    }
+    return pass;
+}
+
 static int rim_fails(const recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm)
 {
     int fails = 0;
@@ -1192,6 +1212,11 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
                 continue;
             }
             examined++;
+            if ((cfg->gate != 0u) && (model->picto.gate != NULL) &&
+                (gate_passes(h, &view, &model->picto, &pb) == 0)) {
+                c.st.gated++;
+                continue;
+            }
             if (classify_hyp(h, &view, &model->picto, cfg, &pb, &c.st) == 0) {
                 continue;
             }

@@ -1,6 +1,7 @@
 // Fuzz harness: pictogram features (box and triangle outline), classification and box
-// refinement with the built-in class stage. On SBR_OK: features finite; probabilities
-// finite in [0, 1] summing to 1; refined boxes finite and not empty.
+// refinement with the built-in class stage, its colour check and its gate. On SBR_OK:
+// features finite; probabilities finite in [0, 1] summing to 1; refined boxes finite and
+// not empty; gate features and scores finite.
 #include "fuzz_common.hpp"
 
 extern "C" {
@@ -71,6 +72,29 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         FZ_CHECK(contrast >= -2.0f && contrast <= 2.0f);
     } else {
         FZ_CHECK(contrast == 7.0f);
+    }
+    // the gate's features and score on the same box (the built-in gate, or none)
+    static float gfeat[SBR_PICTO_GATE_FEATURES + 4u];
+    const uint32_t glen = in.ConsumeBool() ? SBR_PICTO_GATE_FEATURES : fz_u32(in, 0u, SBR_PICTO_GATE_FEATURES + 4u);
+    const size_t gsz = in.ConsumeIntegral<uint8_t>() < 245u ? SBR_PICTO_GATE_WORKSPACE_SIZE : SBR_PICTO_GATE_WORKSPACE_SIZE - 4u;
+    const sbr_status_t gs = sbr_picto_gate_features(&img, box, gfeat, glen, ws, gsz);
+    FZ_CHECK(fz_known(gs));
+    if (gs == SBR_OK) {
+        for (uint32_t i = 0u; i < SBR_PICTO_GATE_FEATURES; i++) {
+            FZ_CHECK(fz_finite(gfeat[i]));
+        }
+    } else {
+        for (uint32_t i = 0u; i < SBR_PICTO_GATE_FEATURES; i++) {
+            gfeat[i] = (in.remaining_bytes() > 0u) ? fz_float(in, -3.0f, 3.0f) : 0.0f;
+        }
+    }
+    float score = 7.0f;
+    const sbr_status_t ss = sbr_picto_gate(&model, gfeat, SBR_PICTO_GATE_FEATURES, &score);
+    if (model.gate == nullptr) {
+        FZ_STATUS(ss, SBR_ERR_NULL);
+    } else {
+        FZ_STATUS(ss, SBR_OK, SBR_ERR_RANGE);
+        FZ_CHECK(ss != SBR_OK || fz_finite(score));
     }
     return 0;
 }

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "model_io.hpp"
@@ -176,6 +177,42 @@ int main()
         fix_crc(d);
         expect_refused(parse_picto(d), "sizes", ".sbrp flag without tables, CRC fixed up");
         binary_damage(a, ".sbrp with colour check", parse_picto);
+    }
+
+    {
+        // the gate (pictogram.h gate, gate_hidden, gate_threshold; flags bit 2): it loads
+        // and saves back; a hidden layer above the maximum, a non-finite weight or a
+        // truncated gate are refused
+        sbr_host::Picto with = sbr_host::picto_from_view(pv);
+        with.gate_hidden = 4u;
+        with.gate.assign(SBR_PICTO_GATE_WEIGHTS(4u), 0.0f);
+        for (size_t i = 0; i < with.gate.size(); ++i) with.gate[i] = 0.001f * float(i % 11u) - 0.005f;
+        with.gate_threshold = -0.75f;
+        with.bind();
+        std::string a;
+        expect(sbr_host::picto_bytes(with, a).empty(), "write with a gate");
+        sbr_host::Picto back;
+        expect(sbr_host::parse_picto(a, "gate.sbrp", back).empty() && back.gate == with.gate &&
+                   back.gate_hidden == 4u && back.gate_threshold == -0.75f && back.view.gate != nullptr &&
+                   back.view.gate_hidden == 4u,
+               "the gate loads");
+        std::string again;
+        expect(sbr_host::picto_bytes(back, again).empty() && again == a, "the gate saves back byte for byte");
+        const size_t hidden_at = a.size() - 4u - 4u * with.gate.size() - 8u;
+        std::string d = a;
+        const uint32_t too_many = SBR_PICTO_GATE_HIDDEN_MAX + 1u;
+        std::memcpy(&d[hidden_at], &too_many, 4u);
+        fix_crc(d);
+        expect_refused(parse_picto(d), "sizes", ".sbrp gate with 33 hidden units, CRC fixed up");
+        d = a;
+        const float nan = std::numeric_limits<float>::quiet_NaN();
+        std::memcpy(&d[a.size() - 8u], &nan, 4u);
+        fix_crc(d);
+        expect_refused(parse_picto(d), "values", ".sbrp gate weight NaN, CRC fixed up");
+        d = a.substr(0, a.size() - 8u) + a.substr(a.size() - 4u);
+        fix_crc(d);
+        expect_refused(parse_picto(d), "sizes", ".sbrp gate one weight short, CRC fixed up");
+        binary_damage(a, ".sbrp with a gate", parse_picto);
     }
 
     // ---- the part model with its class stage (.sbrm)
