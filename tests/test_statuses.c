@@ -550,6 +550,33 @@ static void test_pictogram_h(void)
         ROW(&t, SBR_ERR_RANGE, sbr_picto_rim_contrast(&v, tiny, SBR_PICTO_RIM_TRIANGLE, &contrast));
         ROW(&t, SBR_ERR_RANGE, sbr_picto_rim_contrast(&gv, box, SBR_PICTO_RIM_TRIANGLE_DOWN, &contrast));
     }
+    {
+        static float gf[SBR_PICTO_GATE_FEATURES];
+        static float gw[SBR_PICTO_GATE_WEIGHTS(0u)];
+        float score = 0.0f;
+        sbr_picto_model_t gm = m;
+        ROW(&t, SBR_OK, sbr_picto_gate_features(&v, box, gf, SBR_PICTO_GATE_FEATURES, ws, sizeof ws));
+        ROW(&t, SBR_ERR_NULL, sbr_picto_gate_features(&v, NULL, gf, SBR_PICTO_GATE_FEATURES, ws, sizeof ws));
+        ROW(&t, SBR_ERR_RANGE, sbr_picto_gate_features(&v, tiny, gf, SBR_PICTO_GATE_FEATURES, ws, sizeof ws));
+        ROW(&t, SBR_ERR_RANGE, sbr_picto_gate_features(&gv, box, gf, SBR_PICTO_GATE_FEATURES, ws, sizeof ws));
+        ROW(&t, SBR_ERR_SIZE, sbr_picto_gate_features(&v, box, gf, 3u, ws, sizeof ws));
+        ROW(&t, SBR_ERR_WORKSPACE, sbr_picto_gate_features(&v, box, gf, SBR_PICTO_GATE_FEATURES, ws, 16u));
+        gm.gate = NULL;
+        ROW(&t, SBR_ERR_NULL, sbr_picto_gate(&gm, gf, SBR_PICTO_GATE_FEATURES, &score));
+        gm.gate = gw;
+        gm.gate_hidden = 0u;
+        gm.gate_threshold = 0.0f;
+        ROW(&t, SBR_OK, sbr_picto_check(&gm));
+        ROW(&t, SBR_OK, sbr_picto_gate(&gm, gf, SBR_PICTO_GATE_FEATURES, &score));
+        ROW(&t, SBR_ERR_NULL, sbr_picto_gate(&gm, gf, SBR_PICTO_GATE_FEATURES, NULL));
+        ROW(&t, SBR_ERR_SIZE, sbr_picto_gate(&gm, gf, 3u, &score));
+        gf[2] = NAN;
+        ROW(&t, SBR_ERR_RANGE, sbr_picto_gate(&gm, gf, SBR_PICTO_GATE_FEATURES, &score));
+        gf[2] = 0.0f;
+        gm.gate_hidden = SBR_PICTO_GATE_HIDDEN_MAX + 1u;
+        ROW(&t, SBR_ERR_CORRUPT, sbr_picto_check(&gm));
+        ROW(&t, SBR_ERR_CORRUPT, sbr_picto_gate(&gm, gf, SBR_PICTO_GATE_FEATURES, &score));
+    }
     status_table_check(&t);
 }
 

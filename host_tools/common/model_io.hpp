@@ -89,4 +89,13 @@ bool report_write(const char *tool, const std::string &path, const std::string &
 // (descriptors are scale-normalised; parts.h map_subsample, map_min_area).
 void parts_at_full_resolution(sbr_parts_config_t &parts);
 
+// Part-stage options a trainer learns with instead of full resolution (the options of
+// sbr_detect of the same names): --map-subsample I[,R,B,Y], --map-min-area I[,R,B,Y].
+struct FrontEnd {
+    std::vector<unsigned> sub, area;
+};
+// 1: `opt` was one of them (its value parsed into fe; `ok` false for a bad value), 0: not.
+int parse_front_end(const std::string &opt, const std::string &value, FrontEnd &fe, bool &ok);
+void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts);
+
 }  // namespace sbr_host

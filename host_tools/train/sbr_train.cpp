@@ -2,13 +2,16 @@
 //
 //   sbr_train [--data DIR] [--range A-B] [--out-c FILE] [--out-model FILE]
 //             [--vote-error E] [--min-support N] [--max-protos N] [--min-weight W]
-//             [--no-calibrate]
+//             [--no-calibrate] [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y]
 //   sbr_train --from-model FILE --out-c FILE     (the C table of a saved library)
 //
 // Defaults: --data ../shared/data/gtsdb, --range 0-399 (the training split; 400-599 is
 // the development split and is never read), --vote-error 0.12, --min-support 2,
 // --max-protos 640, --min-weight 0. Writes the generated C table (--out-c, e.g. lib/models/sbr_model_gtsdb.c)
-// and/or the file form (--out-model, e.g. sbr_gtsdb.sbrm).
+// and/or the file form (--out-model, e.g. sbr_gtsdb.sbrm). Parts are learned with every
+// map at full resolution unless --map-subsample / --map-min-area (sbr_detect's options of
+// those names) give the part stage to learn with (to measure a coarser front end with
+// prototypes of its own: docs/results/realtime.md).
 //
 // Method (paper D's part model, learned from data instead of synthetic icons):
 //  1. Parts of every training image with the recogniser's default part extraction.
@@ -104,9 +107,16 @@ int main(int argc, char **argv) {
     bool calibrate = true;
     float min_weight = 0.0f;
     std::string from_model;
+    FrontEnd front_end;  // --map-subsample, --map-min-area: the part stage learned with
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+        bool fe_ok = true;
+        if (parse_front_end(a, i + 1 < argc ? argv[i + 1] : "", front_end, fe_ok) != 0) {
+            ++i;
+            if (!fe_ok) { std::fprintf(stderr, "sbr_train: bad value for %s\n", a.c_str()); return 2; }
+            continue;
+        }
         if (a == "--data") data = next();
         else if (a == "--range") {
             if (!parse_image_ranges(next(), range)) { std::fprintf(stderr, "--range wants A-B[,C-D...]\n"); return 2; }
@@ -167,6 +177,7 @@ int main(int argc, char **argv) {
     // ... and learns them at full resolution (the recogniser may run a map coarser:
     // descriptors are scale-normalised, see parts.map_subsample)
     parts_at_full_resolution(cfg.parts);
+    apply_front_end(front_end, cfg.parts);
     const float centre_tol = cfg.centre_tol, size_f = 1.0f + cfg.size_tol;
     const auto t0 = std::chrono::steady_clock::now();
 

@@ -10,6 +10,7 @@
 //                   [--box-jitter N] [--rare N] [--rim-check C[,C] | none] [--rounds R]
 //                   [--out-c FILE] [--out FILE] [--eval-range A-B] [--from-picto FILE]
 //                   [--gate [--gate-hidden H] [--gate-recall R]]
+//                   [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y]
 //
 // Defaults: --data ../shared/data/gtsdb, --range 0-399 (the training split; the
 // development split 400-599 is never read for training), --hidden 128, --epochs 20,
@@ -131,6 +132,8 @@
 // cross-validation: docs/results/crossval.md. --from-picto FILE: no training, only the
 // colour check (and with --gate the gate) learned on --range and added to the class stage
 // in FILE (--out).
+// --map-subsample, --map-min-area: the part stage the candidates come from (sbr_detect's
+// options of those names; default every map at full resolution).
 // Gate (--gate; off by default): the class stage's cheap first look (pictogram.h
 // sbr_picto_model_t::gate) learned after the classifier, on its candidates of the training
 // images (learn_gate()): --gate-hidden rectified units (default 32, 0..32; 0 = linear),
@@ -180,6 +183,10 @@ constexpr int kF = int(SBR_PICTO_FEATURES);
 constexpr int kK = int(SBR_PICTO_OUTPUTS);
 
 using Box = PixBox;
+
+// --map-subsample, --map-min-area: the part stage the candidates come
+// from (set once in main, before any thread starts)
+FrontEnd g_front_end;
 
 // Boxes of a detection file (sbr_detect's format), keyed by image number.
 std::map<int, std::vector<Box>> read_boxes(const std::string &path) {
@@ -241,6 +248,7 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     // candidates (the recogniser's default runs the blue map at half resolution; the class
     // stage learned this way scores the same there, see docs/results/recognition.md)
     parts_at_full_resolution(rc.parts);
+    apply_front_end(g_front_end, rc.parts);
     rc.min_parts = 1;
     rc.min_score = picto != nullptr ? kMineScore : 0.0f;
     sbr_model_t m = model;
@@ -878,6 +886,12 @@ int main(int argc, char **argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
+        bool fe_ok = true;
+        if (parse_front_end(a, i + 1 < argc ? argv[i + 1] : "", g_front_end, fe_ok) != 0) {
+            ++i;
+            if (!fe_ok) { std::fprintf(stderr, "sbr_train_picto: bad value for %s\n", a.c_str()); return 2; }
+            continue;
+        }
         if (a == "--data") data = next();
         else if (a == "--range") {
             if (!parse_image_ranges(next(), range)) { std::fprintf(stderr, "--range wants A-B[,C-D...]\n"); return 2; }
