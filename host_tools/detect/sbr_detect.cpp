@@ -155,8 +155,7 @@ int main(int argc, char **argv) {
     int max_parts = -1, max_votes = -1, max_hyps = -1;
     int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1, triangle_view = -1, max_nodes = -1;
     bool sequence = false, callgrind = false;
-    std::vector<unsigned> map_sub;  // --map-subsample: per map kind, empty = defaults
-    std::vector<unsigned> map_area;  // --map-min-area: per map kind, empty = defaults
+    FrontEnd front_end;  // --map-subsample, --map-min-area: per map kind, empty = defaults
     int gate_opt = -1;
     float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, refine_first_score = -1.0f, view_score = -1.0f, triangle_score = -1.0f, candidate_score = -1.0f, candidate_iou = -1.0f;
     sbr_rect_t roi{};
@@ -185,16 +184,10 @@ int main(int argc, char **argv) {
         else if (a == "--candidate-score") candidate_score = std::strtof(next().c_str(), nullptr);
         else if (a == "--candidate-iou") candidate_iou = std::strtof(next().c_str(), nullptr);
         else if (a == "--view-score") view_score = std::strtof(next().c_str(), nullptr);
-        else if (a == "--map-subsample") {
-            unsigned f[4] = {1, 1, 1, 1};
-            const int got = std::sscanf(next().c_str(), "%u,%u,%u,%u", &f[0], &f[1], &f[2], &f[3]);
-            if (got < 1) { std::fprintf(stderr, "--map-subsample wants I[,R[,B[,Y]]]\n"); return 2; }
-            map_sub.assign(f, f + got);
-        } else if (a == "--map-min-area") {
-            unsigned f[4] = {0, 0, 0, 0};
-            const int got = std::sscanf(next().c_str(), "%u,%u,%u,%u", &f[0], &f[1], &f[2], &f[3]);
-            if (got < 1) { std::fprintf(stderr, "--map-min-area wants I[,R[,B[,Y]]]\n"); return 2; }
-            map_area.assign(f, f + got);
+        else if (a == "--map-subsample" || a == "--map-min-area") {
+            bool ok = true;
+            parse_front_end(a, next(), front_end, ok);
+            if (!ok) { std::fprintf(stderr, "%s wants I[,R[,B[,Y]]]\n", a.c_str()); return 2; }
         } else if (a == "--maps") maps = int(std::strtol(next().c_str(), nullptr, 0));
         else if (a == "--max-nodes") max_nodes = std::atoi(next().c_str());
         else if (a == "--max-candidates") max_candidates = std::atoi(next().c_str());
@@ -274,8 +267,7 @@ int main(int argc, char **argv) {
     if (view_score >= 0.0f) cfg.view_score = view_score;
     if (candidate_score >= 0.0f) cfg.candidate_score = candidate_score;
     if (candidate_iou >= 0.0f) cfg.candidate_iou = candidate_iou;
-    for (size_t k = 0; k < map_sub.size(); ++k) cfg.parts.map_subsample[k] = map_sub[k];
-    for (size_t k = 0; k < map_area.size(); ++k) cfg.parts.map_min_area[k] = map_area[k];
+    apply_front_end(front_end, cfg.parts);
     if (maps >= 0) cfg.parts.maps = uint32_t(maps);
     if (max_nodes >= 0) cfg.parts.mser.max_nodes = uint32_t(max_nodes);
     if (max_candidates >= 0) cfg.max_candidates = uint32_t(max_candidates);

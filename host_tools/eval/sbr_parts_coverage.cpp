@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "gtsdb.hpp"
+#include "model_io.hpp"
 
 extern "C" {
 #include "sbr/sbr.h"
@@ -64,13 +65,11 @@ int main(int argc, char **argv) {
         else if (a == "--min-fill") cfg.min_fill = static_cast<float>(std::atof(v));
         else if (a == "--maps") cfg.maps = static_cast<uint32_t>(std::strtoul(v, nullptr, 0));
         else if (a == "--map-subsample" || a == "--map-min-area") {
-            unsigned f[4] = {0, 0, 0, 0};
-            const int got = std::sscanf(v, "%u,%u,%u,%u", &f[0], &f[1], &f[2], &f[3]);
-            if (got < 1) { usage(argv[0]); return 2; }
-            for (int k = 0; k < got; ++k) {
-                if (a == "--map-subsample") cfg.map_subsample[k] = f[k];
-                else cfg.map_min_area[k] = f[k];
-            }
+            bool ok = true;
+            sbr_host::FrontEnd fe;
+            parse_front_end(a, v, fe, ok);
+            if (!ok) { usage(argv[0]); return 2; }
+            sbr_host::apply_front_end(fe, cfg);
         } else { usage(argv[0]); return 2; }
     }
     if (data.empty()) { usage(argv[0]); return 2; }

@@ -159,6 +159,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <mutex>
 #include <random>
@@ -235,6 +236,21 @@ constexpr int kR = int(SBR_PICTO_BOX_OUTPUTS);
 // (min_parts 1, no score floor); with it, the detections of the whole recogniser with
 // that class stage (boxes refined, score >= kMineScore).
 constexpr float kMineScore = 0.05f;
+
+// The boxes of sbr_recog_detect() on one image with configuration rc, best first.
+std::vector<Box> recog_boxes(const sbr_image_t &v, const sbr_recog_config_t &rc, const sbr_model_t &m,
+                             std::vector<uint64_t> &ws) {
+    const size_t need = sbr_recog_workspace_size(v.width, v.height, &rc);
+    if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
+    std::vector<sbr_detection_t> dets(4096);
+    uint32_t n = 0;
+    sbr_recog_detect(&v, nullptr, &rc, &m, ws.data(), ws.size() * 8, dets.data(), uint32_t(dets.size()), &n, nullptr);
+    std::vector<Box> out;
+    for (uint32_t i = 0; i < n; ++i)
+        out.push_back(rect_pixbox(dets[i].box));
+    return out;
+}
+
 std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model, const sbr_picto_model_t *picto,
                                   bool triangle_view, std::vector<uint64_t> &ws) {
     sbr_recog_config_t rc;
@@ -254,15 +270,15 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     sbr_model_t m = model;
     if (picto != nullptr) m.picto = *picto;
     else m.picto.version = 0;
-    const size_t need = sbr_recog_workspace_size(v.width, v.height, &rc);
-    if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
-    std::vector<sbr_detection_t> dets(4096);
-    uint32_t n = 0;
-    sbr_recog_detect(&v, nullptr, &rc, &m, ws.data(), ws.size() * 8, dets.data(), uint32_t(dets.size()), &n, nullptr);
-    std::vector<Box> out;
-    for (uint32_t i = 0; i < n; ++i)
-        out.push_back(rect_pixbox(dets[i].box));
-    return out;
+    return recog_boxes(v, rc, m, ws);
+}
+
+// `work` on min(max_threads, the hardware's) threads at once, joined.
+void run_workers(const std::function<void()> &work, unsigned max_threads) {
+    const unsigned nt = std::max(1u, std::min(max_threads, std::thread::hardware_concurrency()));
+    std::vector<std::thread> th;
+    for (unsigned t = 0; t < nt; ++t) th.emplace_back(work);
+    for (auto &t : th) t.join();
 }
 
 bool features(const sbr_image_t &v, const Box &b, std::vector<float> &f,
@@ -596,45 +612,39 @@ bool learn_rim_floors(const std::vector<std::string> &files, const std::map<int,
 // the trained class stage `out` finds it at least kGateMass sign-like at its first look
 // (what the recogniser's refinement and extra views start from); the others are
 // negatives. (Also counting candidates the box regression moves onto a sign as positives
-// lost one sign more on the cross-validation: docs/results/realtime.md.) A logistic regression on the gate features (standardised, positives weighted
-// up to the negatives' count, minibatch SGD with a fixed seed), folded back to raw
-// features; the threshold passes `recall` of the positives.
+// lost one sign more on the cross-validation: docs/results/realtime.md.) The gate: one
+// layer of `hidden` rectified units (0: logistic regression) on the standardised gate
+// features, positives weighted up to the negatives' count, minibatch SGD with a fixed
+// seed, the standardisation folded back into the first layer; the threshold passes
+// `recall` of the positives.
 constexpr float kGateMass = 0.0003f;
 constexpr int kGF = int(SBR_PICTO_GATE_FEATURES);
 
 bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::vector<GtBox>> &gt,
                 const sbr_model_t &model, Picto &out, float recall, int hidden, unsigned seed) {
-    std::vector<std::vector<float>> xs;
-    std::vector<int> ys;
+    std::vector<Sample> samples;  // f: the gate features, label: 1 positive, 0 negative
     std::mutex mu;
     std::atomic<size_t> next{0};
-    auto work = [&]() {
+    sbr_recog_config_t rc;  // the class stage's candidates: every hypothesis, no floor
+    sbr_recog_config_default(&rc);
+    rc.min_score = 0.0f;
+    rc.nms_iou = 1.0f;
+    sbr_model_t parts_only = model;
+    parts_only.picto.version = 0;
+    run_workers([&]() {
         std::vector<uint64_t> ws;
         alignas(8) static thread_local float pws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
-        std::vector<float> f(kF), g(kGF);
+        std::vector<float> f, g(kGF);
         float prob[SBR_PICTO_OUTPUTS];
         for (size_t i; (i = next++) < files.size();) {
             cv::Mat img = cv::imread(files[i], cv::IMREAD_COLOR);
             if (img.empty()) continue;
             const sbr_image_t v = bgr_view(img);
             const int num = image_number(files[i]);
-            sbr_recog_config_t rc;
-            sbr_recog_config_default(&rc);
-            const uint32_t keep = rc.max_candidates;
-            rc.min_score = 0.0f;
-            rc.nms_iou = 1.0f;  // every hypothesis, as the class stage's candidates
-            sbr_model_t m = model;
-            m.picto.version = 0;
-            const size_t need = sbr_recog_workspace_size(v.width, v.height, &rc);
-            if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
-            std::vector<sbr_detection_t> dets(4096);
-            uint32_t n = 0;
-            sbr_recog_detect(&v, nullptr, &rc, &m, ws.data(), ws.size() * 8, dets.data(), uint32_t(dets.size()), &n,
-                             nullptr);
-            std::vector<std::vector<float>> lx;
-            std::vector<int> ly;
-            for (uint32_t k = 0; k < n && k < keep; ++k) {
-                const Box b = rect_pixbox(dets[k].box);
+            std::vector<Box> boxes = recog_boxes(v, rc, parts_only, ws);
+            if (boxes.size() > rc.max_candidates) boxes.resize(rc.max_candidates);
+            std::vector<Sample> local;
+            for (const Box &b : boxes) {
                 const float box[4] = {float(b.x0), float(b.y0), float(b.x1), float(b.y1)};
                 if (sbr_picto_gate_features(&v, box, g.data(), uint32_t(kGF), pws, sizeof pws) != SBR_OK) continue;
                 // positive: it covers a sign, or the class stage finds it sign-like at its
@@ -643,31 +653,26 @@ bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::
                 if (gt.count(num))
                     for (const auto &t : gt.at(num))
                         if (box_iou(b, gt_pixbox(t)) >= 0.3) label = 1;
-                if (label == 0 && sbr_picto_features(&v, box, f.data(), uint32_t(kF), pws, sizeof pws) == SBR_OK &&
-                    sbr_picto_classify(&out.view, f.data(), uint32_t(kF), prob, SBR_PICTO_OUTPUTS, pws, sizeof pws) ==
-                        SBR_OK &&
+                if (label == 0 && features(v, b, f) &&
+                    sbr_picto_classify(&out.view, f.data(), uint32_t(kF), prob, SBR_PICTO_OUTPUTS, pws,
+                                       sizeof pws) == SBR_OK &&
                     1.0f - prob[SBR_PICTO_BACKGROUND] >= kGateMass)
                     label = 1;
-                lx.push_back(g);
-                ly.push_back(label);
+                local.push_back({g, label});
             }
             std::lock_guard<std::mutex> lock(mu);
-            for (size_t k = 0; k < lx.size(); ++k) {
-                xs.push_back(std::move(lx[k]));
-                ys.push_back(ly[k]);
-            }
+            for (auto &smp : local) samples.push_back(std::move(smp));
         }
-    };
-    std::vector<std::thread> pool;
-    const unsigned nt = std::max(1u, std::thread::hardware_concurrency());
-    for (unsigned t = 0; t < nt; ++t) pool.emplace_back(work);
-    for (auto &t : pool) t.join();
-    // a deterministic order, whatever order the threads collected them in
+    }, 4u);
+    sort_samples(samples);  // a deterministic order, whatever order the threads collected them in
+    std::vector<std::vector<float>> xs;
+    std::vector<int> ys;
+    for (auto &smp : samples) {
+        xs.push_back(std::move(smp.f));
+        ys.push_back(smp.label);
+    }
     std::vector<size_t> order(xs.size());
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
-        return ys[a] != ys[b] ? ys[a] < ys[b] : xs[a] < xs[b];
-    });
     const size_t npos = size_t(std::count(ys.begin(), ys.end(), 1)), nneg = ys.size() - npos;
     if (npos < 10 || nneg < 10) {
         std::fprintf(stderr, "sbr_train_picto: --gate: %zu positive and %zu negative candidates, too few\n", npos, nneg);
@@ -683,7 +688,7 @@ bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::
     for (auto &v : sd) v = std::sqrt(v / double(xs.size())) + 1e-6;
     // one layer of `hidden` rectified units (0: logistic regression on the features)
     const int H = hidden;
-    const size_t nw = H == 0 ? size_t(kGF + 1) : size_t(H) * (kGF + 1) + size_t(H) + 1;
+    const size_t nw = SBR_PICTO_GATE_WEIGHTS(uint32_t(H));
     std::vector<float> w(nw, 0.0f), vel(nw, 0.0f), grad(nw);
     std::mt19937 rng(seed);
     {
@@ -1214,10 +1219,7 @@ int main(int argc, char **argv) {
     };
     auto collect = [&]() {
         next = 0;
-        const unsigned nt = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
-        std::vector<std::thread> th;
-        for (unsigned t = 0; t < nt; ++t) th.emplace_back(work);
-        for (auto &t : th) t.join();
+        run_workers(work, 4u);
         // deterministic order whatever the threads did
         sort_samples(samples);
     };

@@ -87,7 +87,8 @@ extern "C" {
 #define SBR_PICTO_GATE_WEIGHTS(hidden) \
     (((hidden) == 0u) ? (SBR_PICTO_GATE_FEATURES + 1u) \
                       : (((hidden) * (SBR_PICTO_GATE_FEATURES + 1u)) + (hidden) + 1u))
-/** Workspace bytes of sbr_picto_gate_features(): four grids of floats. */
+/** Workspace bytes of sbr_picto_gate_features() (the grey grid and the sample taps; four
+    grids of floats). */
 #define SBR_PICTO_GATE_WORKSPACE_SIZE \
     ((size_t)4u * SBR_PICTO_GATE_GRID * SBR_PICTO_GATE_GRID * sizeof(float))
 /** Sample grid side of sbr_picto_rim_contrast() (its work per box is this squared). */

@@ -174,14 +174,27 @@ typedef struct picto_tap_s {
 typedef char picto_tap_fits[((sizeof(picto_tap_t) * 2u * PS * 4u) <= (PS * PS * sizeof(float)))
                                 ? 1 : -1];
 
-/* The taps of PS output pixels with n sub-samples each along one axis: sub-sample i of
-   pixel u sits at start + step (u + (i + 0.5) / n) - 0.5 in pixel-centre coordinates,
+/* The byte offsets of red, green and blue in a pixel of an RGB888 or BGR888 view. */
+static void colour_channels(const sbr_image_t *img, uint32_t ch[3])
+{
+    ch[0] = 0u;
+    ch[1] = 1u;
+    ch[2] = 2u;
+    if (img->format == SBR_PIXEL_BGR888) {
+        ch[0] = 2u;
+        ch[2] = 0u;
+    }
+}
+
+/* The taps of `count` output pixels with n sub-samples each along one axis: sub-sample i
+   of pixel u sits at start + step (u + (i + 0.5) / n) - 0.5 in pixel-centre coordinates,
    clamped to [0, size - 1]. */
-static void picto_taps(float start, float step, uint32_t n, uint32_t size, picto_tap_t *t)
+static void picto_taps(float start, float step, uint32_t n, uint32_t size, uint32_t count,
+                       picto_tap_t *t)
 {
     const float cmax = (float)size - 1.0f;
     uint32_t u;
-    for (u = 0u; u < PS; u++) {
+    for (u = 0u; u < count; u++) {
         uint32_t i;
         for (i = 0u; i < n; i++) {
             const float c = picto_clampf(
@@ -285,14 +298,11 @@ static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap
     const float inv = 1.0f / ((float)nx * (float)ny);
     const picto_tap_t *tx = taps;
     const picto_tap_t *ty = &taps[PS * 4u];
-    uint32_t ch[3] = {0u, 1u, 2u};
+    uint32_t ch[3];
     uint32_t v;
-    if (img->format == SBR_PIXEL_BGR888) {
-        ch[0] = 2u;
-        ch[2] = 0u;
-    }
-    picto_taps(box[0], sx, nx, img->width, &taps[0]);
-    picto_taps(box[1], sy, ny, img->height, &taps[PS * 4u]);
+    colour_channels(img, ch);
+    picto_taps(box[0], sx, nx, img->width, PS, &taps[0]);
+    picto_taps(box[1], sy, ny, img->height, PS, &taps[PS * 4u]);
     rows->tag[0] = PICTO_NO_ROW;
     rows->tag[1] = PICTO_NO_ROW;
     for (v = 0u; v < PS; v++) {
@@ -753,6 +763,26 @@ static uint32_t clamp_index(float p, uint32_t n)
     return i;
 }
 
+/* What sbr_picto_rim_contrast() and sbr_picto_gate_features() check of their image and
+   box: ::SBR_ERR_NULL, sbr_image_check()'s errors, ::SBR_ERR_RANGE for a grey image or a
+   box outside box_in_domain(). */
+static sbr_status_t colour_box_check(const sbr_image_t *img, const float box[4])
+{
+    sbr_status_t st;
+    if ((img == NULL) || (box == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = sbr_image_check(img);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if (((img->format != SBR_PIXEL_RGB888) && (img->format != SBR_PIXEL_BGR888)) ||
+        (box_in_domain(box) == 0)) {
+        return SBR_ERR_RANGE;
+    }
+    return SBR_OK;
+}
+
 sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], uint32_t shape,
                                     float *contrast)
 {
@@ -765,29 +795,22 @@ sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], 
     uint32_t n_mid = 0u;
     uint32_t i;
     uint32_t j;
-    uint32_t ir;
-    uint32_t ib;
+    uint32_t ch[3];
     float k_in;
     float k_mid;
-    if ((img == NULL) || (box == NULL) || (contrast == NULL)) {
+    if (contrast == NULL) {
         return SBR_ERR_NULL;
     }
-    st = sbr_image_check(img);
+    st = colour_box_check(img, box);
     if (st != SBR_OK) {
         return st;
     }
-    if (((img->format != SBR_PIXEL_RGB888) && (img->format != SBR_PIXEL_BGR888)) ||
-        (shape < (uint32_t)SBR_PICTO_RIM_DISC) || (shape > (uint32_t)SBR_PICTO_RIM_TRIANGLE_DOWN) ||
-        (box_in_domain(box) == 0)) {
+    if ((shape < (uint32_t)SBR_PICTO_RIM_DISC) || (shape > (uint32_t)SBR_PICTO_RIM_TRIANGLE_DOWN)) {
         return SBR_ERR_RANGE;
     }
     bw = box[2] - box[0];
     bh = box[3] - box[1];
-    ir = 2u; /* BGR888 */
-    if (img->format == SBR_PIXEL_RGB888) {
-        ir = 0u;
-    }
-    ib = 2u - ir;
+    colour_channels(img, ch);
     k_in = (shape == (uint32_t)SBR_PICTO_RIM_DISC) ? 0.75f : 0.6f;
     k_mid = (shape == (uint32_t)SBR_PICTO_RIM_DISC) ? 0.6f : 0.45f;
     for (j = 0u; j < SBR_PICTO_RIM_GRID; j++) {
@@ -798,9 +821,9 @@ sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], 
             const float u = ((float)i + 0.5f) / (float)SBR_PICTO_RIM_GRID;
             if (in_outline(shape, u, v, 1.0f) != 0) {
                 const uint8_t *px = &row[(size_t)clamp_index(box[0] + (u * bw), img->width) * 3u];
-                const float r = (float)px[ir];
-                const float g = (float)px[1];
-                const float b = (float)px[ib];
+                const float r = (float)px[ch[0]];
+                const float g = (float)px[ch[1]];
+                const float b = (float)px[ch[2]];
                 const float red = (r - ((g > b) ? g : b)) / (r + g + b + 3.0f);
                 if (in_outline(shape, u, v, k_in) == 0) {
                     rim += red;
@@ -872,6 +895,10 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
 #define G_COLOUR (GG * GG)
 #define G_EDGES (G_COLOUR + 32u)
 
+/* The grey grid and both axes' taps fit SBR_PICTO_GATE_WORKSPACE_SIZE. */
+typedef char gate_ws_fits[(((GG * GG * sizeof(float)) + (4u * GG * sizeof(picto_tap_t))) <=
+                           SBR_PICTO_GATE_WORKSPACE_SIZE) ? 1 : -1];
+
 /* i + 1, or i at the last of n. */
 static uint32_t gate_next(uint32_t i, uint32_t n)
 {
@@ -892,43 +919,31 @@ static uint32_t gate_prev(uint32_t i)
     return r;
 }
 
-/* Mean of the image over 2 x 2 bilinear samples of grid cell (u, v) of the box, per
-   channel (r, g, b order). */
-static void gate_cell(const sbr_image_t *img, const float box[4], uint32_t u, uint32_t v,
-                      const uint32_t ch[3], float out[3])
+/* Mean of the image over the 2 x 2 bilinear samples of grid cell (u, v), per channel (r,
+   g, b order): tx, ty the taps of the grid's sub-samples (picto_taps(), 2 per cell). */
+static void gate_cell(const sbr_image_t *img, const picto_tap_t *tx, const picto_tap_t *ty,
+                      uint32_t u, uint32_t v, const uint32_t ch[3], float out[3])
 {
-    const float sx = (box[2] - box[0]) / (float)GG;
-    const float sy = (box[3] - box[1]) / (float)GG;
-    const float xmax = (float)img->width - 1.0f;
-    const float ymax = (float)img->height - 1.0f;
     uint32_t i;
     uint32_t j;
     out[0] = 0.0f;
     out[1] = 0.0f;
     out[2] = 0.0f;
     for (j = 0u; j < 2u; j++) {
-        const float y = picto_clampf(box[1] + (sy * ((float)v + (((float)j + 0.5f) * 0.5f))) - 0.5f,
-                                     0.0f, ymax);
-        const uint32_t y0 = (uint32_t)y;
-        const uint32_t y1 = gate_next(y0, img->height);
-        const float fy = y - (float)y0;
-        const uint8_t *r0 = &img->data[(size_t)y0 * img->stride];
-        const uint8_t *r1 = &img->data[(size_t)y1 * img->stride];
+        const picto_tap_t *yt = &ty[(v * 2u) + j];
+        const uint8_t *r0 = &img->data[(size_t)yt->lo * img->stride];
+        const uint8_t *r1 = &img->data[(size_t)yt->hi * img->stride];
         for (i = 0u; i < 2u; i++) {
-            const float x = picto_clampf(box[0] + (sx * ((float)u + (((float)i + 0.5f) * 0.5f))) - 0.5f,
-                                         0.0f, xmax);
-            const uint32_t x0 = (uint32_t)x;
-            const uint32_t x1 = gate_next(x0, img->width);
-            const float fx = x - (float)x0;
+            const picto_tap_t *xt = &tx[(u * 2u) + i];
             uint32_t c;
             for (c = 0u; c < 3u; c++) {
-                const float a = (float)r0[(x0 * 3u) + ch[c]];
-                const float b = (float)r0[(x1 * 3u) + ch[c]];
-                const float d = (float)r1[(x0 * 3u) + ch[c]];
-                const float e = (float)r1[(x1 * 3u) + ch[c]];
-                const float top = a + (fx * (b - a));
-                const float bot = d + (fx * (e - d));
-                out[c] += 0.25f * (top + (fy * (bot - top)));
+                const float a = (float)r0[(xt->lo * 3u) + ch[c]];
+                const float b = (float)r0[(xt->hi * 3u) + ch[c]];
+                const float d = (float)r1[(xt->lo * 3u) + ch[c]];
+                const float e = (float)r1[(xt->hi * 3u) + ch[c]];
+                const float top = a + (xt->f * (b - a));
+                const float bot = d + (xt->f * (e - d));
+                out[c] += 0.25f * (top + (yt->f * (bot - top)));
             }
         }
     }
@@ -966,22 +981,20 @@ sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4],
                                      uint32_t len, void *workspace, size_t workspace_size)
 {
     float *g;
+    picto_tap_t *tx;
+    picto_tap_t *ty;
     float mean = 0.0f;
     float var = 0.0f;
     float sd;
-    uint32_t ch[3] = {0u, 1u, 2u};
+    uint32_t ch[3];
     uint32_t i;
     sbr_status_t st;
-    if ((img == NULL) || (box == NULL) || (feat == NULL)) {
+    if (feat == NULL) {
         return SBR_ERR_NULL;
     }
-    st = sbr_image_check(img);
+    st = colour_box_check(img, box);
     if (st != SBR_OK) {
         return st;
-    }
-    if (((img->format != SBR_PIXEL_RGB888) && (img->format != SBR_PIXEL_BGR888)) ||
-        (box_in_domain(box) == 0)) {
-        return SBR_ERR_RANGE;
     }
     if (len < SBR_PICTO_GATE_FEATURES) {
         return SBR_ERR_SIZE;
@@ -990,11 +1003,12 @@ sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4],
         (sbr_util_aligned(workspace, 4u) == 0)) {
         return SBR_ERR_WORKSPACE;
     }
-    if (img->format == SBR_PIXEL_BGR888) {
-        ch[0] = 2u;
-        ch[2] = 0u;
-    }
+    colour_channels(img, ch);
     g = (float *)workspace;
+    tx = (picto_tap_t *)(void *)&g[GG * GG];
+    ty = &tx[GG * 2u];
+    picto_taps(box[0], (box[2] - box[0]) / (float)GG, 2u, img->width, GG, tx);
+    picto_taps(box[1], (box[3] - box[1]) / (float)GG, 2u, img->height, GG, ty);
     for (i = 0u; i < 32u; i++) {
         feat[G_COLOUR + i] = 0.0f;
     }
@@ -1004,7 +1018,7 @@ sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4],
         float c[3];
         float sum;
         float *col = &feat[G_COLOUR + ((((v / 3u) * 4u) + (u / 3u)) * 2u)];
-        gate_cell(img, box, u, v, ch, c);
+        gate_cell(img, tx, ty, u, v, ch, c);
         sum = (c[0] + c[1]) + c[2];
         g[i] = sum * (1.0f / 3.0f);
         mean += g[i];

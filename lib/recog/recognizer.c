@@ -1016,9 +1016,6 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     return 1;
 }
 
-/* The class stage's colour check (sbr_picto_model_t::rim_floor): 1 when the model has one
-   for the candidate's class and the rim of its box is less red against its inside than
-   the class's threshold, or when it cannot be measured. */
 /* Does a candidate pass the class stage's gate (sbr_picto_model_t::gate)? A box the gate
    cannot look at (outside the domain of the class stage's boxes) does not. */
 static int gate_passes(const recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
@@ -1037,6 +1034,9 @@ static int gate_passes(const recog_hyp_t *h, const sbr_image_t *view, const sbr_
     return pass;
 }
 
+/* The class stage's colour check (sbr_picto_model_t::rim_floor): 1 when the model has one
+   for the candidate's class and the rim of its box is less red against its inside than
+   the class's threshold, or when it cannot be measured. */
 static int rim_fails(const recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm)
 {
     int fails = 0;

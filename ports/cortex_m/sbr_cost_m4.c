@@ -97,7 +97,7 @@ int main(void)
     TIMER0_RELOAD = 0xFFFFFFFFu;
     TIMER0_VALUE = 0xFFFFFFFFu;
     TIMER0_CTRL = 1u;
-    per_tick = (float)(2u * 2000000u) / (float)(loop_ticks(2000000u) - 0u);
+    per_tick = (float)(2u * 2000000u) / (float)loop_ticks(2000000u);
     printf("calibration: %.3f\n", (double)per_tick);
 
     if ((f == NULL) || (fgetc(f) != 'P') || (fgetc(f) != '6') || !read_token(f, &w) ||
