@@ -180,6 +180,9 @@ cmd_test() {
   for name in native cortex-m4; do
     ctest --test-dir "$BUILD/$name" -R "^gate_core_symbols$" -V 2>/dev/null | sed -nE 's/^[0-9]+: (OK|FAIL|.* external references).*/&/p' | sed -E 's/^[0-9]+: /'"$name"': /'
   done
+  log "unit sizes (cmake/unit_report.py)"
+  ctest --test-dir "$BUILD/native" -R "^report_units$" -V 2>/dev/null | sed -nE 's/^[0-9]+: //p' \
+    | grep -vE "^(Test command|Working Directory|Test timeout)" || true
   # every build type of the core with -Werror: gcc, clang, arm-none-eabi
   log "build matrix"
   local matrix_line

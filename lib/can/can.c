@@ -585,17 +585,117 @@ static void sched_emit(sched_out_t *o, sbr_status_t pack_status, sbr_can_frame_t
     }
 }
 
+/* How many of each message this cycle sends: the counts clamped to the configuration's
+   maxima, and the frames they need (at least one of each message, even when empty). */
+typedef struct sched_plan_s {
+    uint32_t n_sign;
+    uint32_t n_det;
+    uint32_t n_obj;
+    uint32_t need;
+} sched_plan_t;
+
+static uint32_t sched_min(uint32_t a, uint32_t b)
+{
+    return (a < b) ? a : b;
+}
+
+static void sched_plan(const sbr_can_sched_config_t *cfg, const sbr_can_cycle_t *cycle,
+                       sched_plan_t *p)
+{
+    p->n_sign = sched_min(cycle->sign_count, cfg->max_signs);
+    p->n_det = sched_min(cycle->detection_count, cfg->max_detections);
+    p->n_obj = sched_min(cycle->object_count, cfg->max_objects);
+    p->need = 4u;
+    if (p->n_sign > 1u) {
+        p->need += p->n_sign - 1u;
+    }
+    if (p->n_det > 1u) {
+        p->need += p->n_det - 1u;
+    }
+    if (p->n_obj > 1u) {
+        p->need += p->n_obj - 1u;
+    }
+}
+
+/* 1. Confirmed signs, newest first (or one empty frame). */
+static void sched_signs(sched_out_t *o, const sbr_can_cycle_t *cycle, uint32_t n_sign)
+{
+    sbr_can_frame_t f;
+    if (cycle->sign_count == 0u) {
+        sbr_can_confirmed_sign_t none;
+        none.slot = 0u;
+        none.count = 0u;
+        none.class_id = SBR_CAN_CLASS_NONE;
+        none.track_id = SBR_CAN_TRACK_NONE;
+        none.speed_kmh = SBR_CAN_SPEED_NONE;
+        none.confidence = 0.0f;
+        none.age_frames = 0u;
+        sched_emit(o, sbr_can_pack_confirmed_sign(&none, &f), &f);
+    } else {
+        uint32_t i;
+        for (i = 0u; i < n_sign; i++) {
+            sbr_can_confirmed_sign_t sg = cycle->signs[i];
+            sg.slot = i;
+            sg.count = n_sign;
+            sched_emit(o, sbr_can_pack_confirmed_sign(&sg, &f), &f);
+        }
+        o->dropped += cycle->sign_count - n_sign; /* beyond max_signs */
+    }
+}
+
+/* 3-4. Detections by decreasing confidence (objects = 0) or tracked objects by decreasing
+   certainty (objects = 1), the first n_keep sent, the rest dropped (or one empty frame). */
+static void sched_ranked(sched_out_t *o, const sbr_can_cycle_t *cycle, int objects,
+                         uint32_t n_keep)
+{
+    const uint32_t total = (objects != 0) ? cycle->object_count : cycle->detection_count;
+    sbr_can_frame_t f;
+    float pk = 0.0f;
+    uint32_t pi = 0u;
+    uint32_t i;
+    int first = 1;
+    if ((total == 0u) && (objects == 0)) {
+        sbr_can_detection_t none;
+        (void)memset(&none, 0, sizeof none);
+        none.class_id = SBR_CAN_CLASS_NONE_DET;
+        none.track_id = SBR_CAN_TRACK_NONE_DET;
+        sched_emit(o, sbr_can_pack_detection(&none, &f), &f);
+    } else if (total == 0u) {
+        sbr_can_object_t none;
+        (void)memset(&none, 0, sizeof none);
+        none.track_id = SBR_CAN_TRACK_NONE;
+        sched_emit(o, sbr_can_pack_object(&none, &f), &f);
+    } else {
+        /* every entry is ranked once: next_best() finds one after each previous pick */
+        for (i = 0u; i < total; i++) {
+            const uint32_t k = next_best(cycle, objects, total, first, pk, pi);
+            first = 0;
+            if (k >= total) {
+                break;
+            }
+            pk = sched_key(cycle, objects, k);
+            pi = k;
+            if (i >= n_keep) {
+                o->dropped++;
+            } else if (objects == 0) {
+                sched_emit(o, sbr_can_pack_detection(&cycle->detections[k], &f), &f);
+            } else {
+                sbr_can_object_t ob = cycle->objects[k];
+                ob.index = i;
+                sched_emit(o, sbr_can_pack_object(&ob, &f), &f);
+            }
+        }
+    }
+}
+
 sbr_status_t sbr_can_schedule(sbr_can_e2e_tx_t *tx, const sbr_can_sched_config_t *cfg,
                               const sbr_can_cycle_t *cycle, sbr_can_frame_t *frames,
                               uint32_t capacity, uint32_t *count, uint32_t *dropped)
 {
     sched_out_t o;
+    sched_plan_t p;
     sbr_can_frame_t f;
-    uint32_t n_sign;
-    uint32_t n_det;
-    uint32_t n_obj;
-    uint32_t need;
-    uint32_t i;
+    sbr_can_ecu_status_t est;
 
     if ((tx == NULL) || (cfg == NULL) || (cycle == NULL) || (frames == NULL) ||
         (count == NULL) || (dropped == NULL)) {
@@ -621,114 +721,19 @@ sbr_status_t sbr_can_schedule(sbr_can_e2e_tx_t *tx, const sbr_can_sched_config_t
     o.budget = cfg->frame_budget;
     o.dropped = 0u;
     o.invalid = 0;
+    sched_plan(cfg, cycle, &p);
 
-    /* frames wanted this cycle (at least one of each message) */
-    n_sign = cycle->sign_count;
-    if (n_sign > cfg->max_signs) {
-        n_sign = cfg->max_signs;
-    }
-    n_det = cycle->detection_count;
-    if (n_det > cfg->max_detections) {
-        n_det = cfg->max_detections;
-    }
-    n_obj = cycle->object_count;
-    if (n_obj > cfg->max_objects) {
-        n_obj = cfg->max_objects;
-    }
-    need = 4u; /* one frame of each message even when empty */
-    if (n_sign > 1u) {
-        need += n_sign - 1u;
-    }
-    if (n_det > 1u) {
-        need += n_det - 1u;
-    }
-    if (n_obj > 1u) {
-        need += n_obj - 1u;
-    }
-
-    /* 1. confirmed signs, newest first */
-    if (cycle->sign_count == 0u) {
-        sbr_can_confirmed_sign_t none;
-        none.slot = 0u;
-        none.count = 0u;
-        none.class_id = SBR_CAN_CLASS_NONE;
-        none.track_id = SBR_CAN_TRACK_NONE;
-        none.speed_kmh = SBR_CAN_SPEED_NONE;
-        none.confidence = 0.0f;
-        none.age_frames = 0u;
-        sched_emit(&o, sbr_can_pack_confirmed_sign(&none, &f), &f);
-    } else {
-        for (i = 0u; i < n_sign; i++) {
-            sbr_can_confirmed_sign_t s = cycle->signs[i];
-            s.slot = i;
-            s.count = n_sign;
-            sched_emit(&o, sbr_can_pack_confirmed_sign(&s, &f), &f);
-        }
-        o.dropped += cycle->sign_count - n_sign; /* beyond max_signs */
-    }
+    sched_signs(&o, cycle, p.n_sign);
     /* 2. status: overload when anything of this cycle will not fit */
-    {
-        sbr_can_ecu_status_t st = cycle->status;
-        st.overload = 0u;
-        if ((need > cfg->frame_budget) || (n_sign < cycle->sign_count) ||
-            (n_det < cycle->detection_count) || (n_obj < cycle->object_count)) {
-            st.overload = 1u;
-        }
-        sched_emit(&o, sbr_can_pack_ecu_status(&st, &f), &f);
+    est = cycle->status;
+    est.overload = 0u;
+    if ((p.need > cfg->frame_budget) || (p.n_sign < cycle->sign_count) ||
+        (p.n_det < cycle->detection_count) || (p.n_obj < cycle->object_count)) {
+        est.overload = 1u;
     }
-    /* 3. detections by decreasing confidence */
-    if (cycle->detection_count == 0u) {
-        sbr_can_detection_t none;
-        (void)memset(&none, 0, sizeof none);
-        none.class_id = SBR_CAN_CLASS_NONE_DET;
-        none.track_id = SBR_CAN_TRACK_NONE_DET;
-        sched_emit(&o, sbr_can_pack_detection(&none, &f), &f);
-    } else {
-        float pk = 0.0f;
-        uint32_t pi = 0u;
-        int first = 1;
-        for (i = 0u; i < cycle->detection_count; i++) {
-            const uint32_t k = next_best(cycle, 0, cycle->detection_count, first, pk, pi);
-            first = 0;
-            if (k >= cycle->detection_count) {
-                break;
-            }
-            pk = sched_key(cycle, 0, k);
-            pi = k;
-            if (i < n_det) {
-                sched_emit(&o, sbr_can_pack_detection(&cycle->detections[k], &f), &f);
-            } else {
-                o.dropped++;
-            }
-        }
-    }
-    /* 4. tracked objects by decreasing certainty */
-    if (cycle->object_count == 0u) {
-        sbr_can_object_t none;
-        (void)memset(&none, 0, sizeof none);
-        none.track_id = SBR_CAN_TRACK_NONE;
-        sched_emit(&o, sbr_can_pack_object(&none, &f), &f);
-    } else {
-        float pk = 0.0f;
-        uint32_t pi = 0u;
-        int first = 1;
-        for (i = 0u; i < cycle->object_count; i++) {
-            const uint32_t k = next_best(cycle, 1, cycle->object_count, first, pk, pi);
-            first = 0;
-            if (k >= cycle->object_count) {
-                break;
-            }
-            pk = sched_key(cycle, 1, k);
-            pi = k;
-            if (i < n_obj) {
-                sbr_can_object_t ob = cycle->objects[k];
-                ob.index = i;
-                sched_emit(&o, sbr_can_pack_object(&ob, &f), &f);
-            } else {
-                o.dropped++;
-            }
-        }
-    }
+    sched_emit(&o, sbr_can_pack_ecu_status(&est, &f), &f);
+    sched_ranked(&o, cycle, 0, p.n_det);
+    sched_ranked(&o, cycle, 1, p.n_obj);
     *count = o.count;
     *dropped = o.dropped;
     if (o.invalid != 0) {

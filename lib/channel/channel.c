@@ -494,21 +494,14 @@ sbr_status_t sbr_channel2d_accumulate(const sbr_channel2d_config_t *cfg, float x
     return SBR_OK;
 }
 
-sbr_status_t sbr_channel2d_decode(const sbr_channel2d_config_t *cfg, const float *grid,
-                                  uint32_t len, float min_certainty,
-                                  sbr_channel_mode2d_t *modes, uint32_t capacity,
-                                  uint32_t *count)
+/* The arguments of sbr_channel2d_decode(): configuration, outputs, a grid of finite,
+   non-negative values. */
+static sbr_status_t decode2d_check(const sbr_channel2d_config_t *cfg, const float *grid,
+                                   uint32_t len, float min_certainty,
+                                   const sbr_channel_mode2d_t *modes, uint32_t capacity,
+                                   const uint32_t *count)
 {
-    float pre[SBR_CHANNEL_MAX_OVERLAP];
-    float pim[SBR_CHANNEL_MAX_OVERLAP];
-    float qre[SBR_CHANNEL_MAX_OVERLAP];
-    float qim[SBR_CHANNEL_MAX_OVERLAP];
-    uint32_t n = 0u;
-    uint32_t wx;
-    uint32_t wy;
-    int overflow = 0;
     sbr_status_t st = sbr_channel2d_config_check(cfg);
-
     if (st == SBR_OK) {
         st = check_outputs(modes, capacity, count, min_certainty);
     }
@@ -527,49 +520,85 @@ sbr_status_t sbr_channel2d_decode(const sbr_channel2d_config_t *cfg, const float
             }
         }
     }
+    return st;
+}
+
+/* The decoding window's phasors along x (p) and y (q). */
+typedef struct window2d_s {
+    float pre[SBR_CHANNEL_MAX_OVERLAP];
+    float pim[SBR_CHANNEL_MAX_OVERLAP];
+    float qre[SBR_CHANNEL_MAX_OVERLAP];
+    float qim[SBR_CHANNEL_MAX_OVERLAP];
+} window2d_t;
+
+/* The window at (wx, wy): its sum, and its phasor sums along x and y (re, im each). */
+static float window2d_sums(const sbr_channel2d_config_t *cfg, const float *grid,
+                           const window2d_t *w, uint32_t wx, uint32_t wy, float xs[2],
+                           float ys[2])
+{
+    float sum = 0.0f;
+    uint32_t ky;
+    uint32_t kx;
+    xs[0] = 0.0f;
+    xs[1] = 0.0f;
+    ys[0] = 0.0f;
+    ys[1] = 0.0f;
+    for (ky = 0u; ky < cfg->y.overlap; ky++) {
+        const float *row = &grid[((wy + ky) * cfg->x.count) + wx];
+        float rowsum = 0.0f;
+        for (kx = 0u; kx < cfg->x.overlap; kx++) {
+            xs[0] += row[kx] * w->pre[kx];
+            xs[1] += row[kx] * w->pim[kx];
+            rowsum += row[kx];
+        }
+        ys[0] += rowsum * w->qre[ky];
+        ys[1] += rowsum * w->qim[ky];
+        sum += rowsum;
+    }
+    return sum;
+}
+
+sbr_status_t sbr_channel2d_decode(const sbr_channel2d_config_t *cfg, const float *grid,
+                                  uint32_t len, float min_certainty,
+                                  sbr_channel_mode2d_t *modes, uint32_t capacity,
+                                  uint32_t *count)
+{
+    window2d_t w;
+    uint32_t n = 0u;
+    uint32_t wx;
+    uint32_t wy;
+    int overflow = 0;
+    const sbr_status_t st =
+        decode2d_check(cfg, grid, len, min_certainty, modes, capacity, count);
+
     if (st != SBR_OK) {
         if (count != NULL) {
             *count = 0u;
         }
         return st;
     }
-    window_phasors(cfg->x.overlap, pre, pim);
-    window_phasors(cfg->y.overlap, qre, qim);
+    window_phasors(cfg->x.overlap, w.pre, w.pim);
+    window_phasors(cfg->y.overlap, w.qre, w.qim);
     for (wy = 0u; wy <= (cfg->y.count - cfg->y.overlap); wy++) {
         for (wx = 0u; wx <= (cfg->x.count - cfg->x.overlap); wx++) {
-            float xre = 0.0f;
-            float xim = 0.0f;
-            float yre = 0.0f;
-            float yim = 0.0f;
-            float sum = 0.0f;
-            int vx;
-            int vy;
-            uint32_t ky;
-            uint32_t kx;
-            for (ky = 0u; ky < cfg->y.overlap; ky++) {
-                const float *row = &grid[((wy + ky) * cfg->x.count) + wx];
-                float rowsum = 0.0f;
-                for (kx = 0u; kx < cfg->x.overlap; kx++) {
-                    xre += row[kx] * pre[kx];
-                    xim += row[kx] * pim[kx];
-                    rowsum += row[kx];
-                }
-                yre += rowsum * qre[ky];
-                yim += rowsum * qim[ky];
-                sum += rowsum;
-            }
+            float xs[2];
+            float ys[2];
+            int vx = 0;
+            int vy = 0;
+            const float sum = window2d_sums(cfg, grid, &w, wx, wy, xs, ys);
+            float ox = 0.0f;
+            float oy = 0.0f;
             if (sum > min_certainty) {
-                const float ox = window_offset(cfg->x.overlap, xre, xim, &vx);
-                const float oy = window_offset(cfg->y.overlap, yre, yim, &vy);
-                if ((vx != 0) && (vy != 0)) {
-                    if (insert_2d(modes, capacity, &n,
-                                  cfg->x.first_centre + (cfg->x.spacing * ((float)wx + ox)),
-                                  cfg->y.first_centre + (cfg->y.spacing * ((float)wy + oy)),
-                                  sum, SBR_CHANNEL_SAME_MODE * cfg->x.spacing,
-                                  SBR_CHANNEL_SAME_MODE * cfg->y.spacing) != 0) {
-                        overflow = 1;
-                    }
-                }
+                ox = window_offset(cfg->x.overlap, xs[0], xs[1], &vx);
+                oy = window_offset(cfg->y.overlap, ys[0], ys[1], &vy);
+            }
+            if ((vx != 0) && (vy != 0) &&
+                (insert_2d(modes, capacity, &n,
+                           cfg->x.first_centre + (cfg->x.spacing * ((float)wx + ox)),
+                           cfg->y.first_centre + (cfg->y.spacing * ((float)wy + oy)), sum,
+                           SBR_CHANNEL_SAME_MODE * cfg->x.spacing,
+                           SBR_CHANNEL_SAME_MODE * cfg->y.spacing) != 0)) {
+                overflow = 1;
             }
         }
     }

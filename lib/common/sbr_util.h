@@ -107,4 +107,46 @@ static inline float sbr_util_atan2f(float y, float x)
     return r;
 }
 
+/* The larger of two finite values (what fmaxf gives them, without a library call). */
+static inline float sbr_util_maxf(float a, float b)
+{
+    float r = a;
+    if (b > a) {
+        r = b;
+    }
+    return r;
+}
+
+/* The smaller of two finite values (what fminf gives them, without a library call). */
+static inline float sbr_util_minf(float a, float b)
+{
+    float r = a;
+    if (b < a) {
+        r = b;
+    }
+    return r;
+}
+
+/* Intersection over union of two boxes x0, y0, x1, y1 (exclusive); 0 when they do not
+   overlap or the union is empty. */
+static inline float sbr_util_box_iou(const float a[4], const float b[4])
+{
+    const float iw = sbr_util_minf(a[2], b[2]) - sbr_util_maxf(a[0], b[0]);
+    const float ih = sbr_util_minf(a[3], b[3]) - sbr_util_maxf(a[1], b[1]);
+    float iou = 0.0f;
+    if ((iw > 0.0f) && (ih > 0.0f)) {
+        const float inter = iw * ih;
+        const float uni = ((a[2] - a[0]) * (a[3] - a[1])) + ((b[2] - b[0]) * (b[3] - b[1])) - inter;
+        if (uni > 0.0f) {
+            iou = inter / uni;
+        }
+    }
+    return iou;
+}
+
+/* Iterative heap sort of n elements of `size` bytes (no recursion, O(n log n), in place,
+   not stable): `before(a, b, mode)` is 1 when a comes strictly before b. */
+void sbr_util_heap_sort(uint8_t *base, uint32_t n, size_t size,
+                        int (*before)(const void *a, const void *b, int mode), int mode);
+
 #endif /* SBR_UTIL_H */

@@ -126,23 +126,86 @@ static void follow(int8_t *map, ptrdiff_t i0, int16_t x0, int16_t y0, const int3
     }
 }
 
+/* The padded binary copy of the mask in map (pitch = width + 2): a frame of background
+   around it. */
+static void pad_mask(const sbr_image_t *mask, int8_t *map, size_t pitch)
+{
+    uint32_t x;
+    uint32_t y;
+    for (x = 0u; x < pitch; x++) {
+        map[x] = LBL_BG;
+        map[(((size_t)mask->height + 1u) * pitch) + x] = LBL_BG;
+    }
+    for (y = 0u; y < mask->height; y++) {
+        const uint8_t *row = &mask->data[(size_t)y * mask->stride];
+        int8_t *m = &map[((size_t)y + 1u) * pitch];
+        m[0] = LBL_BG;
+        m[pitch - 1u] = LBL_BG;
+        for (x = 0u; x < mask->width; x++) {
+            m[x + 1u] = (row[x] != 0u) ? (int8_t)LBL_FG : (int8_t)LBL_BG;
+        }
+    }
+}
+
+/* The state of one scan: the padded map, the neighbour steps, and the outputs. */
+typedef struct contour_scan_s {
+    int8_t *map;
+    int32_t d[16];
+    int16_t dx[8];
+    int16_t dy[8];
+    size_t max_steps;
+    sbr_point_t *points;
+    uint32_t point_capacity;
+    sbr_contour_t *contours;
+    uint32_t contour_capacity;
+    uint32_t n;
+    uint32_t used;
+    int overflow;
+} contour_scan_t;
+
+/* Trace the outer border that starts at map index `at` (mask pixel px, py) and keep it
+   as the next contour if there is room. */
+static void trace_border(contour_scan_t *sc, size_t at, uint32_t px, uint32_t py)
+{
+    trace_out_t o;
+    o.points = sc->points;
+    o.capacity = sc->point_capacity;
+    o.used = sc->used;
+    o.length = 0u;
+    o.overflow = 0;
+    o.minx = INT16_MAX;
+    o.miny = INT16_MAX;
+    o.maxx = INT16_MIN;
+    o.maxy = INT16_MIN;
+    follow(sc->map, (ptrdiff_t)at, (int16_t)px, (int16_t)py, sc->d, sc->dx, sc->dy,
+           sc->max_steps, &o);
+    if ((o.overflow != 0) || (sc->n >= sc->contour_capacity)) {
+        sc->overflow = 1;
+    } else {
+        sbr_contour_t *c = &sc->contours[sc->n];
+        const int32_t bw = (int32_t)o.maxx - (int32_t)o.minx;
+        const int32_t bh = (int32_t)o.maxy - (int32_t)o.miny;
+        c->first = sc->used;
+        c->length = o.length;
+        c->bbox.x = (uint32_t)o.minx;
+        c->bbox.y = (uint32_t)o.miny;
+        c->bbox.width = (uint32_t)bw + 1u;
+        c->bbox.height = (uint32_t)bh + 1u;
+        sc->used += o.length;
+        sc->n++;
+    }
+}
+
 sbr_status_t sbr_contour_find_external(const sbr_image_t *mask, void *workspace,
                                        size_t workspace_size, sbr_point_t *points,
                                        uint32_t point_capacity, sbr_contour_t *contours,
                                        uint32_t contour_capacity, uint32_t *contour_count)
 {
     sbr_status_t st = sbr_image_check(mask);
-    int8_t *map;
-    int32_t d[16];
-    int16_t dx[8];
-    int16_t dy[8];
+    contour_scan_t sc;
     size_t pitch;
-    size_t max_steps;
     uint32_t x;
     uint32_t y;
-    uint32_t n = 0u;
-    uint32_t used = 0u;
-    int overflow = 0;
 
     if (contour_count != NULL) {
         *contour_count = 0u;
@@ -160,75 +223,41 @@ sbr_status_t sbr_contour_find_external(const sbr_image_t *mask, void *workspace,
     if (workspace_size < SBR_CONTOUR_WORKSPACE_SIZE(mask->width, mask->height)) {
         return SBR_ERR_WORKSPACE;
     }
-    map = (int8_t *)workspace;
+    sc.map = (int8_t *)workspace;
     pitch = (size_t)mask->width + 2u;
-    /* Padded binary copy: a frame of background around the mask. */
-    for (x = 0u; x < pitch; x++) {
-        map[x] = LBL_BG;
-        map[(((size_t)mask->height + 1u) * pitch) + x] = LBL_BG;
-    }
-    for (y = 0u; y < mask->height; y++) {
-        const uint8_t *row = &mask->data[(size_t)y * mask->stride];
-        int8_t *m = &map[((size_t)y + 1u) * pitch];
-        m[0] = LBL_BG;
-        m[pitch - 1u] = LBL_BG;
-        for (x = 0u; x < mask->width; x++) {
-            m[x + 1u] = (row[x] != 0u) ? (int8_t)LBL_FG : (int8_t)LBL_BG;
-        }
-    }
-    make_deltas((int32_t)pitch, d, dx, dy);
-    max_steps = 4u * pitch * ((size_t)mask->height + 2u);
+    pad_mask(mask, sc.map, pitch);
+    make_deltas((int32_t)pitch, sc.d, sc.dx, sc.dy);
+    sc.max_steps = 4u * pitch * ((size_t)mask->height + 2u);
+    sc.points = points;
+    sc.point_capacity = point_capacity;
+    sc.contours = contours;
+    sc.contour_capacity = contour_capacity;
+    sc.n = 0u;
+    sc.used = 0u;
+    sc.overflow = 0;
 
     for (y = 1u; y <= mask->height; y++) {
         const size_t row = (size_t)y * pitch;
         int8_t prev = LBL_BG;
         int8_t lnbd = LBL_BG; /* label of the last border pixel passed on this row */
         for (x = 1u; x <= mask->width; x++) {
-            const int8_t p = map[row + x];
+            const int8_t p = sc.map[row + x];
+            /* An outer border starts at an unvisited pixel after background, unless the
+               last border passed is a left (non-right-bound) border: then we are inside a
+               blob's hole, which RETR_EXTERNAL skips. */
+            if ((p != prev) && (prev == LBL_BG) && (p == LBL_FG) && (lnbd <= 0)) {
+                trace_border(&sc, row + x, x - 1u, y - 1u);
+            }
             if (p != prev) {
-                /* An outer border starts at an unvisited pixel after background, unless
-                   the last border passed is a left (non-right-bound) border: then we are
-                   inside a blob's hole, which RETR_EXTERNAL skips. */
-                if ((prev == LBL_BG) && (p == LBL_FG) && (lnbd <= 0)) {
-                    trace_out_t o;
-                    o.points = points;
-                    o.capacity = point_capacity;
-                    o.used = used;
-                    o.length = 0u;
-                    o.overflow = 0;
-                    o.minx = INT16_MAX;
-                    o.miny = INT16_MAX;
-                    o.maxx = INT16_MIN;
-                    o.maxy = INT16_MIN;
-                    const uint32_t px = x - 1u;
-                    const uint32_t py = y - 1u;
-                    const size_t at = row + x;
-                    follow(map, (ptrdiff_t)at, (int16_t)px, (int16_t)py, d, dx, dy, max_steps,
-                           &o);
-                    if ((o.overflow != 0) || (n >= contour_capacity)) {
-                        overflow = 1;
-                    } else {
-                        contours[n].first = used;
-                        contours[n].length = o.length;
-                        contours[n].bbox.x = (uint32_t)o.minx;
-                        contours[n].bbox.y = (uint32_t)o.miny;
-                        const int32_t bw = (int32_t)o.maxx - (int32_t)o.minx;
-                        const int32_t bh = (int32_t)o.maxy - (int32_t)o.miny;
-                        contours[n].bbox.width = (uint32_t)bw + 1u;
-                        contours[n].bbox.height = (uint32_t)bh + 1u;
-                        used += o.length;
-                        n++;
-                    }
-                }
-                prev = map[row + x];
+                prev = sc.map[row + x]; /* as the trace labelled it */
                 if ((prev != LBL_BG) && (prev != LBL_FG)) {
                     lnbd = prev;
                 }
             }
         }
     }
-    *contour_count = n;
-    return (overflow != 0) ? SBR_ERR_CAPACITY : SBR_OK;
+    *contour_count = sc.n;
+    return (sc.overflow != 0) ? SBR_ERR_CAPACITY : SBR_OK;
 }
 
 sbr_status_t sbr_contour_area2(const sbr_point_t *points, uint32_t count, int64_t *area2)

@@ -30,40 +30,17 @@ static uint32_t next_index(uint32_t i, uint32_t count)
     return j;
 }
 
-static sbr_status_t fd_compute(const sbr_fft_t *fft, const sbr_point_t *pi,
-                               const sbr_pointf_t *pf, uint32_t count, uint32_t m,
-                               sbr_complex_t *work, uint32_t work_len, sbr_fd_t *out)
+/* Validate the points and measure the outline's length and twice its signed area
+   (relative to the first point, which keeps the shoelace sum accurate for contours far
+   from the origin). */
+static sbr_status_t fd_measure(const sbr_point_t *pi, const sbr_pointf_t *pf, uint32_t count,
+                               float *length, float *area2)
 {
-    sbr_status_t st = sbr_fft_check(fft);
-    float length = 0.0f;
-    float area2 = 0.0f;
     float x0;
     float y0;
-    float step;
-    float acc;
-    float energy;
-    float inv_n;
-    float inv_scale;
-    uint32_t n;
     uint32_t i;
-    uint32_t j;
-    uint32_t k;
-
-    if (st != SBR_OK) {
-        return st;
-    }
-    if ((out == NULL) || (work == NULL)) {
-        return SBR_ERR_NULL;
-    }
-    n = fft->n;
-    if ((count == 0u) || (m == 0u) || (m > SBR_FD_MAX_M) || ((2u * m) >= n) || (work_len < n)) {
-        return SBR_ERR_SIZE;
-    }
-    if (count < 3u) {
-        return SBR_ERR_DEGENERATE;
-    }
-    /* Validate, measure the length and the area (relative to the first point, which keeps
-       the shoelace sum accurate for contours far from the origin). */
+    *length = 0.0f;
+    *area2 = 0.0f;
     get_point(pi, pf, 0u, &x0, &y0);
     for (i = 0u; i < count; i++) {
         float xa;
@@ -75,19 +52,22 @@ static sbr_status_t fd_compute(const sbr_fft_t *fft, const sbr_point_t *pi,
             (fabsf(ya) > SBR_FD_MAX_COORD)) {
             return SBR_ERR_RANGE;
         }
-        j = next_index(i, count);
-        get_point(pi, pf, j, &xb, &yb);
-        length += hypotf(xb - xa, yb - ya);
-        area2 += ((xa - x0) * (yb - y0)) - ((xb - x0) * (ya - y0));
+        get_point(pi, pf, next_index(i, count), &xb, &yb);
+        *length += hypotf(xb - xa, yb - ya);
+        *area2 += ((xa - x0) * (yb - y0)) - ((xb - x0) * (ya - y0));
     }
-    if ((length <= 0.0f) || (fabsf(area2) <= (1e-6f * length * length))) {
-        return SBR_ERR_DEGENERATE;
-    }
+    return SBR_OK;
+}
 
-    /* Arc-length resampling at N equally spaced positions, starting at point 0. */
-    step = length / (float)n;
-    acc = 0.0f; /* arc length at the start of segment i */
-    i = 0u;
+/* Arc-length resampling of the closed outline (of the given length) at n equally spaced
+   positions, starting at point 0, into work[0..n). */
+static void fd_resample(const sbr_point_t *pi, const sbr_pointf_t *pf, uint32_t count,
+                        uint32_t n, float length, sbr_complex_t *work)
+{
+    const float step = length / (float)n;
+    float acc = 0.0f; /* arc length at the start of segment i */
+    uint32_t i = 0u;
+    uint32_t k;
     for (k = 0u; k < n; k++) {
         const float t = step * (float)k;
         float xa;
@@ -96,8 +76,7 @@ static sbr_status_t fd_compute(const sbr_fft_t *fft, const sbr_point_t *pi,
         float yb;
         float seg;
         get_point(pi, pf, i, &xa, &ya);
-        j = next_index(i, count);
-        get_point(pi, pf, j, &xb, &yb);
+        get_point(pi, pf, next_index(i, count), &xb, &yb);
         seg = hypotf(xb - xa, yb - ya);
         while ((i + 1u) < count) {
             if ((acc + seg) >= t) {
@@ -107,8 +86,7 @@ static sbr_status_t fd_compute(const sbr_fft_t *fft, const sbr_point_t *pi,
             i++;
             xa = xb;
             ya = yb;
-            j = next_index(i, count);
-            get_point(pi, pf, j, &xb, &yb);
+            get_point(pi, pf, next_index(i, count), &xb, &yb);
             seg = hypotf(xb - xa, yb - ya);
         }
         if (seg > 0.0f) {
@@ -123,12 +101,17 @@ static sbr_status_t fd_compute(const sbr_fft_t *fft, const sbr_point_t *pi,
             work[k].im = ya;
         }
     }
-    st = sbr_fft_forward(fft, work, work);
-    if (st != SBR_OK) {
-        return st;
-    }
-    inv_n = 1.0f / (float)n;
-    energy = 0.0f;
+}
+
+/* The descriptor from the n-point spectrum in work: centroid, scale (the energy of the
+   coefficients +-1..m) and the 2m + 1 coefficients at unit energy. */
+static sbr_status_t fd_coefficients(const sbr_complex_t *work, uint32_t n, uint32_t m,
+                                    sbr_fd_t *out)
+{
+    const float inv_n = 1.0f / (float)n;
+    float energy = 0.0f;
+    float inv_scale;
+    uint32_t k;
     for (k = 1u; k <= m; k++) {
         const sbr_complex_t a = work[k];
         const sbr_complex_t b = work[n - k];
@@ -152,6 +135,43 @@ static sbr_status_t fd_compute(const sbr_fft_t *fft, const sbr_point_t *pi,
         out->c[m - k].im = work[n - k].im * inv_scale;
     }
     return SBR_OK;
+}
+
+static sbr_status_t fd_compute(const sbr_fft_t *fft, const sbr_point_t *pi,
+                               const sbr_pointf_t *pf, uint32_t count, uint32_t m,
+                               sbr_complex_t *work, uint32_t work_len, sbr_fd_t *out)
+{
+    sbr_status_t st = sbr_fft_check(fft);
+    float length;
+    float area2;
+    uint32_t n;
+
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((out == NULL) || (work == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    n = fft->n;
+    if ((count == 0u) || (m == 0u) || (m > SBR_FD_MAX_M) || ((2u * m) >= n) || (work_len < n)) {
+        return SBR_ERR_SIZE;
+    }
+    if (count < 3u) {
+        return SBR_ERR_DEGENERATE;
+    }
+    st = fd_measure(pi, pf, count, &length, &area2);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((length <= 0.0f) || (fabsf(area2) <= (1e-6f * length * length))) {
+        return SBR_ERR_DEGENERATE;
+    }
+    fd_resample(pi, pf, count, n, length, work);
+    st = sbr_fft_forward(fft, work, work);
+    if (st != SBR_OK) {
+        return st;
+    }
+    return fd_coefficients(work, n, m, out);
 }
 
 sbr_status_t sbr_fd_from_points(const sbr_fft_t *fft, const sbr_point_t *points,
@@ -879,6 +899,89 @@ static int found_any(int inv, float cb, sbr_complex_t at_best)
     return f;
 }
 
+/* The four-lane batch of match_table_lanes(): up to four prototypes and their indices. */
+typedef struct lane_batch_s {
+    const sbr_fd_t *lane[FD_LANES];
+    uint32_t idx[FD_LANES];
+    uint32_t valid;
+} lane_batch_t;
+
+/* The next (up to) four prototypes from *i that pass the header check and the screening,
+   in table order (the screened ones get their no-match result); the walk stops at the
+   first bad header, whose status goes to *header. */
+static void lanes_gather(const sbr_fd_t *query, const sbr_fd_t *protos, uint32_t count,
+                         const float *qmag, float level, uint32_t *i, lane_batch_t *bt,
+                         sbr_fd_match_t *results, sbr_status_t *header)
+{
+    bt->valid = 0u;
+    while ((bt->valid < FD_LANES) && (*i < count) && (*header == SBR_OK)) {
+        *header = check_proto_header(query, &protos[*i]);
+        if (*header == SBR_OK) {
+            if ((level > 0.0f) && (screened_out(qmag, &protos[*i], level) != 0)) {
+                no_match(query, &protos[*i], &results[*i]);
+            } else {
+                bt->lane[bt->valid] = &protos[*i];
+                bt->idx[bt->valid] = *i;
+                bt->valid++;
+            }
+            *i += 1u;
+        }
+    }
+}
+
+/* The lanes' inputs: the products of the query with each prototype at their bit-reversed
+   positions, zero elsewhere (only the gap n = M+1 .. P-M-1 needs clearing after the
+   products are placed; unused lanes get zero input, their results are discarded). */
+static void lanes_fill(const sbr_fft_t *fft, const sbr_fd_t *query, const lane_batch_t *bt,
+                       const uint32_t *pos, float *re, float *im)
+{
+    const uint32_t size = fft->n;
+    uint32_t b;
+    uint32_t k;
+    for (k = query->m + 1u; k < (size - query->m); k++) {
+        const uint32_t at = (uint32_t)fft->bitrev[k] * FD_LANES;
+        for (b = 0u; b < FD_LANES; b++) {
+            re[at + b] = 0.0f;
+            im[at + b] = 0.0f;
+        }
+    }
+    for (b = bt->valid; b < FD_LANES; b++) {
+        for (k = 0u; k < size; k++) {
+            re[(k * FD_LANES) + b] = 0.0f;
+            im[(k * FD_LANES) + b] = 0.0f;
+        }
+    }
+    if (bt->valid == FD_LANES) {
+        lanes_products(query, bt->lane, pos, re, im);
+    } else {
+        for (b = 0u; b < bt->valid; b++) {
+            write_products(query, bt->lane[b], pos, &re[b], &im[b]);
+        }
+    }
+}
+
+/* The results of a transformed batch from each lane's correlation peak and its two
+   neighbours. */
+static void lanes_finish(uint32_t size, const sbr_fd_match_config_t *cfg, const sbr_fd_t *query,
+                         const lane_batch_t *bt, int inv, float cb, const float *re,
+                         const float *im, const uint32_t *best, sbr_fd_match_t *results)
+{
+    uint32_t b;
+    uint32_t k;
+    for (b = 0u; b < bt->valid; b++) {
+        sbr_complex_t around[3];
+        /* size is a power of two (a valid FFT instance) */
+        const uint32_t at[3] = {(best[b] + size - 1u) & (size - 1u), best[b],
+                                (best[b] + 1u) & (size - 1u)};
+        for (k = 0u; k < 3u; k++) {
+            around[k].re = re[(at[k] * FD_LANES) + b];
+            around[k].im = im[(at[k] * FD_LANES) + b];
+        }
+        finish_match(size, cfg, query, bt->lane[b], found_any(inv, cb, around[1]), best[b],
+                     around, &results[bt->idx[b]]);
+    }
+}
+
 static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                       const sbr_fd_t *query, const sbr_fd_t *protos,
                                       uint32_t count, sbr_complex_t *work,
@@ -911,71 +1014,22 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
         query_magnitudes(query, qmag);
     }
     while ((i < count) && (header == SBR_OK)) {
-        /* the next (up to) four prototypes that pass the header check and the screening,
-           in table order; the walk stops at the first bad header, whose status is
-           returned after the coefficients of those gathered before it are checked, so the
-           first bad prototype in table order decides the status */
-        const sbr_fd_t *lane[FD_LANES];
-        uint32_t idx[FD_LANES];
-        uint32_t valid = 0u;
-        uint32_t b;
-        uint32_t k;
-        while ((valid < FD_LANES) && (i < count) && (header == SBR_OK)) {
-            header = check_proto_header(query, &protos[i]);
-            if (header == SBR_OK) {
-                if ((level > 0.0f) && (screened_out(qmag, &protos[i], level) != 0)) {
-                    no_match(query, &protos[i], &results[i]);
-                } else {
-                    lane[valid] = &protos[i];
-                    idx[valid] = i;
-                    valid++;
+        /* a bad header's status is returned after the coefficients of the prototypes
+           gathered before it are checked, so the first bad prototype in table order
+           decides the status */
+        lane_batch_t bt;
+        lanes_gather(query, protos, count, qmag, level, &i, &bt, results, &header);
+        if (bt.valid > 0u) {
+            uint32_t b;
+            lanes_fill(fft, query, &bt, pos, re, im);
+            lanes_transform(size, tw, re, im);
+            lanes_peaks(size, inv, cb, re, im, best, check);
+            for (b = 0u; b < bt.valid; b++) {
+                if ((isfinite(check[b]) == 0) || (check[b] < 0.0f)) {
+                    return SBR_ERR_RANGE;
                 }
-                i++;
             }
-        }
-        if (valid == 0u) {
-            continue;
-        }
-        /* only the gap n = M+1 .. P-M-1 stays zero after the products are placed */
-        for (k = query->m + 1u; k < (size - query->m); k++) {
-            const uint32_t at = (uint32_t)fft->bitrev[k] * FD_LANES;
-            for (b = 0u; b < FD_LANES; b++) {
-                re[at + b] = 0.0f;
-                im[at + b] = 0.0f;
-            }
-        }
-        /* unused lanes: zero input, results discarded */
-        for (b = valid; b < FD_LANES; b++) {
-            for (k = 0u; k < size; k++) {
-                re[(k * FD_LANES) + b] = 0.0f;
-                im[(k * FD_LANES) + b] = 0.0f;
-            }
-        }
-        if (valid == FD_LANES) {
-            lanes_products(query, lane, pos, re, im);
-        } else {
-            for (b = 0u; b < valid; b++) {
-                write_products(query, lane[b], pos, &re[b], &im[b]);
-            }
-        }
-        lanes_transform(size, tw, re, im);
-        lanes_peaks(size, inv, cb, re, im, best, check);
-        for (b = 0u; b < valid; b++) {
-            if ((isfinite(check[b]) == 0) || (check[b] < 0.0f)) {
-                return SBR_ERR_RANGE;
-            }
-        }
-        for (b = 0u; b < valid; b++) {
-            sbr_complex_t around[3];
-            /* size is a power of two (a valid FFT instance) */
-            const uint32_t at[3] = {(best[b] + size - 1u) & (size - 1u), best[b],
-                                    (best[b] + 1u) & (size - 1u)};
-            for (k = 0u; k < 3u; k++) {
-                around[k].re = re[(at[k] * FD_LANES) + b];
-                around[k].im = im[(at[k] * FD_LANES) + b];
-            }
-            finish_match(size, cfg, query, lane[b], found_any(inv, cb, around[1]), best[b],
-                         around, &results[idx[b]]);
+            lanes_finish(size, cfg, query, &bt, inv, cb, re, im, best, results);
         }
     }
     return header;

@@ -119,20 +119,58 @@ static uint32_t block_mean(uint32_t s, uint32_t n2, uint32_t shift)
     return m;
 }
 
+/* How one source pixel is read: bytes per pixel and the red and blue channel offsets;
+   and the block of a subsampled output pixel (n2 = subsample^2 pixels, shift = log2 n2
+   when n2 is a power of two, else 0). */
+typedef struct map_read_s {
+    uint32_t bpp;
+    uint32_t ri;
+    uint32_t bi;
+    uint32_t sub;
+    uint32_t n2;
+    uint32_t shift;
+} map_read_t;
+
+/* Output row y of a subsampled map: each pixel the map value of its block's mean colour. */
+static void map_block_row(const sbr_image_t *src, sbr_map_kind_t kind, const map_read_t *rd,
+                          uint32_t y, uint32_t ow, uint8_t *dst)
+{
+    uint32_t x;
+    for (x = 0u; x < ow; x++) {
+        uint32_t sr = 0u;
+        uint32_t sg = 0u;
+        uint32_t sb = 0u;
+        uint32_t by;
+        uint32_t bx;
+        for (by = 0u; by < rd->sub; by++) {
+            const uint8_t *row = &src->data[(((size_t)y * rd->sub) + by) * src->stride];
+            for (bx = 0u; bx < rd->sub; bx++) {
+                const uint8_t *px = &row[(((size_t)x * rd->sub) + bx) * rd->bpp];
+                if (rd->bpp == 1u) {
+                    sr += px[0];
+                    sg += px[0];
+                    sb += px[0];
+                } else {
+                    sr += px[rd->ri];
+                    sg += px[1];
+                    sb += px[rd->bi];
+                }
+            }
+        }
+        dst[x] = map_value(kind, block_mean(sr, rd->n2, rd->shift),
+                           block_mean(sg, rd->n2, rd->shift), block_mean(sb, rd->n2, rd->shift));
+    }
+}
+
 sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t subsample,
                           uint8_t *out, uint32_t out_stride, size_t out_size,
                           sbr_image_t *out_view)
 {
     sbr_status_t st;
+    map_read_t rd;
     uint32_t ow;
     uint32_t oh;
-    uint32_t bpp;
-    uint32_t ri;
-    uint32_t bi;
-    uint32_t x;
     uint32_t y;
-    uint32_t n2;
-    uint32_t shift = 0u;
     size_t src_bytes;
     size_t out_bytes;
 
@@ -158,54 +196,32 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
     if ((out_stride < ow) || (out_size < out_bytes)) {
         return SBR_ERR_ALIGN;
     }
-    bpp = sbr_image_bytes_per_pixel(src->format);
+    rd.bpp = sbr_image_bytes_per_pixel(src->format);
     src_bytes = ((size_t)src->height - 1u) * (size_t)src->stride;
-    src_bytes += (size_t)src->width * (size_t)bpp;
+    src_bytes += (size_t)src->width * (size_t)rd.bpp;
     if (sbr_util_overlap(src->data, src_bytes, out, out_bytes) != 0) {
         return SBR_ERR_OVERLAP;
     }
-    ri = 0u;
-    bi = 2u;
+    rd.ri = 0u;
+    rd.bi = 2u;
     if (src->format == SBR_PIXEL_BGR888) {
-        ri = 2u;
-        bi = 0u;
+        rd.ri = 2u;
+        rd.bi = 0u;
     }
-    n2 = subsample * subsample;
-    if ((n2 & (n2 - 1u)) == 0u) {
-        while ((1u << shift) < n2) {
-            shift++;
+    rd.sub = subsample;
+    rd.n2 = subsample * subsample;
+    rd.shift = 0u;
+    if ((rd.n2 & (rd.n2 - 1u)) == 0u) {
+        while ((1u << rd.shift) < rd.n2) {
+            rd.shift++;
         }
     }
-    for (y = 0u; (y < oh) && (subsample == 1u); y++) {
-        map_row(kind, &src->data[(size_t)y * src->stride], bpp, ri, bi, ow,
-                &out[(size_t)y * out_stride]);
-    }
-    for (y = 0u; (y < oh) && (subsample > 1u); y++) {
-        uint8_t *dst = &out[(size_t)y * out_stride];
-        for (x = 0u; x < ow; x++) {
-            uint32_t sr = 0u;
-            uint32_t sg = 0u;
-            uint32_t sb = 0u;
-            uint32_t by;
-            uint32_t bx;
-            for (by = 0u; by < subsample; by++) {
-                const uint8_t *row =
-                    &src->data[(((size_t)y * subsample) + by) * src->stride];
-                for (bx = 0u; bx < subsample; bx++) {
-                    const uint8_t *px = &row[(((size_t)x * subsample) + bx) * bpp];
-                    if (bpp == 1u) {
-                        sr += px[0];
-                        sg += px[0];
-                        sb += px[0];
-                    } else {
-                        sr += px[ri];
-                        sg += px[1];
-                        sb += px[bi];
-                    }
-                }
-            }
-            dst[x] = map_value(kind, block_mean(sr, n2, shift), block_mean(sg, n2, shift),
-                               block_mean(sb, n2, shift));
+    for (y = 0u; y < oh; y++) {
+        if (subsample == 1u) {
+            map_row(kind, &src->data[(size_t)y * src->stride], rd.bpp, rd.ri, rd.bi, ow,
+                    &out[(size_t)y * out_stride]);
+        } else {
+            map_block_row(src, kind, &rd, y, ow, &out[(size_t)y * out_stride]);
         }
     }
     if (out_view != NULL) {

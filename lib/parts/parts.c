@@ -232,6 +232,85 @@ static int region_to_part(const sbr_image_t *map, const sbr_mser_region_t *r,
     return 1;
 }
 
+/* The buffers of layout l in the workspace. */
+static void parts_bufs(void *workspace, const parts_layout_t *l, parts_bufs_t *b)
+{
+    uint8_t *base = (uint8_t *)workspace;
+    b->map = base;
+    base = &base[l->map];
+    b->mser = base;
+    b->mser_size = l->mser;
+    base = &base[l->mser];
+    b->regions = (sbr_mser_region_t *)(void *)base;
+    base = &base[l->regions];
+    b->mask = base;
+    base = &base[l->mask];
+    b->fill = base;
+    b->fill_size = l->fill;
+    base = &base[l->fill];
+    b->trace = base;
+    b->trace_size = l->trace;
+    base = &base[l->trace];
+    b->points = (sbr_point_t *)(void *)base;
+    base = &base[l->points];
+    b->pointsf = (sbr_pointf_t *)(void *)base;
+    base = &base[l->pointsf];
+    b->fdwork = (sbr_complex_t *)(void *)base;
+}
+
+/* Where the parts go: the caller's array, its capacity and count, and the statistics. */
+typedef struct parts_out_s {
+    sbr_part_t *parts;
+    uint32_t capacity;
+    uint32_t *count;
+    sbr_parts_stats_t sx;
+    int full;
+} parts_out_t;
+
+/* The parts of one map: the map at its resolution, its regions, and each region that
+   passes the shape tests as a part while the output has room. */
+static sbr_status_t parts_of_map(const sbr_image_t *img, const sbr_parts_config_t *cfg,
+                                 uint32_t kind, const sbr_fft_t *fft, parts_bufs_t *b,
+                                 size_t map_size, parts_out_t *o)
+{
+    sbr_image_t map;
+    sbr_mser_config_t mc = cfg->mser;
+    const uint32_t sub = cfg->subsample * cfg->map_subsample[kind];
+    uint32_t nreg = 0u;
+    uint32_t i;
+    sbr_status_t st;
+    if (cfg->map_min_area[kind] != 0u) {
+        mc.min_area = cfg->map_min_area[kind];
+    }
+    st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, b->map, img->width / sub, map_size, &map);
+    if (st != SBR_OK) {
+        return st;
+    }
+    st = sbr_mser_detect(&map, &mc, b->mser, b->mser_size, b->regions, cfg->max_regions, &nreg);
+    if (st == SBR_ERR_CAPACITY) {
+        o->sx.capacity_hit = 1u;
+    } else if (st != SBR_OK) {
+        return st;
+    } else {
+        /* complete */
+    }
+    o->sx.regions += nreg;
+    for (i = 0u; i < nreg; i++) {
+        const sbr_mser_region_t *r = &b->regions[i];
+        if (region_ok(r, cfg) == 0) {
+            o->sx.skipped_shape++;
+        } else if (*o->count >= o->capacity) {
+            o->full = 1;
+        } else if (region_to_part(&map, r, cfg, fft, b, (uint8_t)kind, &o->parts[*o->count]) !=
+                   0) {
+            (*o->count)++;
+        } else {
+            o->sx.skipped_contour++;
+        }
+    }
+    return SBR_OK;
+}
+
 sbr_status_t sbr_parts_extract(const sbr_image_t *img, const sbr_parts_config_t *cfg,
                                const sbr_fft_t *fft, void *workspace, size_t workspace_size,
                                sbr_part_t *parts, uint32_t capacity, uint32_t *count,
@@ -240,16 +319,13 @@ sbr_status_t sbr_parts_extract(const sbr_image_t *img, const sbr_parts_config_t 
     sbr_status_t st;
     parts_layout_t l;
     parts_bufs_t b;
-    sbr_parts_stats_t sx;
-    uint8_t *base;
+    parts_out_t o;
     uint32_t kind;
-    int full = 0;
 
     if ((img == NULL) || (cfg == NULL) || (fft == NULL) || (parts == NULL) || (count == NULL)) {
         return SBR_ERR_NULL;
     }
     *count = 0u;
-    (void)memset(&sx, 0, sizeof sx);
     st = sbr_image_check(img);
     if (st != SBR_OK) {
         return st;
@@ -271,72 +347,23 @@ sbr_status_t sbr_parts_extract(const sbr_image_t *img, const sbr_parts_config_t 
         (sbr_util_aligned(workspace, 8u) == 0)) {
         return SBR_ERR_WORKSPACE;
     }
-    base = (uint8_t *)workspace;
-    b.map = base;
-    base = &base[l.map];
-    b.mser = base;
-    b.mser_size = l.mser;
-    base = &base[l.mser];
-    b.regions = (sbr_mser_region_t *)(void *)base;
-    base = &base[l.regions];
-    b.mask = base;
-    base = &base[l.mask];
-    b.fill = base;
-    b.fill_size = l.fill;
-    base = &base[l.fill];
-    b.trace = base;
-    b.trace_size = l.trace;
-    base = &base[l.trace];
-    b.points = (sbr_point_t *)(void *)base;
-    base = &base[l.points];
-    b.pointsf = (sbr_pointf_t *)(void *)base;
-    base = &base[l.pointsf];
-    b.fdwork = (sbr_complex_t *)(void *)base;
-
-    for (kind = 0u; (kind < SBR_MAP_KINDS) && (full == 0); kind++) {
-        sbr_image_t map;
-        sbr_mser_config_t mc = cfg->mser;
-        uint32_t sub;
-        uint32_t nreg = 0u;
-        uint32_t i;
-        if ((cfg->maps & (1u << kind)) == 0u) {
-            continue;
-        }
-        if (cfg->map_min_area[kind] != 0u) {
-            mc.min_area = cfg->map_min_area[kind];
-        }
-        sub = cfg->subsample * cfg->map_subsample[kind];
-        st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, b.map, img->width / sub, l.map, &map);
-        if (st != SBR_OK) {
-            return st;
-        }
-        st = sbr_mser_detect(&map, &mc, b.mser, b.mser_size, b.regions, cfg->max_regions,
-                             &nreg);
-        if (st == SBR_ERR_CAPACITY) {
-            sx.capacity_hit = 1u;
-        } else if (st != SBR_OK) {
-            return st;
-        } else {
-            /* complete */
-        }
-        sx.regions += nreg;
-        for (i = 0u; i < nreg; i++) {
-            const sbr_mser_region_t *r = &b.regions[i];
-            if (region_ok(r, cfg) == 0) {
-                sx.skipped_shape++;
-            } else if (*count >= capacity) {
-                full = 1;
-            } else if (region_to_part(&map, r, cfg, fft, &b, (uint8_t)kind, &parts[*count]) != 0) {
-                (*count)++;
-            } else {
-                sx.skipped_contour++;
+    parts_bufs(workspace, &l, &b);
+    (void)memset(&o, 0, sizeof o);
+    o.parts = parts;
+    o.capacity = capacity;
+    o.count = count;
+    for (kind = 0u; (kind < SBR_MAP_KINDS) && (o.full == 0); kind++) {
+        if ((cfg->maps & (1u << kind)) != 0u) {
+            st = parts_of_map(img, cfg, kind, fft, &b, l.map, &o);
+            if (st != SBR_OK) {
+                return st;
             }
         }
     }
     if (stats != NULL) {
-        *stats = sx;
+        *stats = o.sx;
     }
-    if (full != 0) {
+    if (o.full != 0) {
         return SBR_ERR_CAPACITY;
     }
     return SBR_OK;

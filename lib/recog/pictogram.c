@@ -416,27 +416,13 @@ sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], floa
                                       workspace, workspace_size);
 }
 
-sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[4],
-                                        uint32_t outline, float *feat, uint32_t len,
-                                        void *workspace, size_t workspace_size)
+/* The arguments of sbr_picto_features_outline(), in its documented order of checks. */
+static sbr_status_t features_check(const sbr_image_t *img, const float box[4], uint32_t outline,
+                                   uint32_t len, const void *workspace, size_t workspace_size)
 {
-    float *g;
-    float *cr;
-    float *cb;
-    float mean = 0.0f;
-    float var = 0.0f;
-    float inv_sd;
+    sbr_status_t st = sbr_image_check(img);
     float bw;
     float bh;
-    uint32_t i;
-    uint32_t u;
-    uint32_t v;
-    sbr_status_t st;
-
-    if ((img == NULL) || (box == NULL) || (feat == NULL)) {
-        return SBR_ERR_NULL;
-    }
-    st = sbr_image_check(img);
     if (st != SBR_OK) {
         return st;
     }
@@ -459,22 +445,17 @@ sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[
         (box[2] > ((float)img->width + bw)) || (box[3] > ((float)img->height + bh))) {
         return SBR_ERR_RANGE;
     }
-    g = (float *)workspace;
-    cr = &g[PS * PS];
-    cb = &cr[PS * PS];
-    {
-        /* after the three patches: the taps (one patch-sized block), the two rows */
-        float *after_taps = &cb[2u * PS * PS];
-        picto_rows_t rows;
-        rows.h[0] = after_taps;
-        rows.h[1] = &after_taps[ROW_FLOATS];
-        picto_resample(img, box, (picto_tap_t *)(void *)&cb[PS * PS], &rows, g, cr, cb);
-    }
-    if (outline == (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE) {
-        picto_mask_triangle(g, cr, cb);
-    }
+    return SBR_OK;
+}
 
-    /* contrast-normalised grey */
+/* The grey patch contrast-normalised in place: zero mean, unit deviation (plus a floor
+   of 4 grey levels squared in the variance). */
+static void grey_normalise(float *g)
+{
+    float mean = 0.0f;
+    float var = 0.0f;
+    float inv_sd;
+    uint32_t i;
     for (i = 0u; i < (PS * PS); i++) {
         mean += g[i];
     }
@@ -488,48 +469,53 @@ sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[
     for (i = 0u; i < (PS * PS); i++) {
         g[i] = (g[i] - mean) * inv_sd;
     }
-    (void)memset(feat, 0, SBR_PICTO_FEATURES * sizeof(float));
+}
 
-    /* orientation histograms: the gradient projected on 0, 45, 90 and 135 degrees */
+/* The eight orientation bins of pixel (u, v)'s gradient: its projections on 0, 45, 90 and
+   135 degrees, direction k getting a positive projection, k + 4 a negative one (negated);
+   the other bin gets +0, which leaves every sum as it was, so all eight bins are updated
+   without a data-dependent branch or index. */
+static void orient_bins(const float *g, uint32_t u, uint32_t v, float add8[ORIENT])
+{
+    const float gx = g[(v * PS) + nb_hi(u)] - g[(v * PS) + nb_lo(u)];
+    const float gy = g[(nb_hi(v) * PS) + u] - g[(nb_lo(v) * PS) + u];
+    float proj[4];
+    uint32_t k;
+    proj[0] = gx;
+    proj[1] = DIAG * (gx + gy);
+    proj[2] = gy;
+    proj[3] = DIAG * (gy - gx);
+    for (k = 0u; k < 4u; k++) {
+        float pos = 0.0f;
+        float neg = -proj[k];
+        if (proj[k] > 0.0f) {
+            pos = proj[k];
+            neg = 0.0f;
+        }
+        add8[k] = pos;
+        add8[k + 4u] = neg;
+    }
+}
+
+/* Orientation histograms of the normalised grey patch: per cell, and per cell of the
+   finer centre grid; each unit-normalised. */
+static void orient_features(const float *g, float *feat)
+{
+    uint32_t u;
+    uint32_t v;
     for (v = 0u; v < PS; v++) {
-        const uint32_t vm = nb_lo(v);
-        const uint32_t vp = nb_hi(v);
         for (u = 0u; u < PS; u++) {
-            const uint32_t um = nb_lo(u);
-            const uint32_t up = nb_hi(u);
-            const float gx = g[(v * PS) + up] - g[(v * PS) + um];
-            const float gy = g[(vp * PS) + u] - g[(vm * PS) + u];
-            float proj[4];
             float add8[ORIENT];
             float *cell = &feat[F_HOG + ((((v / CELL) * CELLS) + (u / CELL)) * ORIENT)];
-            float *fine = NULL;
             uint32_t k;
-            if ((u >= CENTRE_LO) && (v >= CENTRE_LO) && (u < (PS - CENTRE_LO)) &&
-                (v < (PS - CENTRE_LO))) {
-                fine = &feat[F_CENTRE + ((((((v - CENTRE_LO) / CENTRE_CELL) * CENTRE_CELLS) +
-                                           ((u - CENTRE_LO) / CENTRE_CELL))) * ORIENT)];
-            }
-            proj[0] = gx;
-            proj[1] = DIAG * (gx + gy);
-            proj[2] = gy;
-            proj[3] = DIAG * (gy - gx);
-            /* direction k gets a positive projection, k + 4 a negative one (negated); the
-               other bin gets +0, which leaves every sum as it was, so all eight bins are
-               updated without a data-dependent branch or index */
-            for (k = 0u; k < 4u; k++) {
-                float pos = 0.0f;
-                float neg = -proj[k];
-                if (proj[k] > 0.0f) {
-                    pos = proj[k];
-                    neg = 0.0f;
-                }
-                add8[k] = pos;
-                add8[k + 4u] = neg;
-            }
+            orient_bins(g, u, v, add8);
             for (k = 0u; k < ORIENT; k++) {
                 cell[k] += add8[k];
             }
-            if (fine != NULL) {
+            if ((u >= CENTRE_LO) && (v >= CENTRE_LO) && (u < (PS - CENTRE_LO)) &&
+                (v < (PS - CENTRE_LO))) {
+                float *fine = &feat[F_CENTRE + ((((((v - CENTRE_LO) / CENTRE_CELL) * CENTRE_CELLS) +
+                                                  ((u - CENTRE_LO) / CENTRE_CELL))) * ORIENT)];
                 for (k = 0u; k < ORIENT; k++) {
                     fine[k] += add8[k];
                 }
@@ -538,8 +524,14 @@ sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[
     }
     unit_norm(&feat[F_HOG], CELLS * CELLS * ORIENT);
     unit_norm(&feat[F_CENTRE], CENTRE_CELLS * CENTRE_CELLS * ORIENT);
+}
 
-    /* grey thumbnail and colour per cell */
+/* The grey thumbnail and the chromaticity per colour cell (means). */
+static void thumb_colour_features(const float *g, const float *cr, const float *cb, float *feat)
+{
+    uint32_t i;
+    uint32_t u;
+    uint32_t v;
     for (v = 0u; v < PS; v++) {
         for (u = 0u; u < PS; u++) {
             const uint32_t p = (v * PS) + u;
@@ -555,6 +547,42 @@ sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[
     for (i = 0u; i < (2u * CCELLS * CCELLS); i++) {
         feat[F_COLOUR + i] *= 1.0f / (CCELL_AREA);
     }
+}
+
+sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[4],
+                                        uint32_t outline, float *feat, uint32_t len,
+                                        void *workspace, size_t workspace_size)
+{
+    float *g;
+    float *cr;
+    float *cb;
+    sbr_status_t st;
+
+    if ((img == NULL) || (box == NULL) || (feat == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = features_check(img, box, outline, len, workspace, workspace_size);
+    if (st != SBR_OK) {
+        return st;
+    }
+    g = (float *)workspace;
+    cr = &g[PS * PS];
+    cb = &cr[PS * PS];
+    {
+        /* after the three patches: the taps (one patch-sized block), the two rows */
+        float *after_taps = &cb[2u * PS * PS];
+        picto_rows_t rows;
+        rows.h[0] = after_taps;
+        rows.h[1] = &after_taps[ROW_FLOATS];
+        picto_resample(img, box, (picto_tap_t *)(void *)&cb[PS * PS], &rows, g, cr, cb);
+    }
+    if (outline == (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE) {
+        picto_mask_triangle(g, cr, cb);
+    }
+    grey_normalise(g);
+    (void)memset(feat, 0, SBR_PICTO_FEATURES * sizeof(float));
+    orient_features(g, feat);
+    thumb_colour_features(g, cr, cb, feat);
     return SBR_OK;
 }
 

@@ -485,32 +485,34 @@ static void pass_flood(mser_ctx_t *c)
 }
 
 /* Variations, selection and duplicate removal over the nodes of one pass; emits regions. */
-static void pass_select(mser_ctx_t *c, const sbr_mser_config_t *cfg, uint8_t polarity,
-                        sbr_mser_region_t *regions, uint32_t capacity, uint32_t *count,
-                        int *full)
+/* Each node's variation (growth over delta levels relative to its size) and, in its
+   parent, the smallest variation of its children. */
+static void select_variation(mser_ctx_t *c)
 {
     uint32_t n;
-
     for (n = 0u; n < c->node_count; n++) {
         mser_node_t *nd = &c->node[n];
         const uint32_t top_val = (uint32_t)nd->val + c->delta;
         uint32_t a = n;
+        uint32_t grown;
         while ((c->node[a].parent != MSER_NONE) &&
                ((uint32_t)c->node[c->node[a].parent].val <= top_val)) {
             a = c->node[a].parent;
         }
-        {
-            const uint32_t grown = c->node[a].size - nd->size_lo;
-            nd->var = (float)grown / (float)nd->size;
-        }
-        if (nd->parent != MSER_NONE) {
-            mser_node_t *pn = &c->node[nd->parent];
-            if (nd->var < pn->child_var) {
-                pn->child_var = nd->var;
-            }
+        grown = c->node[a].size - nd->size_lo;
+        nd->var = (float)grown / (float)nd->size;
+        if ((nd->parent != MSER_NONE) && (nd->var < c->node[nd->parent].child_var)) {
+            c->node[nd->parent].child_var = nd->var;
         }
     }
-    /* Children come before their parents, so child_var is complete here. */
+}
+
+/* Stable nodes: small enough, variation within bounds and a local minimum against the
+   children and the parent (children come before their parents, so child_var is
+   complete here). */
+static void select_stable(mser_ctx_t *c, const sbr_mser_config_t *cfg)
+{
+    uint32_t n;
     for (n = 0u; n < c->node_count; n++) {
         mser_node_t *nd = &c->node[n];
         int ok = 1;
@@ -526,55 +528,118 @@ static void pass_select(mser_ctx_t *c, const sbr_mser_config_t *cfg, uint8_t pol
             nd->flags = NODE_SELECTED;
         }
     }
-    if (cfg->min_diversity > 0.0f) {
-        for (n = 0u; n < c->node_count; n++) {
-            mser_node_t *nd = &c->node[n];
-            if (nd->flags == NODE_SELECTED) {
-                uint32_t a = nd->parent;
-                while ((a != MSER_NONE) && (c->node[a].flags != NODE_SELECTED)) {
-                    a = c->node[a].parent;
-                }
-                if (a != MSER_NONE) {
-                    mser_node_t *an = &c->node[a];
-                    const uint32_t gap = an->size - nd->size;
-                    if ((float)gap < (cfg->min_diversity * (float)an->size)) {
-                        if (an->var < nd->var) {
-                            nd->flags = 0u;
-                        } else {
-                            an->flags = 0u;
-                        }
-                    }
-                }
+}
+
+/* Diversity: of a selected node and its nearest selected ancestor that differ in size by
+   less than min_diversity of the ancestor's, the less stable one is dropped. */
+static void select_diverse(mser_ctx_t *c, float min_diversity)
+{
+    uint32_t n;
+    for (n = 0u; n < c->node_count; n++) {
+        mser_node_t *nd = &c->node[n];
+        uint32_t a = MSER_NONE;
+        if (nd->flags == NODE_SELECTED) {
+            a = nd->parent;
+            while ((a != MSER_NONE) && (c->node[a].flags != NODE_SELECTED)) {
+                a = c->node[a].parent;
             }
         }
+        if (a != MSER_NONE) {
+            mser_node_t *an = &c->node[a];
+            const uint32_t gap = an->size - nd->size;
+            if (((float)gap < (min_diversity * (float)an->size)) && (an->var < nd->var)) {
+                nd->flags = 0u;
+            } else if ((float)gap < (min_diversity * (float)an->size)) {
+                an->flags = 0u;
+            } else {
+                /* diverse enough */
+            }
+        }
+    }
+}
+
+/* A selected node as a region of the given polarity. */
+static void select_region(const mser_ctx_t *c, const mser_node_t *nd, uint8_t polarity,
+                          sbr_mser_region_t *r)
+{
+    const uint32_t sy = (uint32_t)(((uint64_t)nd->seed * c->div_magic) >> c->div_shift);
+    r->bbox.x = (uint32_t)nd->x0;
+    r->bbox.y = (uint32_t)nd->y0;
+    r->bbox.width = ((uint32_t)nd->x1 - (uint32_t)nd->x0) + 1u;
+    r->bbox.height = ((uint32_t)nd->y1 - (uint32_t)nd->y0) + 1u;
+    r->area = nd->size;
+    r->variation = nd->var;
+    r->seed_x = (uint16_t)(nd->seed - (sy * c->width));
+    r->seed_y = (uint16_t)sy;
+    if (polarity == (uint8_t)SBR_MSER_DARK) {
+        r->level = nd->val;
+    } else {
+        r->level = (uint8_t)(255u - (uint32_t)nd->val);
+    }
+    r->polarity = polarity;
+}
+
+static void pass_select(mser_ctx_t *c, const sbr_mser_config_t *cfg, uint8_t polarity,
+                        sbr_mser_region_t *regions, uint32_t capacity, uint32_t *count,
+                        int *full)
+{
+    uint32_t n;
+    select_variation(c);
+    select_stable(c, cfg);
+    if (cfg->min_diversity > 0.0f) {
+        select_diverse(c, cfg->min_diversity);
     }
     for (n = 0u; n < c->node_count; n++) {
-        const mser_node_t *nd = &c->node[n];
-        if (nd->flags == NODE_SELECTED) {
-            if (*count < capacity) {
-                sbr_mser_region_t *r = &regions[*count];
-                const uint32_t sy =
-                    (uint32_t)(((uint64_t)nd->seed * c->div_magic) >> c->div_shift);
-                r->bbox.x = (uint32_t)nd->x0;
-                r->bbox.y = (uint32_t)nd->y0;
-                r->bbox.width = ((uint32_t)nd->x1 - (uint32_t)nd->x0) + 1u;
-                r->bbox.height = ((uint32_t)nd->y1 - (uint32_t)nd->y0) + 1u;
-                r->area = nd->size;
-                r->variation = nd->var;
-                r->seed_x = (uint16_t)(nd->seed - (sy * c->width));
-                r->seed_y = (uint16_t)sy;
-                if (polarity == (uint8_t)SBR_MSER_DARK) {
-                    r->level = nd->val;
-                } else {
-                    r->level = (uint8_t)(255u - (uint32_t)nd->val);
-                }
-                r->polarity = polarity;
-                (*count)++;
-            } else {
-                *full = 1;
-            }
+        if (c->node[n].flags != NODE_SELECTED) {
+            /* not a region */
+        } else if (*count < capacity) {
+            select_region(c, &c->node[n], polarity, &regions[*count]);
+            (*count)++;
+        } else {
+            *full = 1;
         }
     }
+}
+
+/* The context of one detection over the workspace (layout of sbr_mser_workspace_size()),
+   with the exact division by the width (2^shift > width^2 * height). */
+static void mser_ctx_init(mser_ctx_t *c, const sbr_image_t *map, const sbr_mser_config_t *cfg,
+                          void *workspace)
+{
+    const size_t pixels = (size_t)map->width * (size_t)map->height;
+    const size_t nodes = mser_nodes_for(map->width, map->height, cfg);
+    const uint64_t span = (uint64_t)map->width * (uint64_t)map->width * (uint64_t)map->height;
+    uint8_t *base = (uint8_t *)workspace;
+    uint32_t bits = 1u;
+    c->heap_base = (uint32_t *)(void *)base;
+    c->heap_top = &c->heap_base[MSER_LEVELS];
+    base = &base[MSER_HEAP_HEADER_BYTES];
+    c->comp = (mser_comp_t *)(void *)base;
+    base = &base[(size_t)MSER_STACK * MSER_COMP_BYTES];
+    c->ring_cap = cfg->delta + 1u;
+    c->ring_size = (uint32_t *)(void *)base;
+    base = &base[(size_t)MSER_STACK * c->ring_cap * 4u];
+    c->ring_val = (uint16_t *)(void *)base;
+    base = &base[(size_t)MSER_STACK * c->ring_cap * 4u];
+    c->node = (mser_node_t *)(void *)base;
+    base = &base[nodes * SBR_MSER_NODE_BYTES];
+    c->heap = (uint32_t *)(void *)base;
+    base = &base[pixels * 4u];
+    c->reached = (uint32_t *)(void *)base;
+    base = &base[reached_words(pixels) * 4u];
+    c->gray = base;
+    c->width = map->width;
+    c->height = map->height;
+    c->node_cap = (uint32_t)nodes;
+    c->node_count = 0u;
+    c->delta = cfg->delta;
+    c->min_area = cfg->min_area;
+    c->overflow = 0;
+    while ((bits < 63u) && ((((uint64_t)1u) << bits) <= span)) {
+        bits++;
+    }
+    c->div_shift = bits;
+    c->div_magic = ((((uint64_t)1u) << bits) / (uint64_t)map->width) + 1u;
 }
 
 sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cfg,
@@ -584,11 +649,6 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     sbr_status_t st;
     mser_ctx_t c;
     size_t need;
-    size_t pixels;
-    size_t nodes;
-    uint8_t *base;
-    uint32_t bits;
-    uint64_t span;
     int full = 0;
     int overflow = 0;
     int counted = 0; /* the dark pass counted the levels */
@@ -615,44 +675,7 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     if ((workspace == NULL) || (workspace_size < need) || (sbr_util_aligned(workspace, 4u) == 0)) {
         return SBR_ERR_WORKSPACE;
     }
-
-    pixels = (size_t)map->width * (size_t)map->height;
-    nodes = mser_nodes_for(map->width, map->height, cfg);
-    base = (uint8_t *)workspace;
-    c.heap_base = (uint32_t *)(void *)base;
-    c.heap_top = &c.heap_base[MSER_LEVELS];
-    base = &base[MSER_HEAP_HEADER_BYTES];
-    c.comp = (mser_comp_t *)(void *)base;
-    base = &base[(size_t)MSER_STACK * MSER_COMP_BYTES];
-    c.ring_cap = cfg->delta + 1u;
-    c.ring_size = (uint32_t *)(void *)base;
-    base = &base[(size_t)MSER_STACK * c.ring_cap * 4u];
-    c.ring_val = (uint16_t *)(void *)base;
-    base = &base[(size_t)MSER_STACK * c.ring_cap * 4u];
-    c.node = (mser_node_t *)(void *)base;
-    base = &base[nodes * SBR_MSER_NODE_BYTES];
-    c.heap = (uint32_t *)(void *)base;
-    base = &base[pixels * 4u];
-    c.reached = (uint32_t *)(void *)base;
-    base = &base[reached_words(pixels) * 4u];
-    c.gray = base;
-
-    c.width = map->width;
-    c.height = map->height;
-    c.node_cap = (uint32_t)nodes;
-    c.node_count = 0u;
-    c.delta = cfg->delta;
-    c.min_area = cfg->min_area;
-    c.overflow = 0;
-    /* exact division by the width: 2^shift > width^2 * height */
-    span = (uint64_t)map->width * (uint64_t)map->width * (uint64_t)map->height;
-    bits = 1u;
-    while ((bits < 63u) && ((((uint64_t)1u) << bits) <= span)) {
-        bits++;
-    }
-    c.div_shift = bits;
-    c.div_magic = ((((uint64_t)1u) << bits) / (uint64_t)map->width) + 1u;
-
+    mser_ctx_init(&c, map, cfg, workspace);
     if ((cfg->polarity & (uint32_t)SBR_MSER_DARK) != 0u) {
         pass_setup(&c, map, 0u, 0);
         pass_flood(&c);
@@ -709,68 +732,38 @@ static void mask_grow(const sbr_image_t *map, const sbr_mser_region_t *r, uint8_
     }
 }
 
-sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_t *region,
-                                  void *workspace, size_t workspace_size, uint8_t *mask,
-                                  uint32_t mask_stride, size_t mask_size)
+/* A region that lies inside the map, one pixel off its border, with its seed inside its
+   box and an area the box can hold. */
+static int region_in_map(const sbr_image_t *map, const sbr_mser_region_t *region)
 {
-    sbr_status_t st;
-    const sbr_rect_t *b;
-    uint32_t *stack;
-    uint32_t sp;
-    uint32_t filled;
-    uint32_t y;
-    uint32_t bw;
-
-    if ((map == NULL) || (region == NULL) || (mask == NULL)) {
-        return SBR_ERR_NULL;
-    }
-    st = sbr_image_check(map);
-    if (st != SBR_OK) {
-        return st;
-    }
-    if ((map->format != SBR_PIXEL_GRAY8) || (map->width < 3u) || (map->height < 3u)) {
-        return SBR_ERR_RANGE;
-    }
-    b = &region->bbox;
+    const sbr_rect_t *b = &region->bbox;
+    int ok = 1;
     if ((region->polarity != (uint8_t)SBR_MSER_DARK) &&
         (region->polarity != (uint8_t)SBR_MSER_BRIGHT)) {
-        return SBR_ERR_RANGE;
+        ok = 0;
+    } else if ((b->width == 0u) || (b->height == 0u) || (b->x < 1u) || (b->y < 1u) ||
+               (b->x >= (map->width - 1u)) || (b->y >= (map->height - 1u)) ||
+               (b->width > ((map->width - 1u) - b->x)) ||
+               (b->height > ((map->height - 1u) - b->y)) ||
+               ((uint32_t)region->seed_x < b->x) || ((uint32_t)region->seed_y < b->y) ||
+               ((uint32_t)region->seed_x >= (b->x + b->width)) ||
+               ((uint32_t)region->seed_y >= (b->y + b->height)) || (region->area == 0u) ||
+               (region->area > (b->width * b->height))) {
+        ok = 0;
+    } else {
+        /* inside */
     }
-    if ((b->width == 0u) || (b->height == 0u) || (b->x < 1u) || (b->y < 1u) ||
-        (b->x >= (map->width - 1u)) || (b->y >= (map->height - 1u)) ||
-        (b->width > ((map->width - 1u) - b->x)) || (b->height > ((map->height - 1u) - b->y)) ||
-        ((uint32_t)region->seed_x < b->x) || ((uint32_t)region->seed_y < b->y) ||
-        ((uint32_t)region->seed_x >= (b->x + b->width)) ||
-        ((uint32_t)region->seed_y >= (b->y + b->height)) || (region->area == 0u) ||
-        (region->area > (b->width * b->height))) {
-        return SBR_ERR_RANGE;
-    }
-    bw = b->width;
-    if ((mask_stride < bw) ||
-        (mask_size < (((size_t)(b->height - 1u) * mask_stride) + (size_t)bw))) {
-        return SBR_ERR_ALIGN;
-    }
-    if ((workspace == NULL) ||
-        (workspace_size < SBR_MSER_MASK_WORKSPACE_SIZE(b->width, b->height)) ||
-        (sbr_util_aligned(workspace, 4u) == 0)) {
-        return SBR_ERR_WORKSPACE;
-    }
-    stack = (uint32_t *)workspace;
-    for (y = 0u; y < b->height; y++) {
-        (void)memset(&mask[(size_t)y * mask_stride], 0, (size_t)bw);
-    }
-    {
-        const uint32_t sx = (uint32_t)region->seed_x - b->x;
-        const uint32_t sy = (uint32_t)region->seed_y - b->y;
-        const uint8_t v = map->data[((size_t)region->seed_y * map->stride) + region->seed_x];
-        if (mser_pass_level(v, region) == 0) {
-            return SBR_ERR_CORRUPT;
-        }
-        mask[((size_t)sy * mask_stride) + sx] = 255u;
-        stack[0] = (sy << 16) | sx;
-        sp = 1u;
-        filled = 1u;
-    }
+    return ok;
+}
+
+/* Flood fill of the region's pixels from its seed (already set in the mask and pushed);
+   returns the number of pixels filled. */
+static uint32_t mask_fill(const sbr_image_t *map, const sbr_mser_region_t *region, uint8_t *mask,
+                          uint32_t mask_stride, uint32_t *stack)
+{
+    const sbr_rect_t *b = &region->bbox;
+    uint32_t sp = 1u;
+    uint32_t filled = 1u;
     while (sp > 0u) {
         /* stack entries pack (y, x) in 16 bits each (region boxes are below 65536 px) */
         uint32_t lx;
@@ -778,7 +771,7 @@ sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_
         sp--;
         ly = stack[sp] >> 16;
         lx = stack[sp] & 0xFFFFu;
-        if ((lx + 1u) < bw) {
+        if ((lx + 1u) < b->width) {
             mask_grow(map, region, mask, mask_stride, lx + 1u, ly, stack, &sp, &filled);
         }
         if ((ly + 1u) < b->height) {
@@ -791,7 +784,54 @@ sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_
             mask_grow(map, region, mask, mask_stride, lx, ly - 1u, stack, &sp, &filled);
         }
     }
-    if (filled != region->area) {
+    return filled;
+}
+
+sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_t *region,
+                                  void *workspace, size_t workspace_size, uint8_t *mask,
+                                  uint32_t mask_stride, size_t mask_size)
+{
+    sbr_status_t st;
+    const sbr_rect_t *b;
+    uint32_t *stack;
+    uint32_t y;
+    uint32_t sx;
+    uint32_t sy;
+
+    if ((map == NULL) || (region == NULL) || (mask == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = sbr_image_check(map);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((map->format != SBR_PIXEL_GRAY8) || (map->width < 3u) || (map->height < 3u) ||
+        (region_in_map(map, region) == 0)) {
+        return SBR_ERR_RANGE;
+    }
+    b = &region->bbox;
+    if ((mask_stride < b->width) ||
+        (mask_size < (((size_t)(b->height - 1u) * mask_stride) + (size_t)b->width))) {
+        return SBR_ERR_ALIGN;
+    }
+    if ((workspace == NULL) ||
+        (workspace_size < SBR_MSER_MASK_WORKSPACE_SIZE(b->width, b->height)) ||
+        (sbr_util_aligned(workspace, 4u) == 0)) {
+        return SBR_ERR_WORKSPACE;
+    }
+    stack = (uint32_t *)workspace;
+    for (y = 0u; y < b->height; y++) {
+        (void)memset(&mask[(size_t)y * mask_stride], 0, (size_t)b->width);
+    }
+    if (mser_pass_level(map->data[((size_t)region->seed_y * map->stride) + region->seed_x],
+                        region) == 0) {
+        return SBR_ERR_CORRUPT;
+    }
+    sx = (uint32_t)region->seed_x - b->x;
+    sy = (uint32_t)region->seed_y - b->y;
+    mask[((size_t)sy * mask_stride) + sx] = 255u;
+    stack[0] = (sy << 16) | sx;
+    if (mask_fill(map, region, mask, mask_stride, stack) != region->area) {
         return SBR_ERR_CORRUPT;
     }
     return SBR_OK;

@@ -813,165 +813,192 @@ static void trk_emit(const sbr_track_t *trk, sbr_track_target_t *targets, uint32
     *count = written;
 }
 
+/* The geometry of this step: channel layout, kernel width, and the sub-steps that split a
+   dt longer than 1.5 model periods (*sub of *ratio periods each). */
+static void trk_step_geo(const sbr_track_t *trk, float dt, trk_geo_t *g, uint32_t *sub,
+                         float *ratio)
+{
+    const sbr_track_model_t *m = trk->cfg.model;
+    const uint32_t vm1 = m->vel_count - 1u;
+    const uint32_t wm1 = trk->cfg.window - 1u;
+    g->w = trk->cfg.window;
+    g->v = m->vel_count;
+    g->s = m->vel_spacing;
+    g->c0 = (float)vm1 * 0.5f;
+    g->half = (float)wm1 * 0.5f;
+    /* a whole number (>= 3) of channels: then a detection's kernel is an exact cos²
+       channel encoding (its centroid is the detection, whatever its sub-channel
+       position) */
+    g->kw = floorf(((TRK_KERNEL_PER_SIGMA * trk->cfg.meas_sigma) / g->s) + 0.5f);
+    if (g->kw < 3.0f) {
+        g->kw = 3.0f;
+    }
+    g->kw *= g->s;
+    *sub = 1u;
+    *ratio = dt / m->period;
+    if (*ratio > 1.5f) {
+        *sub = (uint32_t)ceilf(*ratio);
+        *ratio /= (float)*sub;
+    }
+}
+
+/* 1-2. Every live target predicted over `sub` sub-steps of `ratio` periods, aged, and its
+   candidate detections gathered. */
+static void trk_predict_all(sbr_track_t *trk, const trk_geo_t *g, uint32_t sub, float ratio,
+                            const sbr_track_detection_t *dets, uint32_t n)
+{
+    uint32_t t;
+    for (t = 0u; t < trk->cfg.max_targets; t++) {
+        sbr_track_slot_t *sl = &trk->slot[t];
+        sl->det = -1;
+        sl->flags &= ~(SBR_TRACK_UPDATED | SBR_TRACK_BORN);
+        trk->ncand[t] = 0u;
+        if ((sl->flags & TRK_ALIVE) != 0u) {
+            uint32_t a;
+            uint32_t s;
+            for (a = 0u; a < 2u; a++) {
+                for (s = 0u; s < sub; s++) {
+                    trk_predict_axis(trk, g, a, trk_dens(trk, g, t, a), &sl->origin[a], ratio);
+                }
+            }
+            sl->age++;
+            trk_candidates(trk, g, t, dets, n);
+        }
+    }
+}
+
+/* 4. One live target updated by its detection or counted as missed, its estimate decoded;
+   it dies when a tentative target misses, a confirmed one misses more than max_misses
+   times, or its estimate leaves the model's extent. */
+static void trk_update_slot(sbr_track_t *trk, const trk_geo_t *g, uint32_t t,
+                            const sbr_track_detection_t *dets, float *vel_marg)
+{
+    const sbr_track_model_t *m = trk->cfg.model;
+    sbr_track_slot_t *sl = &trk->slot[t];
+    uint32_t a;
+    int dead = 0;
+    if (sl->det >= 0) {
+        const sbr_track_detection_t *q = &dets[sl->det];
+        trk_update_axis(g, trk_dens(trk, g, t, 0u), sl->origin[0], q->x, q->certainty, vel_marg);
+        trk_update_axis(g, trk_dens(trk, g, t, 1u), sl->origin[1], q->y, q->certainty, vel_marg);
+        sl->hits++;
+        sl->misses = 0u;
+        sl->flags |= SBR_TRACK_UPDATED;
+        if (sl->hits >= trk->cfg.confirm_hits) {
+            sl->flags |= SBR_TRACK_CONFIRMED;
+        }
+    } else {
+        sl->misses++;
+        if (((sl->flags & SBR_TRACK_CONFIRMED) == 0u) || (sl->misses > trk->cfg.max_misses)) {
+            dead = 1;
+        }
+    }
+    sl->certainty = 1.0f;
+    for (a = 0u; a < 2u; a++) {
+        float c = 0.0f;
+        trk_decode_axis(g, trk_dens(trk, g, t, a), sl->origin[a], &sl->est[a], &sl->est[a + 2u],
+                        &c);
+        sl->certainty *= c;
+        if ((sl->est[a] < 0.0f) || (sl->est[a] >= m->extent[a])) {
+            dead = 1;
+        }
+    }
+    if (dead != 0) {
+        sl->flags = 0u;
+    }
+}
+
+/* 5. A new target in a free slot for detection i; returns 0 when every slot is taken. */
+static int trk_birth(sbr_track_t *trk, const trk_geo_t *g, const sbr_track_detection_t *dets,
+                     uint32_t i)
+{
+    uint32_t free_slot = SBR_TRACK_MAX_TARGETS;
+    uint32_t t;
+    for (t = 0u; (t < trk->cfg.max_targets) && (free_slot == SBR_TRACK_MAX_TARGETS); t++) {
+        if ((trk->slot[t].flags & TRK_ALIVE) == 0u) {
+            free_slot = t;
+        }
+    }
+    if (free_slot == SBR_TRACK_MAX_TARGETS) {
+        return 0;
+    }
+    {
+        sbr_track_slot_t *sl = &trk->slot[free_slot];
+        const float z[2] = {dets[i].x, dets[i].y};
+        uint32_t a;
+        (void)memset(sl, 0, sizeof(*sl));
+        sl->certainty = 1.0f;
+        for (a = 0u; a < 2u; a++) {
+            float c = 0.0f;
+            trk_birth_axis(trk, g, a, trk_dens(trk, g, free_slot, a), &sl->origin[a], z[a]);
+            trk_decode_axis(g, trk_dens(trk, g, free_slot, a), sl->origin[a], &sl->est[a],
+                            &sl->est[a + 2u], &c);
+            sl->certainty *= c;
+        }
+        sl->id = trk->next_id;
+        trk->next_id++;
+        if (trk->next_id == 0u) {
+            trk->next_id = 1u;
+        }
+        sl->hits = 1u;
+        sl->det = (int32_t)i;
+        sl->flags = TRK_ALIVE | SBR_TRACK_BORN | SBR_TRACK_UPDATED;
+        if (sl->hits >= trk->cfg.confirm_hits) {
+            sl->flags |= SBR_TRACK_CONFIRMED;
+        }
+    }
+    return 1;
+}
+
 sbr_status_t sbr_track_step(sbr_track_t *trk, float dt, const sbr_track_detection_t *dets,
                             uint32_t n, sbr_track_target_t *targets, uint32_t capacity,
                             uint32_t *count)
 {
-    sbr_status_t st = SBR_OK;
+    sbr_status_t st;
+    uint8_t used[SBR_TRACK_MAX_DETECTIONS];
+    float vel_marg[SBR_TRACK_MAX_VEL];
+    trk_geo_t g;
+    uint32_t sub;
+    float ratio;
+    uint32_t t;
+    uint32_t i;
+    int full = 0;
+    int overflow = 0;
     if ((trk == NULL) || (count == NULL) || ((targets == NULL) && (capacity > 0u))) {
-        st = SBR_ERR_NULL;
-    } else {
-        *count = 0u;
-        st = trk_check_instance(trk);
+        return SBR_ERR_NULL;
     }
+    *count = 0u;
+    st = trk_check_instance(trk);
     if (st == SBR_OK) {
         st = trk_check_inputs(trk, dt, dets, n);
     }
-    if (st == SBR_OK) {
-        const sbr_track_model_t *m = trk->cfg.model;
-        uint8_t used[SBR_TRACK_MAX_DETECTIONS];
-        float vel_marg[SBR_TRACK_MAX_VEL];
-        trk_geo_t g;
-        uint32_t sub = 1u;
-        float ratio = dt / m->period;
-        uint32_t t;
-        uint32_t i;
-        uint32_t s;
-        int full = 0;
-        int overflow = 0;
-        g.w = trk->cfg.window;
-        g.v = m->vel_count;
-        g.s = m->vel_spacing;
-        {
-            const uint32_t vm1 = g.v - 1u;
-            const uint32_t wm1 = g.w - 1u;
-            g.c0 = (float)vm1 * 0.5f;
-            g.half = (float)wm1 * 0.5f;
+    if (st != SBR_OK) {
+        return st;
+    }
+    trk_step_geo(trk, dt, &g, &sub, &ratio);
+    (void)memset(used, 0, sizeof(used));
+    trk_predict_all(trk, &g, sub, ratio, dets, n);
+    /* 3. associate: confirmed targets first */
+    trk_assign(trk, SBR_TRACK_CONFIRMED, used);
+    trk_assign(trk, 0u, used);
+    for (t = 0u; t < trk->cfg.max_targets; t++) {
+        if ((trk->slot[t].flags & TRK_ALIVE) != 0u) {
+            trk_update_slot(trk, &g, t, dets, vel_marg);
         }
-        /* a whole number (>= 3) of channels: then a detection's kernel is an exact cos²
-           channel encoding (its centroid is the detection, whatever its sub-channel
-           position) */
-        g.kw = floorf(((TRK_KERNEL_PER_SIGMA * trk->cfg.meas_sigma) / g.s) + 0.5f);
-        if (g.kw < 3.0f) {
-            g.kw = 3.0f;
-        }
-        g.kw *= g.s;
-        if (ratio > 1.5f) {
-            sub = (uint32_t)ceilf(ratio);
-            ratio /= (float)sub;
-        }
-        (void)memset(used, 0, sizeof(used));
-        /* 1. predict */
-        for (t = 0u; t < trk->cfg.max_targets; t++) {
-            sbr_track_slot_t *sl = &trk->slot[t];
-            sl->det = -1;
-            sl->flags &= ~(SBR_TRACK_UPDATED | SBR_TRACK_BORN);
-            trk->ncand[t] = 0u;
-            if ((sl->flags & TRK_ALIVE) != 0u) {
-                uint32_t a;
-                for (a = 0u; a < 2u; a++) {
-                    for (s = 0u; s < sub; s++) {
-                        trk_predict_axis(trk, &g, a, trk_dens(trk, &g, t, a), &sl->origin[a],
-                                         ratio);
-                    }
-                }
-                sl->age++;
-                /* 2. candidates */
-                trk_candidates(trk, &g, t, dets, n);
+    }
+    for (i = 0u; i < n; i++) {
+        if (used[i] == 0u) {
+            if (trk_birth(trk, &g, dets, i) == 0) {
+                full = 1;
+            } else {
+                used[i] = 1u;
             }
         }
-        /* 3. associate: confirmed targets first */
-        trk_assign(trk, SBR_TRACK_CONFIRMED, used);
-        trk_assign(trk, 0u, used);
-        /* 4. update, misses, deaths */
-        for (t = 0u; t < trk->cfg.max_targets; t++) {
-            sbr_track_slot_t *sl = &trk->slot[t];
-            if ((sl->flags & TRK_ALIVE) != 0u) {
-                uint32_t a;
-                int dead = 0;
-                if (sl->det >= 0) {
-                    const sbr_track_detection_t *q = &dets[sl->det];
-                    trk_update_axis(&g, trk_dens(trk, &g, t, 0u), sl->origin[0], q->x,
-                                    q->certainty, vel_marg);
-                    trk_update_axis(&g, trk_dens(trk, &g, t, 1u), sl->origin[1], q->y,
-                                    q->certainty, vel_marg);
-                    sl->hits++;
-                    sl->misses = 0u;
-                    sl->flags |= SBR_TRACK_UPDATED;
-                    if (sl->hits >= trk->cfg.confirm_hits) {
-                        sl->flags |= SBR_TRACK_CONFIRMED;
-                    }
-                } else {
-                    sl->misses++;
-                    if ((sl->flags & SBR_TRACK_CONFIRMED) == 0u) {
-                        dead = 1;
-                    } else if (sl->misses > trk->cfg.max_misses) {
-                        dead = 1;
-                    } else {
-                        dead = 0;
-                    }
-                }
-                sl->certainty = 1.0f;
-                for (a = 0u; a < 2u; a++) {
-                    float c = 0.0f;
-                    trk_decode_axis(&g, trk_dens(trk, &g, t, a), sl->origin[a], &sl->est[a],
-                                    &sl->est[a + 2u], &c);
-                    sl->certainty *= c;
-                    if ((sl->est[a] < 0.0f) || (sl->est[a] >= m->extent[a])) {
-                        dead = 1;
-                    }
-                }
-                if (dead != 0) {
-                    sl->flags = 0u;
-                }
-            }
-        }
-        /* 5. births */
-        for (i = 0u; i < n; i++) {
-            if (used[i] == 0u) {
-                uint32_t free_slot = SBR_TRACK_MAX_TARGETS;
-                for (t = 0u; (t < trk->cfg.max_targets) && (free_slot == SBR_TRACK_MAX_TARGETS);
-                     t++) {
-                    if ((trk->slot[t].flags & TRK_ALIVE) == 0u) {
-                        free_slot = t;
-                    }
-                }
-                if (free_slot == SBR_TRACK_MAX_TARGETS) {
-                    full = 1;
-                } else {
-                    sbr_track_slot_t *sl = &trk->slot[free_slot];
-                    const float z[2] = {dets[i].x, dets[i].y};
-                    uint32_t a;
-                    (void)memset(sl, 0, sizeof(*sl));
-                    sl->certainty = 1.0f;
-                    for (a = 0u; a < 2u; a++) {
-                        float c = 0.0f;
-                        trk_birth_axis(trk, &g, a, trk_dens(trk, &g, free_slot, a),
-                                       &sl->origin[a], z[a]);
-                        trk_decode_axis(&g, trk_dens(trk, &g, free_slot, a), sl->origin[a],
-                                        &sl->est[a], &sl->est[a + 2u], &c);
-                        sl->certainty *= c;
-                    }
-                    sl->id = trk->next_id;
-                    trk->next_id++;
-                    if (trk->next_id == 0u) {
-                        trk->next_id = 1u;
-                    }
-                    sl->hits = 1u;
-                    sl->det = (int32_t)i;
-                    sl->flags = TRK_ALIVE | SBR_TRACK_BORN | SBR_TRACK_UPDATED;
-                    if (sl->hits >= trk->cfg.confirm_hits) {
-                        sl->flags |= SBR_TRACK_CONFIRMED;
-                    }
-                    used[i] = 1u;
-                }
-            }
-        }
-        trk->frame++;
-        trk_emit(trk, targets, capacity, count, &overflow);
-        if ((full != 0) || (overflow != 0)) {
-            st = SBR_ERR_CAPACITY;
-        }
+    }
+    trk->frame++;
+    trk_emit(trk, targets, capacity, count, &overflow);
+    if ((full != 0) || (overflow != 0)) {
+        st = SBR_ERR_CAPACITY;
     }
     return st;
 }

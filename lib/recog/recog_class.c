@@ -1,0 +1,261 @@
+/*
+ * Recogniser: the class stage (pictogram classifier) on the candidates. See
+ * include/sbr/recognizer.h.
+ */
+#include "recog_internal.h"
+
+/* Class and score of one classified box: class = the most probable sign class, score = its
+   probability, share = its share of the sign classes' probability. Returns the sign
+   classes' total probability. */
+static float take_class(recog_hyp_t *h, const float *prob)
+{
+    float signs = 0.0f;
+    uint32_t best = 0u;
+    uint32_t k;
+    for (k = 0u; k < SBR_PICTO_BACKGROUND; k++) {
+        signs += prob[k];
+        if (prob[k] > prob[best]) {
+            best = k;
+        }
+    }
+    h->class_id = (uint16_t)best;
+    h->score = prob[best];
+    h->share = (signs > 0.0f) ? (prob[best] / signs) : 0.0f;
+    return signs;
+}
+/* The box of a hypothesis's centre and size, x0, y0, x1, y1 (unclipped). */
+static void centre_box(const recog_hyp_t *h, float box[4])
+{
+    box[0] = h->mx - (0.5f * h->mw);
+    box[1] = h->my - (0.5f * h->mh);
+    box[2] = h->mx + (0.5f * h->mw);
+    box[3] = h->my + (0.5f * h->mh);
+}
+
+/* Features and class probabilities of one box; 0 when it cannot be sampled. */
+static int picto_box(const sbr_image_t *view, const sbr_picto_model_t *pm, const float box[4],
+                     recog_picto_buf_t *b)
+{
+    int ok = 0;
+    if ((sbr_picto_features(view, box, b->feat, SBR_PICTO_FEATURES, b->ws,
+                            SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
+        (sbr_picto_classify(pm, b->feat, SBR_PICTO_FEATURES, b->prob, SBR_PICTO_OUTPUTS, b->ws,
+                            SBR_PICTO_WORKSPACE_SIZE) == SBR_OK)) {
+        ok = 1;
+    }
+    return ok;
+}
+
+/* Class and score from the mean class probabilities of `views` views of box: the box,
+   then shifted by SBR_RECOG_VIEW_SHIFT of its size right, left, down and up (views that
+   cannot be sampled are left out). b->prob holds the box's own probabilities on entry.
+   Returns the number of extra views classified. */
+static uint32_t average_views(recog_hyp_t *h, const sbr_image_t *view,
+                              const sbr_picto_model_t *pm, uint32_t views, const float box[4],
+                              recog_picto_buf_t *b)
+{
+    static const float dir[SBR_RECOG_MAX_VIEWS - 1u][2] = {
+        {1.0f, 0.0f}, {-1.0f, 0.0f}, {0.0f, 1.0f}, {0.0f, -1.0f}};
+    const float dx = SBR_RECOG_VIEW_SHIFT * (box[2] - box[0]);
+    const float dy = SBR_RECOG_VIEW_SHIFT * (box[3] - box[1]);
+    float *mean = b->mean;
+    float n = 1.0f;
+    uint32_t v;
+    uint32_t k;
+    for (k = 0u; k < SBR_PICTO_OUTPUTS; k++) {
+        mean[k] = b->prob[k];
+    }
+    for (v = 0u; v < (views - 1u); v++) {
+        float vb[4];
+        vb[0] = box[0] + (dir[v][0] * dx);
+        vb[1] = box[1] + (dir[v][1] * dy);
+        vb[2] = box[2] + (dir[v][0] * dx);
+        vb[3] = box[3] + (dir[v][1] * dy);
+        if (picto_box(view, pm, vb, b) != 0) {
+            for (k = 0u; k < SBR_PICTO_OUTPUTS; k++) {
+                mean[k] += b->prob[k];
+            }
+            n += 1.0f;
+        }
+    }
+    for (k = 0u; k < SBR_PICTO_OUTPUTS; k++) {
+        mean[k] /= n;
+    }
+    (void)take_class(h, mean);
+    return (uint32_t)n - 1u;
+}
+
+/* Is GTSDB class c a danger sign (an upward red triangle: 11, 18..31)? */
+static int danger_class(uint32_t c)
+{
+    return ((c == 11u) || ((c >= 18u) && (c <= 31u))) ? 1 : 0;
+}
+
+/* The danger classes' probability together. */
+static float danger_mass(const float *prob)
+{
+    float m = 0.0f;
+    uint32_t k;
+    for (k = 0u; k < SBR_PICTO_BACKGROUND; k++) {
+        if (danger_class(k) != 0) {
+            m += prob[k];
+        }
+    }
+    return m;
+}
+
+/* config.triangle_view: classify the inside of the triangle inscribed in box; its most
+   probable sign class replaces the hypothesis's class and score when it is a danger sign
+   and more probable than the current score. */
+static void triangle_view(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
+                          const float box[4], recog_picto_buf_t *b)
+{
+    if ((sbr_picto_features_outline(view, box, (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE, b->feat,
+                                    SBR_PICTO_FEATURES, b->ws, SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
+        (sbr_picto_classify(pm, b->feat, SBR_PICTO_FEATURES, b->prob, SBR_PICTO_OUTPUTS, b->ws,
+                            SBR_PICTO_WORKSPACE_SIZE) == SBR_OK)) {
+        recog_hyp_t t = *h;
+        (void)take_class(&t, b->prob);
+        if ((danger_class(t.class_id) != 0) && (t.score > h->score)) {
+            h->class_id = t.class_id;
+            h->score = t.score;
+            h->share = t.share;
+        }
+    }
+}
+
+/* The class stage on one hypothesis: classify its box; if the signs are at least
+   refine_first_score probable, and then while they are at least refine_score probable
+   (at most refine_steps times in all), move the box by the classifier's box regression
+   and classify again there; the box is the last one, and so are class
+   and score unless the candidate, still view_score likely, gets the mean of
+   config.views views (average_views()).
+   Returns 0 when the box cannot be sampled; counts refinements and extra views in *st. */
+static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
+                        const sbr_recog_config_t *cfg, recog_picto_buf_t *b,
+                        sbr_recog_stats_t *st)
+{
+    float box[4];
+    float signs; /* the sign classes' probability at the current box */
+    float danger; /* the danger classes' probability at the first box */
+    uint32_t step = 0u;
+    uint32_t steps = 0u;
+    centre_box(h, box);
+    if (picto_box(view, pm, box, b) == 0) {
+        return 0;
+    }
+    danger = (cfg->triangle_view != 0u) ? danger_mass(b->prob) : 0.0f;
+    signs = take_class(h, b->prob);
+    if ((signs >= cfg->refine_first_score) && (pm->w3 != NULL)) {
+        steps = cfg->refine_steps;
+    }
+    while (step < steps) {
+        float nb[4];
+        step++;
+        if ((sbr_picto_refine(pm, b->feat, SBR_PICTO_FEATURES, box, nb, b->ws,
+                              SBR_PICTO_WORKSPACE_SIZE) != SBR_OK) ||
+            (picto_box(view, pm, nb, b) == 0)) {
+            step = steps; /* the box left the image: keep the last one */
+        } else {
+            st->refined++;
+            box[0] = nb[0];
+            box[1] = nb[1];
+            box[2] = nb[2];
+            box[3] = nb[3];
+            h->mx = 0.5f * (box[0] + box[2]);
+            h->my = 0.5f * (box[1] + box[3]);
+            h->mw = box[2] - box[0];
+            h->mh = box[3] - box[1];
+            signs = take_class(h, b->prob);
+            if (signs < cfg->refine_score) {
+                step = steps; /* no longer a likely sign: this was the last move */
+            }
+        }
+    }
+    if ((cfg->views > 1u) && (signs >= cfg->view_score)) {
+        st->views += average_views(h, view, pm, cfg->views, box, b);
+    }
+    if ((cfg->triangle_view != 0u) && (danger >= cfg->triangle_score)) {
+        triangle_view(h, view, pm, box, b);
+    }
+    return 1;
+}
+
+/* Does a candidate pass the class stage's gate (sbr_picto_model_t::gate)? A box the gate
+   cannot look at (outside the domain of the class stage's boxes) does not. */
+static int gate_passes(const recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
+                       recog_picto_buf_t *pb)
+{
+    float box[4];
+    float score = 0.0f;
+    int pass = 0;
+    centre_box(h, box);
+    if ((sbr_picto_gate_features(view, box, pb->feat, SBR_PICTO_FEATURES, pb->ws,
+                                 SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
+        (sbr_picto_gate(pm, pb->feat, SBR_PICTO_FEATURES, &score) == SBR_OK) &&
+        (score >= pm->gate_threshold)) {
+        pass = 1;
+    }
+    return pass;
+}
+
+/* The class stage's colour check (sbr_picto_model_t::rim_floor): 1 when the model has one
+   for the candidate's class and the rim of its box is less red against its inside than
+   the class's threshold, or when it cannot be measured. */
+static int rim_fails(const recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm)
+{
+    int fails = 0;
+    if ((pm->rim_shape != NULL) && (pm->rim_floor != NULL) && (h->class_id < SBR_PICTO_CLASSES) &&
+        (pm->rim_shape[h->class_id] != (uint8_t)SBR_PICTO_RIM_NONE)) {
+        float box[4];
+        float contrast = 0.0f;
+        centre_box(h, box);
+        if ((sbr_picto_rim_contrast(view, box, (uint32_t)pm->rim_shape[h->class_id], &contrast) !=
+             SBR_OK) ||
+            (contrast < pm->rim_floor[h->class_id])) {
+            fails = 1;
+        }
+    }
+    return fails;
+}
+
+/* The class stage's verdict on one candidate: gated away, not classifiable, colour check
+   failed, below min_score, or kept (h->keep). */
+static void class_verdict(recog_ctx_t *c, recog_hyp_t *h, const sbr_image_t *view,
+                          recog_picto_buf_t *pb)
+{
+    const sbr_recog_config_t *cfg = c->cfg;
+    const sbr_picto_model_t *pm = &c->model->picto;
+    h->keep = 0u;
+    if ((cfg->gate != 0u) && (pm->gate != NULL) && (gate_passes(h, view, pm, pb) == 0)) {
+        c->st.gated++;
+    } else if (classify_hyp(h, view, pm, cfg, pb, &c->st) == 0) {
+        /* the box cannot be sampled */
+    } else if ((h->score >= cfg->min_score) && (rim_fails(h, view, pm) != 0)) {
+        c->st.rim_rejected++;
+    } else if (h->score >= cfg->min_score) {
+        h->keep = 1u;
+    } else {
+        c->st.rejected++;
+    }
+}
+
+void sbr_recog_priv_class_stage(recog_ctx_t *c, const sbr_image_t *view, uint32_t kept,
+                                recog_picto_buf_t *pb)
+{
+    uint32_t examined = 0u;
+    uint32_t i;
+    for (i = 0u; i < kept; i++) {
+        recog_hyp_t *h = &c->hyps[i];
+        if (h->keep == 0u) {
+            /* suppressed on part evidence */
+        } else if (examined >= c->cfg->max_candidates) {
+            h->keep = 0u;
+            c->st.capacity_hit |= 16u;
+        } else {
+            examined++;
+            class_verdict(c, h, view, pb);
+        }
+    }
+    c->st.classified = examined;
+}

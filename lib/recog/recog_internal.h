@@ -1,0 +1,151 @@
+/* Private to lib/recog: the recogniser's working types and the functions its files share
+   (config, votes + cascade, suppression, class stage, detect). Not installed. */
+#ifndef SBR_RECOG_INTERNAL_H
+#define SBR_RECOG_INTERNAL_H
+
+#include "sbr/recognizer.h"
+
+#include "../common/sbr_util.h"
+
+#define RECOG_ALIGN(x) ((((size_t)(x)) + 7u) & ~((size_t)7u))
+#define RECOG_PI 3.14159265f
+
+/* A vote: a predicted sign (centre, size) from one part-prototype match. */
+typedef struct recog_vote_s {
+    float cx;
+    float cy;
+    float w;
+    float h;
+    float weight;
+    uint32_t part;
+    uint32_t hyp;
+    uint16_t proto;
+    uint16_t pad;
+} recog_vote_t;
+
+/* A hypothesis: weighted sums of its votes' geometry and their means (kept current as
+   votes join), then its verdict. */
+typedef struct recog_hyp_s {
+    float sx;
+    float sy;
+    float sw;
+    float sh;
+    float sum;
+    float mx;
+    float my;
+    float mw;
+    float mh;
+    float score;
+    float share;
+    uint16_t class_id;
+    uint16_t parts;
+    uint32_t keep;
+} recog_hyp_t;
+
+/* An entry of the part index: the parts of each group (map, polarity) in order of their
+   centre's x, so that the cascade looks only at parts near a predicted position. */
+typedef struct recog_index_s {
+    float cx;
+    uint32_t part;
+    uint32_t group;
+} recog_index_t;
+
+typedef struct recog_layout_s {
+    size_t parts_ws;
+    size_t parts;
+    size_t index;
+    size_t results;
+    size_t work;
+    size_t votes;
+    size_t hyps;
+    size_t picto;
+    size_t total;
+} recog_layout_t;
+
+/* The class stage's share of the workspace: its scratch, a feature vector, the
+   probabilities and their mean over views. */
+#define RECOG_PICTO_BYTES \
+    (SBR_PICTO_WORKSPACE_SIZE + ((SBR_PICTO_FEATURES + (2u * SBR_PICTO_OUTPUTS)) * sizeof(float)))
+
+/* Everything one call works with. */
+typedef struct recog_ctx_s {
+    const sbr_recog_config_t *cfg;
+    const sbr_model_t *model;
+    sbr_fft_t fft_p;
+    sbr_fd_match_config_t mcfg;  /* votes: screened at the vote error */
+    sbr_fd_match_config_t vcfg;  /* cascade: screened at the verification error */
+    sbr_part_t *parts;
+    uint32_t nparts;
+    recog_index_t *index;                          /* [nparts] */
+    uint32_t group_first[SBR_MODEL_GROUPS + 1u];   /* each group's first index entry */
+    sbr_fd_match_t *results;
+    sbr_complex_t *work;
+    uint32_t work_len;
+    recog_vote_t *votes;
+    uint32_t nvotes;
+    recog_hyp_t *hyps;
+    uint32_t nhyps;
+    float vote_error;
+    float score_floor; /* part-evidence floor: min_score, or candidate_score before the
+                          class stage */
+    sbr_recog_stats_t st;
+} recog_ctx_t;
+
+/* The class stage's buffers in the workspace. */
+typedef struct recog_picto_buf_s {
+    float *feat;
+    float *prob;
+    float *mean; /* averaged probabilities of several views */
+    void *ws;
+} recog_picto_buf_t;
+
+/* recog_config.c */
+
+/* The prototype group of a (map, polarity): map * 2 + polarity - 1, or SBR_MODEL_GROUPS
+   for a polarity that is neither dark nor bright. */
+uint32_t sbr_recog_priv_group(uint8_t map, uint8_t polarity);
+
+/* The workspace layout of a width x height view; 0 if the parts stage cannot run on it. */
+int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_config_t *cfg,
+                          recog_layout_t *l);
+
+/* recog_votes.c: votes, hypotheses, evidence and cascade verification */
+
+/* Match part pi against its group and cast its votes. */
+sbr_status_t sbr_recog_priv_cast_votes(recog_ctx_t *c, uint32_t pi);
+
+/* Sort the votes: by weight, descending (mode 0), or by hypothesis, part, then weight
+   descending (mode 1). */
+void sbr_recog_priv_sort_votes(recog_ctx_t *c, int mode);
+
+/* Group the votes (sorted by weight) into hypotheses. */
+void sbr_recog_priv_group_votes(recog_ctx_t *c);
+
+/* Build the part index and each group's first entry. */
+void sbr_recog_priv_index_parts(recog_ctx_t *c);
+
+/* Score every hypothesis (votes sorted by hypothesis and part). */
+void sbr_recog_priv_score_hyps(recog_ctx_t *c);
+
+/* recog_nms.c: suppression */
+
+/* Box of a hypothesis in view pixels, clamped to the view: x0, y0, x1, y1 (exclusive). */
+void sbr_recog_priv_hyp_box(const recog_hyp_t *h, uint32_t vw, uint32_t vh, float b[4]);
+
+/* Move the kept hypotheses to the front, sorted best first; returns their count. */
+uint32_t sbr_recog_priv_compact(recog_ctx_t *c);
+
+/* Greedy non-maximum suppression over the first n (sorted) hypotheses: one overlapping
+   a better kept one by more than iou, or with an empty box, is dropped (iou 1: only the
+   empty boxes, as no IoU exceeds 1). */
+void sbr_recog_priv_suppress(recog_ctx_t *c, uint32_t n, uint32_t vw, uint32_t vh, float iou);
+
+/* recog_class.c: the class stage */
+
+/* The class stage over the first `kept` hypotheses (sorted best first): each kept one is
+   gated, classified and colour-checked; it stays kept when its class score reaches
+   min_score. At most max_candidates are examined. */
+void sbr_recog_priv_class_stage(recog_ctx_t *c, const sbr_image_t *view, uint32_t kept,
+                                recog_picto_buf_t *pb);
+
+#endif /* SBR_RECOG_INTERNAL_H */
