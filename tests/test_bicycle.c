@@ -24,7 +24,7 @@ static sbr_bike_pf_config_t config(uint32_t seed)
 }
 
 /* Pinhole projection of a point of the camera frame. */
-static void project_point(const sbr_camera_t *cam, float x, float y, float z, sbr_point2f_t *p)
+static void project_point(const sbr_camera_t *cam, float x, float y, float z, sbr_pointf_t *p)
 {
     p->x = cam->focal * x / z + cam->cx;
     p->y = cam->focal * y / z + cam->cy;
@@ -32,7 +32,7 @@ static void project_point(const sbr_camera_t *cam, float x, float y, float z, sb
 
 /* 64 points of a wheel circle (contact point cx, cz, plane direction th, roll), projected. */
 static void wheel_points(const sbr_camera_t *cam, float r, float x, float z, float th, float roll,
-                         sbr_point2f_t *p)
+                         sbr_pointf_t *p)
 {
     const float dx = cosf(th), dz = sinf(th);
     const float ux = -sinf(roll) * dz, uy = -cosf(roll), uz = sinf(roll) * dx;
@@ -52,7 +52,7 @@ static void test_projection_matches_projected_circle_points(void)
     const sbr_bike_model_t *m = &cfg.model;
     sbr_ellipse_t rear;
     sbr_ellipse_t front;
-    sbr_point2f_t pts[64];
+    sbr_pointf_t pts[64];
     sbr_conic_t q;
     float rms;
     float mx;
@@ -112,13 +112,13 @@ static void test_model_turns_and_leans(void)
     yaw = 4.0f * tanf(0.2f) / m.wheelbase;
     /* straight: distance v t */
     s.steer = 0.0f;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 2.0f, &out));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 2000000u, &out));
     TEST_ASSERT_FLOAT_WITHIN(1e-3f, 8.0f, out.x);
     TEST_ASSERT_FLOAT_WITHIN(1e-4f, 10.0f, out.z);
     /* steady turn: heading grows at v tan(delta) / L, the rear wheel stays on the circle
        of radius L / tan(delta), the roll settles at atan(v yaw / g) */
     s.steer = 0.2f;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 2.0f, &out));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 2000000u, &out));
     TEST_ASSERT_FLOAT_WITHIN(1e-3f, 2.0f * yaw, out.heading);
     {
         const float rad = m.wheelbase / tanf(0.2f);
@@ -128,10 +128,10 @@ static void test_model_turns_and_leans(void)
     }
     TEST_ASSERT_FLOAT_WITHIN(0.01f, atanf(4.0f * yaw / 9.81f), out.roll);
     TEST_ASSERT_TRUE(out.roll > 0.0f); /* leaning into a left turn */
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, -0.1f, &out));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, NAN, &out));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 10000001u, &out));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, UINT32_MAX, &out));
     m.wheelbase = 0.5f; /* shorter than two wheel radii */
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 0.1f, &out));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 100000u, &out));
 }
 
 
@@ -242,7 +242,7 @@ static float run_crossing(uint32_t seed, sbr_bike_result_t *last, sbr_bike_state
         uint32_t w;
         const uint32_t seen = (k < 30u || k >= 35u) ? 2u : 0u;
         if (k > 0u) {
-            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&cfg.model, &t, 0.04f, &t));
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&cfg.model, &t, 40000u, &t));
         }
         TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_project(&cfg.camera, &cfg.model, &t, &e[0], &e[1]));
         for (w = 0u; w < 2u; w++) {
@@ -254,7 +254,7 @@ static float run_crossing(uint32_t seed, sbr_bike_result_t *last, sbr_bike_state
         /* hand them over front first: the filter must find out which is which */
         {
             const sbr_ellipse_t swapped[2] = {e[1], e[0]};
-            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 0.04f, swapped, seen, &r));
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 40000u, swapped, seen, &r));
         }
         TEST_ASSERT_TRUE((r.flags & SBR_BIKE_TRACKING) != 0u);
         if (seen != 0u) {
@@ -310,22 +310,22 @@ static void test_filter_drops_a_lost_track_and_restarts(void)
     cfg.max_missed = 3u;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_init(&pf, &cfg, g_ws, sizeof g_ws));
     /* nothing seen: no track */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 0.04f, NULL, 0u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 40000u, NULL, 0u, &r));
     TEST_ASSERT_EQUAL_UINT32(0u, r.flags);
     /* one ellipse alone starts nothing */
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_project(&cfg.camera, &cfg.model, &t, &e[0], &e[1]));
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 0.04f, e, 1u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 40000u, e, 1u, &r));
     TEST_ASSERT_EQUAL_UINT32(0u, r.flags);
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 0.04f, e, 2u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 40000u, e, 2u, &r));
     TEST_ASSERT_EQUAL_UINT32(SBR_BIKE_TRACKING | SBR_BIKE_STARTED | SBR_BIKE_UPDATED,
                              r.flags & ~SBR_BIKE_RESAMPLED);
     for (k = 0u; k < 2u; k++) {
-        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 0.04f, NULL, 0u, &r));
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 40000u, NULL, 0u, &r));
         TEST_ASSERT_EQUAL_UINT32(SBR_BIKE_TRACKING, r.flags & ~SBR_BIKE_RESAMPLED);
     }
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 0.04f, NULL, 0u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 40000u, NULL, 0u, &r));
     TEST_ASSERT_EQUAL_UINT32(SBR_BIKE_LOST, r.flags);
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 0.04f, e, 2u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 40000u, e, 2u, &r));
     TEST_ASSERT_TRUE((r.flags & SBR_BIKE_STARTED) != 0u);
 }
 
@@ -336,7 +336,7 @@ static void test_filter_rejects_bad_input(void)
     sbr_bike_result_t r;
     sbr_ellipse_t e[2] = {{100.0f, 100.0f, 20.0f, 18.0f, 0.0f}, {160.0f, 100.0f, 20.0f, 18.0f, 0.0f}};
     memset(&pf, 0, sizeof pf);
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_bike_pf_step(&pf, 0.04f, e, 2u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_bike_pf_step(&pf, 40000u, e, 2u, &r));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_bike_pf_init(NULL, &cfg, g_ws, sizeof g_ws));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_bike_pf_init(&pf, &cfg, g_ws, sizeof g_ws - 4u));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_bike_pf_init(&pf, &cfg, (uint8_t *)g_ws + 2, sizeof g_ws - 4u));
@@ -371,20 +371,20 @@ static void test_filter_rejects_bad_input(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_config_check(&cfg));
     cfg = config(1u);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_init(&pf, &cfg, g_ws, sizeof g_ws));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, NAN, e, 2u, &r));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, -0.01f, e, 2u, &r));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 2.0f, e, 2u, &r));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_bike_pf_step(&pf, 0.04f, e, SBR_BIKE_MAX_ELLIPSES + 1u, &r));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_bike_pf_step(&pf, 0.04f, NULL, 2u, &r));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_bike_pf_step(&pf, 0.04f, e, 2u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 1000001u, e, 2u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, UINT32_MAX, e, 2u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 2000000u, e, 2u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_bike_pf_step(&pf, 40000u, e, SBR_BIKE_MAX_ELLIPSES + 1u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_bike_pf_step(&pf, 40000u, NULL, 2u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_bike_pf_step(&pf, 40000u, e, 2u, NULL));
     e[1].semi_major = NAN;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 0.04f, e, 2u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 40000u, e, 2u, &r));
     e[1].semi_major = 10.0f; /* smaller than its minor axis */
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 0.04f, e, 2u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 40000u, e, 2u, &r));
     /* corrupted instance */
     pf.cfg.particles = 3u;
     e[1].semi_major = 20.0f;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_bike_pf_step(&pf, 0.04f, e, 2u, &r));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_bike_pf_step(&pf, 40000u, e, 2u, &r));
 }
 
 /* bicycle.h: every documented status, in one table. */
@@ -412,10 +412,10 @@ static void test_bicycle_h_statuses(void)
     few.particles = 8u;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_project(&cfg.camera, &cfg.model, &s, &e[0], &e[1]));
     t.n = 0u;
-    ROW(&t, SBR_OK, sbr_bike_predict_state(&cfg.model, &s, 0.1f, &out));
-    ROW(&t, SBR_ERR_NULL, sbr_bike_predict_state(&cfg.model, &s, 0.1f, NULL));
-    ROW(&t, SBR_ERR_RANGE, sbr_bike_predict_state(&badm, &s, 0.1f, &out));
-    ROW(&t, SBR_ERR_RANGE, sbr_bike_predict_state(&cfg.model, &s, 11.0f, &out));
+    ROW(&t, SBR_OK, sbr_bike_predict_state(&cfg.model, &s, 100000u, &out));
+    ROW(&t, SBR_ERR_NULL, sbr_bike_predict_state(&cfg.model, &s, 100000u, NULL));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_predict_state(&badm, &s, 100000u, &out));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_predict_state(&cfg.model, &s, 11000000u, &out));
     ROW(&t, SBR_OK, sbr_bike_project(&cfg.camera, &cfg.model, &s, &e[0], NULL)); /* either may be NULL */
     ROW(&t, SBR_ERR_NULL, sbr_bike_project(NULL, &cfg.model, &s, &e[0], &e[1]));
     ROW(&t, SBR_ERR_RANGE, sbr_bike_project(&cfg.camera, &badm, &s, &e[0], &e[1]));
@@ -433,12 +433,12 @@ static void test_bicycle_h_statuses(void)
     ROW(&t, SBR_ERR_NULL, sbr_bike_pf_init(NULL, &cfg, g_ws, sizeof g_ws));
     ROW(&t, SBR_ERR_RANGE, sbr_bike_pf_init(&blank, &bad, g_ws, sizeof g_ws));
     ROW(&t, SBR_ERR_WORKSPACE, sbr_bike_pf_init(&blank, &cfg, g_ws, 64u));
-    ROW(&t, SBR_OK, sbr_bike_pf_step(&pf, 0.04f, e, 2u, &r));
-    ROW(&t, SBR_ERR_NULL, sbr_bike_pf_step(&pf, 0.04f, e, 2u, NULL));
-    ROW(&t, SBR_ERR_STATE, sbr_bike_pf_step(&blank, 0.04f, e, 2u, &r));
-    ROW(&t, SBR_ERR_RANGE, sbr_bike_pf_step(&pf, NAN, e, 2u, &r));
-    ROW(&t, SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 0.04f, nan_e, 1u, &r));
-    ROW(&t, SBR_ERR_SIZE, sbr_bike_pf_step(&pf, 0.04f, e, SBR_BIKE_MAX_ELLIPSES + 1u, &r));
+    ROW(&t, SBR_OK, sbr_bike_pf_step(&pf, 40000u, e, 2u, &r));
+    ROW(&t, SBR_ERR_NULL, sbr_bike_pf_step(&pf, 40000u, e, 2u, NULL));
+    ROW(&t, SBR_ERR_STATE, sbr_bike_pf_step(&blank, 40000u, e, 2u, &r));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 1000001u, e, 2u, &r));
+    ROW(&t, SBR_ERR_RANGE, sbr_bike_pf_step(&pf, 40000u, nan_e, 1u, &r));
+    ROW(&t, SBR_ERR_SIZE, sbr_bike_pf_step(&pf, 40000u, e, SBR_BIKE_MAX_ELLIPSES + 1u, &r));
     status_table_check(&t);
 }
 

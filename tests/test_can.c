@@ -437,6 +437,28 @@ static void test_scheduler_counts_signs_beyond_the_limit(void)
     TEST_ASSERT_EQUAL_UINT32(1u, st.overload);
 }
 
+/* The scheduler's configuration check: defaults pass, each bound refused with its field. */
+static void test_sched_config_check(void)
+{
+    sbr_can_sched_config_t cfg;
+    sbr_can_sched_config_t bad;
+    sbr_can_sched_config_default(&cfg);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_sched_config_check(&cfg));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_sched_config_check(NULL));
+    bad = cfg;
+    bad.frame_budget = 3u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_sched_config_check(&bad));
+    bad = cfg;
+    bad.max_signs = 5u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_sched_config_check(&bad));
+    bad = cfg;
+    bad.max_detections = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_sched_config_check(&bad));
+    bad = cfg;
+    bad.max_objects = 17u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_sched_config_check(&bad));
+}
+
 /* Regression (fuzzer finding): unpack returned SBR_OK with values outside their signals'
    ranges (slot 15, class 50, confidence 126 %); every documented status of the unpackers. */
 static void test_unpack_refuses_out_of_range_signals(void)
@@ -700,6 +722,7 @@ int main(void)
     RUN_TEST(test_e2e_every_single_bit_flip_is_caught);
     RUN_TEST(test_scheduler_priority_and_budget);
     RUN_TEST(test_scheduler_counts_signs_beyond_the_limit);
+    RUN_TEST(test_sched_config_check);
     RUN_TEST(test_unpack_refuses_out_of_range_signals);
     RUN_TEST(test_e2e_protect_statuses);
     RUN_TEST(test_mock_port_and_send);

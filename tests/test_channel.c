@@ -14,7 +14,8 @@ void tearDown(void) {}
 static sbr_channel_config_t thesis_cfg(void)
 {
     sbr_channel_config_t cfg;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_config_default(&cfg));
+    sbr_channel_config_default(&cfg);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_config_check(&cfg));
     return cfg;
 }
 
@@ -273,7 +274,8 @@ static void test_bad_input_gets_status(void)
         c[k] = 0.25f * (float)k;
     }
     memcpy(keep, c, sizeof c);
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_channel_config_default(NULL));
+    sbr_channel_config_default(NULL); /* no-op */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_channel_config_check(NULL));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_channel_encode(NULL, 3.0f, 1.0f, c, 10u));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_channel_encode(&cfg, 3.0f, 1.0f, NULL, 10u));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_channel_encode(&cfg, 3.0f, 1.0f, c, 9u));
@@ -388,7 +390,8 @@ static void test_values_bounded_by_max_value(void)
     sbr_channel_mode_t modes[4];
     uint32_t n = 0u;
     uint32_t k;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_config_default(&cfg));
+    sbr_channel_config_default(&cfg);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_config_check(&cfg));
     for (k = 0u; k < 10u; k++) {
         hist[k] = 0.0f;
     }
@@ -418,7 +421,8 @@ static void test_values_bounded_by_max_value(void)
 static void test_config_keeps_decoded_values_finite(void)
 {
     sbr_channel_config_t c;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_config_default(&c));
+    sbr_channel_config_default(&c);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_config_check(&c));
     c.first_centre = -3.4e38f;
     c.spacing = 6.23676e35f;
     c.count = 19u;
@@ -432,10 +436,23 @@ static void test_config_keeps_decoded_values_finite(void)
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel_config_check(&c));
 }
 
+/* The 2D default: both axes the 1D default, a valid configuration. */
+static void test_2d_default(void)
+{
+    sbr_channel2d_config_t c2;
+    sbr_channel2d_config_default(&c2);
+    TEST_ASSERT_EQUAL_UINT32(10u, c2.x.count);
+    TEST_ASSERT_EQUAL_UINT32(3u, c2.y.overlap);
+    TEST_ASSERT_EQUAL_FLOAT(1.0f, c2.y.first_centre);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_channel2d_config_check(&c2));
+    sbr_channel2d_config_default(NULL); /* no-op */
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_default_is_thesis_layout);
+    RUN_TEST(test_2d_default);
     RUN_TEST(test_thesis_encoding_of_3_3);
     RUN_TEST(test_thesis_decoding_table);
     RUN_TEST(test_encoding_of_6_8);

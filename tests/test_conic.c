@@ -123,7 +123,7 @@ static void test_ellipse_conic_round_trip(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_conic_to_ellipse(&q, &back));
 }
 
-static uint32_t sample(const sbr_ellipse_t *el, float t0, float t1, uint32_t n, sbr_point2f_t *p)
+static uint32_t sample(const sbr_ellipse_t *el, float t0, float t1, uint32_t n, sbr_pointf_t *p)
 {
     uint32_t i;
     const float cs = cosf(el->angle);
@@ -140,7 +140,7 @@ static uint32_t sample(const sbr_ellipse_t *el, float t0, float t1, uint32_t n, 
 
 static void expect_fit(const sbr_ellipse_t *el, float t0, float t1, uint32_t n, int check_angle)
 {
-    sbr_point2f_t p[200];
+    sbr_pointf_t p[200];
     sbr_conic_t q;
     sbr_ellipse_t got;
     float rms = -1.0f;
@@ -174,7 +174,7 @@ static void test_fit_exact_points(void)
 
 static void test_fit_degenerate_sets(void)
 {
-    sbr_point2f_t p[40];
+    sbr_pointf_t p[40];
     sbr_conic_t q;
     sbr_ellipse_t el;
     uint32_t i;
@@ -281,10 +281,10 @@ static void test_ellipse_conic_refuses_what_float_cannot_hold(void)
 static void test_residual_refuses_overflow(void)
 {
     const sbr_conic_t circle = mk(1.0f, 0.0f, 1.0f, 0.0f, 0.0f, -1.0f);
-    const sbr_point2f_t far[1] = {{-1e30f, 0.0f}};
-    const sbr_point2f_t edge[2] = {{-1e6f, 0.0f}, {0.0f, 1e6f}};
+    const sbr_pointf_t far[1] = {{-1e30f, 0.0f}};
+    const sbr_pointf_t edge[2] = {{-1e6f, 0.0f}, {0.0f, 1e6f}};
     const sbr_conic_t huge = mk(3e38f, 0.0f, 3e38f, 0.0f, 0.0f, -1.0f);
-    const sbr_point2f_t two[2] = {{0.0f, 0.0f}, {1e3f, 1e3f}};
+    const sbr_pointf_t two[2] = {{0.0f, 0.0f}, {1e3f, 1e3f}};
     float rms = -1.0f;
     float mx = -1.0f;
     float cov = -1.0f;
@@ -306,7 +306,7 @@ static void test_residual_and_coverage(void)
 {
     const sbr_ellipse_t el = {100.0f, 80.0f, 60.0f, 30.0f, 0.5f};
     sbr_ellipse_t bigger = el;
-    sbr_point2f_t p[128];
+    sbr_pointf_t p[128];
     sbr_conic_t q;
     float rms = 0.0f;
     float mx = 0.0f;
@@ -353,7 +353,7 @@ static void test_torch_pose_exact_and_from_fitted_points(void)
         sbr_conic_t q = torch_conic(n1, n2, z0r, f, -3.7f);
         sbr_torch_pose_t pose;
         sbr_ellipse_t el;
-        sbr_point2f_t p[100];
+        sbr_pointf_t p[100];
         TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_torch_pose(&q, f, SBR_TORCH_MAX_RESIDUAL, &pose));
         TEST_ASSERT_FLOAT_WITHIN(1e-4f, n1, pose.n1);
         TEST_ASSERT_FLOAT_WITHIN(1e-4f, n2, pose.n2);
@@ -436,7 +436,7 @@ static void test_detect_ellipse_in_an_image(void)
     }
     sbr_ellipse_detect_config_default(&cfg);
     cfg.mser.max_nodes = 6000u;
-    need = sbr_ellipse_detect_workspace_size(IW, IH, &cfg);
+    need = sbr_ellipse_detect_workspace_size(&cfg, IW, IH);
     TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(IW, IH, 5u, 6000u, 1024u, 4096u),
                              (uint32_t)need);
     TEST_ASSERT_TRUE(need <= sizeof g_ws);
@@ -457,7 +457,7 @@ static void test_detect_ellipse_in_an_image(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_ellipse_detect(NULL, &cfg, g_ws, need, det, 8u, &n));
     cfg.min_coverage = 0.0f;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_detect(&img, &cfg, g_ws, need, det, 8u, &n));
-    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_ellipse_detect_workspace_size(IW, IH, &cfg));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_ellipse_detect_workspace_size(&cfg, IW, IH));
     sbr_ellipse_detect_config_default(&cfg);
     cfg.mser.max_nodes = 6000u;
     {

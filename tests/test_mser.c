@@ -366,12 +366,12 @@ static void test_mser_capacity_and_node_bound(void)
     TEST_ASSERT_EQUAL_UINT32(108u, g_reg[0].area);
     /* a node bound of 1 cannot hold the tree: distinct status, smaller workspace */
     g_cfg.max_nodes = 1u;
-    TEST_ASSERT_TRUE(sbr_mser_workspace_size(W, H, &g_cfg) <
-                     sbr_mser_workspace_size(W, H, &(sbr_mser_config_t){5u, 60u, 14400u, 0.25f, 0.2f, 3u, 0u}));
+    TEST_ASSERT_TRUE(sbr_mser_workspace_size(&g_cfg, W, H) <
+                     sbr_mser_workspace_size(&(sbr_mser_config_t){5u, 60u, 14400u, 0.25f, 0.2f, 3u, 0u}, W, H));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, (int)detect(&n));
     /* the size macro and the size query agree */
     TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_MSER_WORKSPACE_SIZE(W, H, 5u, 1u),
-                             (uint32_t)sbr_mser_workspace_size(W, H, &g_cfg));
+                             (uint32_t)sbr_mser_workspace_size(&g_cfg, W, H));
     /* a sufficient bound gives the full result */
     g_cfg.max_nodes = 16u;
     TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
@@ -394,7 +394,7 @@ static void test_mser_bad_input(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, (int)sbr_mser_detect(&v, &g_cfg, g_ws, sizeof g_ws, g_reg, 0u, &n));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, (int)sbr_mser_detect(&v, &g_cfg, NULL, sizeof g_ws, g_reg, 64u, &n));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
-                          (int)sbr_mser_detect(&v, &g_cfg, g_ws, sbr_mser_workspace_size(W, H, &g_cfg) - 1u,
+                          (int)sbr_mser_detect(&v, &g_cfg, g_ws, sbr_mser_workspace_size(&g_cfg, W, H) - 1u,
                                                g_reg, 64u, &n));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
                           (int)sbr_mser_detect(&v, &g_cfg, (uint8_t *)g_ws + 1, sizeof g_ws - 4u, g_reg, 64u, &n));
@@ -431,8 +431,8 @@ static void test_mser_bad_input(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
     c.polarity = 4u;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
-    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_mser_workspace_size(W, H, &c));
-    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_mser_workspace_size(2u, H, &g_cfg));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_mser_workspace_size(&c, W, H));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_mser_workspace_size(&g_cfg, 2u, H));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_mser_config_check(NULL));
 }
 

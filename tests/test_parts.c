@@ -111,7 +111,8 @@ static float match_error(const sbr_fd_t *a, const sbr_fd_t *b)
     sbr_fd_match_t r;
     sbr_complex_t work[32];
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_init_32(&p));
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_config_default(&mc));
+    sbr_fd_match_config_default(&mc);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_config_check(&mc));
     mc.mode = SBR_FD_ROTATION_INVARIANT;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match(&p, &mc, a, b, work, 32u, &r));
     return r.error;
@@ -131,7 +132,7 @@ static void test_ring_sign_and_triangle(void)
     int triangle = 0;
     draw_ring_sign(30.0f, 32.0f);
     draw_triangle(70.0f, 32.0f);
-    TEST_ASSERT_TRUE(sbr_parts_workspace_size(W, H, &g_cfg) <= sizeof g_ws);
+    TEST_ASSERT_TRUE(sbr_parts_workspace_size(&g_cfg, W, H) <= sizeof g_ws);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 64u,
                                                     &n, &stats));
     TEST_ASSERT_TRUE(n >= 3u);
@@ -277,11 +278,11 @@ static void test_map_subsample_per_kind(void)
         small.height = 20u;
         TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_parts_extract(&small, &c, &g_fft, g_ws, sizeof g_ws,
                                                               g_parts, 64u, &n, NULL));
-        TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_parts_workspace_size(20u, 20u, &c));
+        TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_parts_workspace_size(&c, 20u, 20u));
         c.maps = 1u << SBR_MAP_INTENSITY;
         TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&small, &c, &g_fft, g_ws, sizeof g_ws,
                                                         g_parts, 64u, &n, NULL));
-        TEST_ASSERT_TRUE(sbr_parts_workspace_size(20u, 20u, &c) > 0u);
+        TEST_ASSERT_TRUE(sbr_parts_workspace_size(&c, 20u, 20u) > 0u);
     }
 }
 
@@ -308,14 +309,14 @@ static void test_workspace_follows_finest_map(void)
     c.map_subsample[SBR_MAP_RED] = 2u;
     c2 = g_cfg;
     c2.subsample = 2u;
-    full = sbr_parts_workspace_size(W, H, &g_cfg);
-    half = sbr_parts_workspace_size(W, H, &c);
+    full = sbr_parts_workspace_size(&g_cfg, W, H);
+    half = sbr_parts_workspace_size(&c, W, H);
     TEST_ASSERT_TRUE(half > 0u);
     TEST_ASSERT_TRUE(half < full);
-    TEST_ASSERT_EQUAL_UINT32((uint32_t)sbr_parts_workspace_size(W, H, &c2), (uint32_t)half);
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)sbr_parts_workspace_size(&c2, W, H), (uint32_t)half);
     /* one map at full resolution sizes it for full resolution again */
     c.map_subsample[SBR_MAP_RED] = 1u;
-    TEST_ASSERT_EQUAL_UINT32((uint32_t)full, (uint32_t)sbr_parts_workspace_size(W, H, &c));
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)full, (uint32_t)sbr_parts_workspace_size(&c, W, H));
     c.map_subsample[SBR_MAP_RED] = 2u;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &c2, &g_fft, g_ws, half, ref, 64u, &nr,
                                                     NULL));
@@ -417,7 +418,7 @@ static void test_parts_capacity_and_bad_input(void)
     /* a grey frame can only give intensity parts */
     v.format = SBR_PIXEL_GRAY8;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 64u, &n, NULL));
-    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_parts_workspace_size(2u, 5u, &g_cfg));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_parts_workspace_size(&g_cfg, 2u, 5u));
 }
 
 /* parts.h: every documented status, in one table. */
@@ -456,7 +457,7 @@ static void test_parts_h_statuses(void)
     ROW(&t, SBR_ERR_WORKSPACE, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, 100u, g_parts, 64u, &n, NULL));
     ROW(&t, SBR_ERR_CAPACITY, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, g_parts, 1u, &n, NULL));
     status_table_check(&t);
-    TEST_ASSERT_EQUAL_size_t(0u, sbr_parts_workspace_size(W, H, &bad));
+    TEST_ASSERT_EQUAL_size_t(0u, sbr_parts_workspace_size(&bad, W, H));
 }
 
 int main(void)

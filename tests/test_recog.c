@@ -106,7 +106,7 @@ static void learn(float cx, float cy, float r)
     uint32_t np = 0u;
     uint32_t g;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fft_init(&fft, g_cfg.parts.fd_n));
-    TEST_ASSERT_TRUE(sbr_parts_workspace_size(W, H, &g_cfg.parts) <= sizeof g_ws);
+    TEST_ASSERT_TRUE(sbr_parts_workspace_size(&g_cfg.parts, W, H) <= sizeof g_ws);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &g_cfg.parts, &fft, g_ws, sizeof g_ws, g_parts,
                                                     128u, &n, NULL));
     (void)memset(&g_model, 0, sizeof g_model);
@@ -175,7 +175,7 @@ static void test_finds_sign_elsewhere_and_larger(void)
     float cx;
     float cy;
     draw_sign(112.0f, 50.0f, 18.0f);
-    TEST_ASSERT_TRUE(sbr_recog_workspace_size(W, H, &g_cfg) <= sizeof g_ws);
+    TEST_ASSERT_TRUE(sbr_recog_workspace_size(&g_cfg, W, H) <= sizeof g_ws);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
                                                    16u, &n, &st));
     TEST_ASSERT_EQUAL_UINT32(1u, n);
@@ -370,7 +370,7 @@ static void test_bad_input(void)
     c = g_cfg;
     c.match_p = 16u; /* < 2M + 1 = 25 */
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&c));
-    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_recog_workspace_size(W, H, &c));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_recog_workspace_size(&c, W, H));
     c = g_cfg;
     c.parts.fd_m = 10u; /* the model has 12 */
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &c, &g_model, g_ws, sizeof g_ws, g_dets,
@@ -466,7 +466,7 @@ static void test_recognizer_h_statuses(void)
     ROW(&t, SBR_ERR_CAPACITY, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets, 1u, &n, NULL));
     status_table_check(&t);
     TEST_ASSERT_EQUAL_UINT32(1u, n); /* the best one written */
-    TEST_ASSERT_EQUAL_size_t(0u, sbr_recog_workspace_size(W, H, &bad));
+    TEST_ASSERT_EQUAL_size_t(0u, sbr_recog_workspace_size(&bad, W, H));
 }
 
 /* A class stage relabels and rescores the part model's detection: a classifier that
@@ -743,7 +743,7 @@ static void test_hostile_frames_builtin(void)
     c.max_model_protos = 1024u;
     c.min_parts = 1u;
     c.max_hypotheses = 64u;
-    TEST_ASSERT_TRUE(sbr_recog_workspace_size(W, H, &c) <= sizeof g_ws);
+    TEST_ASSERT_TRUE(sbr_recog_workspace_size(&c, W, H) <= sizeof g_ws);
     /* 1 x 1 */
     v.width = 1u;
     v.height = 1u;
@@ -807,11 +807,11 @@ static void test_builtin_model_and_sizes(void)
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m->picto));
     for (s = 1u; s <= 4u; s *= 2u) {
         d.parts.subsample = s;
-        TEST_ASSERT_TRUE(sbr_recog_workspace_size(1360u, 800u, &d) > 0u);
-        TEST_ASSERT_TRUE(sbr_recog_workspace_size(1360u, 800u, &d) <=
+        TEST_ASSERT_TRUE(sbr_recog_workspace_size(&d, 1360u, 800u) > 0u);
+        TEST_ASSERT_TRUE(sbr_recog_workspace_size(&d, 1360u, 800u) <=
                          SBR_RECOG_WORKSPACE_DEFAULT_SIZE(1360u, 800u, s));
     }
-    TEST_ASSERT_TRUE(sbr_recog_workspace_size(320u, 240u, &d) <= SBR_RECOG_WORKSPACE_DEFAULT_SIZE(320u, 240u, 4u));
+    TEST_ASSERT_TRUE(sbr_recog_workspace_size(&d, 320u, 240u) <= SBR_RECOG_WORKSPACE_DEFAULT_SIZE(320u, 240u, 4u));
 }
 
 int main(void)

@@ -163,7 +163,7 @@ static void scene_setup(sbr_image_t *v, sbr_recog_config_t *c)
     c->max_votes = 2048u;
     c->max_hypotheses = 64u;
     c->min_score = 0.0f;
-    TEST_ASSERT_TRUE(sbr_recog_workspace_size(W, H, c) <= sizeof g_ws);
+    TEST_ASSERT_TRUE(sbr_recog_workspace_size(c, W, H) <= sizeof g_ws);
 }
 
 /* Every classified candidate is reported (min_score 0), so the comparison covers the

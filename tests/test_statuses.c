@@ -234,7 +234,7 @@ static void test_mser_h(void)
     sbr_mser_config_default(&cfg);
     cfg.min_area = 10u;
     cfg.max_area = 200u;
-    ws = sbr_mser_workspace_size(16u, 16u, &cfg);
+    ws = sbr_mser_workspace_size(&cfg, 16u, 16u);
     TEST_ASSERT_TRUE(ws > 0u && ws <= sizeof g_ws);
     bad = cfg;
     bad.max_variation = NAN;
@@ -258,7 +258,7 @@ static void test_mser_h(void)
         sbr_mser_config_t few = cfg;
         size_t fws;
         few.max_nodes = 1u;
-        fws = sbr_mser_workspace_size(16u, 16u, &few);
+        fws = sbr_mser_workspace_size(&few, 16u, 16u);
         TEST_ASSERT_TRUE(fws > 0u && fws <= sizeof g_ws);
         TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, sbr_mser_detect(&gv, &few, g_ws, fws, r, 8u, &n));
     }
@@ -336,10 +336,12 @@ static void test_fd_h(void)
     ROW(&t, SBR_OK, sbr_fd_smooth(&b, 0.1f, &a));
     ROW(&t, SBR_ERR_NULL, sbr_fd_smooth(NULL, 0.1f, &a));
     ROW(&t, SBR_ERR_RANGE, sbr_fd_smooth(&b, 0.6f, &a));
-    ROW(&t, SBR_OK, sbr_fd_match_config_default(&cfg));
-    ROW(&t, SBR_ERR_NULL, sbr_fd_match_config_default(NULL));
+    sbr_fd_match_config_default(&cfg);
+    ROW(&t, SBR_OK, sbr_fd_match_config_check(&cfg));
+    ROW(&t, SBR_ERR_NULL, sbr_fd_match_config_check(NULL));
     badcfg = cfg;
     badcfg.max_rotation = -0.5f;
+    ROW(&t, SBR_ERR_RANGE, sbr_fd_match_config_check(&badcfg));
     ROW(&t, SBR_OK, sbr_fd_match(&p, &cfg, &b, &b, work, 64u, &r[0]));
     ROW(&t, SBR_ERR_NULL, sbr_fd_match(&p, &cfg, &b, NULL, work, 64u, &r[0]));
     ROW(&t, SBR_ERR_STATE, sbr_fd_match(&none, &cfg, &b, &b, work, 64u, &r[0]));
@@ -372,8 +374,8 @@ static void test_conic_h(void)
     sbr_conic_class_t cls;
     sbr_ellipse_t el;
     sbr_ellipse_t bad_el = {0.0f, 0.0f, 5.0f, 6.0f, 0.0f};
-    sbr_point2f_t pts[8];
-    sbr_point2f_t collinear[8];
+    sbr_pointf_t pts[8];
+    sbr_pointf_t collinear[8];
     sbr_torch_pose_t pose;
     sbr_ellipse_detect_config_t dc;
     sbr_ellipse_detect_config_t bad_dc;
@@ -394,7 +396,7 @@ static void test_conic_h(void)
         collinear[i].y = 2.0f * (float)i;
     }
     sbr_ellipse_detect_config_default(&dc);
-    ws = sbr_ellipse_detect_workspace_size(16u, 16u, &dc);
+    ws = sbr_ellipse_detect_workspace_size(&dc, 16u, 16u);
     TEST_ASSERT_TRUE(ws > 0u);
     bad_dc = dc;
     bad_dc.min_coverage = 2.0f;
@@ -441,7 +443,7 @@ static void test_conic_h(void)
     ROW(&t, SBR_ERR_RANGE, sbr_ellipse_detect(&rgb, &dc, g_ws, ws, det, 4u, &n));
     ROW(&t, SBR_ERR_WORKSPACE, sbr_ellipse_detect(&gv, &dc, g_ws, ws - 1u, det, 4u, &n));
     status_table_check(&t);
-    TEST_ASSERT_EQUAL_size_t(0u, sbr_ellipse_detect_workspace_size(16u, 16u, &bad_dc));
+    TEST_ASSERT_EQUAL_size_t(0u, sbr_ellipse_detect_workspace_size(&bad_dc, 16u, 16u));
 }
 
 static void test_channel_h(void)
@@ -459,8 +461,9 @@ static void test_channel_h(void)
     uint32_t n = 0u;
     memset(hist, 0, sizeof hist);
     t.n = 0u;
-    ROW(&t, SBR_OK, sbr_channel_config_default(&c));
-    ROW(&t, SBR_ERR_NULL, sbr_channel_config_default(NULL));
+    sbr_channel_config_default(&c);
+    ROW(&t, SBR_OK, sbr_channel_config_check(&c));
+    ROW(&t, SBR_ERR_NULL, sbr_channel_config_check(NULL));
     ROW(&t, SBR_OK, sbr_channel_config_check(&c));
     ROW(&t, SBR_ERR_NULL, sbr_channel_config_check(NULL));
     bad = c;

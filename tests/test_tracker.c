@@ -17,6 +17,7 @@ void tearDown(void) {}
 #define TARGETS 8u
 #define WINDOW 31u
 #define PERIOD 0.1f
+#define PERIOD_US 100000u /* PERIOD in microseconds, what sbr_track_step() takes */
 
 static float g_trans[SBR_TRACK_MODEL_TRANSITION_LEN(3u, 3u, VEL)];
 static float g_birth[SBR_TRACK_MODEL_BIRTH_LEN(3u, 3u, VEL)];
@@ -122,7 +123,7 @@ void test_straight_line_velocity(void)
         d.x = tx + 0.5f * tsup_gauss(&rng);
         d.y = ty + 0.5f * tsup_gauss(&rng);
         d.certainty = 1.0f;
-        TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD, &d, 1u, out, TARGETS, &n));
+        TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD_US, &d, 1u, out, TARGETS, &n));
         TEST_ASSERT_EQUAL_UINT32(1u, n);
         TEST_ASSERT_EQUAL_UINT32(1u, out[0].id);
         if (f >= 1u) {
@@ -161,7 +162,7 @@ void test_curved_path_through_five_misses(void)
         d.y = ty + 0.7f * tsup_gauss(&rng);
         d.certainty = 1.0f;
         TEST_ASSERT_EQUAL(SBR_OK,
-                          sbr_track_step(&trk, PERIOD, &d, missed ? 0u : 1u, out, TARGETS, &n));
+                          sbr_track_step(&trk, PERIOD_US, &d, missed ? 0u : 1u, out, TARGETS, &n));
         TEST_ASSERT_EQUAL_UINT32(1u, n);
         if (f == 0u) {
             id = out[0].id;
@@ -210,7 +211,7 @@ void test_crossing_targets_keep_ids(void)
         d[1u - first].x = bx + 0.5f * tsup_gauss(&rng);
         d[1u - first].y = by + 0.5f * tsup_gauss(&rng);
         d[1u - first].certainty = 0.9f;
-        TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD, d, 2u, out, TARGETS, &n));
+        TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD_US, d, 2u, out, TARGETS, &n));
         TEST_ASSERT_EQUAL_UINT32(2u, n);
         if (f == 0u) {
             id_a = out[0].detection == (int32_t)first ? out[0].id : out[1].id;
@@ -242,10 +243,10 @@ void test_clutter_and_longer_dt(void)
     float t = 0.0f;
     init_tracker(&trk, TARGETS);
     for (f = 0u; f < 30u; f++) {
-        const float dt = (f % 3u == 2u) ? 2.0f * PERIOD : PERIOD;
+        const uint32_t dt = (f % 3u == 2u) ? 2u * PERIOD_US : PERIOD_US;
         sbr_track_detection_t d[2];
         uint32_t confirmed = 0u;
-        t += dt;
+        t += (float)dt / 1.0e6f; /* seconds */
         d[0].x = 100.0f + 50.0f * t;
         d[0].y = 100.0f + 20.0f * t;
         d[0].certainty = 1.0f;
@@ -290,48 +291,48 @@ void test_bad_input(void)
         d[i].y = 100.0f;
         d[i].certainty = 1.0f;
     }
-    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_step(NULL, PERIOD, d, 1u, out, 2u, &n));
-    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_step(&trk, PERIOD, NULL, 1u, out, 2u, &n));
-    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_step(&trk, PERIOD, d, 1u, out, 2u, NULL));
-    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, 0.0f, d, 1u, out, 2u, &n));
-    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, NAN, d, 1u, out, 2u, &n));
-    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, 9.0f * PERIOD, d, 1u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_step(NULL, PERIOD_US, d, 1u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_step(&trk, PERIOD_US, NULL, 1u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_step(&trk, PERIOD_US, d, 1u, out, 2u, NULL));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, 0u, d, 1u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, UINT32_MAX, d, 1u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, 9u * PERIOD_US, d, 1u, out, 2u, &n));
     TEST_ASSERT_EQUAL(SBR_ERR_SIZE,
-                      sbr_track_step(&trk, PERIOD, d, SBR_TRACK_MAX_DETECTIONS + 1u, out, 2u, &n));
+                      sbr_track_step(&trk, PERIOD_US, d, SBR_TRACK_MAX_DETECTIONS + 1u, out, 2u, &n));
     d[1].x = NAN;
-    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD, d, 2u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD_US, d, 2u, out, 2u, &n));
     d[1].x = 1242.0f; /* outside the grid */
-    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD, d, 2u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD_US, d, 2u, out, 2u, &n));
     d[1].x = 300.0f;
     d[1].y = -0.5f;
-    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD, d, 2u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD_US, d, 2u, out, 2u, &n));
     d[1].y = 100.0f;
     d[1].certainty = 0.0f; /* zero certainty */
-    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD, d, 2u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD_US, d, 2u, out, 2u, &n));
     d[1].certainty = 1.5f;
-    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD, d, 2u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD_US, d, 2u, out, 2u, &n));
     d[1].certainty = 1.0f;
     /* nothing changed by the refused calls: the first good step starts target 1 */
-    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD, d, 1u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD_US, d, 1u, out, 2u, &n));
     TEST_ASSERT_EQUAL_UINT32(1u, n);
     TEST_ASSERT_EQUAL_UINT32(1u, out[0].id);
     /* capacity: two slots, three detections -> one cannot start a target */
-    TEST_ASSERT_EQUAL(SBR_ERR_CAPACITY, sbr_track_step(&trk, PERIOD, d, 3u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_CAPACITY, sbr_track_step(&trk, PERIOD_US, d, 3u, out, 2u, &n));
     TEST_ASSERT_EQUAL_UINT32(2u, n);
     /* result array too short: the step is done, the first entry written */
-    TEST_ASSERT_EQUAL(SBR_ERR_CAPACITY, sbr_track_step(&trk, PERIOD, d, 2u, out, 1u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_CAPACITY, sbr_track_step(&trk, PERIOD_US, d, 2u, out, 1u, &n));
     TEST_ASSERT_EQUAL_UINT32(1u, n);
     /* no result array: the step is done, nothing written, the overflow reported */
-    TEST_ASSERT_EQUAL(SBR_ERR_CAPACITY, sbr_track_step(&trk, PERIOD, d, 2u, NULL, 0u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_CAPACITY, sbr_track_step(&trk, PERIOD_US, d, 2u, NULL, 0u, &n));
     TEST_ASSERT_EQUAL_UINT32(0u, n);
     /* corrupted instance */
     trk.magic ^= 1u;
-    TEST_ASSERT_EQUAL(SBR_ERR_STATE, sbr_track_step(&trk, PERIOD, d, 1u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_STATE, sbr_track_step(&trk, PERIOD_US, d, 1u, out, 2u, &n));
     trk.magic ^= 1u;
     trk.cfg.window = 4u;
-    TEST_ASSERT_EQUAL(SBR_ERR_STATE, sbr_track_step(&trk, PERIOD, d, 1u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_STATE, sbr_track_step(&trk, PERIOD_US, d, 1u, out, 2u, &n));
     memset(&trk, 0, sizeof(trk));
-    TEST_ASSERT_EQUAL(SBR_ERR_STATE, sbr_track_step(&trk, PERIOD, d, 1u, out, 2u, &n));
+    TEST_ASSERT_EQUAL(SBR_ERR_STATE, sbr_track_step(&trk, PERIOD_US, d, 1u, out, 2u, &n));
     /* configuration and workspace */
     sbr_track_config_default(&cfg);
     TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_config_check(&cfg)); /* no model */
@@ -388,7 +389,7 @@ void test_kitti_model(void)
         d.x = tx + 2.0f * tsup_gauss(&rng);
         d.y = ty + 2.0f * tsup_gauss(&rng);
         d.certainty = 1.0f;
-        TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD, &d, 1u, out, 1u, &n));
+        TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD_US, &d, 1u, out, 1u, &n));
         TEST_ASSERT_EQUAL_UINT32(1u, n);
         TEST_ASSERT_EQUAL_UINT32(1u, out[0].id);
         if (f >= 5u) {
@@ -422,7 +423,7 @@ void test_meas_sigma_bounded_by_window(void)
     cfg.meas_sigma = (25.0f * m.vel_spacing / 5.53f) * 0.99f;
     TEST_ASSERT_EQUAL(SBR_OK, sbr_track_config_check(&cfg));
     TEST_ASSERT_EQUAL(SBR_OK, sbr_track_init(&trk, &cfg, g_ws_kitti, sizeof(g_ws_kitti)));
-    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD, &d, 1u, out, 1u, &n));
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD_US, &d, 1u, out, 1u, &n));
     TEST_ASSERT_EQUAL_UINT32(1u, n);
     TEST_ASSERT_TRUE(isfinite(out[0].x) && isfinite(out[0].y));
     TEST_ASSERT_FLOAT_WITHIN(2.0f, 600.0f, out[0].x);
@@ -578,14 +579,15 @@ void test_tracker_h_statuses(void)
     cfg.window = 4u;
     ROW(&t, SBR_ERR_SIZE, sbr_track_init(&blank, &cfg, g_ws, sizeof(g_ws))); /* a configuration error */
     cfg.window = WINDOW;
-    ROW(&t, SBR_OK, sbr_track_step(&trk, PERIOD, d, 1u, out, 2u, &n));
-    ROW(&t, SBR_ERR_NULL, sbr_track_step(&trk, PERIOD, d, 1u, out, 2u, NULL));
-    ROW(&t, SBR_ERR_NULL, sbr_track_step(&trk, PERIOD, NULL, 1u, out, 2u, &n));
-    ROW(&t, SBR_ERR_STATE, sbr_track_step(&blank, PERIOD, d, 1u, out, 2u, &n));
-    ROW(&t, SBR_ERR_RANGE, sbr_track_step(&trk, -PERIOD, d, 1u, out, 2u, &n));
-    ROW(&t, SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD, &outside, 1u, out, 2u, &n));
-    ROW(&t, SBR_ERR_SIZE, sbr_track_step(&trk, PERIOD, d, SBR_TRACK_MAX_DETECTIONS + 1u, out, 2u, &n));
-    ROW(&t, SBR_ERR_CAPACITY, sbr_track_step(&trk, PERIOD, d, 2u, out, 2u, &n)); /* room for 1 target */
+    ROW(&t, SBR_OK, sbr_track_step(&trk, PERIOD_US, d, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_NULL, sbr_track_step(&trk, PERIOD_US, d, 1u, out, 2u, NULL));
+    ROW(&t, SBR_ERR_NULL, sbr_track_step(&trk, PERIOD_US, NULL, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_STATE, sbr_track_step(&blank, PERIOD_US, d, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_RANGE, sbr_track_step(&trk, 0u, d, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_RANGE, sbr_track_step(&trk, (8u * PERIOD_US) + 1u, d, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_RANGE, sbr_track_step(&trk, PERIOD_US, &outside, 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_SIZE, sbr_track_step(&trk, PERIOD_US, d, SBR_TRACK_MAX_DETECTIONS + 1u, out, 2u, &n));
+    ROW(&t, SBR_ERR_CAPACITY, sbr_track_step(&trk, PERIOD_US, d, 2u, out, 2u, &n)); /* room for 1 target */
     status_table_check(&t);
 }
 

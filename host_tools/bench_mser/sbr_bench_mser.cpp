@@ -99,7 +99,7 @@ int main(int argc, char **argv) {
             std::fprintf(stderr, "sbr_bench_mser: sbr_map_make failed on %s\n", name);
             return 1;
         }
-        ws_bytes = sbr_mser_workspace_size(mv.width, mv.height, &cfg);
+        ws_bytes = sbr_mser_workspace_size(&cfg, mv.width, mv.height);
         std::vector<uint32_t> ws(ws_bytes / 4u + 1u);
         pixels = size_t(mv.width) * size_t(mv.height);
         double best = 1e30, peer_best = 1e30;

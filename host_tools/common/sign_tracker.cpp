@@ -1,11 +1,12 @@
 #include "sign_tracker.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sbr_host {
 
 SignTracker::SignTracker(float width, float height, float period_s)
-    : w_(width), h_(height), period_(period_s) {
+    : w_(width), h_(height), period_us_(static_cast<uint32_t>(std::lround(period_s * 1.0e6))) {
     const uint32_t vel = 41;
     trans_.resize(SBR_TRACK_MODEL_TRANSITION_LEN(3, 3, vel));
     birth_.resize(SBR_TRACK_MODEL_BIRTH_LEN(3, 3, vel));
@@ -39,7 +40,7 @@ std::vector<SignTracker::Track> SignTracker::update(const std::vector<Input> &de
     }
     std::vector<sbr_track_target_t> tg(cfg_.max_targets);
     uint32_t n = 0;
-    const sbr_status_t st = sbr_track_step(&trk_, period_, in.data(), static_cast<uint32_t>(in.size()),
+    const sbr_status_t st = sbr_track_step(&trk_, period_us_, in.data(), static_cast<uint32_t>(in.size()),
                                            tg.data(), static_cast<uint32_t>(tg.size()), &n);
     ++frame_;
     if (st != SBR_OK && st != SBR_ERR_CAPACITY) return out;

@@ -42,7 +42,8 @@ public:
 
 private:
     bool ok_ = false;
-    float w_, h_, period_;
+    float w_, h_;
+    uint32_t period_us_;  // microseconds between frames (what sbr_track_step() takes)
     std::vector<float> trans_, birth_;
     sbr_track_model_t model_{};
     sbr_track_config_t cfg_{};

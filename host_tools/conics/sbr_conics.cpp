@@ -99,7 +99,7 @@ int run_torch(uint32_t seed, int trials, const std::string &save) {
     sbr_ellipse_detect_config_default(&cfg);
     cfg.mser.polarity = SBR_MSER_BRIGHT;
     cfg.mser.max_nodes = 200000;
-    const size_t need = sbr_ellipse_detect_workspace_size(640, 480, &cfg);
+    const size_t need = sbr_ellipse_detect_workspace_size(&cfg, 640, 480);
     std::vector<uint64_t> ws(need / 8 + 1);
     std::mt19937 rng(seed);
     std::printf("\n(a) torchlight pose from rendered images: %zu poses x %d noise draws per level, "
@@ -192,7 +192,7 @@ int run_fit(uint32_t seed, int trials) {
     for (double arc : {360.0, 180.0})
         for (double noise : noises) {
             std::vector<sbr_ellipse_t> truth;
-            std::vector<std::vector<sbr_point2f_t>> pts;
+            std::vector<std::vector<sbr_pointf_t>> pts;
             std::vector<std::vector<cv::Point2f>> cvpts;
             for (int t = 0; t < trials; ++t) {
                 sbr_ellipse_t e;
@@ -203,7 +203,7 @@ int run_fit(uint32_t seed, int trials) {
                 e.angle = float(wrap_pi(kPi * U(rng)));
                 truth.push_back(e);
                 const double t0 = 2 * kPi * U(rng);
-                std::vector<sbr_point2f_t> p;
+                std::vector<sbr_pointf_t> p;
                 std::vector<cv::Point2f> c;
                 for (int i = 0; i < npts; ++i) {
                     const double s = t0 + (arc * kPi / 180.0) * i / npts;
@@ -359,6 +359,7 @@ int run_bike(uint32_t seed, int runs, const std::string &save) {
     const std::vector<double> noises = {0.0, 8.0, 16.0};
     const int frames = 88;  // 3.5 s at 25 frames/s
     const float dt = 0.04f;
+    const uint32_t dt_us = 40000u;  // dt as the core takes it
     const int settle = 10;   // position errors from frame 10 (0.4 s) on
     const int settled = 38;  // all state errors from frame 38 (1.5 s) on
     sbr_bike_pf_config_t pcfg;
@@ -367,7 +368,7 @@ int run_bike(uint32_t seed, int runs, const std::string &save) {
     sbr_ellipse_detect_config_t dcfg;
     sbr_ellipse_detect_config_default(&dcfg);
     dcfg.mser.max_nodes = 400000;
-    const size_t need = sbr_ellipse_detect_workspace_size(1280, 720, &dcfg);
+    const size_t need = sbr_ellipse_detect_workspace_size(&dcfg, 1280, 720);
     std::vector<uint64_t> dws(need / 8 + 1);
     std::printf("\n(c) bicycle tracking from rendered wheel ellipses: %d frames (25/s) per run, %d filter run(s) "
                 "per row (seeds %u..), %u particles; tyres 35 on sky 175 / ground 120, noise sigma in grey levels; "
@@ -395,7 +396,7 @@ int run_bike(uint32_t seed, int runs, const std::string &save) {
                     const double tm = k * dt;
                     if (k > 0) {
                         t.steer = float(sc.steer(tm));
-                        sbr_bike_predict_state(&pcfg.model, &t, dt, &t);
+                        sbr_bike_predict_state(&pcfg.model, &t, dt_us, &t);
                         t.speed = float(std::max(0.0, t.speed + sc.accel(tm) * dt));
                     }
                     cv::Mat img = render_bike(pcfg.camera, pcfg.model, t, noise, rng);
@@ -413,7 +414,7 @@ int run_bike(uint32_t seed, int runs, const std::string &save) {
                     for (uint32_t i = 0; i < ne; ++i) el[i] = det[i].ellipse;
                     sbr_bike_result_t res;
                     t0 = std::chrono::steady_clock::now();
-                    if (sbr_bike_pf_step(&pf, dt, el, ne, &res) != SBR_OK) return 1;
+                    if (sbr_bike_pf_step(&pf, dt_us, el, ne, &res) != SBR_OK) return 1;
                     t1 = std::chrono::steady_clock::now();
                     pf_us.add(std::chrono::duration<double, std::micro>(t1 - t0).count());
                     ++total;

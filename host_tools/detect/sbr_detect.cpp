@@ -331,7 +331,7 @@ int main(int argc, char **argv) {
         } else {
             const sbr_image_t v = bgr_view(img);
             const uint32_t w = use_roi ? roi.width : v.width, h = use_roi ? roi.height : v.height;
-            const size_t need = sbr_recog_workspace_size(w, h, &cfg);
+            const size_t need = sbr_recog_workspace_size(&cfg, w, h);
             if (need > ws.size() * 8) ws.assign(need / 8 + 1, 0);
             ws_bytes = std::max(ws_bytes, need);
             uint32_t n = 0;

@@ -100,7 +100,7 @@ int main(int argc, char **argv) {
             return 1;
         }
         const sbr_image_t view = bgr_view(img);
-        ws.resize(sbr_parts_workspace_size(view.width, view.height, &cfg));
+        ws.resize(sbr_parts_workspace_size(&cfg, view.width, view.height));
         uint32_t count = 0;
         const sbr_status_t st = sbr_parts_extract(&view, &cfg, &fft, ws.data(), ws.size(), parts.data(),
                                                   static_cast<uint32_t>(parts.size()), &count, nullptr);

@@ -43,7 +43,7 @@ struct Run {
 
     std::vector<sbr_detection_t> detect(const cv::Mat &img, float thr, const char *what) {
         const sbr_image_t v = bgr_view(img);
-        const size_t need = sbr_recog_workspace_size(v.width, v.height, &cfg);
+        const size_t need = sbr_recog_workspace_size(&cfg, v.width, v.height);
         if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
         uint32_t n = 0;
         const sbr_status_t st = sbr_recog_detect(&v, nullptr, &cfg, &model, ws.data(), ws.size() * 8, dets.data(),

@@ -52,6 +52,7 @@ constexpr unsigned kMaxMisses = 5;
 constexpr unsigned kReportMisses = 2;
 constexpr double kGate = 4.0;
 constexpr float kPeriod = 0.1f;  // KITTI: 10 frames per second
+constexpr uint32_t kPeriodUs = 100000u;  // the same in microseconds (sbr_track_step())
 double g_tail = 0.01;       // share of a learned row given to the wide constant-velocity tail
 double g_tail_sigma = 2.0;  // its standard deviation, velocity channels
 size_t g_workspace_bytes = 0;
@@ -900,7 +901,7 @@ std::vector<Result> run_all(const Options &o, const std::vector<Seq> &seqs, cons
                     in.push_back({static_cast<float>(d.x), static_cast<float>(d.y), 1.0f});
                 uint32_t n = 0;
                 const auto t0 = std::chrono::steady_clock::now();
-                const sbr_status_t st = sbr_track_step(&trk, kPeriod, in.data(), static_cast<uint32_t>(in.size()),
+                const sbr_status_t st = sbr_track_step(&trk, kPeriodUs, in.data(), static_cast<uint32_t>(in.size()),
                                                        tg.data(), static_cast<uint32_t>(tg.size()), &n);
                 res[0].ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
                 if (st != SBR_OK && st != SBR_ERR_CAPACITY) {

@@ -78,7 +78,7 @@ bool extract(const std::string &path, const sbr_recog_config_t &cfg, std::vector
     cv::Mat img = cv::imread(path, cv::IMREAD_COLOR);
     if (img.empty()) return false;
     sbr_image_t v = bgr_view(img);
-    const size_t need = sbr_parts_workspace_size(v.width, v.height, &cfg.parts);
+    const size_t need = sbr_parts_workspace_size(&cfg.parts, v.width, v.height);
     if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
     sbr_fft_t fft;
     sbr_fft_init(&fft, cfg.parts.fd_n);
@@ -456,7 +456,7 @@ int main(int argc, char **argv) {
                 cv::Mat img = cv::imread(files[i], cv::IMREAD_COLOR);
                 if (img.empty()) continue;
                 sbr_image_t v = bgr_view(img);
-                const size_t need = sbr_recog_workspace_size(v.width, v.height, &rc);
+                const size_t need = sbr_recog_workspace_size(&rc, v.width, v.height);
                 if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
                 uint32_t n = 0;
                 if (sbr_recog_detect(&v, nullptr, &rc, &m.view, ws.data(), ws.size() * 8, dets.data(),

@@ -240,7 +240,7 @@ constexpr float kMineScore = 0.05f;
 // The boxes of sbr_recog_detect() on one image with configuration rc, best first.
 std::vector<Box> recog_boxes(const sbr_image_t &v, const sbr_recog_config_t &rc, const sbr_model_t &m,
                              std::vector<uint64_t> &ws) {
-    const size_t need = sbr_recog_workspace_size(v.width, v.height, &rc);
+    const size_t need = sbr_recog_workspace_size(&rc, v.width, v.height);
     if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
     std::vector<sbr_detection_t> dets(4096);
     uint32_t n = 0;

@@ -70,13 +70,16 @@ typedef struct sbr_bike_state_s {
 void sbr_bike_model_default(sbr_bike_model_t *model);
 
 /**
- * @brief Advance a state by dt seconds with the deterministic model (no noise).
- * @param dt seconds, 0 <= dt <= 10 (sub-steps of at most 20 ms).
+ * @brief Advance a state by dt_us microseconds with the deterministic model (no noise).
+ * @param[in]  model the model.
+ * @param[in]  state the state now.
+ * @param[in]  dt_us microseconds, at most 10 s (sub-steps of at most 20 ms).
+ * @param[out] out   the state dt_us later (may be `state`).
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad model, dt, or a state value that
  *         is not finite or out of its range).
  */
 sbr_status_t sbr_bike_predict_state(const sbr_bike_model_t *model, const sbr_bike_state_t *state,
-                                    float dt, sbr_bike_state_t *out);
+                                    uint32_t dt_us, sbr_bike_state_t *out);
 
 /**
  * @brief The image ellipses of the two wheels (exact perspective images of the circles).
@@ -257,14 +260,18 @@ sbr_status_t sbr_bike_pf_init(sbr_bike_pf_t *pf, const sbr_bike_pf_config_t *cfg
  * stack (Cortex-M4 build, -fstack-usage), most of it the candidate list for
  * ::SBR_BIKE_MAX_ELLIPSES ellipses.
  *
- * @param dt seconds since the previous step, 0 <= dt <= 1 (ignored when a track starts).
- * @param ellipses the ellipses of this frame (may be NULL when n = 0).
+ * @param[in,out] pf the filter.
+ * @param[in] dt_us microseconds since the previous step, at most 1 s (ignored when a track
+ *        starts).
+ * @param[in] ellipses the ellipses of this frame (may be NULL when n = 0).
+ * @param[in] n        their number, at most ::SBR_BIKE_MAX_ELLIPSES.
+ * @param[out] result  the frame's estimate and flags.
  * @return ::SBR_OK (also when no track exists: flags tell); ::SBR_ERR_NULL;
  *         ::SBR_ERR_STATE (pf not initialised or corrupted); ::SBR_ERR_RANGE (dt, or an
  *         ellipse refused as by sbr_bike_pair_wheels()); ::SBR_ERR_SIZE (n >
  *         ::SBR_BIKE_MAX_ELLIPSES).
  */
-sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, float dt, const sbr_ellipse_t *ellipses, uint32_t n,
+sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, uint32_t dt_us, const sbr_ellipse_t *ellipses, uint32_t n,
                               sbr_bike_result_t *result);
 
 #ifdef __cplusplus

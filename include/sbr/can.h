@@ -193,8 +193,15 @@ typedef struct sbr_can_sched_config_s {
     uint32_t max_objects;     /**< 1..16. Default 8. */
 } sbr_can_sched_config_t;
 
-/** @brief Defaults as documented above. No-op for NULL. */
+/** @brief Defaults as documented above. No-op for NULL.
+    @param[out] cfg the configuration to fill. */
 void sbr_can_sched_config_default(sbr_can_sched_config_t *cfg);
+
+/** @brief Check a scheduler configuration (sbr_can_schedule() checks it too).
+    @param[in] cfg the configuration.
+    @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (frame_budget < 4, max_signs not
+            1..4, max_detections 0, max_objects not 1..16). */
+sbr_status_t sbr_can_sched_config_check(const sbr_can_sched_config_t *cfg);
 
 /**
  * @brief Turn one cycle's results into protected frames, in priority order.

@@ -84,10 +84,10 @@ typedef struct sbr_channel_mode2d_s {
 
 /**
  * @brief The thesis's worked example: centres 1..10, spacing 1, M = 3 (a = pi/3).
- * @param[out] cfg filled on success.
- * @return ::SBR_OK, ::SBR_ERR_NULL.
+ *        No-op for NULL.
+ * @param[out] cfg the configuration to fill.
  */
-sbr_status_t sbr_channel_config_default(sbr_channel_config_t *cfg);
+void sbr_channel_config_default(sbr_channel_config_t *cfg);
 
 /**
  * @brief Check a configuration.
@@ -167,6 +167,12 @@ sbr_status_t sbr_channel_decode_window(const sbr_channel_config_t *cfg, const fl
 sbr_status_t sbr_channel_decode(const sbr_channel_config_t *cfg, const float *hist,
                                 uint32_t len, float min_certainty, sbr_channel_mode_t *modes,
                                 uint32_t capacity, uint32_t *count);
+
+/**
+ * @brief Both axes set to sbr_channel_config_default(). No-op for NULL.
+ * @param[out] cfg the configuration to fill.
+ */
+void sbr_channel2d_config_default(sbr_channel2d_config_t *cfg);
 
 /**
  * @brief Check a 2-D configuration (both axes as sbr_channel_config_check(); the grid

@@ -32,11 +32,6 @@ typedef struct sbr_conic_s {
     float f; /**< constant */
 } sbr_conic_t;
 
-/** A point with float coordinates. */
-typedef struct sbr_point2f_s {
-    float x;
-    float y;
-} sbr_point2f_t;
 
 /** An ellipse by its geometry. */
 typedef struct sbr_ellipse_s {
@@ -125,7 +120,7 @@ sbr_status_t sbr_ellipse_to_conic(const sbr_ellipse_t *ellipse, sbr_conic_t *con
  *         ellipse (collinear, fewer than 5 distinct points, or the best conic is not a
  *         real ellipse, e.g. points of a hyperbola).
  */
-sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_t *conic,
+sbr_status_t sbr_ellipse_fit(const sbr_pointf_t *points, uint32_t n, sbr_conic_t *conic,
                              sbr_ellipse_t *ellipse);
 
 /**
@@ -137,7 +132,7 @@ sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n = 0); ::SBR_ERR_RANGE (non-finite
  *         input, a point beyond ::SBR_CONIC_MAX_COORD, or distances that overflow float32).
  */
-sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_point2f_t *points,
+sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_pointf_t *points,
                                 uint32_t n, float *rms, float *max_abs);
 
 /**
@@ -149,7 +144,7 @@ sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_point2f_t *p
  *         sbr_conic_to_ellipse() refuses as out of range); ::SBR_ERR_DEGENERATE (not a real
  *         ellipse).
  */
-sbr_status_t sbr_ellipse_coverage(const sbr_conic_t *conic, const sbr_point2f_t *points,
+sbr_status_t sbr_ellipse_coverage(const sbr_conic_t *conic, const sbr_pointf_t *points,
                                   uint32_t n, float tol, float *coverage);
 
 /** Relative pose of a plane lit by a torchlight (paper A): Z = n1 X + n2 Y + Z0 in camera
@@ -224,10 +219,6 @@ typedef struct sbr_ellipse_det_s {
     uint8_t polarity;  /**< ::SBR_MSER_DARK or ::SBR_MSER_BRIGHT */
 } sbr_ellipse_det_t;
 
-/** @cond */
-#define SBR_CONIC_R8_(v) ((((size_t)(v)) + 7u) & ~(size_t)7u)
-#define SBR_CONIC_MAX_(a, b) (((a) > (b)) ? (a) : (b))
-/** @endcond */
 
 /**
  * @brief Workspace bytes of sbr_ellipse_detect() for a width x height image, as a constant
@@ -237,14 +228,14 @@ typedef struct sbr_ellipse_det_s {
  *        sbr_ellipse_detect_workspace_size() for that configuration.
  */
 #define SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(width, height, delta, nodes, max_regions, max_points) \
-    (SBR_CONIC_R8_((size_t)(max_regions) * sizeof(sbr_mser_region_t)) +                          \
-     SBR_CONIC_MAX_(SBR_CONIC_R8_(SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes)),          \
-                    SBR_CONIC_R8_(SBR_MSER_MASK_WORKSPACE_SIZE(width, height)) +                  \
-                        SBR_CONIC_R8_((size_t)(width) * (size_t)(height)) +                       \
-                        SBR_CONIC_R8_(SBR_CONTOUR_WORKSPACE_SIZE(width, height)) +                \
-                        SBR_CONIC_R8_((size_t)(max_points) * sizeof(sbr_point_t)) +               \
-                        SBR_CONIC_R8_(4u * sizeof(sbr_contour_t)) +                               \
-                        SBR_CONIC_R8_((size_t)(max_points) * sizeof(sbr_point2f_t))))
+    (SBR_WS_ALIGN8((size_t)(max_regions) * sizeof(sbr_mser_region_t)) +                          \
+     SBR_WS_MAX(SBR_WS_ALIGN8(SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes)),          \
+                    SBR_WS_ALIGN8(SBR_MSER_MASK_WORKSPACE_SIZE(width, height)) +                  \
+                        SBR_WS_ALIGN8((size_t)(width) * (size_t)(height)) +                       \
+                        SBR_WS_ALIGN8(SBR_CONTOUR_WORKSPACE_SIZE(width, height)) +                \
+                        SBR_WS_ALIGN8((size_t)(max_points) * sizeof(sbr_point_t)) +               \
+                        SBR_WS_ALIGN8(4u * sizeof(sbr_contour_t)) +                               \
+                        SBR_WS_ALIGN8((size_t)(max_points) * sizeof(sbr_pointf_t))))
 
 /** @brief Defaults as documented above. No-op for NULL. */
 void sbr_ellipse_detect_config_default(sbr_ellipse_detect_config_t *cfg);
@@ -256,8 +247,8 @@ sbr_status_t sbr_ellipse_detect_config_check(const sbr_ellipse_detect_config_t *
  * @brief Workspace bytes for sbr_ellipse_detect() on a width x height image; 0 for an
  *        invalid configuration or size.
  */
-size_t sbr_ellipse_detect_workspace_size(uint32_t width, uint32_t height,
-                                         const sbr_ellipse_detect_config_t *cfg);
+size_t sbr_ellipse_detect_workspace_size(const sbr_ellipse_detect_config_t *cfg, uint32_t width,
+                                         uint32_t height);
 
 /**
  * @brief Ellipses of an image: MSER regions of both polarities, the outer contour of each,

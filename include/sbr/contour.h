@@ -25,11 +25,6 @@
 extern "C" {
 #endif
 
-/** A pixel position. */
-typedef struct sbr_point_s {
-    int16_t x; /**< column */
-    int16_t y; /**< row */
-} sbr_point_t;
 
 /** One traced contour: its points are `points[first .. first + length)`. */
 typedef struct sbr_contour_s {

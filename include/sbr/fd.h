@@ -41,11 +41,6 @@ extern "C" {
 /** Largest absolute coordinate accepted (keeps float arc lengths accurate). */
 #define SBR_FD_MAX_COORD 1.0e6f
 
-/** A point with float coordinates. */
-typedef struct sbr_pointf_s {
-    float x; /**< x */
-    float y; /**< y */
-} sbr_pointf_t;
 
 /** A Fourier descriptor. `c[k]` holds C(k - m), k = 0..2m; `c[m]` (the DC term) is 0. */
 typedef struct sbr_fd_s {
@@ -155,8 +150,15 @@ typedef struct sbr_fd_match_s {
 } sbr_fd_match_t;
 
 /** @brief Defaults: covariant, no rotation bound, refined, no screening (max_error 0).
-    @return ::SBR_OK, ::SBR_ERR_NULL. */
-sbr_status_t sbr_fd_match_config_default(sbr_fd_match_config_t *cfg);
+    No-op for NULL.
+    @param[out] cfg the configuration to fill. */
+void sbr_fd_match_config_default(sbr_fd_match_config_t *cfg);
+
+/** @brief Check a match configuration (every match function checks it too).
+    @param[in] cfg the configuration.
+    @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (unknown mode, max_rotation negative
+            or not finite, max_error negative or NaN). */
+sbr_status_t sbr_fd_match_config_check(const sbr_fd_match_config_t *cfg);
 
 /**
  * @brief Correlate a query with one prototype.

@@ -125,7 +125,7 @@ sbr_status_t sbr_mser_config_check(const sbr_mser_config_t *cfg);
  *        configuration; 0 for an invalid configuration or a size below 3 x 3 or above
  *        ::SBR_IMAGE_MAX_DIM.
  */
-size_t sbr_mser_workspace_size(uint32_t width, uint32_t height, const sbr_mser_config_t *cfg);
+size_t sbr_mser_workspace_size(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height);
 
 /**
  * @brief Extract the maximally stable extremal regions of a map.

@@ -96,7 +96,7 @@ sbr_status_t sbr_parts_config_check(const sbr_parts_config_t *cfg);
  * @brief Workspace bytes for views up to width x height; 0 for a bad configuration or
  *        size (the map must be at least 3 x 3 after subsampling).
  */
-size_t sbr_parts_workspace_size(uint32_t width, uint32_t height, const sbr_parts_config_t *cfg);
+size_t sbr_parts_workspace_size(const sbr_parts_config_t *cfg, uint32_t width, uint32_t height);
 
 /**
  * @brief Extract the parts of a frame.

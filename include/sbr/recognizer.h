@@ -315,7 +315,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg);
  * @brief Workspace bytes for frames (or ROIs) up to width x height; 0 for a bad
  *        configuration or size.
  */
-size_t sbr_recog_workspace_size(uint32_t width, uint32_t height, const sbr_recog_config_t *cfg);
+size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, uint32_t height);
 
 /**
  * Compile-time bound on the workspace for the default configuration (sbr_recog_config_default())

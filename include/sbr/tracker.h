@@ -24,7 +24,7 @@
  * makes a model from a constant-velocity assumption instead (for data without
  * sequences to learn from).
  *
- * **One step** (sbr_track_step(), `dt` seconds since the previous step):
+ * **One step** (sbr_track_step(), `dt_us` microseconds since the previous step, dt):
  * 1. Predict every target: for each coefficient (p, j), the velocity moves to channel k
  *    with T[.][region][j][k] (region weights at the window centre), the position by
  *    (k - centre) * dt / period channels (a fractional shift is split between the two
@@ -264,14 +264,15 @@ sbr_status_t sbr_track_init(sbr_track_t *trk, const sbr_track_config_t *cfg, voi
 
 /**
  * @brief One frame: predict by dt, associate, update, deaths and births, decode.
- * @param dt seconds since the previous step, 0 < dt <= 8 model periods (the first step's
- *        dt only has to be valid).
- * @param dets this frame's detections (NULL allowed when n = 0).
- * @param n number of detections, 0 .. ::SBR_TRACK_MAX_DETECTIONS.
- * @param targets result array: every live target after the step, confirmed ones first
+ * @param[in,out] trk   the tracker.
+ * @param[in]     dt_us microseconds since the previous step, 0 < dt <= 8 model periods
+ *        (the first step's dt only has to be valid).
+ * @param[in]     dets this frame's detections (NULL allowed when n = 0).
+ * @param[in]     n number of detections, 0 .. ::SBR_TRACK_MAX_DETECTIONS.
+ * @param[out]    targets result array: every live target after the step, confirmed ones first
  *        (each group by id).
- * @param capacity length of `targets`.
- * @param count targets written.
+ * @param[in]     capacity length of `targets`.
+ * @param[out]    count targets written.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_STATE (not initialised or corrupted);
  *         ::SBR_ERR_RANGE (dt; a detection that is not finite, outside the image or with a
  *         certainty outside (0, 1]) - then nothing changes; ::SBR_ERR_SIZE (n too large) -
@@ -279,7 +280,7 @@ sbr_status_t sbr_track_init(sbr_track_t *trk, const sbr_track_config_t *cfg, voi
  *         because all `max_targets` slots were taken, or when `targets` was too short
  *         (the step is done in both cases; the first `capacity` targets are written).
  */
-sbr_status_t sbr_track_step(sbr_track_t *trk, float dt, const sbr_track_detection_t *dets,
+sbr_status_t sbr_track_step(sbr_track_t *trk, uint32_t dt_us, const sbr_track_detection_t *dets,
                             uint32_t n, sbr_track_target_t *targets, uint32_t capacity,
                             uint32_t *count);
 

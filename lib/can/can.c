@@ -585,6 +585,21 @@ static void sched_emit(sched_out_t *o, sbr_status_t pack_status, sbr_can_frame_t
     }
 }
 
+sbr_status_t sbr_can_sched_config_check(const sbr_can_sched_config_t *cfg)
+{
+    sbr_status_t st = SBR_OK;
+    if (cfg == NULL) {
+        st = SBR_ERR_NULL;
+    } else if ((cfg->frame_budget < 4u) || (cfg->max_signs == 0u) || (cfg->max_signs > 4u) ||
+               (cfg->max_detections == 0u) || (cfg->max_objects == 0u) ||
+               (cfg->max_objects > 16u)) {
+        st = SBR_ERR_RANGE;
+    } else {
+        /* valid */
+    }
+    return st;
+}
+
 /* How many of each message this cycle sends: the counts clamped to the configuration's
    maxima, and the frames they need (at least one of each message, even when empty). */
 typedef struct sched_plan_s {
@@ -703,8 +718,7 @@ sbr_status_t sbr_can_schedule(sbr_can_e2e_tx_t *tx, const sbr_can_sched_config_t
     }
     *count = 0u;
     *dropped = 0u;
-    if ((cfg->frame_budget < 4u) || (cfg->max_signs == 0u) || (cfg->max_signs > 4u) ||
-        (cfg->max_detections == 0u) || (cfg->max_objects == 0u) || (cfg->max_objects > 16u)) {
+    if (sbr_can_sched_config_check(cfg) != SBR_OK) {
         return SBR_ERR_RANGE;
     }
     if (capacity < cfg->frame_budget) {

@@ -15,16 +15,22 @@ static int is_finite_f(float v)
     return (isfinite(v) != 0) ? 1 : 0;
 }
 
-sbr_status_t sbr_channel_config_default(sbr_channel_config_t *cfg)
+void sbr_channel_config_default(sbr_channel_config_t *cfg)
 {
-    if (cfg == NULL) {
-        return SBR_ERR_NULL;
+    if (cfg != NULL) {
+        cfg->first_centre = 1.0f;
+        cfg->spacing = 1.0f;
+        cfg->count = 10u;
+        cfg->overlap = 3u;
     }
-    cfg->first_centre = 1.0f;
-    cfg->spacing = 1.0f;
-    cfg->count = 10u;
-    cfg->overlap = 3u;
-    return SBR_OK;
+}
+
+void sbr_channel2d_config_default(sbr_channel2d_config_t *cfg)
+{
+    if (cfg != NULL) {
+        sbr_channel_config_default(&cfg->x);
+        sbr_channel_config_default(&cfg->y);
+    }
 }
 
 sbr_status_t sbr_channel_config_check(const sbr_channel_config_t *cfg)

@@ -10,8 +10,8 @@
 #define BIKE_PI 3.14159265358979f
 #define BIKE_G 9.81f
 #define BIKE_SUBSTEP 0.02f
-#define BIKE_MAX_DT_STATE 10.0f
-#define BIKE_MAX_DT_STEP 1.0f
+#define BIKE_MAX_DT_STATE_US 10000000u
+#define BIKE_MAX_DT_STEP_US 1000000u
 #define BIKE_MIN_Z 0.1f
 #define BIKE_MAX_STEER 0.7f
 #define BIKE_MAX_ROLL 0.7f
@@ -118,18 +118,24 @@ static void advance(const sbr_bike_model_t *m, sbr_bike_state_t *s, float dt)
     }
 }
 
+/* Microseconds as seconds (a correctly rounded quotient: 40000 us is exactly 0.04f). */
+static float bike_seconds(uint32_t us)
+{
+    return (float)us / 1.0e6f;
+}
+
 sbr_status_t sbr_bike_predict_state(const sbr_bike_model_t *model, const sbr_bike_state_t *state,
-                                    float dt, sbr_bike_state_t *out)
+                                    uint32_t dt_us, sbr_bike_state_t *out)
 {
     sbr_status_t st = SBR_OK;
     if ((model == NULL) || (state == NULL) || (out == NULL)) {
         st = SBR_ERR_NULL;
-    } else if ((model_ok(model) == 0) || (state_ok(state) == 0) || (isfinite(dt) == 0) ||
-               (dt < 0.0f) || (dt > BIKE_MAX_DT_STATE)) {
+    } else if ((model_ok(model) == 0) || (state_ok(state) == 0) ||
+               (dt_us > BIKE_MAX_DT_STATE_US)) {
         st = SBR_ERR_RANGE;
     } else {
         sbr_bike_state_t s = *state;
-        advance(model, &s, dt);
+        advance(model, &s, bike_seconds(dt_us));
         *out = s;
     }
     return st;
@@ -937,7 +943,7 @@ static void weigh_and_estimate(sbr_bike_pf_t *pf, const bike_meas_t *m, sbr_bike
     }
 }
 
-sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, float dt, const sbr_ellipse_t *ellipses, uint32_t n,
+sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, uint32_t dt_us, const sbr_ellipse_t *ellipses, uint32_t n,
                               sbr_bike_result_t *result)
 {
     sbr_status_t st = SBR_OK;
@@ -948,7 +954,7 @@ sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, float dt, const sbr_ellipse_t *
         st = SBR_ERR_STATE;
     } else if (n > SBR_BIKE_MAX_ELLIPSES) {
         st = SBR_ERR_SIZE;
-    } else if ((isfinite(dt) == 0) || (dt < 0.0f) || (dt > BIKE_MAX_DT_STEP) || (ellipses_ok(ellipses, n) == 0)) {
+    } else if ((dt_us > BIKE_MAX_DT_STEP_US) || (ellipses_ok(ellipses, n) == 0)) {
         st = SBR_ERR_RANGE;
     } else {
         bike_meas_t m;
@@ -971,7 +977,7 @@ sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, float dt, const sbr_ellipse_t *
                 weigh_and_estimate(pf, &m, result);
             }
         } else {
-            predict_particles(pf, dt);
+            predict_particles(pf, bike_seconds(dt_us));
             cache_predictions(pf);
             associate(pf, ellipses, n, &m);
             result->flags = SBR_BIKE_TRACKING;

@@ -352,7 +352,7 @@ float sbr_conic_priv_sampson(const sbr_conic_t *q, float x, float y)
 /* ---------------------------------------------------------------- residual, coverage */
 
 /* Finite points within +-SBR_CONIC_MAX_COORD. */
-int sbr_conic_priv_points_finite(const sbr_point2f_t *p, uint32_t n)
+int sbr_conic_priv_points_finite(const sbr_pointf_t *p, uint32_t n)
 {
     uint32_t i;
     int ok = 1;
@@ -365,7 +365,7 @@ int sbr_conic_priv_points_finite(const sbr_point2f_t *p, uint32_t n)
     return ok;
 }
 
-sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_point2f_t *points,
+sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_pointf_t *points,
                                 uint32_t n, float *rms, float *max_abs)
 {
     sbr_status_t st = SBR_OK;
@@ -405,7 +405,7 @@ sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_point2f_t *p
     return st;
 }
 
-sbr_status_t sbr_ellipse_coverage(const sbr_conic_t *conic, const sbr_point2f_t *points,
+sbr_status_t sbr_ellipse_coverage(const sbr_conic_t *conic, const sbr_pointf_t *points,
                                   uint32_t n, float tol, float *coverage)
 {
     sbr_status_t st = SBR_OK;

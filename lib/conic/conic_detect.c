@@ -61,16 +61,16 @@ static size_t region_stage_size(uint32_t width, uint32_t height, uint32_t max_po
            round8(SBR_CONTOUR_WORKSPACE_SIZE(width, height)) +
            round8((size_t)max_points * sizeof(sbr_point_t)) +
            round8((size_t)DET_MAX_CONTOURS * sizeof(sbr_contour_t)) +
-           round8((size_t)max_points * sizeof(sbr_point2f_t));
+           round8((size_t)max_points * sizeof(sbr_pointf_t));
 }
 
-size_t sbr_ellipse_detect_workspace_size(uint32_t width, uint32_t height,
-                                         const sbr_ellipse_detect_config_t *cfg)
+size_t sbr_ellipse_detect_workspace_size(const sbr_ellipse_detect_config_t *cfg, uint32_t width,
+                                         uint32_t height)
 {
     size_t total = 0u;
     if ((sbr_ellipse_detect_config_check(cfg) == SBR_OK) && (width >= 3u) && (height >= 3u) &&
         (width <= SBR_IMAGE_MAX_DIM) && (height <= SBR_IMAGE_MAX_DIM)) {
-        const size_t mser = sbr_mser_workspace_size(width, height, &cfg->mser);
+        const size_t mser = sbr_mser_workspace_size(&cfg->mser, width, height);
         const size_t stage = region_stage_size(width, height, cfg->max_contour_points);
         if (mser > 0u) {
             total = round8((size_t)cfg->max_regions * sizeof(sbr_mser_region_t)) +
@@ -82,7 +82,7 @@ size_t sbr_ellipse_detect_workspace_size(uint32_t width, uint32_t height,
 
 /* Contour points as floats, moved `offset` pixels along the outward normal. The outward
    side follows from the contour's orientation (the sign of its shoelace area). */
-static void edge_points(const sbr_point_t *pts, uint32_t n, float offset, sbr_point2f_t *out)
+static void edge_points(const sbr_point_t *pts, uint32_t n, float offset, sbr_pointf_t *out)
 {
     int64_t area2 = 0;
     float side = 1.0f; /* normal (ty, -tx) * side points outward */
@@ -163,7 +163,7 @@ typedef struct det_bufs_s {
     uint8_t *cws;
     sbr_point_t *pts;
     sbr_contour_t *cons;
-    sbr_point2f_t *fp;
+    sbr_pointf_t *fp;
 } det_bufs_t;
 
 static void region_bufs(uint8_t *shared, uint32_t bw, uint32_t bh, uint32_t max_points,
@@ -179,7 +179,7 @@ static void region_bufs(uint8_t *shared, uint32_t bw, uint32_t bh, uint32_t max_
     b->cws = &shared[off_cws];
     b->pts = (sbr_point_t *)(void *)&shared[off_pts];
     b->cons = (sbr_contour_t *)(void *)&shared[off_cons];
-    b->fp = (sbr_point2f_t *)(void *)&shared[off_fp];
+    b->fp = (sbr_pointf_t *)(void *)&shared[off_fp];
 }
 
 /* The longest outer contour of a region's mask: its point count (0 when the region is
@@ -226,7 +226,7 @@ static uint32_t region_outline(const sbr_image_t *image, const sbr_ellipse_detec
 /* The ellipse of a region's outline pts[0..np) (np >= 8), moved by the edge offset into
    image coordinates in fp: 1 and *det when the fit passes every test. */
 static int region_ellipse(const sbr_ellipse_detect_config_t *cfg, const sbr_mser_region_t *reg,
-                          const sbr_point_t *pts, uint32_t np, sbr_point2f_t *fp,
+                          const sbr_point_t *pts, uint32_t np, sbr_pointf_t *fp,
                           sbr_ellipse_det_t *det)
 {
     uint32_t i;
@@ -284,7 +284,7 @@ static sbr_status_t detect_args(const sbr_image_t *image, const sbr_ellipse_dete
         st = SBR_ERR_SIZE;
     }
     if (st == SBR_OK) {
-        const size_t need = sbr_ellipse_detect_workspace_size(image->width, image->height, cfg);
+        const size_t need = sbr_ellipse_detect_workspace_size(cfg, image->width, image->height);
         if ((workspace == NULL) || (need == 0u) || (workspace_size < need) ||
             (sbr_util_aligned(workspace, 8u) == 0)) {
             st = SBR_ERR_WORKSPACE;

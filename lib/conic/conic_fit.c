@@ -108,7 +108,7 @@ static sbr_conic_t conic_from_reduced(const float t[9], const float v[3])
 }
 
 /* Rms Sampson distance of the points in the fit's normalised frame x' = s (x - mx). */
-static float normalised_miss(const sbr_conic_t *q, const sbr_point2f_t *points, uint32_t n,
+static float normalised_miss(const sbr_conic_t *q, const sbr_pointf_t *points, uint32_t n,
                              float mx, float my, float s)
 {
     float acc = 0.0f;
@@ -124,7 +124,7 @@ static float normalised_miss(const sbr_conic_t *q, const sbr_point2f_t *points, 
    eigenvector of the symmetric reduced scatter M) is a hyperbola that misses the points
    by less than a quarter of the ellipse fit's miss (noisy arcs of an ellipse give
    comparable misses; points of a hyperbola fit it almost exactly). */
-static int hyperbola_fits_better(const float mm[9], const float t[9], const sbr_point2f_t *points,
+static int hyperbola_fits_better(const float mm[9], const float t[9], const sbr_pointf_t *points,
                                  uint32_t n, float mx, float my, float s, float ellipse_miss)
 {
     float roots[3];
@@ -152,10 +152,10 @@ static int hyperbola_fits_better(const float mm[9], const float t[9], const sbr_
 }
 
 /* The points of a fit: finite, within +-SBR_CONIC_MAX_COORD, at least five distinct. */
-static sbr_status_t fit_points_check(const sbr_point2f_t *points, uint32_t n)
+static sbr_status_t fit_points_check(const sbr_pointf_t *points, uint32_t n)
 {
     sbr_status_t st = SBR_OK;
-    sbr_point2f_t seen[5] = {{0.0f, 0.0f}, {0.0f, 0.0f}, {0.0f, 0.0f}, {0.0f, 0.0f}, {0.0f, 0.0f}};
+    sbr_pointf_t seen[5] = {{0.0f, 0.0f}, {0.0f, 0.0f}, {0.0f, 0.0f}, {0.0f, 0.0f}, {0.0f, 0.0f}};
     uint32_t distinct = 0u;
     uint32_t i;
     if (n < 5u) {
@@ -191,7 +191,7 @@ typedef struct fit_frame_s {
     float s;
 } fit_frame_t;
 
-static void fit_frame(const sbr_point2f_t *points, uint32_t n, fit_frame_t *fr)
+static void fit_frame(const sbr_pointf_t *points, uint32_t n, fit_frame_t *fr)
 {
     const float fn = (float)n;
     float md = 0.0f;
@@ -218,7 +218,7 @@ static void fit_frame(const sbr_point2f_t *points, uint32_t n, fit_frame_t *fr)
 
 /* Scatter matrices of D1 = [x^2, xy, y^2] and D2 = [x, y, 1] in the normalised frame (all
    zero when the points coincide, s = 0). */
-static void fit_scatter(const sbr_point2f_t *points, uint32_t n, const fit_frame_t *fr,
+static void fit_scatter(const sbr_pointf_t *points, uint32_t n, const fit_frame_t *fr,
                         float s1[9], float s2[9], float s3[9])
 {
     uint32_t i;
@@ -355,7 +355,7 @@ static sbr_status_t fit_denormalise(const sbr_conic_t *qn, const sbr_ellipse_t *
     return st;
 }
 
-sbr_status_t sbr_ellipse_fit(const sbr_point2f_t *points, uint32_t n, sbr_conic_t *conic,
+sbr_status_t sbr_ellipse_fit(const sbr_pointf_t *points, uint32_t n, sbr_conic_t *conic,
                              sbr_ellipse_t *ellipse)
 {
     sbr_status_t st;

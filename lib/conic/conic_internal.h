@@ -40,6 +40,6 @@ sbr_status_t sbr_conic_priv_ellipse_checked(const sbr_ellipse_t *el, sbr_conic_t
 float sbr_conic_priv_sampson(const sbr_conic_t *q, float x, float y);
 
 /* Finite points within +-SBR_CONIC_MAX_COORD. */
-int sbr_conic_priv_points_finite(const sbr_point2f_t *p, uint32_t n);
+int sbr_conic_priv_points_finite(const sbr_pointf_t *p, uint32_t n);
 
 #endif /* SBR_CONIC_INTERNAL_H */

@@ -296,16 +296,30 @@ sbr_status_t sbr_fd_smooth(const sbr_fd_t *in, float sigma, sbr_fd_t *out)
     return SBR_OK;
 }
 
-sbr_status_t sbr_fd_match_config_default(sbr_fd_match_config_t *cfg)
+void sbr_fd_match_config_default(sbr_fd_match_config_t *cfg)
 {
-    if (cfg == NULL) {
-        return SBR_ERR_NULL;
+    if (cfg != NULL) {
+        cfg->mode = SBR_FD_ROTATION_COVARIANT;
+        cfg->max_rotation = SBR_PI_F;
+        cfg->refine = 1;
+        cfg->max_error = 0.0f;
     }
-    cfg->mode = SBR_FD_ROTATION_COVARIANT;
-    cfg->max_rotation = SBR_PI_F;
-    cfg->refine = 1;
-    cfg->max_error = 0.0f;
-    return SBR_OK;
+}
+
+sbr_status_t sbr_fd_match_config_check(const sbr_fd_match_config_t *cfg)
+{
+    sbr_status_t st = SBR_OK;
+    if (cfg == NULL) {
+        st = SBR_ERR_NULL;
+    } else if (((cfg->mode != SBR_FD_ROTATION_INVARIANT) &&
+                (cfg->mode != SBR_FD_ROTATION_COVARIANT)) ||
+               (isfinite(cfg->max_rotation) == 0) || (cfg->max_rotation < 0.0f) ||
+               (!(cfg->max_error >= 0.0f))) {
+        st = SBR_ERR_RANGE;
+    } else {
+        /* valid */
+    }
+    return st;
 }
 
 /* r at a fractional lag l (in samples of P), evaluated directly from the coefficients. */
@@ -366,10 +380,9 @@ static sbr_status_t check_match_args(const sbr_fft_t *fft, const sbr_fd_match_co
     if ((cfg == NULL) || (work == NULL) || (result == NULL)) {
         return SBR_ERR_NULL;
     }
-    if (((cfg->mode != SBR_FD_ROTATION_INVARIANT) && (cfg->mode != SBR_FD_ROTATION_COVARIANT)) ||
-        (isfinite(cfg->max_rotation) == 0) || (cfg->max_rotation < 0.0f) ||
-        (!(cfg->max_error >= 0.0f))) {
-        return SBR_ERR_RANGE;
+    st = sbr_fd_match_config_check(cfg);
+    if (st != SBR_OK) {
+        return st;
     }
     if ((fft->n < ((2u * query->m) + 1u)) || (work_len < fft->n)) {
         return SBR_ERR_SIZE;

@@ -115,7 +115,7 @@ static int parts_layout(uint32_t width, uint32_t height, const sbr_parts_config_
             return 0;
         }
     }
-    ms = sbr_mser_workspace_size(mw, mh, &cfg->mser);
+    ms = sbr_mser_workspace_size(&cfg->mser, mw, mh);
     if (ms == 0u) {
         return 0;
     }
@@ -133,7 +133,7 @@ static int parts_layout(uint32_t width, uint32_t height, const sbr_parts_config_
     return 1;
 }
 
-size_t sbr_parts_workspace_size(uint32_t width, uint32_t height, const sbr_parts_config_t *cfg)
+size_t sbr_parts_workspace_size(const sbr_parts_config_t *cfg, uint32_t width, uint32_t height)
 {
     parts_layout_t l;
     if ((sbr_parts_config_check(cfg) != SBR_OK) || (width > SBR_IMAGE_MAX_DIM) ||

@@ -194,7 +194,7 @@ sbr_status_t sbr_model_check(const sbr_model_t *model)
 int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_config_t *cfg,
                           recog_layout_t *l)
 {
-    l->parts_ws = RECOG_ALIGN(sbr_parts_workspace_size(width, height, &cfg->parts));
+    l->parts_ws = RECOG_ALIGN(sbr_parts_workspace_size(&cfg->parts, width, height));
     if (l->parts_ws == 0u) {
         return 0;
     }
@@ -211,7 +211,7 @@ int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_confi
     return 1;
 }
 
-size_t sbr_recog_workspace_size(uint32_t width, uint32_t height, const sbr_recog_config_t *cfg)
+size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, uint32_t height)
 {
     recog_layout_t l;
     if ((sbr_recog_config_check(cfg) != SBR_OK) || (width > SBR_IMAGE_MAX_DIM) ||

@@ -66,7 +66,7 @@ static sbr_status_t ctx_init(recog_ctx_t *c, const sbr_recog_config_t *cfg,
     c->model = model;
     c->vote_error = (cfg->vote_error > 0.0f) ? cfg->vote_error : model->vote_error;
     c->score_floor = (model->picto.version != 0u) ? cfg->candidate_score : cfg->min_score;
-    (void)sbr_fd_match_config_default(&c->mcfg);
+    sbr_fd_match_config_default(&c->mcfg);
     c->mcfg.mode = SBR_FD_ROTATION_COVARIANT;
     c->mcfg.max_rotation = cfg->max_rotation;
     c->vcfg = c->mcfg;

@@ -135,7 +135,7 @@ static size_t mser_nodes_for(uint32_t width, uint32_t height, const sbr_mser_con
     return n;
 }
 
-size_t sbr_mser_workspace_size(uint32_t width, uint32_t height, const sbr_mser_config_t *cfg)
+size_t sbr_mser_workspace_size(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height)
 {
     if ((sbr_mser_config_check(cfg) != SBR_OK) || (width < 3u) || (height < 3u) ||
         (width > SBR_IMAGE_MAX_DIM) || (height > SBR_IMAGE_MAX_DIM)) {
@@ -671,7 +671,7 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     if ((map->width < 3u) || (map->height < 3u) || (capacity == 0u)) {
         return SBR_ERR_SIZE;
     }
-    need = sbr_mser_workspace_size(map->width, map->height, cfg);
+    need = sbr_mser_workspace_size(cfg, map->width, map->height);
     if ((workspace == NULL) || (workspace_size < need) || (sbr_util_aligned(workspace, 4u) == 0)) {
         return SBR_ERR_WORKSPACE;
     }

@@ -639,7 +639,13 @@ static sbr_status_t trk_check_instance(const sbr_track_t *trk)
     return st;
 }
 
-static sbr_status_t trk_check_inputs(const sbr_track_t *trk, float dt,
+/* Microseconds as seconds (a correctly rounded quotient: 100000 us is exactly 0.1f). */
+static float trk_seconds(uint32_t us)
+{
+    return (float)us / 1.0e6f;
+}
+
+static sbr_status_t trk_check_inputs(const sbr_track_t *trk, uint32_t dt_us,
                                      const sbr_track_detection_t *dets, uint32_t n)
 {
     sbr_status_t st = SBR_OK;
@@ -649,7 +655,7 @@ static sbr_status_t trk_check_inputs(const sbr_track_t *trk, float dt,
         st = SBR_ERR_SIZE;
     } else if ((n > 0u) && (dets == NULL)) {
         st = SBR_ERR_NULL;
-    } else if ((isfinite(dt) == 0) || (dt <= 0.0f) || (dt > (8.0f * m->period))) {
+    } else if ((dt_us == 0u) || (trk_seconds(dt_us) > (8.0f * m->period))) {
         st = SBR_ERR_RANGE;
     } else {
         for (i = 0u; (i < n) && (st == SBR_OK); i++) {
@@ -815,7 +821,7 @@ static void trk_emit(const sbr_track_t *trk, sbr_track_target_t *targets, uint32
 
 /* The geometry of this step: channel layout, kernel width, and the sub-steps that split a
    dt longer than 1.5 model periods (*sub of *ratio periods each). */
-static void trk_step_geo(const sbr_track_t *trk, float dt, trk_geo_t *g, uint32_t *sub,
+static void trk_step_geo(const sbr_track_t *trk, uint32_t dt_us, trk_geo_t *g, uint32_t *sub,
                          float *ratio)
 {
     const sbr_track_model_t *m = trk->cfg.model;
@@ -835,7 +841,7 @@ static void trk_step_geo(const sbr_track_t *trk, float dt, trk_geo_t *g, uint32_
     }
     g->kw *= g->s;
     *sub = 1u;
-    *ratio = dt / m->period;
+    *ratio = trk_seconds(dt_us) / m->period;
     if (*ratio > 1.5f) {
         *sub = (uint32_t)ceilf(*ratio);
         *ratio /= (float)*sub;
@@ -950,7 +956,7 @@ static int trk_birth(sbr_track_t *trk, const trk_geo_t *g, const sbr_track_detec
     return 1;
 }
 
-sbr_status_t sbr_track_step(sbr_track_t *trk, float dt, const sbr_track_detection_t *dets,
+sbr_status_t sbr_track_step(sbr_track_t *trk, uint32_t dt_us, const sbr_track_detection_t *dets,
                             uint32_t n, sbr_track_target_t *targets, uint32_t capacity,
                             uint32_t *count)
 {
@@ -970,12 +976,12 @@ sbr_status_t sbr_track_step(sbr_track_t *trk, float dt, const sbr_track_detectio
     *count = 0u;
     st = trk_check_instance(trk);
     if (st == SBR_OK) {
-        st = trk_check_inputs(trk, dt, dets, n);
+        st = trk_check_inputs(trk, dt_us, dets, n);
     }
     if (st != SBR_OK) {
         return st;
     }
-    trk_step_geo(trk, dt, &g, &sub, &ratio);
+    trk_step_geo(trk, dt_us, &g, &sub, &ratio);
     (void)memset(used, 0, sizeof(used));
     trk_predict_all(trk, &g, sub, ratio, dets, n);
     /* 3. associate: confirmed targets first */

@@ -119,7 +119,7 @@ int main(void)
     ws_off = (frame_bytes + 7u) & ~(size_t)7u;
     /* the largest band of full rows whose workspace fits beside the frame */
     for (band = h; band >= 16u; band -= 8u) {
-        ws_bytes = sbr_recog_workspace_size(w, band, &cfg);
+        ws_bytes = sbr_recog_workspace_size(&cfg, w, band);
         if ((ws_bytes != 0u) && (ws_off + ws_bytes <= PSRAM_BYTES)) {
             break;
         }

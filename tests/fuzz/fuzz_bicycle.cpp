@@ -55,7 +55,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     s.steer = fz_float(in, -1.6f, 1.6f);
     s.roll = fz_float(in, -1.6f, 1.6f);
     sbr_bike_state_t next;
-    const sbr_status_t ps = sbr_bike_predict_state(&model, &s, fz_float(in, 0.0f, 1.0f), &next);
+    const sbr_status_t ps = sbr_bike_predict_state(&model, &s, in.ConsumeIntegralInRange<uint32_t>(0u, 1000000u), &next);
     FZ_STATUS(ps, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE);
     if (ps == SBR_OK) {
         FZ_CHECK(state_ok(next));
@@ -103,7 +103,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (uint32_t k = 0u; k < steps; k++) {
         sbr_bike_result_t r;
         const uint32_t m = in.ConsumeIntegralInRange<uint32_t>(0u, n);
-        const sbr_status_t st = sbr_bike_pf_step(&pf, fz_float(in, 0.0f, 0.2f), ell, m, &r);
+        const sbr_status_t st = sbr_bike_pf_step(&pf, in.ConsumeIntegralInRange<uint32_t>(0u, 200000u), ell, m, &r);
         FZ_STATUS(st, SBR_OK, SBR_ERR_NULL, SBR_ERR_STATE, SBR_ERR_RANGE, SBR_ERR_SIZE);
         if (st == SBR_OK && (r.flags & SBR_BIKE_TRACKING) != 0u) {
             FZ_CHECK(state_ok(r.mean) && state_ok(r.stddev));

@@ -67,7 +67,7 @@ void fuzz_geometry(FuzzedDataProvider &in)
     }
     // points: on the ellipse with noise, or anything
     const uint32_t n = in.ConsumeIntegralInRange<uint32_t>(0u, 64u);
-    std::vector<sbr_point2f_t> p(n);
+    std::vector<sbr_pointf_t> p(n);
     for (uint32_t i = 0u; i < n; i++) {
         if (es == SBR_OK && in.ConsumeBool()) {
             const float t = 6.2831853f * (float)i / (float)n;
@@ -118,7 +118,7 @@ void fuzz_detect(FuzzedDataProvider &in)
     sbr_ellipse_detect_config_default(&cfg);
     fz_edit_fields(in, &cfg, sizeof cfg, 3u);
     const sbr_status_t cs = sbr_ellipse_detect_config_check(&cfg);
-    const size_t need = sbr_ellipse_detect_workspace_size(img.width, img.height, &cfg);
+    const size_t need = sbr_ellipse_detect_workspace_size(&cfg, img.width, img.height);
     if (!fz_workspace_fits(cs, need, 64u)) {
         return;
     }

@@ -129,7 +129,7 @@ void fuzz_descriptors(FuzzedDataProvider &in)
         FZ_STATUS(sbr_fd_check(&b, &e), SBR_OK);
     }
     sbr_fd_match_config_t cfg;
-    FZ_STATUS(sbr_fd_match_config_default(&cfg), SBR_OK);
+    sbr_fd_match_config_default(&cfg);
     if (in.ConsumeBool()) {
         cfg.mode = static_cast<sbr_fd_mode_t>(in.ConsumeIntegralInRange<uint32_t>(0u, 2u));
         cfg.max_rotation = fz_float(in, 0.0f, 3.2f);

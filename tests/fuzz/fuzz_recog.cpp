@@ -34,7 +34,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const uint32_t h = use_roi ? roi.height : img.height;
     const sbr_status_t cs = sbr_recog_config_check(&cfg);
     FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE);
-    size_t need = sbr_recog_workspace_size(w, h, &cfg);
+    size_t need = sbr_recog_workspace_size(&cfg, w, h);
     if (!fz_workspace_fits(cs, need, 256u)) {
         return 0;
     }

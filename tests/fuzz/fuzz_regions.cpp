@@ -35,7 +35,7 @@ void fuzz_map_mser_contour(FuzzedDataProvider &in)
     sbr_mser_config_default(&cfg);
     fz_edit_fields(in, &cfg, sizeof cfg, 3u);
     const sbr_status_t cs = sbr_mser_config_check(&cfg);
-    const size_t need = sbr_mser_workspace_size(view.width, view.height, &cfg);
+    const size_t need = sbr_mser_workspace_size(&cfg, view.width, view.height);
     if (!fz_workspace_fits(cs, need, 64u)) {
         return;
     }
@@ -114,7 +114,7 @@ void fuzz_parts(FuzzedDataProvider &in)
     const bool fft_ok = sbr_fft_init(&fft, n_fft) == SBR_OK;
     const sbr_status_t cs = sbr_parts_config_check(&cfg);
     FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE, SBR_ERR_SIZE);
-    const size_t need = sbr_parts_workspace_size(img.width, img.height, &cfg);
+    const size_t need = sbr_parts_workspace_size(&cfg, img.width, img.height);
     if (!fz_workspace_fits(cs, need, 128u)) {
         return;
     }

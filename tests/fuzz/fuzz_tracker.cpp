@@ -70,8 +70,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             det[i].y = fz_float(in, 0.0f, model->extent[1]);
             det[i].certainty = fz_float(in, 0.0f, 1.0f);
         }
-        const float dt = (in.ConsumeIntegral<uint8_t>() < 200u) ? model->period
-                                                                 : fz_float(in, 0.0f, 10.0f * model->period);
+        const uint32_t period_us = static_cast<uint32_t>(model->period * 1.0e6f + 0.5f);
+        const uint32_t dt = (in.ConsumeIntegral<uint8_t>() < 200u) ? period_us
+                                                                    : in.ConsumeIntegralInRange<uint32_t>(0u, 10u * period_us);
         sbr_track_target_t out[8];
         uint32_t count = 999u;
         const uint32_t cap = in.ConsumeIntegralInRange<uint32_t>(0u, 8u);

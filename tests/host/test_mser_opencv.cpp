@@ -111,7 +111,7 @@ int main(int argc, char **argv) {
             cvm->detectRegions(map, cv_regs, cv_boxes);
             t_cv += std::chrono::duration<double>(Clock::now() - t0).count();
             // sbr
-            ws.resize(sbr_mser_workspace_size(mv.width, mv.height, &cfg));
+            ws.resize(sbr_mser_workspace_size(&cfg, mv.width, mv.height));
             uint32_t n = 0;
             t0 = Clock::now();
             const sbr_status_t st = sbr_mser_detect(&mv, &cfg, ws.data(), ws.size(), regs.data(),
@@ -121,7 +121,7 @@ int main(int argc, char **argv) {
             {   // an ECU-sized node bound (1/16 of the pixels) gives the same regions
                 sbr_mser_config_t small = cfg;
                 small.max_nodes = mv.width * mv.height / 16u;
-                std::vector<uint8_t> ws2(sbr_mser_workspace_size(mv.width, mv.height, &small));
+                std::vector<uint8_t> ws2(sbr_mser_workspace_size(&small, mv.width, mv.height));
                 std::vector<sbr_mser_region_t> r2(regs.size());
                 uint32_t n2 = 0;
                 const sbr_status_t st2 = sbr_mser_detect(&mv, &small, ws2.data(), ws2.size(), r2.data(),
