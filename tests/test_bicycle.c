@@ -224,18 +224,17 @@ static void test_pairing_groups_tyre_edges_and_rejects_misfits(void)
 /* A bicycle crossing 12 m ahead at 5 m/s, 25 frames per second, wheel ellipses with
    0.5 px Gaussian noise on centres and axes (frames 30..34: nothing seen). Returns the
    largest position error from frame 10 on; `last` gets the final estimate. */
-static float run_crossing(uint32_t seed, sbr_bike_result_t *last, sbr_bike_state_t *truth,
-                          uint32_t *association_errors)
+static float crossing_pass(sbr_bike_pf_t *pf_in, const sbr_bike_pf_config_t *cfg_in,
+                           sbr_bike_result_t *last, sbr_bike_state_t *truth,
+                           uint32_t *association_errors)
 {
-    sbr_bike_pf_config_t cfg = config(seed);
-    sbr_bike_pf_t pf;
+    sbr_bike_pf_t *const pfp = pf_in;
+    const sbr_bike_pf_config_t cfg = *cfg_in;
     sbr_bike_state_t t = {-5.0f, 12.0f, 0.0f, 5.0f, 0.0f, 0.0f};
     tsup_rng_t rng = {4242u};
     float worst = 0.0f;
     uint32_t k;
     *association_errors = 0u;
-    TEST_ASSERT_EQUAL_UINT32((uint32_t)sizeof g_ws, (uint32_t)sbr_bike_pf_workspace_size(&cfg));
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_init(&pf, &cfg, g_ws, sizeof g_ws));
     for (k = 0u; k < 60u; k++) {
         sbr_ellipse_t e[2];
         sbr_bike_result_t r;
@@ -254,7 +253,7 @@ static float run_crossing(uint32_t seed, sbr_bike_result_t *last, sbr_bike_state
         /* hand them over front first: the filter must find out which is which */
         {
             const sbr_ellipse_t swapped[2] = {e[1], e[0]};
-            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(&pf, 40000u, swapped, seen, &r));
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_step(pfp, 40000u, swapped, seen, &r));
         }
         TEST_ASSERT_TRUE((r.flags & SBR_BIKE_TRACKING) != 0u);
         if (seen != 0u) {
@@ -274,6 +273,38 @@ static float run_crossing(uint32_t seed, sbr_bike_result_t *last, sbr_bike_state
     }
     *truth = t;
     return worst;
+}
+
+static float run_crossing(uint32_t seed, sbr_bike_result_t *last, sbr_bike_state_t *truth,
+                          uint32_t *association_errors)
+{
+    sbr_bike_pf_config_t cfg = config(seed);
+    sbr_bike_pf_t pf;
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)sizeof g_ws, (uint32_t)sbr_bike_pf_workspace_size(&cfg));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_init(&pf, &cfg, g_ws, sizeof g_ws));
+    return crossing_pass(&pf, &cfg, last, truth, association_errors);
+}
+
+/* sbr_bike_pf_reset(): a second crossing after a reset is the first one, bit for bit; a
+   blank filter is refused. */
+static void test_filter_reset_repeats_a_fresh_filter(void)
+{
+    sbr_bike_pf_config_t cfg = config(7u);
+    sbr_bike_pf_t pf;
+    sbr_bike_pf_t blank;
+    sbr_bike_result_t a;
+    sbr_bike_result_t b;
+    sbr_bike_state_t t;
+    uint32_t assoc = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_init(&pf, &cfg, g_ws, sizeof g_ws));
+    (void)crossing_pass(&pf, &cfg, &a, &t, &assoc);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_pf_reset(&pf));
+    (void)crossing_pass(&pf, &cfg, &b, &t, &assoc);
+    TEST_ASSERT_EQUAL_MEMORY(&a.mean, &b.mean, sizeof a.mean);
+    TEST_ASSERT_EQUAL_MEMORY(&a.stddev, &b.stddev, sizeof a.stddev);
+    memset(&blank, 0, sizeof blank);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_bike_pf_reset(&blank));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_bike_pf_reset(NULL));
 }
 
 static void test_filter_keeps_a_crossing_bicycle(void)
@@ -449,6 +480,7 @@ int main(void)
     RUN_TEST(test_model_turns_and_leans);
     RUN_TEST(test_pairing_groups_tyre_edges_and_rejects_misfits);
     RUN_TEST(test_filter_keeps_a_crossing_bicycle);
+    RUN_TEST(test_filter_reset_repeats_a_fresh_filter);
     RUN_TEST(test_filter_drops_a_lost_track_and_restarts);
     RUN_TEST(test_filter_rejects_bad_input);
     RUN_TEST(test_bicycle_h_statuses);

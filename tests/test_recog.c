@@ -808,10 +808,16 @@ static void test_builtin_model_and_sizes(void)
     for (s = 1u; s <= 4u; s *= 2u) {
         d.parts.subsample = s;
         TEST_ASSERT_TRUE(sbr_recog_workspace_size(&d, 1360u, 800u) > 0u);
-        TEST_ASSERT_TRUE(sbr_recog_workspace_size(&d, 1360u, 800u) <=
-                         SBR_RECOG_WORKSPACE_DEFAULT_SIZE(1360u, 800u, s));
+        TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_RECOG_WORKSPACE_DEFAULT_SIZE(1360u, 800u, s),
+                                 (uint32_t)sbr_recog_workspace_size(&d, 1360u, 800u));
     }
-    TEST_ASSERT_TRUE(sbr_recog_workspace_size(&d, 320u, 240u) <= SBR_RECOG_WORKSPACE_DEFAULT_SIZE(320u, 240u, 4u));
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_RECOG_WORKSPACE_DEFAULT_SIZE(320u, 240u, 4u),
+                             (uint32_t)sbr_recog_workspace_size(&d, 320u, 240u));
+    d.parts.subsample = 3u; /* odd sizes: the maps round down */
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_RECOG_WORKSPACE_DEFAULT_SIZE(333u, 251u, 3u),
+                             (uint32_t)sbr_recog_workspace_size(&d, 333u, 251u));
+    /* the workspace of the default at 1360 x 800 (docs/results/realtime.md) */
+    TEST_ASSERT_EQUAL_UINT32(12774384u, (uint32_t)SBR_RECOG_WORKSPACE_DEFAULT_SIZE(1360u, 800u, 1u));
 }
 
 int main(void)

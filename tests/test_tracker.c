@@ -107,6 +107,40 @@ void test_model_cv_rows_and_check(void)
                                          sizeof(g_birth) / sizeof(g_birth[0])));
 }
 
+/* sbr_track_reset(): after it, the same detections give exactly what a fresh tracker
+   gives (identities from 1 again), and a blank instance is refused. */
+void test_reset_repeats_a_fresh_tracker(void)
+{
+    sbr_track_t trk;
+    sbr_track_t blank;
+    sbr_track_target_t first[10][TARGETS];
+    sbr_track_target_t out[TARGETS];
+    uint32_t nfirst[10];
+    uint32_t n = 0u;
+    uint32_t pass;
+    uint32_t f;
+    init_tracker(&trk, TARGETS);
+    for (pass = 0u; pass < 2u; pass++) {
+        for (f = 0u; f < 10u; f++) {
+            sbr_track_detection_t d[2] = {{100.0f + 5.0f * (float)f, 50.0f, 1.0f},
+                                          {600.0f - 3.0f * (float)f, 200.0f, 0.8f}};
+            TEST_ASSERT_EQUAL(SBR_OK, sbr_track_step(&trk, PERIOD_US, d, 2u, out, TARGETS, &n));
+            if (pass == 0u) {
+                nfirst[f] = n;
+                memcpy(first[f], out, sizeof out);
+            } else {
+                TEST_ASSERT_EQUAL_UINT32(nfirst[f], n);
+                TEST_ASSERT_EQUAL_MEMORY(first[f], out, n * sizeof out[0]);
+            }
+        }
+        TEST_ASSERT_EQUAL_UINT32(2u, n);
+        TEST_ASSERT_EQUAL(SBR_OK, sbr_track_reset(&trk));
+    }
+    memset(&blank, 0, sizeof blank);
+    TEST_ASSERT_EQUAL(SBR_ERR_STATE, sbr_track_reset(&blank));
+    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_track_reset(NULL));
+}
+
 /* Constant velocity: position and velocity are decoded accurately. */
 void test_straight_line_velocity(void)
 {
@@ -595,6 +629,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_model_cv_rows_and_check);
+    RUN_TEST(test_reset_repeats_a_fresh_tracker);
     RUN_TEST(test_straight_line_velocity);
     RUN_TEST(test_curved_path_through_five_misses);
     RUN_TEST(test_crossing_targets_keep_ids);

@@ -236,6 +236,15 @@ sbr_status_t sbr_bike_pf_init(sbr_bike_pf_t *pf, const sbr_bike_pf_config_t *cfg
                               size_t workspace_size);
 
 /**
+ * @brief Drop the track and restart the random generator from the configured seed: the
+ *        filter then behaves exactly as after sbr_bike_pf_init() with the same
+ *        configuration and workspace.
+ * @param[in,out] pf an initialised filter.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_STATE (not initialised or corrupted).
+ */
+sbr_status_t sbr_bike_pf_reset(sbr_bike_pf_t *pf);
+
+/**
  * @brief One frame: predict by dt, associate, update, resample.
  *
  * Without a track, the best wheel pair of the ellipses (sbr_bike_pair_wheels()) starts

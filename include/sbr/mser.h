@@ -56,6 +56,23 @@ extern "C" {
 /** Bytes per component-tree node in the workspace. */
 #define SBR_MSER_NODE_BYTES 40u
 
+/** @name Blocks of the MSER workspace (for ::SBR_MSER_WORKSPACE_SIZE) @{ */
+/** The grey-level heap's header: a first and a last pointer for each of the 256 levels. */
+#define SBR_MSER_HEAP_HEADER_BYTES 2048u
+/** Depth of the component stack: every grey level, a sentinel and the root. */
+#define SBR_MSER_STACK 258u
+/** Bytes of one stack entry, without its history. */
+#define SBR_MSER_COMP_BYTES 32u
+/** Bytes of one history entry of a stack entry (size and level; delta + 1 of them). */
+#define SBR_MSER_HISTORY_BYTES 8u
+/** Bytes per pixel: its heap link (4) and the map's copy (1). */
+#define SBR_MSER_PIXEL_BYTES 5u
+/** Bytes of the "reached" bitmap of a map of `pixels` pixels (whole 32-bit words). */
+#define SBR_MSER_REACHED_BYTES(pixels) (((((size_t)(pixels)) + 31u) / 32u) * 4u)
+/** Slack for aligning the map copy after the bitmap. */
+#define SBR_MSER_TAIL_BYTES 8u
+/** @} */
+
 /** Polarities (bit mask). */
 typedef enum sbr_mser_polarity_e {
     SBR_MSER_DARK = 1,   /**< regions darker than their surroundings (pixels <= level) */
@@ -101,15 +118,24 @@ typedef struct sbr_mser_region_s {
 #define SBR_MSER_WORST_NODES(width, height) \
     ((((size_t)(width)) - 2u) * (((size_t)(height)) - 2u))
 
+/** The nodes the workspace holds for a width x height map and config.max_nodes: the
+    worst case when max_nodes is 0 or larger. */
+#define SBR_MSER_NODES(width, height, max_nodes)                                    \
+    ((((max_nodes) == 0u) || ((size_t)(max_nodes) > SBR_MSER_WORST_NODES(width, height))) \
+         ? SBR_MSER_WORST_NODES(width, height)                                      \
+         : (size_t)(max_nodes))
+
 /**
  * @brief Workspace bytes for a width x height map (>= 3 x 3), a delta and a node bound
  *        (nodes > 0; for config.max_nodes = 0 pass SBR_MSER_WORST_NODES(width, height)).
  */
-#define SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes) \
-    (2048u + 258u * (32u + (((size_t)(delta)) + 1u) * 8u) + \
-     ((size_t)(nodes)) * SBR_MSER_NODE_BYTES + \
-     (((size_t)(width)) * ((size_t)(height))) * 5u + \
-     ((((size_t)(width)) * ((size_t)(height)) + 31u) / 32u) * 4u + 8u)
+#define SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes)                               \
+    ((size_t)SBR_MSER_HEAP_HEADER_BYTES +                                                   \
+     ((size_t)SBR_MSER_STACK *                                                              \
+      (SBR_MSER_COMP_BYTES + ((((size_t)(delta)) + 1u) * SBR_MSER_HISTORY_BYTES))) +        \
+     (((size_t)(nodes)) * SBR_MSER_NODE_BYTES) +                                            \
+     ((((size_t)(width)) * ((size_t)(height))) * SBR_MSER_PIXEL_BYTES) +                    \
+     SBR_MSER_REACHED_BYTES(((size_t)(width)) * ((size_t)(height))) + SBR_MSER_TAIL_BYTES)
 
 /** @brief Fill a configuration with the defaults documented above. No-op for NULL. */
 void sbr_mser_config_default(sbr_mser_config_t *cfg);

@@ -317,19 +317,48 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg);
  */
 size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, uint32_t height);
 
+/** @name Defaults that size the workspace (sbr_recog_config_default()) @{ */
+#define SBR_RECOG_DEFAULT_DELTA 3u               /**< parts.mser.delta */
+#define SBR_RECOG_DEFAULT_MATCH_P 32u            /**< match_p */
+#define SBR_RECOG_DEFAULT_MAX_PARTS 4096u        /**< max_parts */
+#define SBR_RECOG_DEFAULT_MAX_VOTES 16384u       /**< max_votes */
+#define SBR_RECOG_DEFAULT_MAX_HYPOTHESES 4096u   /**< max_hypotheses */
+#define SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS 1024u /**< max_model_protos */
+/** @} */
+
+/** @name Per-entry bytes of the recogniser's workspace arrays @{ */
+#define SBR_RECOG_INDEX_BYTES 12u /**< the part index, per part */
+#define SBR_RECOG_VOTE_BYTES 32u  /**< per vote */
+#define SBR_RECOG_HYP_BYTES 52u   /**< per hypothesis */
+/** The class stage's block: its scratch, a feature vector, the class probabilities and
+    their mean over views. */
+#define SBR_RECOG_PICTO_BYTES \
+    (SBR_PICTO_WORKSPACE_SIZE + ((SBR_PICTO_FEATURES + (2u * SBR_PICTO_OUTPUTS)) * sizeof(float)))
+/** @} */
+
 /**
- * Compile-time bound on the workspace for the default configuration (sbr_recog_config_default())
- * with map subsampling `s` (1..8), for static allocation on an ECU.
- * sbr_recog_workspace_size() gives the exact figure; this macro is never smaller (checked
- * by the unit tests).
+ * sbr_recog_workspace_size() of the default configuration (sbr_recog_config_default())
+ * with parts.subsample = `s` (1..8), for frames up to width x height, as a constant
+ * expression for static allocation on an ECU (equal to the function; checked by the unit
+ * tests). Blocks in order: the parts stage (::SBR_PARTS_WORKSPACE_SIZE of the finest map,
+ * intensity at `s`), the parts, their index, the match results, the matcher's scratch, the
+ * votes, the hypotheses, the class stage.
  */
-#define SBR_RECOG_WORKSPACE_DEFAULT_SIZE(width, height, s) \
-    (SBR_MSER_WORKSPACE_SIZE((width) / (s), (height) / (s), 5u, 68000u) + \
-     ((size_t)(width) / (s)) * ((size_t)(height) / (s)) + 2048u * 40u + \
-     160u * 160u * 5u + 162u * 162u + 2048u * 12u + 128u * 8u + 4096u * sizeof(sbr_part_t) + \
-     4096u * 12u + 1024u * sizeof(sbr_fd_match_t) + 160u * 8u + 16384u * 32u + \
-     4096u * 56u + 512u + \
-     SBR_PICTO_WORKSPACE_SIZE + (SBR_PICTO_FEATURES + 2u * SBR_PICTO_OUTPUTS) * 4u + 8u)
+#define SBR_RECOG_WORKSPACE_DEFAULT_SIZE(width, height, s)                                     \
+    (SBR_WS_ALIGN8(SBR_PARTS_WORKSPACE_SIZE((width) / (s), (height) / (s),                      \
+                                            SBR_RECOG_DEFAULT_DELTA, SBR_PARTS_DEFAULT_MAX_NODES, \
+                                            SBR_PARTS_DEFAULT_MAX_REGIONS,                       \
+                                            SBR_PARTS_DEFAULT_MAX_SIDE,                          \
+                                            SBR_PARTS_DEFAULT_MAX_CONTOUR,                       \
+                                            SBR_PARTS_DEFAULT_FD_N)) +                           \
+     SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_PARTS * sizeof(sbr_part_t)) +                   \
+     SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_PARTS * SBR_RECOG_INDEX_BYTES) +                \
+     SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS * sizeof(sbr_fd_match_t)) +        \
+     SBR_WS_ALIGN8((size_t)SBR_FD_TABLE_WORK_LEN(SBR_RECOG_DEFAULT_MATCH_P) *                    \
+                   sizeof(sbr_complex_t)) +                                                      \
+     SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_VOTES * SBR_RECOG_VOTE_BYTES) +                 \
+     SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_HYPOTHESES * SBR_RECOG_HYP_BYTES) +             \
+     SBR_WS_ALIGN8(SBR_RECOG_PICTO_BYTES))
 
 /**
  * @brief Detect signs.

@@ -263,6 +263,15 @@ sbr_status_t sbr_track_init(sbr_track_t *trk, const sbr_track_config_t *cfg, voi
                             size_t workspace_size);
 
 /**
+ * @brief Drop every target and start the identities again at 1, as after
+ *        sbr_track_init() with the same configuration and workspace (e.g. after a scene
+ *        cut or a camera restart).
+ * @param[in,out] trk an initialised tracker.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_STATE (not initialised or corrupted).
+ */
+sbr_status_t sbr_track_reset(sbr_track_t *trk);
+
+/**
  * @brief One frame: predict by dt, associate, update, deaths and births, decode.
  * @param[in,out] trk   the tracker.
  * @param[in]     dt_us microseconds since the previous step, 0 < dt <= 8 model periods

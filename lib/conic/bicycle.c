@@ -509,6 +509,23 @@ sbr_status_t sbr_bike_pf_init(sbr_bike_pf_t *pf, const sbr_bike_pf_config_t *cfg
     return st;
 }
 
+sbr_status_t sbr_bike_pf_reset(sbr_bike_pf_t *pf)
+{
+    sbr_status_t st = SBR_OK;
+    if (pf == NULL) {
+        st = SBR_ERR_NULL;
+    } else if ((pf->magic != BIKE_MAGIC) || (pf->cur == NULL) || (pf->next == NULL) ||
+               (pf->pred == NULL) || (sbr_bike_pf_config_check(&pf->cfg) != SBR_OK)) {
+        st = SBR_ERR_STATE;
+    } else {
+        pf->rng = (pf->cfg.seed != 0u) ? pf->cfg.seed : 0x9e3779b9u;
+        pf->started = 0u;
+        pf->missed = 0u;
+        pf->age = 0u;
+    }
+    return st;
+}
+
 /* A measured wheel: its six features (centre, semi-axes, elongation vector
    (a - b)(cos 2t, sin 2t)) and 1 / sigma^2. */
 typedef struct {

@@ -23,14 +23,14 @@ void sbr_parts_config_default(sbr_parts_config_t *cfg)
             cfg->map_min_area[k] = 0u;
         }
         sbr_mser_config_default(&cfg->mser);
-        cfg->mser.max_nodes = 68000u;
-        cfg->max_regions = 2048u;
+        cfg->mser.max_nodes = SBR_PARTS_DEFAULT_MAX_NODES;
+        cfg->max_regions = SBR_PARTS_DEFAULT_MAX_REGIONS;
         cfg->min_side = 6u;
-        cfg->max_side = 160u;
+        cfg->max_side = SBR_PARTS_DEFAULT_MAX_SIDE;
         cfg->max_aspect = 3.0f;
         cfg->min_fill = 0.2f;
-        cfg->max_contour = 2048u;
-        cfg->fd_n = 128u;
+        cfg->max_contour = SBR_PARTS_DEFAULT_MAX_CONTOUR;
+        cfg->fd_n = SBR_PARTS_DEFAULT_FD_N;
         cfg->fd_m = 12u;
     }
 }

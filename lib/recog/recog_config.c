@@ -9,7 +9,7 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         sbr_parts_config_default(&cfg->parts);
         /* finer than the MSER defaults: small, blurred signs need a smaller delta and a
            looser stability bound to come out as regions at all */
-        cfg->parts.mser.delta = 3u;
+        cfg->parts.mser.delta = SBR_RECOG_DEFAULT_DELTA;
         cfg->parts.mser.max_variation = 0.5f;
         /* intensity and blue: red rims already stand out in intensity, blue signs need
            their own map (the red map's parts added false hypotheses and time:
@@ -20,11 +20,11 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
            in docs/results/recognition.md) */
         cfg->parts.map_subsample[SBR_MAP_BLUE] = 2u;
         cfg->parts.map_min_area[SBR_MAP_BLUE] = 40u;
-        cfg->match_p = 32u;
-        cfg->max_parts = 4096u;
-        cfg->max_votes = 16384u;
-        cfg->max_hypotheses = 4096u;
-        cfg->max_model_protos = 1024u;
+        cfg->match_p = SBR_RECOG_DEFAULT_MATCH_P;
+        cfg->max_parts = SBR_RECOG_DEFAULT_MAX_PARTS;
+        cfg->max_votes = SBR_RECOG_DEFAULT_MAX_VOTES;
+        cfg->max_hypotheses = SBR_RECOG_DEFAULT_MAX_HYPOTHESES;
+        cfg->max_model_protos = SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS;
         cfg->vote_error = 0.0f;
         cfg->verify_error = 0.25f;
         cfg->max_rotation = 0.35f;
@@ -194,18 +194,19 @@ sbr_status_t sbr_model_check(const sbr_model_t *model)
 int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_config_t *cfg,
                           recog_layout_t *l)
 {
+    const uint32_t work_len = SBR_FD_TABLE_WORK_LEN(cfg->match_p);
     l->parts_ws = RECOG_ALIGN(sbr_parts_workspace_size(&cfg->parts, width, height));
     if (l->parts_ws == 0u) {
         return 0;
     }
     l->parts = RECOG_ALIGN((size_t)cfg->max_parts * sizeof(sbr_part_t));
-    l->index = RECOG_ALIGN((size_t)cfg->max_parts * sizeof(recog_index_t));
+    l->index = RECOG_ALIGN((size_t)cfg->max_parts * SBR_RECOG_INDEX_BYTES);
     l->results = RECOG_ALIGN((size_t)cfg->max_model_protos * sizeof(sbr_fd_match_t));
-    l->work = RECOG_ALIGN((size_t)cfg->match_p * 5u * sizeof(sbr_complex_t)); /* the table
-                                                                    matcher's four-lane scratch */
-    l->votes = RECOG_ALIGN((size_t)cfg->max_votes * sizeof(recog_vote_t));
-    l->hyps = RECOG_ALIGN((size_t)cfg->max_hypotheses * sizeof(recog_hyp_t));
-    l->picto = RECOG_ALIGN(RECOG_PICTO_BYTES);
+    /* the table matcher's four-lane scratch */
+    l->work = RECOG_ALIGN((size_t)work_len * sizeof(sbr_complex_t));
+    l->votes = RECOG_ALIGN((size_t)cfg->max_votes * SBR_RECOG_VOTE_BYTES);
+    l->hyps = RECOG_ALIGN((size_t)cfg->max_hypotheses * SBR_RECOG_HYP_BYTES);
+    l->picto = RECOG_ALIGN(SBR_RECOG_PICTO_BYTES);
     l->total = l->parts_ws + l->parts + l->index + l->results + l->work + l->votes + l->hyps +
                l->picto;
     return 1;

@@ -42,6 +42,10 @@ typedef struct recog_hyp_s {
     uint32_t keep;
 } recog_hyp_t;
 
+/* The workspace macros (recognizer.h) count these sizes. */
+typedef char recog_vote_size_check[(sizeof(recog_vote_t) == SBR_RECOG_VOTE_BYTES) ? 1 : -1];
+typedef char recog_hyp_size_check[(sizeof(recog_hyp_t) == SBR_RECOG_HYP_BYTES) ? 1 : -1];
+
 /* An entry of the part index: the parts of each group (map, polarity) in order of their
    centre's x, so that the cascade looks only at parts near a predicted position. */
 typedef struct recog_index_s {
@@ -49,6 +53,8 @@ typedef struct recog_index_s {
     uint32_t part;
     uint32_t group;
 } recog_index_t;
+
+typedef char recog_index_size_check[(sizeof(recog_index_t) == SBR_RECOG_INDEX_BYTES) ? 1 : -1];
 
 typedef struct recog_layout_s {
     size_t parts_ws;
@@ -62,10 +68,6 @@ typedef struct recog_layout_s {
     size_t total;
 } recog_layout_t;
 
-/* The class stage's share of the workspace: its scratch, a feature vector, the
-   probabilities and their mean over views. */
-#define RECOG_PICTO_BYTES \
-    (SBR_PICTO_WORKSPACE_SIZE + ((SBR_PICTO_FEATURES + (2u * SBR_PICTO_OUTPUTS)) * sizeof(float)))
 
 /* Everything one call works with. */
 typedef struct recog_ctx_s {

@@ -13,9 +13,6 @@
 #define MSER_NONE 0xFFFFFFFFu
 #define MSER_LEVELS 256u
 #define MSER_SENTINEL 256u
-#define MSER_STACK 258u
-#define MSER_HEAP_HEADER_BYTES 2048u
-#define MSER_COMP_BYTES 32u
 
 /* The flood keeps one bit per pixel: reached (or on the image border, which bounds the
    fill). What else a pixel waiting in the heap needs travels with its heap entry:
@@ -61,14 +58,14 @@ typedef struct mser_comp_s {
 
 /* The public size macro spells these sizes out; keep them true. */
 typedef char mser_node_size_check[(sizeof(mser_node_t) == SBR_MSER_NODE_BYTES) ? 1 : -1];
-typedef char mser_comp_size_check[(sizeof(mser_comp_t) == MSER_COMP_BYTES) ? 1 : -1];
+typedef char mser_comp_size_check[(sizeof(mser_comp_t) == SBR_MSER_COMP_BYTES) ? 1 : -1];
 
 typedef struct mser_ctx_s {
     uint32_t *heap_base; /* [256] first heap slot of each level */
     uint32_t *heap_top;  /* [256] entries on each level's stack */
-    mser_comp_t *comp;   /* [MSER_STACK] */
-    uint32_t *ring_size; /* [MSER_STACK * ring_cap] main-chain areas */
-    uint16_t *ring_val;  /* [MSER_STACK * ring_cap] their levels */
+    mser_comp_t *comp;   /* [SBR_MSER_STACK] */
+    uint32_t *ring_size; /* [SBR_MSER_STACK * ring_cap] main-chain areas */
+    uint16_t *ring_val;  /* [SBR_MSER_STACK * ring_cap] their levels */
     mser_node_t *node;   /* [node_cap] */
     uint32_t *heap;      /* [pixels] entries (HEAP_DIR_BITS) */
     uint32_t *reached;   /* [(pixels + 31) / 32] bit p % 32 of word p / 32: pixel p reached */
@@ -142,12 +139,13 @@ size_t sbr_mser_workspace_size(const sbr_mser_config_t *cfg, uint32_t width, uin
         return 0u;
     }
     {
-        const size_t ring = ((size_t)cfg->delta + 1u) * 8u;
-        const size_t per_comp = (size_t)MSER_COMP_BYTES + ring;
         const size_t pixels = (size_t)width * (size_t)height;
         const size_t nodes = mser_nodes_for(width, height, cfg) * (size_t)SBR_MSER_NODE_BYTES;
-        return (size_t)MSER_HEAP_HEADER_BYTES + ((size_t)MSER_STACK * per_comp) + nodes +
-               (pixels * 5u) + (reached_words(pixels) * 4u) + 8u;
+        const size_t ring = ((size_t)cfg->delta + 1u) * (size_t)SBR_MSER_HISTORY_BYTES;
+        const size_t per_comp = (size_t)SBR_MSER_COMP_BYTES + ring;
+        return (size_t)SBR_MSER_HEAP_HEADER_BYTES + ((size_t)SBR_MSER_STACK * per_comp) + nodes +
+               (pixels * (size_t)SBR_MSER_PIXEL_BYTES) + SBR_MSER_REACHED_BYTES(pixels) +
+               (size_t)SBR_MSER_TAIL_BYTES;
     }
 }
 
@@ -613,14 +611,14 @@ static void mser_ctx_init(mser_ctx_t *c, const sbr_image_t *map, const sbr_mser_
     uint32_t bits = 1u;
     c->heap_base = (uint32_t *)(void *)base;
     c->heap_top = &c->heap_base[MSER_LEVELS];
-    base = &base[MSER_HEAP_HEADER_BYTES];
+    base = &base[SBR_MSER_HEAP_HEADER_BYTES];
     c->comp = (mser_comp_t *)(void *)base;
-    base = &base[(size_t)MSER_STACK * MSER_COMP_BYTES];
+    base = &base[(size_t)SBR_MSER_STACK * SBR_MSER_COMP_BYTES];
     c->ring_cap = cfg->delta + 1u;
     c->ring_size = (uint32_t *)(void *)base;
-    base = &base[(size_t)MSER_STACK * c->ring_cap * 4u];
+    base = &base[(size_t)SBR_MSER_STACK * c->ring_cap * 4u];
     c->ring_val = (uint16_t *)(void *)base;
-    base = &base[(size_t)MSER_STACK * c->ring_cap * 4u];
+    base = &base[(size_t)SBR_MSER_STACK * c->ring_cap * 4u];
     c->node = (mser_node_t *)(void *)base;
     base = &base[nodes * SBR_MSER_NODE_BYTES];
     c->heap = (uint32_t *)(void *)base;

@@ -819,6 +819,21 @@ static void trk_emit(const sbr_track_t *trk, sbr_track_target_t *targets, uint32
     *count = written;
 }
 
+sbr_status_t sbr_track_reset(sbr_track_t *trk)
+{
+    sbr_status_t st = SBR_ERR_NULL;
+    if (trk != NULL) {
+        st = trk_check_instance(trk);
+    }
+    if (st == SBR_OK) {
+        (void)memset(trk->ncand, 0, sizeof(trk->ncand));
+        (void)memset(trk->slot, 0, sizeof(trk->slot));
+        trk->next_id = 1u;
+        trk->frame = 0u;
+    }
+    return st;
+}
+
 /* The geometry of this step: channel layout, kernel width, and the sub-steps that split a
    dt longer than 1.5 model periods (*sub of *ratio periods each). */
 static void trk_step_geo(const sbr_track_t *trk, uint32_t dt_us, trk_geo_t *g, uint32_t *sub,

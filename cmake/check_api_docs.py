@@ -1,0 +1,68 @@
+#!/usr/bin/env python3
+"""Every parameter of every public function is documented with its direction.
+
+    check_api_docs.py --source DIR [--report]
+
+For each function declared in include/sbr/*.h, the doc comment (/** ... */) right before
+it must hold a `@param[in]`, `@param[out]` or `@param[in,out]` line for each of its
+parameters (several names may share one line: `@param[out] rear, front ...`). Prints the
+functions with an undocumented or untagged parameter; exit 1 if there is one (0 with
+--report)."""
+
+import argparse
+import os
+import re
+import sys
+
+DECL = re.compile(r"^(?:[A-Za-z_][\w \*]*?)\b(sbr_\w+)\s*\(([^;{]*?)\)\s*;", re.M | re.S)
+
+
+def params_of(arglist):
+    out = []
+    for a in arglist.split(","):
+        a = a.strip()
+        if a in ("void", ""):
+            continue
+        m = re.search(r"(\w+)\s*(\[[^\]]*\])?\s*$", a)
+        if m:
+            out.append(m.group(1))
+    return out
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--source", required=True)
+    ap.add_argument("--report", action="store_true", help="list only, exit 0")
+    a = ap.parse_args()
+    inc = os.path.join(a.source, "include", "sbr")
+    bad = []
+    total = 0
+    for name in sorted(os.listdir(inc)):
+        if not name.endswith(".h"):
+            continue
+        text = open(os.path.join(inc, name), encoding="utf-8").read()
+        for m in DECL.finditer(text):
+            func, args = m.group(1), m.group(2)
+            if "#define" in text[text.rfind("\n", 0, m.start()):m.start()]:
+                continue
+            total += 1
+            before = text[:m.start()].rstrip()
+            doc = ""
+            if before.endswith("*/"):
+                start = before.rfind("/**")
+                doc = before[start:] if start >= 0 else ""
+            tagged = set()
+            for pm in re.finditer(r"@param\[(?:in|out|in,out)\]\s+([\w, ]+?)(?=\s{2,}|\s+[a-z(`:]|\s*$)", doc, re.M):
+                for n in pm.group(1).split(","):
+                    tagged.add(n.strip())
+            missing = [p for p in params_of(args) if p not in tagged]
+            if missing:
+                bad.append((name, func, missing))
+    for name, func, missing in bad:
+        print(f"  {name}: {func}: {', '.join(missing)}")
+    print(f"public functions: {total}; with a parameter not documented as @param[in|out|in,out]: {len(bad)}")
+    return 0 if (a.report or not bad) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
