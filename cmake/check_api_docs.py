@@ -47,12 +47,19 @@ def main():
                 continue
             total += 1
             before = text[:m.start()].rstrip()
+            # a group of declarations under one comment (e.g. per-length variants): the
+            # comment above the first of them
+            while not before.endswith("*/") and before and before.rfind("\n") >= 0:
+                line = before[before.rfind("\n") + 1:]
+                if not re.match(r"^\s*(?:sbr_status_t|void|size_t|uint32_t|int|float)?\b.*[,;(]\s*$|^\s+[\w ]*\*?\w+[,)]", line):
+                    break
+                before = before[:before.rfind("\n")].rstrip()
             doc = ""
             if before.endswith("*/"):
                 start = before.rfind("/**")
                 doc = before[start:] if start >= 0 else ""
             tagged = set()
-            for pm in re.finditer(r"@param\[(?:in|out|in,out)\]\s+([\w, ]+?)(?=\s{2,}|\s+[a-z(`:]|\s*$)", doc, re.M):
+            for pm in re.finditer(r"@param\[(?:in|out|in,out)\]\s+(\w+(?:\s*,\s*\w+)*)", doc):
                 for n in pm.group(1).split(","):
                     tagged.add(n.strip())
             missing = [p for p in params_of(args) if p not in tagged]

@@ -66,7 +66,10 @@ typedef struct sbr_bike_state_s {
     float roll;    /**< radians, |roll| < pi/2 */
 } sbr_bike_state_t;
 
-/** @brief Default model as documented above. No-op for NULL. */
+/**
+ * @brief Default model as documented above. No-op for NULL.
+ * @param[out] model the model
+ */
 void sbr_bike_model_default(sbr_bike_model_t *model);
 
 /**
@@ -84,6 +87,9 @@ sbr_status_t sbr_bike_predict_state(const sbr_bike_model_t *model, const sbr_bik
 /**
  * @brief The image ellipses of the two wheels (exact perspective images of the circles).
  * @param[out] rear, front the ellipses; either may be NULL.
+ * @param[in] camera the camera
+ * @param[in] model the model
+ * @param[in] state the state
  * @return ::SBR_OK; ::SBR_ERR_NULL (camera, model or state); ::SBR_ERR_RANGE (bad
  *         camera, model or state); ::SBR_ERR_DEGENERATE when a wheel is not entirely in
  *         front of the camera (Z > 0.1 m), so that its image is no ellipse.
@@ -118,7 +124,12 @@ typedef struct sbr_wheel_pair_s {
  * the axis-ratio mismatch, the vertical offset and the deviation of the distance from
  * the side view's (all normalised as above); pairs are written best first.
  *
- * @param n  0 .. ::SBR_BIKE_MAX_ELLIPSES.
+ * @param[in] n  0 .. ::SBR_BIKE_MAX_ELLIPSES.
+ * @param[in] ellipses the ellipses of one image (may be NULL when n = 0).
+ * @param[in] model the model
+ * @param[out] pairs candidate pairs, best first.
+ * @param[in] capacity entries of the result array
+ * @param[out] count entries written
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n too large); ::SBR_ERR_RANGE (bad
  *         model, an ellipse not finite, with axes <= 0 or semi_minor > semi_major, or with
  *         |cx|, |cy|, semi_major or |angle| >= 1e6); ::SBR_ERR_CAPACITY when more
@@ -215,20 +226,31 @@ typedef struct sbr_bike_result_s {
     float ess;                /**< effective sample size after the update, in particles */
 } sbr_bike_result_t;
 
-/** @brief Defaults as documented above. No-op for NULL. */
+/**
+ * @brief Defaults as documented above. No-op for NULL.
+ * @param[out] cfg the configuration
+ */
 void sbr_bike_pf_config_default(sbr_bike_pf_config_t *cfg);
 
 /** @brief Check a configuration: ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE,
-           ::SBR_ERR_SIZE (particle count out of range). */
+           ::SBR_ERR_SIZE (particle count out of range).
+ * @param[in] cfg the configuration
+ */
 sbr_status_t sbr_bike_pf_config_check(const sbr_bike_pf_config_t *cfg);
 
-/** @brief Workspace bytes for a configuration; 0 if it is invalid. */
+/**
+ * @brief Workspace bytes for a configuration; 0 if it is invalid.
+ * @param[in] cfg the configuration
+ */
 size_t sbr_bike_pf_workspace_size(const sbr_bike_pf_config_t *cfg);
 
 /**
  * @brief Set up a filter with no track.
- * @param workspace ::SBR_BIKE_PF_WORKSPACE_SIZE(cfg->particles) bytes, 4-byte aligned,
+ * @param[in,out] workspace ::SBR_BIKE_PF_WORKSPACE_SIZE(cfg->particles) bytes, 4-byte aligned,
  *        owned by the filter until it is no longer used.
+ * @param[in,out] pf the filter to set up (its previous content is ignored).
+ * @param[in] cfg the configuration
+ * @param[in] workspace_size its size in bytes
  * @return ::SBR_OK; ::SBR_ERR_NULL; errors of sbr_bike_pf_config_check();
  *         ::SBR_ERR_WORKSPACE (too small or misaligned).
  */

@@ -108,8 +108,11 @@ typedef struct sbr_can_ecu_status_s {
  *  ::SBR_ERR_RANGE (a value outside its signal's range or NaN; the frame is untouched).
  *  Unpack: ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE (another message id, or a signal
  *  whose raw value is outside its range, e.g. class 50 or confidence 126 %: a corrupted
- *  or foreign frame; `out` is untouched), ::SBR_ERR_SIZE (DLC not 8). */
-/** @{ */
+ *  or foreign frame; `out` is untouched), ::SBR_ERR_SIZE (DLC not 8).
+ * @param[in]  in    pack: the message's values.
+ * @param[out] frame pack: the frame written; unpack ([in]): the frame read.
+ * @param[out] out   unpack: the decoded values.
+ * @{ */
 sbr_status_t sbr_can_pack_detection(const sbr_can_detection_t *in, sbr_can_frame_t *frame);
 sbr_status_t sbr_can_unpack_detection(const sbr_can_frame_t *frame, sbr_can_detection_t *out);
 sbr_status_t sbr_can_pack_confirmed_sign(const sbr_can_confirmed_sign_t *in,
@@ -122,7 +125,11 @@ sbr_status_t sbr_can_pack_ecu_status(const sbr_can_ecu_status_t *in, sbr_can_fra
 sbr_status_t sbr_can_unpack_ecu_status(const sbr_can_frame_t *frame, sbr_can_ecu_status_t *out);
 /** @} */
 
-/** CRC-8/SAE-J1850 (0x1D, init 0xFF, xorout 0xFF) of `len` bytes; 0 for NULL. */
+/**
+ * @brief CRC-8/SAE-J1850 (0x1D, init 0xFF, xorout 0xFF) of `len` bytes; 0 for NULL.
+ * @param[in] data the values
+ * @param[in] len length of the array, in elements
+ */
 uint8_t sbr_crc8_j1850(const uint8_t *data, uint32_t len);
 
 /** Sender side of E2E: the next alive counter of each message. */
@@ -149,23 +156,34 @@ typedef enum sbr_can_e2e_result_e {
     SBR_E2E_SKIPPED = 7       /**< counter jumped: frames were lost (state resyncs) */
 } sbr_can_e2e_result_t;
 
-/** @brief Start a sender: all counters 0. @return ::SBR_OK, ::SBR_ERR_NULL. */
+/**
+ * @brief Start a sender: all counters 0.
+ * @param[in,out] tx the sender's E2E state
+ * @return ::SBR_OK, ::SBR_ERR_NULL.
+ */
 sbr_status_t sbr_can_e2e_tx_init(sbr_can_e2e_tx_t *tx);
 
 /**
  * @brief Write the alive counter and CRC of a packed frame and advance its counter.
+ * @param[in,out] tx the sender's E2E state
+ * @param[in,out] frame the CAN frame
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (not an sbr message id);
  *         ::SBR_ERR_SIZE (DLC not 8); ::SBR_ERR_STATE (a counter above 14: corrupted state).
  */
 sbr_status_t sbr_can_e2e_protect(sbr_can_e2e_tx_t *tx, sbr_can_frame_t *frame);
 
 /** @brief Start a receiver for message `id`. @return ::SBR_OK, ::SBR_ERR_NULL,
- *  ::SBR_ERR_RANGE (not an sbr message id). */
+ *  ::SBR_ERR_RANGE (not an sbr message id).
+ * @param[in,out] rx the receiver's E2E state
+ * @param[in] id the CAN identifier
+ */
 sbr_status_t sbr_can_e2e_rx_init(sbr_can_e2e_rx_t *rx, uint32_t id);
 
 /**
  * @brief Check a received frame.
  * @param[out] result what the check found (also on error).
+ * @param[in,out] rx the receiver's E2E state
+ * @param[in] frame the CAN frame
  * @return ::SBR_OK for ::SBR_E2E_OK and ::SBR_E2E_FIRST; ::SBR_ERR_CORRUPT for every other
  *         result; ::SBR_ERR_NULL. A repeated frame leaves the state as it was; a skipped
  *         counter is reported and the state follows the new counter.
@@ -216,6 +234,10 @@ sbr_status_t sbr_can_sched_config_check(const sbr_can_sched_config_t *cfg);
  * @param[out] frames   at least cfg->frame_budget entries (`capacity`).
  * @param[out] count    frames written.
  * @param[out] dropped  results that did not get a frame (budget, limits, invalid values).
+ * @param[in,out] tx the sender's E2E state
+ * @param[in] cfg the configuration
+ * @param[in] cycle this cycle's results (signs, status, detections, objects).
+ * @param[in] capacity entries of the result array
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a bad config or when a result had
  *         an out-of-range value (that result is left out, the other frames are complete);
  *         ::SBR_ERR_CAPACITY if `capacity` < frame_budget (nothing written).
@@ -238,6 +260,10 @@ typedef struct sbr_can_port_s {
 /**
  * @brief Send frames in order through a port; stops at the first frame the port refuses.
  * @param[out] sent frames the port accepted.
+ * @param[in] port the port
+ * @param[in,out] ctx the port's own context, handed to its functions
+ * @param[in] frames the frames
+ * @param[in] count number of entries
  * @return ::SBR_OK; ::SBR_ERR_NULL; the port's status for the first refused frame.
  */
 sbr_status_t sbr_can_send(const sbr_can_port_t *port, void *ctx, const sbr_can_frame_t *frames,

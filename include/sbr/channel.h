@@ -91,6 +91,7 @@ void sbr_channel_config_default(sbr_channel_config_t *cfg);
 
 /**
  * @brief Check a configuration.
+ * @param[in] cfg the configuration
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a non-finite centre, a spacing that
  *         is not finite and > 0, an overlap outside 3..8, or centres that are not finite
  *         one kernel (overlap x spacing) beyond either end (decoded values lie there);
@@ -124,6 +125,11 @@ sbr_status_t sbr_channel_encode(const sbr_channel_config_t *cfg, float x, float 
 
 /**
  * @brief Add one weighted encoding into a soft histogram.
+ * @param[in] cfg the configuration
+ * @param[in] x the value along x
+ * @param[in] weight the weight, finite and >= 0
+ * @param[in,out] hist the histogram (`len` channel values) the encoding is added to.
+ * @param[in] len length of the array, in elements
  * @return as sbr_channel_encode(); ::SBR_ERR_RANGE also when a channel it adds to is not
  *         a valid value (finite, >= 0) or would exceed ::SBR_CHANNEL_MAX_VALUE; on error
  *         nothing is added.
@@ -177,16 +183,24 @@ void sbr_channel2d_config_default(sbr_channel2d_config_t *cfg);
 /**
  * @brief Check a 2-D configuration (both axes as sbr_channel_config_check(); the grid
  *        count_x * count_y must not exceed ::SBR_CHANNEL_MAX_COUNT squared).
+ * @param[in] cfg the configuration
  */
 sbr_status_t sbr_channel2d_config_check(const sbr_channel2d_config_t *cfg);
 
 /**
  * @brief Number of floats a 2-D grid needs (count_x * count_y), 0 for a bad config.
+ * @param[in] cfg the configuration
  */
 uint32_t sbr_channel2d_grid_len(const sbr_channel2d_config_t *cfg);
 
 /**
  * @brief Add one weighted 2-D point into a grid (outer product of the x and y encodings).
+ * @param[in] cfg the configuration
+ * @param[in] x the value along x
+ * @param[in] y the value along y
+ * @param[in] weight the weight, finite and >= 0
+ * @param[in,out] grid the grid (x.count * y.count values, row-major by y).
+ * @param[in] len length of the array, in elements
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE if `len` < the grid length;
  *         ::SBR_ERR_RANGE if x or y is outside its axis range, the weight is not finite,
  *         > 0 and at most ::SBR_CHANNEL_MAX_VALUE, or a cell it adds to is not a valid
@@ -198,6 +212,13 @@ sbr_status_t sbr_channel2d_accumulate(const sbr_channel2d_config_t *cfg, float x
 /**
  * @brief Decode every valid 2-D mode above `min_certainty`, strongest first. A window
  *        (M x M channels) is valid when both its x and y estimates are valid.
+ * @param[in] cfg the configuration
+ * @param[in] grid the grid (x.count * y.count values, row-major by y).
+ * @param[in] len length of the array, in elements
+ * @param[in] min_certainty smallest window sum that counts as a mode, >= 0.
+ * @param[out] modes the decoded modes, strongest first.
+ * @param[in] capacity entries of the result array
+ * @param[out] count entries written
  * @return as sbr_channel_decode().
  */
 sbr_status_t sbr_channel2d_decode(const sbr_channel2d_config_t *cfg, const float *grid,

@@ -69,8 +69,10 @@ typedef enum sbr_conic_class_e {
 
 /**
  * @brief Classify a conic.
- * @param tol relative zero tolerance, >= 0 and < 1 (::SBR_CONIC_ZERO_TOL suits float32
+ * @param[in] tol relative zero tolerance, >= 0 and < 1 (::SBR_CONIC_ZERO_TOL suits float32
  *            data; 0 for exact arithmetic on constructed matrices).
+ * @param[in] conic the conic
+ * @param[out] cls the class.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a non-finite entry or tol;
  *         ::SBR_ERR_DEGENERATE for the zero matrix (no conic).
  */
@@ -111,8 +113,8 @@ sbr_status_t sbr_ellipse_to_conic(const sbr_ellipse_t *ellipse, sbr_conic_t *con
  * keeps the 3 x 3 reduced problem well conditioned in single precision; the conic is
  * transformed back and returned normalised (largest absolute entry 1).
  *
- * @param points  n points (any order; a traced contour or an arc).
- * @param n       >= 5 (::SBR_ERR_SIZE otherwise).
+ * @param[in] points  n points (any order; a traced contour or an arc).
+ * @param[in] n       >= 5 (::SBR_ERR_SIZE otherwise).
  * @param[out] conic   the fitted conic.
  * @param[out] ellipse its geometry; may be NULL.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n < 5); ::SBR_ERR_RANGE (non-finite or
@@ -129,6 +131,8 @@ sbr_status_t sbr_ellipse_fit(const sbr_pointf_t *points, uint32_t n, sbr_conic_t
  * @param[in]  points  n points, |coordinate| <= ::SBR_CONIC_MAX_COORD.
  * @param[out] rms     root mean square distance (finite on ::SBR_OK).
  * @param[out] max_abs largest distance; may be NULL.
+ * @param[in] conic the conic
+ * @param[in] n number of entries
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n = 0); ::SBR_ERR_RANGE (non-finite
  *         input, a point beyond ::SBR_CONIC_MAX_COORD, or distances that overflow float32).
  */
@@ -139,6 +143,11 @@ sbr_status_t sbr_conic_residual(const sbr_conic_t *conic, const sbr_pointf_t *po
  * @brief Coverage: the fraction of 64 equal sectors of the ellipse (by parametric angle)
  *        that hold a point within `tol` pixels (Sampson distance) of the curve. 1 for a
  *        closed contour, about 0.5 for half an arc.
+ * @param[in] conic the conic
+ * @param[in] points the points
+ * @param[in] n number of entries
+ * @param[in] tol the tolerance
+ * @param[out] coverage the covered fraction, 0..1.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n = 0); ::SBR_ERR_RANGE (non-finite,
  *         a point beyond ::SBR_CONIC_MAX_COORD, tol <= 0, or an ellipse that
  *         sbr_conic_to_ellipse() refuses as out of range); ::SBR_ERR_DEGENERATE (not a real
@@ -173,9 +182,10 @@ typedef struct sbr_torch_pose_s {
  * distant planes: Z0/R = 10 at f = 500 px elongates a 50 px beam by 0.2 %) weigh 0.1;
  * the unweighted misfit is the consistency test.
  *
- * @param conic  the ellipse in principal-point-centred pixel coordinates.
- * @param focal  focal length in pixels, > 0 and finite.
- * @param max_residual accepted misfit (relative), > 0; ::SBR_TORCH_MAX_RESIDUAL.
+ * @param[in] conic  the ellipse in principal-point-centred pixel coordinates.
+ * @param[in] focal  focal length in pixels, > 0 and finite.
+ * @param[in] max_residual accepted misfit (relative), > 0; ::SBR_TORCH_MAX_RESIDUAL.
+ * @param[out] pose the plane's normal (n1, n2), distance over radius and the misfit.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (non-finite input, focal <= 0,
  *         max_residual <= 0); ::SBR_ERR_DEGENERATE when the conic is not a real ellipse
  *         or does not fit the model (k <= 0, C33 of the wrong sign, or the residual above
@@ -237,15 +247,24 @@ typedef struct sbr_ellipse_det_s {
                         SBR_WS_ALIGN8(4u * sizeof(sbr_contour_t)) +                               \
                         SBR_WS_ALIGN8((size_t)(max_points) * sizeof(sbr_pointf_t))))
 
-/** @brief Defaults as documented above. No-op for NULL. */
+/**
+ * @brief Defaults as documented above. No-op for NULL.
+ * @param[out] cfg the configuration
+ */
 void sbr_ellipse_detect_config_default(sbr_ellipse_detect_config_t *cfg);
 
-/** @brief Check a configuration. ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE. */
+/**
+ * @brief Check a configuration. ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE.
+ * @param[in] cfg the configuration
+ */
 sbr_status_t sbr_ellipse_detect_config_check(const sbr_ellipse_detect_config_t *cfg);
 
 /**
  * @brief Workspace bytes for sbr_ellipse_detect() on a width x height image; 0 for an
  *        invalid configuration or size.
+ * @param[in] cfg the configuration
+ * @param[in] width frame (or view) width, pixels
+ * @param[in] height frame (or view) height, pixels
  */
 size_t sbr_ellipse_detect_workspace_size(const sbr_ellipse_detect_config_t *cfg, uint32_t width,
                                          uint32_t height);
@@ -258,10 +277,13 @@ size_t sbr_ellipse_detect_workspace_size(const sbr_ellipse_detect_config_t *cfg,
  *        (an anti-aliased edge gives a few such regions; their mean follows the edge's mid
  *        level).
  *
- * @param image GRAY8 view, at least 3 x 3.
+ * @param[in] image GRAY8 view, at least 3 x 3.
  * @param[out] out     detections, in the order their regions were found.
- * @param capacity     length of `out`.
+ * @param[in] capacity     length of `out`.
  * @param[out] count   detections written.
+ * @param[in] cfg the configuration
+ * @param[in,out] workspace the query's bytes, 8-byte aligned (scratch)
+ * @param[in] workspace_size its size in bytes
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad configuration or format);
  *         errors of sbr_image_check(); ::SBR_ERR_WORKSPACE (too small or not 8-byte
  *         aligned); ::SBR_ERR_CAPACITY when `out` or an internal bound ran full (the

@@ -42,6 +42,8 @@ typedef struct sbr_contour_s {
 /**
  * @brief Workspace bytes for masks up to `width` x `height`; 0 if a size is 0 or above
  *        ::SBR_IMAGE_MAX_DIM.
+ * @param[in] width frame (or view) width, pixels
+ * @param[in] height frame (or view) height, pixels
  */
 size_t sbr_contour_workspace_size(uint32_t width, uint32_t height);
 
@@ -49,9 +51,9 @@ size_t sbr_contour_workspace_size(uint32_t width, uint32_t height);
  * @brief Outer boundaries of all top-level blobs of a mask (GRAY8, non-zero = foreground).
  *
  * @param[in]  mask           GRAY8 view; not modified.
- * @param[in]  workspace      at least sbr_contour_workspace_size(width, height) bytes, any
+ * @param[in,out] workspace      at least sbr_contour_workspace_size(width, height) bytes, any
  *                            alignment; its contents are overwritten.
- * @param[in]  workspace_size its size.
+ * @param[in]     workspace_size its size.
  * @param[out] points         point storage shared by all contours.
  * @param[in]  point_capacity length of `points`.
  * @param[out] contours       one entry per contour, in raster order of their first pixel.
@@ -70,6 +72,9 @@ sbr_status_t sbr_contour_find_external(const sbr_image_t *mask, void *workspace,
 /**
  * @brief Twice the signed area of a closed polygon (shoelace sum, image coordinates).
  *        Outer boundaries traced by sbr give negative values.
+ * @param[in] points the points
+ * @param[in] count number of entries
+ * @param[out] area2 twice the signed area, pixels squared.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE for 0 points.
  */
 sbr_status_t sbr_contour_area2(const sbr_point_t *points, uint32_t count, int64_t *area2);

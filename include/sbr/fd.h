@@ -71,7 +71,16 @@ sbr_status_t sbr_fd_from_points(const sbr_fft_t *fft, const sbr_point_t *points,
                                 uint32_t count, uint32_t m, sbr_complex_t *work,
                                 uint32_t work_len, sbr_fd_t *out);
 
-/** @brief As sbr_fd_from_points() for float points. */
+/**
+ * @brief As sbr_fd_from_points() for float points.
+ * @param[in] fft an initialised FFT instance
+ * @param[in] points the points
+ * @param[in] count number of entries
+ * @param[in] m descriptor order M (coefficients -M..M), 1..::SBR_FD_MAX_M, 2M < N.
+ * @param[out] work scratch of `work_len` complex values
+ * @param[in] work_len length of `work`
+ * @param[out] out the result
+ */
 sbr_status_t sbr_fd_from_pointsf(const sbr_fft_t *fft, const sbr_pointf_t *points,
                                  uint32_t count, uint32_t m, sbr_complex_t *work,
                                  uint32_t work_len, sbr_fd_t *out);
@@ -81,12 +90,15 @@ sbr_status_t sbr_fd_from_pointsf(const sbr_fft_t *fft, const sbr_pointf_t *point
  *        1..::SBR_FD_MAX_M, finite positive scale, finite centroid, finite coefficients.
  * @param[out] energy (may be NULL) sum of |C(n)|^2 over the 2M + 1 coefficients (1 for a
  *                    descriptor sbr computed), written on success.
+ * @param[in] fd the descriptor
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE.
  */
 sbr_status_t sbr_fd_check(const sbr_fd_t *fd, float *energy);
 
 /**
  * @brief Descriptor of the mirror image (x -> -x), traced in the same direction.
+ * @param[in] in the input
+ * @param[out] out the result
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for an invalid descriptor.
  *         `in` and `out` may be the same.
  */
@@ -189,6 +201,12 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
  *                      SBR_FD_TABLE_WORK_LEN(P) the faster four-lane path is used.
  * @param[out] results  one result per prototype (`count` entries).
  * @param[out] best     index of the prototype with the smallest error.
+ * @param[in] fft an initialised FFT instance
+ * @param[in] cfg the configuration
+ * @param[in] query the descriptor to look up.
+ * @param[in] protos the prototype table (`count` descriptors of the query's M).
+ * @param[in] count number of entries
+ * @param[in] work_len length of `work`
  * @return as sbr_fd_match(); ::SBR_ERR_SIZE for count 0. An invalid prototype (the
  *         conditions of sbr_fd_check(), or another M) stops the call with the status of
  *         the first invalid one in table order; results before it may have been written.

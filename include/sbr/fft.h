@@ -128,6 +128,7 @@ sbr_status_t sbr_fft_inverse(const sbr_fft_t *fft, const sbr_complex_t *in,
 /**
  * @brief Check that an instance was initialised and is intact (the same check every
  *        transform makes; for modules that hold an instance and want to validate it once).
+ * @param[in] fft an initialised FFT instance
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_STATE for an instance that was never
  *         initialised, was initialised with an unsupported length, or was overwritten.
  */
@@ -135,6 +136,7 @@ sbr_status_t sbr_fft_check(const sbr_fft_t *fft);
 
 /**
  * @brief Whether `n` is a supported transform length.
+ * @param[in] n a transform length
  * @return 1 for 16, 32, ..., 1024; 0 otherwise.
  */
 int sbr_fft_size_supported(uint32_t n);

@@ -49,11 +49,13 @@ typedef struct sbr_rect_s {
 
 /**
  * @brief Bytes per pixel of a format (0 for an unknown format).
+ * @param[in] format a pixel format
  */
 uint32_t sbr_image_bytes_per_pixel(sbr_pixel_format_t format);
 
 /**
  * @brief Validate a view.
+ * @param[in] img the frame
  * @return ::SBR_OK; ::SBR_ERR_NULL (view or data NULL); ::SBR_ERR_SIZE (zero or too large
  *         width/height); ::SBR_ERR_RANGE (unknown format); ::SBR_ERR_ALIGN (stride above
  *         ::SBR_IMAGE_MAX_STRIDE or smaller

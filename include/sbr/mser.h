@@ -137,11 +137,15 @@ typedef struct sbr_mser_region_s {
      ((((size_t)(width)) * ((size_t)(height))) * SBR_MSER_PIXEL_BYTES) +                    \
      SBR_MSER_REACHED_BYTES(((size_t)(width)) * ((size_t)(height))) + SBR_MSER_TAIL_BYTES)
 
-/** @brief Fill a configuration with the defaults documented above. No-op for NULL. */
+/**
+ * @brief Fill a configuration with the defaults documented above. No-op for NULL.
+ * @param[out] cfg the configuration
+ */
 void sbr_mser_config_default(sbr_mser_config_t *cfg);
 
 /**
  * @brief Check a configuration.
+ * @param[in] cfg the configuration
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for any field outside its range.
  */
 sbr_status_t sbr_mser_config_check(const sbr_mser_config_t *cfg);
@@ -150,6 +154,9 @@ sbr_status_t sbr_mser_config_check(const sbr_mser_config_t *cfg);
  * @brief Workspace bytes sbr_mser_detect() needs for maps up to width x height with this
  *        configuration; 0 for an invalid configuration or a size below 3 x 3 or above
  *        ::SBR_IMAGE_MAX_DIM.
+ * @param[in] cfg the configuration
+ * @param[in] width frame (or view) width, pixels
+ * @param[in] height frame (or view) height, pixels
  */
 size_t sbr_mser_workspace_size(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height);
 
@@ -158,8 +165,8 @@ size_t sbr_mser_workspace_size(const sbr_mser_config_t *cfg, uint32_t width, uin
  *
  * @param[in]  map            GRAY8 view, at least 3 x 3; not modified.
  * @param[in]  cfg            parameters (sbr_mser_config_check()).
- * @param[in]  workspace      sbr_mser_workspace_size() bytes, 4-byte aligned.
- * @param[in]  workspace_size its size.
+ * @param[in,out] workspace      sbr_mser_workspace_size() bytes, 4-byte aligned.
+ * @param[in]     workspace_size its size.
  * @param[out] regions        results: dark regions first, each polarity in the order its
  *                            tree nodes were completed (smaller before containing ones).
  * @param[in]  capacity       length of `regions`.
@@ -183,9 +190,9 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
  *
  * @param[in]  map            the map the region was extracted from.
  * @param[in]  region         a region of that map.
- * @param[in]  workspace      SBR_MSER_MASK_WORKSPACE_SIZE(bbox.width, bbox.height) bytes,
+ * @param[in,out] workspace      SBR_MSER_MASK_WORKSPACE_SIZE(bbox.width, bbox.height) bytes,
  *                            4-byte aligned.
- * @param[in]  workspace_size its size.
+ * @param[in]     workspace_size its size.
  * @param[out] mask           bbox.height rows of `mask_stride` bytes; pixel (x, y) of the
  *                            map is mask[(y - bbox.y) * mask_stride + (x - bbox.x)].
  * @param[in]  mask_stride    >= bbox.width.

@@ -94,15 +94,25 @@ typedef struct sbr_parts_stats_s {
     uint32_t capacity_hit;     /**< 1 if MSER ran out of nodes or regions on some map */
 } sbr_parts_stats_t;
 
-/** @brief Defaults as documented. No-op for NULL. */
+/**
+ * @brief Defaults as documented. No-op for NULL.
+ * @param[out] cfg the configuration
+ */
 void sbr_parts_config_default(sbr_parts_config_t *cfg);
 
-/** @brief Check a configuration. @return ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE. */
+/**
+ * @brief Check a configuration.
+ * @param[in] cfg the configuration
+ * @return ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE.
+ */
 sbr_status_t sbr_parts_config_check(const sbr_parts_config_t *cfg);
 
 /**
  * @brief Workspace bytes for views up to width x height; 0 for a bad configuration or
  *        size (the map must be at least 3 x 3 after subsampling).
+ * @param[in] cfg the configuration
+ * @param[in] width frame (or view) width, pixels
+ * @param[in] height frame (or view) height, pixels
  */
 size_t sbr_parts_workspace_size(const sbr_parts_config_t *cfg, uint32_t width, uint32_t height);
 
@@ -132,11 +142,12 @@ size_t sbr_parts_workspace_size(const sbr_parts_config_t *cfg, uint32_t width, u
  * @param[in]  img       RGB888 / BGR888 view (GRAY8 with maps = intensity only).
  * @param[in]  cfg       configuration.
  * @param[in]  fft       FFT instance of length cfg->fd_n.
- * @param[in]  workspace sbr_parts_workspace_size() bytes, 4-byte aligned.
+ * @param[in,out] workspace sbr_parts_workspace_size() bytes, 4-byte aligned.
  * @param[out] parts     results, map by map (in the order of the kinds), each in MSER order.
  * @param[in]  capacity  length of `parts`.
  * @param[out] count     parts written.
  * @param[out] stats     (may be NULL) counters of this call.
+ * @param[in] workspace_size its size in bytes
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad configuration, format/map mismatch);
  *         ::SBR_ERR_SIZE (view too small after subsampling); ::SBR_ERR_STATE (FFT instance
  *         invalid or not of length fd_n); ::SBR_ERR_WORKSPACE; ::SBR_ERR_CAPACITY when

@@ -193,12 +193,16 @@ typedef struct sbr_track_target_s {
     uint32_t flags;     /**< SBR_TRACK_* */
 } sbr_track_target_t;
 
-/** @brief Defaults as documented in ::sbr_track_config_t. No-op for NULL. */
+/**
+ * @brief Defaults as documented in ::sbr_track_config_t. No-op for NULL.
+ * @param[out] cfg the configuration
+ */
 void sbr_track_config_default(sbr_track_config_t *cfg);
 
 /**
  * @brief Check a model: order, sizes, extents, and that every table row is finite,
  *        non-negative and sums to 1 (within 1e-3).
+ * @param[in] model the model
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (a count out of range);
  *         ::SBR_ERR_RANGE (order, period, extent, spacing); ::SBR_ERR_CORRUPT (a table
  *         row that is not a distribution).
@@ -210,7 +214,9 @@ sbr_status_t sbr_track_model_check(const sbr_track_model_t *model);
  *        extent / (regions - 2), first centre -spacing / 2, overlap 3). The tracker weighs
  *        a position's regions with sbr_channel_encode() on this layout; learning must use
  *        the same, so a learned table's regions mean what the tracker reads.
- * @param axis 0 for x, 1 for y.
+ * @param[in] axis 0 for x, 1 for y.
+ * @param[in] model the model
+ * @param[out] cfg the configuration
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (axis, region count or extent).
  */
 sbr_status_t sbr_track_region_config(const sbr_track_model_t *model, uint32_t axis,
@@ -221,8 +227,18 @@ sbr_status_t sbr_track_region_config(const sbr_track_model_t *model, uint32_t ax
  *        of `accel_sigma` pixels (discretised on the velocity channels, the same for all
  *        regions); a new target's velocity prior is a Gaussian of `birth_sigma` around 0.
  * @param[out] model filled (its tables point to `transition` and `birth`).
- * @param transition caller array of SBR_TRACK_MODEL_TRANSITION_LEN(3, 3, vel_count)
+ * @param[out] transition caller array of SBR_TRACK_MODEL_TRANSITION_LEN(3, 3, vel_count)
  *        floats (3 regions per axis); `birth` of SBR_TRACK_MODEL_BIRTH_LEN(3, 3, vel_count).
+ * @param[in] width frame (or view) width, pixels
+ * @param[in] height frame (or view) height, pixels
+ * @param[in] period seconds between the frames the model describes, > 0.
+ * @param[in] vel_count velocity channels (odd, 5 .. ::SBR_TRACK_MAX_VEL).
+ * @param[in] vel_spacing pixels per period between velocity channels, > 0.
+ * @param[in] accel_sigma velocity change per period, pixels (Gaussian sigma), > 0.
+ * @param[in] birth_sigma a new target's velocity prior, pixels per period, > 0.
+ * @param[in] transition_len length of `transition` in floats.
+ * @param[out] birth caller array for the birth prior (`birth_len` floats).
+ * @param[in] birth_len length of `birth` in floats.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (vel_count, or an array too short);
  *         ::SBR_ERR_RANGE (a value not finite and > 0).
  */
@@ -238,25 +254,33 @@ sbr_status_t sbr_track_model_cv(sbr_track_model_t *model, float width, float hei
  *        comment has the command). 10 x 5 regions, 41 velocity channels of 3.5 px
  *        (+-70 px per frame); used with a window of 25 position channels.
  *        KITTI's terms (CC BY-NC-SA 3.0) apply to this table: research use.
+ * @param[out] out the built-in model
  * @return ::SBR_OK; ::SBR_ERR_NULL.
  */
 sbr_status_t sbr_track_model_kitti(sbr_track_model_t *out);
 
 /**
  * @brief Check a configuration (its model by sbr_track_model_check()).
+ * @param[in] cfg the configuration
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (max_targets, window);
  *         ::SBR_ERR_RANGE (meas_sigma not finite, <= 0 or with a kernel wider than the
  *         window; gate; confirm_hits; max_misses); model errors.
  */
 sbr_status_t sbr_track_config_check(const sbr_track_config_t *cfg);
 
-/** @brief Workspace bytes for a configuration; 0 if it is invalid. */
+/**
+ * @brief Workspace bytes for a configuration; 0 if it is invalid.
+ * @param[in] cfg the configuration
+ */
 size_t sbr_track_workspace_size(const sbr_track_config_t *cfg);
 
 /**
  * @brief Set up a tracker with no targets.
- * @param workspace sbr_track_workspace_size() bytes, 4-byte aligned, owned by the tracker
+ * @param[in,out] workspace sbr_track_workspace_size() bytes, 4-byte aligned, owned by the tracker
  *        (and the model's tables must stay valid) while it is used.
+ * @param[in,out] trk the tracker to set up (its previous content is ignored).
+ * @param[in] cfg the configuration
+ * @param[in] workspace_size its size in bytes
  * @return ::SBR_OK; ::SBR_ERR_NULL; configuration errors; ::SBR_ERR_WORKSPACE.
  */
 sbr_status_t sbr_track_init(sbr_track_t *trk, const sbr_track_config_t *cfg, void *workspace,
