@@ -54,7 +54,7 @@ JOBS="$(nproc 2>/dev/null || echo 2)"
 PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip python3-venv can-utils
           gcc-arm-none-eabi libnewlib-arm-none-eabi qemu-system-arm
           gcc-arm-linux-gnueabihf libc6-dev-armhf-cross qemu-user
-          libfftw3-dev libkissfft-dev cppcheck libopencv-dev chromium clang libclang-rt-14-dev valgrind)
+          libfftw3-dev libkissfft-dev cppcheck libopencv-dev libcli11-dev chromium clang libclang-rt-14-dev valgrind)
 
 log() { printf '\n== %s\n' "$*"; }
 
@@ -398,6 +398,20 @@ cmd_dashboard() {
   fi
   exec "$BUILD/venv/bin/python" "$ROOT/dashboard/sbr-dashboard" "${args[@]}"
 }
+
+# usage_of NAME: the header's lines of one subcommand (./sbr.sh NAME --help).
+usage_of() {
+  sed -n '2,/^set -euo/{/^set -euo/!p}' "$0" \
+    | awk -v c="$1" '/^#   \.\/sbr\.sh / {on = ($3 == c)} /^# *$/ {on = 0} on' | sed 's/^# \{0,1\}//'
+  echo "(./sbr.sh --help: every command; docs/usage/ for each tool's options)"
+}
+
+# NAME --help (or -h) prints that subcommand's usage and runs nothing; the dashboard
+# describes its own options.
+if [ $# -ge 2 ] && [ "$1" != "dashboard" ] && { [ "$2" = "--help" ] || [ "$2" = "-h" ]; }; then
+  usage_of "$1"
+  exit 0
+fi
 
 case "${1:-}" in
   dashboard) shift; cmd_dashboard "$@" ;;

@@ -108,10 +108,20 @@ bool parse_image_ranges(const std::string &s, ImageRanges &out) {
     std::vector<std::pair<int, int>> v;
     std::stringstream ss(s);
     std::string part;
+    // strict: digits only, at most kMaxImageNumber (no overflow, no sign, no trailing text)
+    auto number = [](const std::string &t, int &out) {
+        if (t.empty() || t.size() > 9 || t.find_first_not_of("0123456789") != std::string::npos) return false;
+        const long n = std::stol(t);
+        if (n > kMaxImageNumber) return false;
+        out = int(n);
+        return true;
+    };
     while (std::getline(ss, part, ',')) {
+        const size_t dash = part.find('-');
         int a = -1, b = -1;
-        char tail = 0;
-        if (std::sscanf(part.c_str(), "%d-%d%c", &a, &b, &tail) != 2 || a < 0 || b < a) return false;
+        if (dash == std::string::npos || !number(part.substr(0, dash), a) ||
+            !number(part.substr(dash + 1), b) || b < a)
+            return false;
         v.emplace_back(a, b);
     }
     if (v.empty() || s.back() == ',') return false;

@@ -65,6 +65,8 @@ struct ImageRanges {
     // when empty
     std::string str(bool padded = false) const;
 };
+// Largest image number a range may name (GTSDB numbers its images with five digits).
+constexpr long kMaxImageNumber = 99999999;
 // False (and out untouched) unless s is one or more spans A-B with 0 <= A <= B,
 // separated by commas.
 bool parse_image_ranges(const std::string &s, ImageRanges &out);

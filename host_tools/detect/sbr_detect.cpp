@@ -64,6 +64,7 @@
 #include <vector>
 
 #include "can_output.hpp"
+#include "cli.hpp"
 #include "gtsdb.hpp"
 #include "model_io.hpp"
 
@@ -142,312 +143,329 @@ void annotate(cv::Mat &img, const std::vector<sbr_detection_t> &dets) {
     }
 }
 
-}  // namespace
-
-int main(int argc, char **argv) {
-    std::string input, det_path, all_path, annotated, canlog, model_path, summary_path, picto_path;
-    bool no_picto = false;
+// Everything the command line sets.
+struct Options {
+    std::string input, det_path, all_path, annotated, canlog, model_path, picto_path, summary_path;
+    bool no_picto = false, quiet = false, sequence = false, callgrind = false;
     ImageRanges range;
-    float threshold = -1.0f;
-    uint32_t subsample = 1;
-    bool use_roi = false, quiet = false;
+    float threshold = -1.0f;  // < 0: the model's operating point
     int repeat = 1;
-    int max_parts = -1, max_votes = -1, max_hyps = -1;
-    int min_parts = -1, refine_steps = -1, maps = -1, max_candidates = -1, views_opt = -1, triangle_view = -1, max_nodes = -1;
-    bool sequence = false, callgrind = false;
-    FrontEnd front_end;  // --map-subsample, --map-min-area: per map kind, empty = defaults
-    int gate_opt = -1;
-    float vote_error = -1.0f, verify_error = -1.0f, min_score = -1.0f, refine_score = -1.0f, refine_first_score = -1.0f, view_score = -1.0f, triangle_score = -1.0f, candidate_score = -1.0f, candidate_iou = -1.0f;
+    std::vector<unsigned> roi_v;  // X, Y, W, H
     sbr_rect_t roi{};
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-        if (a == "--input") input = next();
-        else if (a == "--detections") det_path = next();
-        else if (a == "--all-detections") all_path = next();
-        else if (a == "--annotated") annotated = next();
-        else if (a == "--canlog") canlog = next();
-        else if (a == "--model") model_path = next();
-        else if (a == "--picto") picto_path = next();
-        else if (a == "--no-picto") no_picto = true;
-        else if (a == "--summary") summary_path = next();
-        else if (a == "--threshold") threshold = std::strtof(next().c_str(), nullptr);
-        else if (a == "--subsample") subsample = uint32_t(std::atoi(next().c_str()));
-        else if (a == "--quiet") quiet = true;
-        else if (a == "--repeat") repeat = std::atoi(next().c_str());
-        else if (a == "--sequence") sequence = true;
-        else if (a == "--callgrind") callgrind = true;
-        else if (a == "--min-parts") min_parts = std::atoi(next().c_str());
-        else if (a == "--refine-steps") refine_steps = std::atoi(next().c_str());
-        else if (a == "--refine-score") refine_score = std::strtof(next().c_str(), nullptr);
-        else if (a == "--refine-first-score") refine_first_score = std::strtof(next().c_str(), nullptr);
-        else if (a == "--candidate-score") candidate_score = std::strtof(next().c_str(), nullptr);
-        else if (a == "--candidate-iou") candidate_iou = std::strtof(next().c_str(), nullptr);
-        else if (a == "--view-score") view_score = std::strtof(next().c_str(), nullptr);
-        else if (a == "--map-subsample" || a == "--map-min-area") {
-            bool ok = true;
-            parse_front_end(a, next(), front_end, ok);
-            if (!ok) { std::fprintf(stderr, "%s wants I[,R[,B[,Y]]]\n", a.c_str()); return 2; }
-        } else if (a == "--maps") maps = int(std::strtol(next().c_str(), nullptr, 0));
-        else if (a == "--max-nodes") max_nodes = std::atoi(next().c_str());
-        else if (a == "--max-candidates") max_candidates = std::atoi(next().c_str());
-        else if (a == "--max-parts") max_parts = std::atoi(next().c_str());
-        else if (a == "--gate") gate_opt = std::atoi(next().c_str());
-        else if (a == "--max-votes") max_votes = std::atoi(next().c_str());
-        else if (a == "--max-hypotheses") max_hyps = std::atoi(next().c_str());
-        else if (a == "--views") views_opt = std::atoi(next().c_str());
-        else if (a == "--triangle-view") triangle_view = std::atoi(next().c_str());
-        else if (a == "--triangle-score") triangle_score = std::strtof(next().c_str(), nullptr);
-        else if (a == "--vote-error") vote_error = std::strtof(next().c_str(), nullptr);
-        else if (a == "--verify-error") verify_error = std::strtof(next().c_str(), nullptr);
-        else if (a == "--min-score") min_score = std::strtof(next().c_str(), nullptr);
-        else if (a == "--range") {
-            if (!parse_image_ranges(next(), range)) { std::fprintf(stderr, "--range wants A-B[,C-D...]\n"); return 2; }
-        } else if (a == "--roi") {
-            unsigned x, y, w, h;
-            if (std::sscanf(next().c_str(), "%u,%u,%u,%u", &x, &y, &w, &h) != 4) { std::fprintf(stderr, "--roi wants X,Y,W,H\n"); return 2; }
-            roi = {x, y, w, h};
-            use_roi = true;
-        } else {
-            std::fprintf(stderr,
-                         "usage: %s --input DIR --detections FILE [--annotated DIR] [--canlog FILE]\n"
-                         "          [--all-detections FILE] [--summary FILE] [--model FILE] [--range A-B]\n"
-                         "          [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N] [--callgrind]\n"
-                         "          [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--sequence]\n"
-                         "          [--refine-steps N] [--refine-first-score S] [--refine-score S] [--view-score S] [--maps MASK] [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N] [--max-parts N] [--max-votes N] [--max-hypotheses N] [--gate 0|1] [--candidate-score S] [--candidate-iou U] [--views N] [--triangle-view 0|1] [--triangle-score S] [--picto FILE | --no-picto]\n", argv[0]);
-            return 2;
-        }
+    bool use_roi = false;
+    sbr_recog_config_t cfg{};
+    RecogCli rc;
+};
+
+// -1: go on; otherwise the exit status.
+int parse_options(int argc, char **argv, Options &o) {
+    sbr_recog_config_default(&o.cfg);
+    CLI::App app{"sbr_detect: sbr's recogniser over a folder of recorded images (docs/usage/detect.md)"};
+    app.add_option("--input", o.input, "folder of JPEG/PNG/PPM images (or a GTSDB folder)")->required();
+    app.add_option("--detections", o.det_path,
+                   "detections at the operating point, NNNNN.jpg;left;top;right;bottom;class_id;score")
+        ->required();
+    app.add_option("--all-detections", o.all_path, "every detection down to score 0.05 (PR curves, AP)");
+    app.add_option("--annotated", o.annotated, "folder for the images with their boxes (JPEG)");
+    app.add_option("--canlog", o.canlog, "candump log of the CAN frames (dbc/sbr.dbc)");
+    app.add_option("--summary", o.summary_path, "write the summary (also printed) to this file");
+    app.add_option("--model", o.model_path, "prototype library file (sbr_train --out-model); default built-in");
+    auto *picto = app.add_option("--picto", o.picto_path, "class-stage file (sbr_train_picto --out)");
+    app.add_flag("--no-picto", o.no_picto, "no class stage: part evidence alone scores and classifies")
+        ->excludes(picto);
+    add_range_option(app, o.range, "keep images numbered A..B");
+    app.add_option("--threshold", o.threshold, "operating point (default: the model's)")
+        ->check(finite_range(0.0, 1.0));
+    app.add_option("--roi", o.roi_v, "run on this region of each image only")
+        ->delimiter(',')
+        ->expected(4)
+        ->type_name("X,Y,W,H");
+    app.add_flag("--quiet", o.quiet, "no progress bar");
+    app.add_option("--repeat", o.repeat, "runs per frame; the fastest is reported")
+        ->check(CLI::Range(1, 20))
+        ->capture_default_str();
+    app.add_flag("--sequence", o.sequence,
+                 "the images are consecutive frames (10 per second): confirmed signs from the tracker");
+    app.add_flag("--callgrind", o.callgrind,
+                 "count instructions per stage under valgrind's callgrind (./sbr.sh cost)");
+    add_recog_options(app, o.cfg, o.rc);
+    const int rc = parse_cli(app, argc, argv);
+    if (rc >= 0) return rc;
+    if (!o.roi_v.empty()) {
+        o.roi = {o.roi_v[0], o.roi_v[1], o.roi_v[2], o.roi_v[3]};
+        o.use_roi = true;
     }
-    if (input.empty() || det_path.empty()) {
-        std::fprintf(stderr, "sbr_detect: --input and --detections are required (--help)\n");
-        return 2;
-    }
+    apply_recog_cli(o.rc, o.cfg);
 #ifndef SBR_HAVE_CALLGRIND
-    if (callgrind) {
+    if (o.callgrind) {
         std::fprintf(stderr, "sbr_detect: --callgrind: built without valgrind/callgrind.h\n");
         return 2;
     }
 #endif
-    if (repeat < 1 || repeat > 20) {
-        std::fprintf(stderr, "sbr_detect: --repeat wants 1..20\n");
-        return 2;
-    }
+    return -1;
+}
+
+// The part model and the class stage the run uses.
+struct Models {
     Model loaded;
-    sbr_model_t builtin{};
-    sbr_model_gtsdb(&builtin);
-    const sbr_model_t *model = &builtin;
-    if (!model_path.empty()) {
-        const std::string e = load_model(model_path, loaded);
-        if (!e.empty()) { std::fprintf(stderr, "sbr_detect: %s\n", e.c_str()); return 1; }
-        model = &loaded.view;
-    }
     Picto picto;
-    sbr_model_t with_picto = *model;
-    if (!picto_path.empty()) {
-        const std::string e = load_picto(picto_path, picto);
-        if (!e.empty()) { std::fprintf(stderr, "sbr_detect: %s\n", e.c_str()); return 1; }
-        with_picto.picto = picto.view;
-        model = &with_picto;
-    } else if (no_picto) {
-        with_picto.picto = sbr_picto_model_t{};
-        model = &with_picto;
-    }
-    // the operating point: the class stage's, or the part model's without one
-    if (threshold < 0.0f) threshold = model->picto.version != 0 ? model->picto.threshold : model->score_threshold;
-    sbr_recog_config_t cfg;
-    sbr_recog_config_default(&cfg);
-    cfg.parts.subsample = subsample;
-    cfg.min_score = std::min(cfg.min_score, threshold);
-    if (!all_path.empty()) cfg.min_score = std::min(cfg.min_score, 0.05f);  // the curve's tail
-    if (min_score >= 0.0f) cfg.min_score = min_score;
-    if (min_parts >= 0) cfg.min_parts = uint32_t(min_parts);
-    if (refine_steps >= 0) cfg.refine_steps = uint32_t(refine_steps);
-    if (refine_score >= 0.0f) cfg.refine_score = refine_score;
-    if (refine_first_score >= 0.0f) cfg.refine_first_score = refine_first_score;
-    if (view_score >= 0.0f) cfg.view_score = view_score;
-    if (candidate_score >= 0.0f) cfg.candidate_score = candidate_score;
-    if (candidate_iou >= 0.0f) cfg.candidate_iou = candidate_iou;
-    apply_front_end(front_end, cfg.parts);
-    if (maps >= 0) cfg.parts.maps = uint32_t(maps);
-    if (max_nodes >= 0) cfg.parts.mser.max_nodes = uint32_t(max_nodes);
-    if (max_candidates >= 0) cfg.max_candidates = uint32_t(max_candidates);
-    if (max_parts >= 0) cfg.max_parts = uint32_t(max_parts);
-    if (gate_opt >= 0) cfg.gate = uint32_t(gate_opt);
-    if (max_votes >= 0) cfg.max_votes = uint32_t(max_votes);
-    if (max_hyps >= 0) cfg.max_hypotheses = uint32_t(max_hyps);
-    if (views_opt >= 0) cfg.views = uint32_t(views_opt);
-    if (triangle_view >= 0) cfg.triangle_view = uint32_t(triangle_view);
-    if (triangle_score >= 0.0f) cfg.triangle_score = triangle_score;
-    if (vote_error >= 0.0f) cfg.vote_error = vote_error;
-    if (verify_error >= 0.0f) cfg.verify_error = verify_error;
-    CallgrindClock cg;
-    cfg.clock = host_clock;
-    if (callgrind) {
-        cfg.clock = callgrind_clock;
-        cfg.clock_ctx = &cg;
-        repeat = 1;
-    }
-    sbr_status_t st = sbr_recog_config_check(&cfg);
-    if (st != SBR_OK) { std::fprintf(stderr, "sbr_detect: bad configuration: %s\n", sbr_status_str(st)); return 2; }
+    sbr_model_t builtin{};
+    sbr_model_t with_picto{};
+    const sbr_model_t *model = nullptr;
+};
 
-    const std::string dir = gtsdb_image_dir(input);
-    std::vector<std::string> files;
-    for (const auto &f : list_images(dir)) {
-        const int n = image_number(f);
-        if (range.empty() || range.contains(n)) files.push_back(f);
+bool load_models(const Options &o, Models &m) {
+    sbr_model_gtsdb(&m.builtin);
+    m.model = &m.builtin;
+    if (!o.model_path.empty()) {
+        const std::string e = load_model(o.model_path, m.loaded);
+        if (!e.empty()) { std::fprintf(stderr, "sbr_detect: %s\n", e.c_str()); return false; }
+        m.model = &m.loaded.view;
     }
-    if (files.empty()) { std::fprintf(stderr, "sbr_detect: no images in %s\n", dir.c_str()); return 1; }
-    std::ofstream det(det_path), all;
-    if (!det) { std::fprintf(stderr, "sbr_detect: cannot write %s\n", det_path.c_str()); return 1; }
-    if (!all_path.empty()) all.open(all_path);
-    if (!annotated.empty()) fs::create_directories(annotated);
+    m.with_picto = *m.model;
+    if (!o.picto_path.empty()) {
+        const std::string e = load_picto(o.picto_path, m.picto);
+        if (!e.empty()) { std::fprintf(stderr, "sbr_detect: %s\n", e.c_str()); return false; }
+        m.with_picto.picto = m.picto.view;
+        m.model = &m.with_picto;
+    } else if (o.no_picto) {
+        m.with_picto.picto = sbr_picto_model_t{};
+        m.model = &m.with_picto;
+    }
+    return true;
+}
+
+// The operating point (the class stage's, or the part model's without one) and the
+// score floor that follows from it; the clock. False for a configuration the core refuses.
+bool configure(Options &o, const sbr_model_t *model, CallgrindClock &cg) {
+    if (o.threshold < 0.0f) o.threshold = model->picto.version != 0 ? model->picto.threshold : model->score_threshold;
+    if (o.rc.min_score->count() == 0) {
+        o.cfg.min_score = std::min(o.cfg.min_score, o.threshold);
+        if (!o.all_path.empty()) o.cfg.min_score = std::min(o.cfg.min_score, 0.05f);  // the curve's tail
+    }
+    o.cfg.clock = host_clock;
+    if (o.callgrind) {
+        o.cfg.clock = callgrind_clock;
+        o.cfg.clock_ctx = &cg;
+        o.repeat = 1;
+    }
+    const sbr_status_t st = sbr_recog_config_check(&o.cfg);
+    if (st != SBR_OK) std::fprintf(stderr, "sbr_detect: bad configuration: %s\n", sbr_status_str(st));
+    return st == SBR_OK;
+}
+
+// The output files.
+struct Outputs {
+    std::ofstream det, all;
     std::unique_ptr<CanLogWriter> can;
-    if (!canlog.empty()) {
-        can.reset(new CanLogWriter(canlog));
-        if (!can->ok()) { std::fprintf(stderr, "sbr_detect: cannot write %s\n", canlog.c_str()); return 1; }
-    }
+};
 
+bool open_outputs(const Options &o, Outputs &out) {
+    out.det.open(o.det_path);
+    if (!out.det) { std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.det_path.c_str()); return false; }
+    if (!o.all_path.empty()) out.all.open(o.all_path);
+    if (!o.annotated.empty()) fs::create_directories(o.annotated);
+    if (!o.canlog.empty()) {
+        out.can.reset(new CanLogWriter(o.canlog));
+        if (!out.can->ok()) { std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.canlog.c_str()); return false; }
+    }
+    return true;
+}
+
+// What the run counts, for the summary.
+struct Tally {
     std::vector<uint64_t> ws;
     size_t ws_bytes = 0;
-    std::vector<sbr_detection_t> dets(256);
+    std::vector<sbr_detection_t> dets = std::vector<sbr_detection_t>(256);
     std::vector<double> ms_total;
-    std::vector<std::vector<double>> ms_stage(SBR_RECOG_STAGES);
+    std::vector<std::vector<double>> ms_stage = std::vector<std::vector<double>>(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
     size_t capacity_kind[5] = {0, 0, 0, 0, 0};
     size_t classified = 0, refined = 0, views = 0, rim_rejected = 0, gated = 0, frames_run = 0;
     uint64_t parts_total = 0;
     double sum_ms = 0;
-    for (size_t i = 0; i < files.size(); ++i) {
-        cv::Mat img = cv::imread(files[i], cv::IMREAD_COLOR);
-        const std::string name = fs::path(files[i]).stem().string() + ".jpg";
-        std::vector<sbr_detection_t> kept;
-        sbr_recog_stats_t stats{};
-        float frame_ms = 0.0f;
-        bool error = false;
-        if (img.empty()) {
-            std::fprintf(stderr, "\nsbr_detect: cannot read %s\n", files[i].c_str());
-            ++failed;
-            error = true;
-        } else {
-            const sbr_image_t v = bgr_view(img);
-            const uint32_t w = use_roi ? roi.width : v.width, h = use_roi ? roi.height : v.height;
-            const size_t need = sbr_recog_workspace_size(&cfg, w, h);
-            if (need > ws.size() * 8) ws.assign(need / 8 + 1, 0);
-            ws_bytes = std::max(ws_bytes, need);
-            uint32_t n = 0;
-            double ms = 0.0;
-            for (int r = 0; r < repeat; ++r) {
-                sbr_recog_stats_t run_stats{};
-                const auto t0 = std::chrono::steady_clock::now();
-#ifdef SBR_HAVE_CALLGRIND
-                if (callgrind) {  // collect only inside sbr_recog_detect
-                    cg.frame = fs::path(files[i]).stem().string();
-                    cg.tick = 0;
-                    CALLGRIND_ZERO_STATS;
-                    CALLGRIND_TOGGLE_COLLECT;
-                }
-#endif
-                st = sbr_recog_detect(&v, use_roi ? &roi : nullptr, &cfg, model, ws.data(), ws.size() * 8,
-                                      dets.data(), uint32_t(dets.size()), &n, &run_stats);
-#ifdef SBR_HAVE_CALLGRIND
-                if (callgrind) {
-                    const std::string label = "frame " + cg.frame + " end";
-                    CALLGRIND_DUMP_STATS_AT(label.c_str());
-                    CALLGRIND_TOGGLE_COLLECT;
-                }
-#endif
-                const double run_ms =
-                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-                if (r == 0 || run_ms < ms) {
-                    ms = run_ms;
-                    stats = run_stats;
-                }
-            }
-            if (st != SBR_OK && st != SBR_ERR_CAPACITY) {
-                std::fprintf(stderr, "\nsbr_detect: %s: %s\n", files[i].c_str(), sbr_status_str(st));
-                ++failed;
-                error = true;
-                n = 0;
-            }
-            frame_ms = float(ms);
-            ms_total.push_back(ms);
-            sum_ms += ms;
-            for (unsigned s = 0; s < SBR_RECOG_STAGES; ++s) ms_stage[s].push_back(stats.stage_ticks[s] / 1000.0);
-            parts_total += stats.parts;
-            if (stats.capacity_hit != 0 || st == SBR_ERR_CAPACITY) ++capacity_frames;
-            for (unsigned b = 0; b < 5; ++b) capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
-            classified += stats.classified;
-            refined += stats.refined;
-            views += stats.views;
-            rim_rejected += stats.rim_rejected;
-            gated += stats.gated;
-            ++frames_run;
-            for (uint32_t k = 0; k < n; ++k) {
-                const auto &d = dets[k];
-                char line[160];
-                std::snprintf(line, sizeof line, "%s;%u;%u;%u;%u;%u;%.4f\n", name.c_str(), d.box.x, d.box.y,
-                              d.box.x + d.box.width - 1, d.box.y + d.box.height - 1, unsigned(d.class_id),
-                              double(d.score));
-                if (all.is_open()) { all << line; ++nall; }
-                if (d.score >= threshold) { det << line; kept.push_back(d); ++ndet; }
-            }
-            if (!annotated.empty()) {
-                annotate(img, kept);
-                cv::imwrite((fs::path(annotated) / name).string(), img);
-            }
-        }
-        if (can) {
-            std::vector<Detection> cd;
-            for (const auto &d : kept)
-                cd.push_back({int(d.box.x), int(d.box.y), int(d.box.x + d.box.width - 1),
-                              int(d.box.y + d.box.height - 1), int(d.class_id), d.score});
-            if (sequence && i == 0 && !can->enable_tracking(float(img.cols), float(img.rows))) {
-                std::fprintf(stderr, "sbr_detect: sign tracker set-up failed\n");
-                return 1;
-            }
-            can->write_image(cd, frame_ms, stats.parts_stats.regions, error);
-        }
-        if (!quiet) progress(i + 1, files.size(), ms_total.empty() ? 0.0 : sum_ms / double(ms_total.size()));
-    }
+};
 
+// The recogniser on one frame, `repeat` times: the fastest run's time and statistics.
+sbr_status_t detect_timed(const Options &o, const sbr_model_t *model, CallgrindClock &cg, const std::string &file,
+                          const sbr_image_t &v, Tally &t, uint32_t &n, double &ms, sbr_recog_stats_t &stats) {
+    sbr_status_t st = SBR_OK;
+    for (int r = 0; r < o.repeat; ++r) {
+        sbr_recog_stats_t run_stats{};
+        const auto t0 = std::chrono::steady_clock::now();
+#ifdef SBR_HAVE_CALLGRIND
+        if (o.callgrind) {  // collect only inside sbr_recog_detect
+            cg.frame = fs::path(file).stem().string();
+            cg.tick = 0;
+            CALLGRIND_ZERO_STATS;
+            CALLGRIND_TOGGLE_COLLECT;
+        }
+#else
+        (void)cg;
+        (void)file;
+#endif
+        st = sbr_recog_detect(&v, o.use_roi ? &o.roi : nullptr, &o.cfg, model, t.ws.data(), t.ws.size() * 8,
+                              t.dets.data(), uint32_t(t.dets.size()), &n, &run_stats);
+#ifdef SBR_HAVE_CALLGRIND
+        if (o.callgrind) {
+            const std::string label = "frame " + cg.frame + " end";
+            CALLGRIND_DUMP_STATS_AT(label.c_str());
+            CALLGRIND_TOGGLE_COLLECT;
+        }
+#endif
+        const double run_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        if (r == 0 || run_ms < ms) {
+            ms = run_ms;
+            stats = run_stats;
+        }
+    }
+    return st;
+}
+
+void count_stats(const sbr_recog_stats_t &stats, sbr_status_t st, double ms, Tally &t) {
+    t.ms_total.push_back(ms);
+    t.sum_ms += ms;
+    for (unsigned s = 0; s < SBR_RECOG_STAGES; ++s) t.ms_stage[s].push_back(stats.stage_ticks[s] / 1000.0);
+    t.parts_total += stats.parts;
+    if (stats.capacity_hit != 0 || st == SBR_ERR_CAPACITY) ++t.capacity_frames;
+    for (unsigned b = 0; b < 5; ++b) t.capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
+    t.classified += stats.classified;
+    t.refined += stats.refined;
+    t.views += stats.views;
+    t.rim_rejected += stats.rim_rejected;
+    t.gated += stats.gated;
+    ++t.frames_run;
+}
+
+// One image: detections written, counted, drawn, and its CAN frames. False when the CAN
+// log's tracker cannot be set up.
+bool run_image(const Options &o, const sbr_model_t *model, CallgrindClock &cg, const std::string &file, bool first,
+               Outputs &out, Tally &t) {
+    cv::Mat img = cv::imread(file, cv::IMREAD_COLOR);
+    const std::string name = fs::path(file).stem().string() + ".jpg";
+    std::vector<sbr_detection_t> kept;
+    sbr_recog_stats_t stats{};
+    float frame_ms = 0.0f;
+    bool error = false;
+    if (img.empty()) {
+        std::fprintf(stderr, "\nsbr_detect: cannot read %s\n", file.c_str());
+        ++t.failed;
+        error = true;
+    } else {
+        const sbr_image_t v = bgr_view(img);
+        const uint32_t w = o.use_roi ? o.roi.width : v.width, h = o.use_roi ? o.roi.height : v.height;
+        const size_t need = sbr_recog_workspace_size(&o.cfg, w, h);
+        if (need > t.ws.size() * 8) t.ws.assign(need / 8 + 1, 0);
+        t.ws_bytes = std::max(t.ws_bytes, need);
+        uint32_t n = 0;
+        double ms = 0.0;
+        const sbr_status_t st = detect_timed(o, model, cg, file, v, t, n, ms, stats);
+        if (st != SBR_OK && st != SBR_ERR_CAPACITY) {
+            std::fprintf(stderr, "\nsbr_detect: %s: %s\n", file.c_str(), sbr_status_str(st));
+            ++t.failed;
+            error = true;
+            n = 0;
+        }
+        frame_ms = float(ms);
+        count_stats(stats, st, ms, t);
+        for (uint32_t k = 0; k < n; ++k) {
+            const auto &d = t.dets[k];
+            char line[160];
+            std::snprintf(line, sizeof line, "%s;%u;%u;%u;%u;%u;%.4f\n", name.c_str(), d.box.x, d.box.y,
+                          d.box.x + d.box.width - 1, d.box.y + d.box.height - 1, unsigned(d.class_id), double(d.score));
+            if (out.all.is_open()) { out.all << line; ++t.nall; }
+            if (d.score >= o.threshold) { out.det << line; kept.push_back(d); ++t.ndet; }
+        }
+        if (!o.annotated.empty()) {
+            annotate(img, kept);
+            cv::imwrite((fs::path(o.annotated) / name).string(), img);
+        }
+    }
+    if (out.can) {
+        std::vector<Detection> cd;
+        for (const auto &d : kept)
+            cd.push_back({int(d.box.x), int(d.box.y), int(d.box.x + d.box.width - 1), int(d.box.y + d.box.height - 1),
+                          int(d.class_id), d.score});
+        if (o.sequence && first && !out.can->enable_tracking(float(img.cols), float(img.rows))) {
+            std::fprintf(stderr, "sbr_detect: sign tracker set-up failed\n");
+            return false;
+        }
+        out.can->write_image(cd, frame_ms, stats.parts_stats.regions, error);
+    }
+    return true;
+}
+
+std::string summary(const Options &o, const sbr_model_t *model, const std::string &dir, size_t nfiles,
+                    const Outputs &out, const Tally &t) {
     std::ostringstream s;
     const char *stage_names[SBR_RECOG_STAGES] = {"parts (maps, MSER, contours, FDs)", "matching and votes",
                                                  "grouping", "evidence and cascade", "NMS on part scores",
                                                  "class stage (pictograms)"};
     s << "sbr_detect summary\n";
-    s << "input: " << dir << " (" << files.size() << " images, " << failed << " failed)\n";
-    s << "model: " << (model_path.empty() ? "built-in (lib/models/sbr_model_gtsdb.c)" : model_path) << ", "
+    s << "input: " << dir << " (" << nfiles << " images, " << t.failed << " failed)\n";
+    s << "model: " << (o.model_path.empty() ? "built-in (lib/models/sbr_model_gtsdb.c)" : o.model_path) << ", "
       << model->proto_count << " prototypes, class stage "
-      << (model->picto.version != 0 ? (picto_path.empty() ? "built-in (lib/models/sbr_picto_gtsdb.c)" : picto_path) : "none")
-      << ", operating point score >= " << threshold << "\n";
-    s << "detections: " << ndet << " at the operating point";
-    if (all.is_open()) s << ", " << nall << " in all";
-    s << "\nparts per frame (mean): " << (ms_total.empty() ? 0 : parts_total / ms_total.size()) << "\n";
+      << (model->picto.version != 0 ? (o.picto_path.empty() ? "built-in (lib/models/sbr_picto_gtsdb.c)" : o.picto_path)
+                                    : "none")
+      << ", operating point score >= " << o.threshold << "\n";
+    s << "detections: " << t.ndet << " at the operating point";
+    if (out.all.is_open()) s << ", " << t.nall << " in all";
+    s << "\nparts per frame (mean): " << (t.ms_total.empty() ? 0 : t.parts_total / t.ms_total.size()) << "\n";
     char buf[256];
-    const std::string runs = repeat > 1 ? ", fastest of " + std::to_string(repeat) + " runs" : "";
+    const std::string runs = o.repeat > 1 ? ", fastest of " + std::to_string(o.repeat) + " runs" : "";
     std::snprintf(buf, sizeof buf, "time per frame (one core%s): median %.1f ms, 95th percentile %.1f ms\n",
-                  runs.c_str(), percentile(ms_total, 0.5), percentile(ms_total, 0.95));
+                  runs.c_str(), percentile(t.ms_total, 0.5), percentile(t.ms_total, 0.95));
     s << buf;
     for (unsigned k = 0; k < SBR_RECOG_STAGES; ++k) {
         std::snprintf(buf, sizeof buf, "  %-36s median %.1f ms, 95th percentile %.1f ms\n", stage_names[k],
-                      percentile(ms_stage[k], 0.5), percentile(ms_stage[k], 0.95));
+                      percentile(t.ms_stage[k], 0.5), percentile(t.ms_stage[k], 0.95));
         s << buf;
     }
-    s << "workspace: " << ws_bytes << " bytes (" << (use_roi ? "ROI" : "frame") << ", subsample " << subsample << ")\n";
-    s << "frames with an internal bound reached: " << capacity_frames << " (parts " << capacity_kind[0]
-      << ", votes " << capacity_kind[1] << ", hypotheses " << capacity_kind[2] << ", MSER " << capacity_kind[3]
-      << ", candidates " << capacity_kind[4] << ")\n";
-    if (frames_run > 0 && classified > 0) {
-        char cbuf[256];
-        std::snprintf(cbuf, sizeof cbuf, "class stage per frame (mean): %.1f candidates classified, %.1f boxes refined, %.1f extra views, "
+    s << "workspace: " << t.ws_bytes << " bytes (" << (o.use_roi ? "ROI" : "frame") << ", subsample "
+      << o.cfg.parts.subsample << ")\n";
+    s << "frames with an internal bound reached: " << t.capacity_frames << " (parts " << t.capacity_kind[0]
+      << ", votes " << t.capacity_kind[1] << ", hypotheses " << t.capacity_kind[2] << ", MSER " << t.capacity_kind[3]
+      << ", candidates " << t.capacity_kind[4] << ")\n";
+    if (t.frames_run > 0 && t.classified > 0) {
+        const double fr = double(t.frames_run);
+        std::snprintf(buf, sizeof buf,
+                      "class stage per frame (mean): %.1f candidates classified, %.1f boxes refined, %.1f extra views, "
                       "%.1f rejected by the gate; colour check: %zu candidates dropped in all\n",
-                      double(classified) / double(frames_run), double(refined) / double(frames_run),
-                      double(views) / double(frames_run), double(gated) / double(frames_run), rim_rejected);
-        s << cbuf;
+                      double(t.classified) / fr, double(t.refined) / fr, double(t.views) / fr, double(t.gated) / fr,
+                      t.rim_rejected);
+        s << buf;
     }
-    if (can) s << "CAN log: " << canlog << " (" << can->frames_written() << " frames)\n";
-    if (!annotated.empty()) s << "annotated images: " << annotated << "\n";
-    std::fputs(s.str().c_str(), stdout);
-    if (!summary_path.empty()) std::ofstream(summary_path) << s.str();
-    return failed == files.size() ? 1 : 0;
+    if (out.can) s << "CAN log: " << o.canlog << " (" << out.can->frames_written() << " frames)\n";
+    if (!o.annotated.empty()) s << "annotated images: " << o.annotated << "\n";
+    return s.str();
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    Options o;
+    const int rc = parse_options(argc, argv, o);
+    if (rc >= 0) return rc;
+    Models m;
+    if (!load_models(o, m)) return 1;
+    CallgrindClock cg;
+    if (!configure(o, m.model, cg)) return 2;
+    const std::string dir = gtsdb_image_dir(o.input);
+    std::vector<std::string> files;
+    for (const auto &f : list_images(dir)) {
+        const int n = image_number(f);
+        if (o.range.empty() || o.range.contains(n)) files.push_back(f);
+    }
+    if (files.empty()) { std::fprintf(stderr, "sbr_detect: no images in %s\n", dir.c_str()); return 1; }
+    Outputs out;
+    if (!open_outputs(o, out)) return 1;
+    Tally t;
+    for (size_t i = 0; i < files.size(); ++i) {
+        if (!run_image(o, m.model, cg, files[i], i == 0, out, t)) return 1;
+        if (!o.quiet) progress(i + 1, files.size(), t.ms_total.empty() ? 0.0 : t.sum_ms / double(t.ms_total.size()));
+    }
+    const std::string s = summary(o, m.model, dir, files.size(), out, t);
+    std::fputs(s.c_str(), stdout);
+    if (!o.summary_path.empty()) std::ofstream(o.summary_path) << s;
+    return t.failed == files.size() ? 1 : 0;
 }

@@ -56,6 +56,7 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"
 #include "gtsdb.hpp"
 
 namespace fs = std::filesystem;
@@ -382,68 +383,52 @@ double print_baseline(const std::string &path, const Eval &base, const Eval &now
     return worst;
 }
 
-}  // namespace
-
-int main(int argc, char **argv) {
+struct Options {
     std::string det_path, gt_path, images_dir, plot_path = "pr_curve.png", base_path, json_path;
     double max_drop = -1.0;
     size_t list_n = 20;
     sbr_host::ImageRanges range;
     double iou_thr = 0.5, score_thr = 0.0;
     size_t confusion_n = 10;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-        if (a == "--detections") det_path = next();
-        else if (a == "--gt") gt_path = next();
-        else if (a == "--images") images_dir = next();
-        else if (a == "--plot") plot_path = next();
-        else if (a == "--iou") iou_thr = std::atof(next().c_str());
-        else if (a == "--threshold") score_thr = std::atof(next().c_str());
-        else if (a == "--baseline") base_path = next();
-        else if (a == "--json") json_path = next();
-        else if (a == "--max-drop") {
-            max_drop = std::atof(next().c_str());
-            if (!(max_drop >= 0.0)) {
-                std::fprintf(stderr, "sbr_eval: --max-drop wants a value >= 0\n");
-                return 2;
-            }
-        }
-        else if (a == "--list") list_n = static_cast<size_t>(std::atoi(next().c_str()));
-        else if (a == "--confusion") confusion_n = static_cast<size_t>(std::atoi(next().c_str()));
-        else if (a == "--range") {
-            const std::string r = next();
-            if (!sbr_host::parse_image_ranges(r, range)) {
-                std::fprintf(stderr, "sbr_eval: --range wants A-B[,C-D...]\n");
-                return 2;
-            }
-        } else {
-            std::fprintf(stderr, "usage: %s --detections FILE --gt gt.txt [--range A-B] [--images DIR] "
-                                 "[--iou 0.5] [--threshold T] [--plot pr.png] [--confusion N] "
-                                 "[--baseline FILE [--max-drop D] [--list N]] [--json FILE]\n", argv[0]);
-            return 2;
-        }
-    }
-    if (det_path.empty() || gt_path.empty()) {
-        std::fprintf(stderr, "sbr_eval: --detections and --gt are required\n");
-        return 2;
-    }
-    if (base_path.empty() && max_drop >= 0.0) {
-        std::fprintf(stderr, "sbr_eval: --max-drop needs --baseline\n");
-        return 2;
-    }
-    std::vector<Box> dets_all, gts_all, base_all;
-    if (!read_boxes(det_path, dets_all) || !read_boxes(gt_path, gts_all) ||
-        (!base_path.empty() && !read_boxes(base_path, base_all))) {
-        std::fprintf(stderr, "sbr_eval: cannot read the input files\n");
-        return 1;
-    }
+};
+
+// -1: go on; otherwise the exit status.
+int parse_options(int argc, char **argv, Options &o) {
+    CLI::App app{"sbr_eval: scores a detections file against GTSDB ground truth (docs/usage/detect.md)"};
+    app.add_option("--detections", o.det_path, "detections, NNNNN.ext;left;top;right;bottom;class_id[;score]")
+        ->required();
+    app.add_option("--gt", o.gt_path, "ground truth in the same format (GTSDB's gt.txt)")->required();
+    sbr_host::add_range_option(app, o.range, "evaluate images numbered A..B (default: --images, or every image named)");
+    app.add_option("--images", o.images_dir, "evaluate the images of this folder");
+    app.add_option("--iou", o.iou_thr, "a detection matches a box at IoU >= this")
+        ->check(sbr_host::finite_range(1e-6, 1.0))
+        ->capture_default_str();
+    app.add_option("--threshold", o.score_thr, "operating point: detections with score >= this")
+        ->check(sbr_host::finite_range(0.0, 1.0))
+        ->capture_default_str();
+    app.add_option("--plot", o.plot_path, "precision-recall plot (PNG)")->capture_default_str();
+    app.add_option("--confusion", o.confusion_n, "lines of the most frequent errors")
+        ->check(CLI::Range(size_t(0), size_t(100000)))
+        ->capture_default_str();
+    auto *base = app.add_option("--baseline", o.base_path, "another version's detections of the same images");
+    app.add_option("--max-drop", o.max_drop, "exit 3 when F1 or a superclass's recall or AP drops by more")
+        ->check(sbr_host::finite_range(0.0, 1.0))
+        ->needs(base);
+    app.add_option("--list", o.list_n, "lines of each list of changed signs (the counts are complete)")
+        ->check(CLI::Range(size_t(0), size_t(100000)))
+        ->capture_default_str();
+    app.add_option("--json", o.json_path, "the same figures as one JSON object");
+    return sbr_host::parse_cli(app, argc, argv);
+}
+
+// The images evaluated: --range, else the image files in --images, else every image named.
+std::set<int> images_of(const Options &o, const std::vector<Box> &gts_all, const std::vector<Box> &dets_all) {
     std::set<int> image_set;
-    if (!range.empty()) {
-        for (const auto &sp : range.spans)
+    if (!o.range.empty()) {
+        for (const auto &sp : o.range.spans)
             for (int k = sp.first; k <= sp.second; ++k) image_set.insert(k);
-    } else if (!images_dir.empty()) {
-        for (const auto &e : fs::directory_iterator(images_dir)) {
+    } else if (!o.images_dir.empty()) {
+        for (const auto &e : fs::directory_iterator(o.images_dir)) {
             const std::string ext = e.path().extension().string();
             if (ext == ".jpg" || ext == ".png" || ext == ".ppm") image_set.insert(std::atoi(e.path().stem().c_str()));
         }
@@ -451,15 +436,17 @@ int main(int argc, char **argv) {
         for (const Box &b : gts_all) image_set.insert(b.image);
         for (const Box &b : dets_all) image_set.insert(b.image);
     }
-    const std::vector<Box> dets = select(dets_all, image_set, score_thr), gts = select(gts_all, image_set, 0.0);
+    return image_set;
+}
 
-    const Eval e = evaluate(dets, gts, iou_thr);
+// The figures at the operating point: superclasses, class level, per class, the most
+// frequent errors, the plot. Returns the mean superclass AP.
+double print_report(const Options &o, const Eval &e, size_t images, size_t ngts, size_t ndets) {
     const auto &sp = e.sp;
     const auto &ap = e.ap;
     const Prf &total = e.total;
-
-    std::printf("images %zu, ground-truth boxes %zu, detections %zu (score >= %.3f), IoU >= %.2f\n",
-                image_set.size(), gts.size(), dets.size(), score_thr, iou_thr);
+    std::printf("images %zu, ground-truth boxes %zu, detections %zu (score >= %.3f), IoU >= %.2f\n", images, ngts,
+                ndets, o.score_thr, o.iou_thr);
     std::printf("%-12s %6s %6s %6s %10s %8s %8s %8s\n", "superclass", "TP", "FP", "FN", "precision", "recall", "F1", "AP");
     double ap_mean = 0.0;
     for (int s = 0; s < 4; ++s) {
@@ -469,12 +456,10 @@ int main(int argc, char **argv) {
     }
     std::printf("class level (same class id): TP %ld, FP %ld, FN %ld, precision %.4f, recall %.4f, F1 %.4f\n",
                 total.tp, total.fp, total.fn, prec(total), rec(total), f1(total));
-    {
-        size_t found_any = 0;
-        for (char h : e.hit_any) found_any += h != 0;
-        std::printf("any class (box only): %zu of %zu ground-truth boxes matched, recall %.4f\n", found_any, gts.size(),
-                    gts.empty() ? 0.0 : double(found_any) / double(gts.size()));
-    }
+    size_t found_any = 0;
+    for (char h : e.hit_any) found_any += h != 0;
+    std::printf("any class (box only): %zu of %zu ground-truth boxes matched, recall %.4f\n", found_any, ngts,
+                ngts == 0 ? 0.0 : double(found_any) / double(ngts));
     std::printf("%-6s %6s %6s %6s %10s %8s %8s\n", "class", "TP", "FP", "FN", "precision", "recall", "F1");
     for (auto &kv : e.cp)
         std::printf("%-6d %6ld %6ld %6ld %10.4f %8.4f %8.4f\n", kv.first, kv.second.tp, kv.second.fp, kv.second.fn,
@@ -483,34 +468,52 @@ int main(int argc, char **argv) {
     for (auto &kv : e.conf) errs.emplace_back(kv.second, kv.first);
     std::stable_sort(errs.begin(), errs.end(), [](auto &a, auto &b) { return a.first > b.first; });
     std::printf("most frequent errors (gt -> detected; 'none' = missed / false detection):\n");
-    for (size_t k = 0; k < std::min(confusion_n, errs.size()); ++k) {
-        const auto &e = errs[k];
-        const std::string a = e.second.first < 0 ? "none" : std::to_string(e.second.first);
-        const std::string b = e.second.second < 0 ? "none" : std::to_string(e.second.second);
-        std::printf("  %5ld  %4s -> %s\n", e.first, a.c_str(), b.c_str());
+    for (size_t k = 0; k < std::min(o.confusion_n, errs.size()); ++k) {
+        const auto &er = errs[k];
+        const std::string a = er.second.first < 0 ? "none" : std::to_string(er.second.first);
+        const std::string b = er.second.second < 0 ? "none" : std::to_string(er.second.second);
+        std::printf("  %5ld  %4s -> %s\n", er.first, a.c_str(), b.c_str());
     }
-    plot_pr(plot_path, e.curves, ap);
-    std::printf("precision-recall plot: %s\n", plot_path.c_str());
-    double worst = 0.0;
-    Eval base_eval;
-    if (!base_path.empty()) {
-        const std::vector<Box> base = select(base_all, image_set, score_thr);
-        // any score, for what lies on a changed sign
-        const double any = -std::numeric_limits<double>::infinity();
-        base_eval = evaluate(base, gts, iou_thr);
-        worst = print_baseline(base_path, base_eval, e, base, dets,
-                               select(base_all, image_set, any), select(dets_all, image_set, any), gts, iou_thr,
-                               list_n);
-        if (max_drop >= 0.0)
-            std::printf("largest drop against the baseline %.4f (allowed %.4f): %s\n", worst, max_drop,
-                        worst > max_drop ? "REGRESSION" : "ok");
-    }
-    if (!json_path.empty() && !write_json(json_path, e, base_path.empty() ? nullptr : &base_eval, gts,
-                                          image_set.size(), dets.size(), score_thr, iou_thr)) {
-        std::fprintf(stderr, "sbr_eval: cannot write %s\n", json_path.c_str());
+    plot_pr(o.plot_path, e.curves, ap);
+    std::printf("precision-recall plot: %s\n", o.plot_path.c_str());
+    return ap_mean;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    Options o;
+    const int rc = parse_options(argc, argv, o);
+    if (rc >= 0) return rc;
+    std::vector<Box> dets_all, gts_all, base_all;
+    if (!read_boxes(o.det_path, dets_all) || !read_boxes(o.gt_path, gts_all) ||
+        (!o.base_path.empty() && !read_boxes(o.base_path, base_all))) {
+        std::fprintf(stderr, "sbr_eval: cannot read the input files\n");
         return 1;
     }
-    std::printf("superclass_ap prohibitory=%.4f mandatory=%.4f danger=%.4f other=%.4f mean=%.4f\n", ap[0], ap[1],
-                ap[2], ap[3], ap_mean);
-    return (max_drop >= 0.0 && worst > max_drop) ? 3 : 0;
+    const std::set<int> image_set = images_of(o, gts_all, dets_all);
+    const std::vector<Box> dets = select(dets_all, image_set, o.score_thr), gts = select(gts_all, image_set, 0.0);
+    const Eval e = evaluate(dets, gts, o.iou_thr);
+    const double ap_mean = print_report(o, e, image_set.size(), gts.size(), dets.size());
+    double worst = 0.0;
+    Eval base_eval;
+    if (!o.base_path.empty()) {
+        const std::vector<Box> base = select(base_all, image_set, o.score_thr);
+        // any score, for what lies on a changed sign
+        const double any = -std::numeric_limits<double>::infinity();
+        base_eval = evaluate(base, gts, o.iou_thr);
+        worst = print_baseline(o.base_path, base_eval, e, base, dets, select(base_all, image_set, any),
+                               select(dets_all, image_set, any), gts, o.iou_thr, o.list_n);
+        if (o.max_drop >= 0.0)
+            std::printf("largest drop against the baseline %.4f (allowed %.4f): %s\n", worst, o.max_drop,
+                        worst > o.max_drop ? "REGRESSION" : "ok");
+    }
+    if (!o.json_path.empty() && !write_json(o.json_path, e, o.base_path.empty() ? nullptr : &base_eval, gts,
+                                            image_set.size(), dets.size(), o.score_thr, o.iou_thr)) {
+        std::fprintf(stderr, "sbr_eval: cannot write %s\n", o.json_path.c_str());
+        return 1;
+    }
+    std::printf("superclass_ap prohibitory=%.4f mandatory=%.4f danger=%.4f other=%.4f mean=%.4f\n", e.ap[0], e.ap[1],
+                e.ap[2], e.ap[3], ap_mean);
+    return (o.max_drop >= 0.0 && worst > o.max_drop) ? 3 : 0;
 }

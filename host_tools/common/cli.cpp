@@ -1,0 +1,95 @@
+#include "cli.hpp"
+
+#include <cmath>
+
+namespace sbr_host {
+
+int parse_cli(CLI::App &app, int argc, char **argv) {
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError &e) {
+        const int rc = app.exit(e);
+        return rc == 0 ? 0 : 2;
+    }
+    return -1;
+}
+
+CLI::Validator finite_range(double lo, double hi) {
+    const std::string desc = "in [" + CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + "]";
+    return CLI::Validator(
+        [lo, hi](std::string &s) -> std::string {
+            double v = 0.0;
+            if (!CLI::detail::lexical_cast(s, v) || !std::isfinite(v) || v < lo || v > hi)
+                return "value " + s + " is not a finite number in [" + CLI::detail::to_string(lo) + ", " +
+                       CLI::detail::to_string(hi) + "]";
+            return std::string();
+        },
+        desc);
+}
+
+CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string &what) {
+    return app
+        .add_option_function<std::string>(
+            "--range",
+            [&out](const std::string &s) {
+                if (!parse_image_ranges(s, out))
+                    throw CLI::ValidationError("--range", "wants A-B[,C-D...] with 0 <= A <= B <= " +
+                                                              std::to_string(kMaxImageNumber) + ", got '" + s + "'");
+            },
+            what)
+        ->type_name("A-B[,C-D]");
+}
+
+void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
+    const std::string g = "Recogniser (include/sbr/recognizer.h; defaults of sbr_recog_config_default())";
+    auto u = [&](const char *name, uint32_t &field, uint32_t lo, uint32_t hi, const char *what) {
+        app.add_option(name, field, what)->check(CLI::Range(lo, hi))->capture_default_str()->group(g);
+    };
+    auto f = [&](const char *name, float &field, double lo, double hi, const char *what) {
+        app.add_option(name, field, what)->check(finite_range(lo, hi))->capture_default_str()->group(g);
+    };
+    r.min_score = app.add_option("--min-score", cfg.min_score,
+                                 "score floor of a detection (default: the operating point, or 0.05 "
+                                 "with --all-detections)")
+                      ->check(finite_range(0.0, 0.999999))
+                      ->group(g);
+    u("--min-parts", cfg.min_parts, 0u, 65535u, "parts a hypothesis needs");
+    f("--vote-error", cfg.vote_error, 0.0, 4.0, "largest FD error of a vote (0: the model's)");
+    f("--verify-error", cfg.verify_error, 1e-6, 4.0, "largest FD error in the cascade");
+    u("--refine-steps", cfg.refine_steps, 0u, SBR_RECOG_MAX_REFINE, "class-stage box refinements");
+    f("--refine-first-score", cfg.refine_first_score, 0.0, 1.0, "sign probability to start refining");
+    f("--refine-score", cfg.refine_score, 0.0, 1.0, "sign probability to go on refining");
+    u("--views", cfg.views, 1u, SBR_RECOG_MAX_VIEWS, "views averaged by the class stage");
+    f("--view-score", cfg.view_score, 0.0, 1.0, "sign probability for the extra views");
+    u("--triangle-view", cfg.triangle_view, 0u, 1u, "1: classify the inner triangle of danger candidates");
+    f("--triangle-score", cfg.triangle_score, 0.0, 1.0, "danger probability for the triangle view");
+    f("--candidate-score", cfg.candidate_score, 0.0, 0.999999, "part-evidence floor of a class-stage candidate");
+    f("--candidate-iou", cfg.candidate_iou, 1e-6, 1.0, "suppression before the class stage (1: none)");
+    u("--max-candidates", cfg.max_candidates, 0u, 1000000u, "class-stage candidate bound");
+    u("--max-parts", cfg.max_parts, 1u, 1000000u, "part bound");
+    u("--max-votes", cfg.max_votes, 1u, 4000000u, "vote bound");
+    u("--max-hypotheses", cfg.max_hypotheses, 1u, 1000000u, "hypothesis bound");
+    u("--gate", cfg.gate, 0u, 1u, "0: class stage's gate off (used when the class stage has one)");
+    u("--maps", cfg.parts.maps, 1u, (1u << SBR_MAP_KINDS) - 1u,
+      "parts.maps: bit k = map kind k of include/sbr/map.h (0x1 intensity only)");
+    u("--max-nodes", cfg.parts.mser.max_nodes, 0u, 100000000u, "MSER tree nodes (0: the worst case)");
+    u("--subsample", cfg.parts.subsample, 1u, SBR_MAP_MAX_SUBSAMPLE, "parts.subsample of every map");
+    app.add_option("--map-subsample", r.front_end.sub,
+                   "parts.map_subsample per kind, in the order intensity, red, blue, yellow")
+        ->delimiter(',')
+        ->expected(1, int(SBR_MAP_KINDS))
+        ->check(CLI::Range(1u, SBR_MAP_MAX_SUBSAMPLE))
+        ->type_name("I[,R[,B[,Y]]]")
+        ->group(g);
+    app.add_option("--map-min-area", r.front_end.area,
+                   "parts.map_min_area per kind (0: the MSER default), same order")
+        ->delimiter(',')
+        ->expected(1, int(SBR_MAP_KINDS))
+        ->check(CLI::Range(0u, 100000000u))
+        ->type_name("I[,R[,B[,Y]]]")
+        ->group(g);
+}
+
+void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg) { apply_front_end(r.front_end, cfg.parts); }
+
+}  // namespace sbr_host

@@ -1,0 +1,39 @@
+// Command-line options of the host tools, through CLI11 (Debian libcli11-dev): one parser
+// for every tool, so each accepts --help (exit 0, every option described) and refuses a
+// malformed or out-of-range value with the option's name (exit 2).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+#include "gtsdb.hpp"
+#include "model_io.hpp"
+
+extern "C" {
+#include "sbr/recognizer.h"
+}
+
+namespace sbr_host {
+
+// Parse argv: -1 to go on; otherwise the exit status (0 after --help, 2 after a usage
+// error, whose message CLI11 has printed with the option's name).
+int parse_cli(CLI::App &app, int argc, char **argv);
+
+// A finite value in [lo, hi] (CLI::Range lets NaN through).
+CLI::Validator finite_range(double lo, double hi);
+
+// --range A-B[,C-D...]: image numbers (strict: digits only, A <= B, no overflow).
+CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string &what);
+
+// The recogniser's options that the tools let a user override, bound to the fields of
+// `cfg` (which holds the defaults, shown by --help), in an option group "Recogniser".
+struct RecogCli {
+    CLI::Option *min_score = nullptr;  // given explicitly? (tools lower the floor otherwise)
+    FrontEnd front_end;                // --map-subsample, --map-min-area
+};
+void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r);
+// What add_recog_options() cannot bind directly (the per-map lists).
+void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg);
+
+}  // namespace sbr_host

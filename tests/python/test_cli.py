@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""The host tools' command lines (CLI11): --help exits 0 and describes every option; a
+malformed or out-of-range value is refused with exit 2 and a message naming the option;
+an unknown option is refused.
+
+    test_cli.py --tools DIR [--sbr-sh PATH]"""
+
+import argparse
+import os
+import re
+import subprocess
+import sys
+
+# tool: (arguments that satisfy its required options, [(option, bad value), ...])
+CASES = {
+    "sbr_detect": (["--input", "in", "--detections", "d.txt"],
+                   [("--threshold", "abc"), ("--threshold", "nan"), ("--threshold", "1.5"),
+                    ("--range", "99999999999999999999-1"), ("--range", "5-3"), ("--repeat", "0"),
+                    ("--max-parts", "-1"), ("--map-subsample", "2,9"), ("--roi", "1,2,3")]),
+    "sbr_eval": (["--detections", "d.txt", "--gt", "gt.txt"],
+                 [("--threshold", "abc"), ("--iou", "2"), ("--range", "1-x")]),
+}
+
+
+def run(cmd):
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=60)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--tools", required=True)
+    ap.add_argument("--sbr-sh", help="./sbr.sh: each subcommand's --help prints its usage, runs nothing")
+    a = ap.parse_args()
+    failures = 0
+    if a.sbr_sh:
+        for sub in ["test", "detect", "train", "crossval", "cost", "track", "learn-tracker", "fuzz", "setup"]:
+            r = run(["bash", a.sbr_sh, sub, "--help"])
+            good = r.returncode == 0 and f"./sbr.sh {sub}" in r.stdout and "==" not in r.stdout
+            print(f"sbr.sh {sub} --help: exit {r.returncode}{'' if good else ' (usage missing or it ran)'}")
+            failures += not good
+    for tool, (required, bad) in CASES.items():
+        exe = os.path.join(a.tools, tool)
+        h = run([exe, "--help"])
+        opts = sorted(set(re.findall(r"^\s+(?:-\w,)?(--[a-z][a-z0-9-]*)", h.stdout, re.M)))
+        # every option line has a description (text after the option's type column)
+        undescribed = [o for o in opts if o != "--help" and not re.search(
+            r"^\s+" + re.escape(o) + r"\b.*\S\s{2,}\S|^\s+" + re.escape(o) + r"\b[^\n]*\n\s{20,}\S",
+            h.stdout, re.M)]
+        ok = h.returncode == 0 and len(opts) >= 3 and not undescribed
+        print(f"{tool} --help: exit {h.returncode}, {len(opts)} options"
+              + (f", without a description: {undescribed}" if undescribed else ""))
+        failures += not ok
+        for opt, val in bad:
+            r = run([exe] + required + [opt, val])
+            good = r.returncode == 2 and opt in r.stderr
+            print(f"{tool} {opt} {val}: exit {r.returncode}: {r.stderr.strip().splitlines()[0] if r.stderr.strip() else ''}")
+            failures += not good
+        r = run([exe] + required + ["--no-such-option"])
+        print(f"{tool} --no-such-option: exit {r.returncode}")
+        failures += r.returncode != 2
+    print("cli: " + ("OK" if failures == 0 else f"{failures} FAILED"))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
