@@ -5,6 +5,7 @@
 //
 // The host side of `./sbr.sh cost` runs sbr_detect on the same PPM files, so both sides
 // see the same pixels.
+#include "cli_core.hpp"
 #include <opencv2/imgcodecs.hpp>
 
 #include <cstdio>
@@ -15,15 +16,11 @@
 int main(int argc, char **argv) {
     std::string out;
     std::vector<std::string> files;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--out" && i + 1 < argc) out = argv[++i];
-        else files.push_back(a);
-    }
-    if (out.empty() || files.empty()) {
-        std::fprintf(stderr, "usage: sbr_to_ppm --out DIR FILE...\n");
-        return 2;
-    }
+    CLI::App app{"sbr_to_ppm: images as binary PPM (the Cortex-M4 cost image reads frames as PPM)"};
+    app.add_option("--out", out, "output folder")->required();
+    app.add_option("files", files, "images to convert")->required()->check(CLI::ExistingFile);
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
     std::filesystem::create_directories(out);
     for (const auto &f : files) {
         const cv::Mat img = cv::imread(f, cv::IMREAD_COLOR);

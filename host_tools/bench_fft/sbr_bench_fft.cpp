@@ -6,6 +6,8 @@
 #include <fftw3.h>
 #include <kissfft/kiss_fft.h>
 
+#include "cli_core.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -29,18 +31,6 @@ struct Options {
     std::vector<unsigned> sizes{64, 128, 256, 512, 1024};
 };
 
-void usage() {
-    std::puts(
-        "usage: sbr_bench_fft [--csv] [--rounds R] [--round-ms T] [--sizes N,N,...]\n"
-        "\n"
-        "Times complex float32 out-of-place forward FFTs of sbr, FFTW with SIMD\n"
-        "(FFTW_MEASURE), FFTW restricted to scalar code (FFTW_MEASURE | FFTW_NO_SIMD) and\n"
-        "KissFFT, interleaved in one run. Reports the median ns per transform over R rounds\n"
-        "(default 41) of about T ms each (default 4) per method.\n"
-        "  --csv    print exactly 'n,sbr_ns,fftw_ns,fftw_nosimd_ns,kissfft_ns' and one row\n"
-        "           per N, then the ratios as '# ' comment lines\n"
-        "  --sizes  comma-separated lengths (default 64,128,256,512,1024)");
-}
 
 using Clock = std::chrono::steady_clock;
 
@@ -63,32 +53,20 @@ volatile float g_sink;  // keeps results observable so no transform is optimised
 
 int main(int argc, char **argv) {
     Options opt;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--csv") {
-            opt.csv = true;
-        } else if (a == "--rounds" && i + 1 < argc) {
-            opt.rounds = std::max(3, std::atoi(argv[++i]));
-        } else if (a == "--round-ms" && i + 1 < argc) {
-            opt.round_ms = std::max(0.1, std::atof(argv[++i]));
-        } else if (a == "--sizes" && i + 1 < argc) {
-            opt.sizes.clear();
-            std::string s = argv[++i];
-            size_t p = 0;
-            while (p < s.size()) {
-                size_t q = s.find(',', p);
-                if (q == std::string::npos) q = s.size();
-                opt.sizes.push_back(static_cast<unsigned>(std::strtoul(s.substr(p, q - p).c_str(), nullptr, 10)));
-                p = q + 1;
-            }
-        } else if (a == "--help" || a == "-h") {
-            usage();
-            return 0;
-        } else {
-            usage();
-            return 2;
-        }
-    }
+    CLI::App app{"sbr_bench_fft: complex float32 out-of-place forward FFTs of sbr, FFTW with SIMD "
+                 "(FFTW_MEASURE), FFTW restricted to scalar code (FFTW_NO_SIMD) and KissFFT, interleaved "
+                 "in one run; the median ns per transform over the rounds (docs/usage/bench_fft.md)"};
+    app.add_flag("--csv", opt.csv, "print exactly 'n,sbr_ns,fftw_ns,fftw_nosimd_ns,kissfft_ns' and one row per length");
+    app.add_option("--rounds", opt.rounds, "rounds per method")->check(CLI::Range(3, 100000))->capture_default_str();
+    app.add_option("--round-ms", opt.round_ms, "milliseconds per round")
+        ->check(sbr_host::finite_range(0.1, 10000.0))
+        ->capture_default_str();
+    app.add_option("--sizes", opt.sizes, "transform lengths")
+        ->delimiter(',')
+        ->check(CLI::IsMember({16u, 32u, 64u, 128u, 256u, 512u, 1024u}))
+        ->type_name("N[,N...]");
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
 
     struct Row { unsigned n; double sbr, fftw, nosimd, kiss; };
     std::vector<Row> rows;

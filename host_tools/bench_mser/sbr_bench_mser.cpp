@@ -31,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_core.hpp"
 #include "gtsdb.hpp"
 
 extern "C" {
@@ -43,30 +44,18 @@ int main(int argc, char **argv) {
     std::string data = "../shared/data/gtsdb", map = "intensity";
     int first = 400, images = 20, subsample = 1, rounds = 3;
     bool peer = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-        if (a == "--data") data = next();
-        else if (a == "--first") first = std::atoi(next().c_str());
-        else if (a == "--images") images = std::atoi(next().c_str());
-        else if (a == "--map") map = next();
-        else if (a == "--subsample") subsample = std::atoi(next().c_str());
-        else if (a == "--rounds") rounds = std::atoi(next().c_str());
-        else if (a == "--peer") peer = true;
-        else {
-            std::fprintf(stderr,
-                         "usage: %s [--data DIR] [--first N] [--images N] [--map intensity|blue] "
-                         "[--subsample S] [--rounds R] [--peer]\n",
-                         argv[0]);
-            return 2;
-        }
-    }
-    if (first < 0 || images < 1 || subsample < 1 || subsample > 8 || rounds < 1 ||
-        (map != "intensity" && map != "blue")) {
-        std::fprintf(stderr, "sbr_bench_mser: --first >= 0, --images >= 1, --subsample 1..8, --rounds >= 1, "
-                             "--map intensity or blue\n");
-        return 2;
-    }
+    CLI::App app{"sbr_bench_mser: time of sbr_mser_detect() on the recogniser's maps of recorded frames"};
+    app.add_option("--data", data, "GTSDB folder")->capture_default_str();
+    app.add_option("--first", first, "first image number")->check(CLI::Range(0, 99999999))->capture_default_str();
+    app.add_option("--images", images, "images")->check(CLI::Range(1, 100000))->capture_default_str();
+    app.add_option("--map", map, "map kind")->check(CLI::IsMember({"intensity", "blue"}))->capture_default_str();
+    app.add_option("--subsample", subsample, "map subsampling")->check(CLI::Range(1, 8))->capture_default_str();
+    app.add_option("--rounds", rounds, "rounds per frame (the best counts)")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    app.add_flag("--peer", peer, "also time OpenCV's MSER on the same maps");
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
     const sbr_map_kind_t kind = map == "blue" ? SBR_MAP_BLUE : SBR_MAP_INTENSITY;
     sbr_recog_config_t rc;
     sbr_recog_config_default(&rc);

@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_core.hpp"
 #include "gtsdb.hpp"
 
 extern "C" {
@@ -47,22 +48,13 @@ void box_of(int i, uint32_t w, uint32_t h, float b[4]) {
 int main(int argc, char **argv) {
     std::string data = "../shared/data/gtsdb";
     int images = 3, boxes = 3000, rounds = 15;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-        if (a == "--data") data = next();
-        else if (a == "--images") images = std::atoi(next().c_str());
-        else if (a == "--boxes") boxes = std::atoi(next().c_str());
-        else if (a == "--rounds") rounds = std::atoi(next().c_str());
-        else {
-            std::fprintf(stderr, "usage: %s [--data DIR] [--images N] [--boxes N] [--rounds R]\n", argv[0]);
-            return 2;
-        }
-    }
-    if (images < 1 || images > 12 || boxes < 1 || rounds < 1) {
-        std::fprintf(stderr, "sbr_bench_picto: --images 1..12, --boxes >= 1, --rounds >= 1\n");
-        return 2;
-    }
+    CLI::App app{"sbr_bench_picto: time per box of the class stage's features and classifier"};
+    app.add_option("--data", data, "GTSDB folder")->capture_default_str();
+    app.add_option("--images", images, "images")->check(CLI::Range(1, 12))->capture_default_str();
+    app.add_option("--boxes", boxes, "boxes per round")->check(CLI::Range(1, 10000000))->capture_default_str();
+    app.add_option("--rounds", rounds, "rounds (the best counts)")->check(CLI::Range(1, 1000))->capture_default_str();
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
     sbr_picto_model_t model;
     if (sbr_picto_gtsdb(&model) != SBR_OK || sbr_picto_check(&model) != SBR_OK) {
         std::fprintf(stderr, "sbr_bench_picto: the built-in classifier fails its check\n");

@@ -3,6 +3,7 @@
 // FILE has GTSDB's format with an optional score: NNNNN.ext;left;top;right;bottom;class[;score]
 // (sbr_detect's output, or GTSDB's gt.txt with score 1). Images K .. K+N-1 are one CAN
 // cycle each (100 ms apart), whether or not they have detections.
+#include "cli_core.hpp"
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -16,21 +17,14 @@
 int main(int argc, char **argv) {
     std::string det_path, out_path;
     int images = 600, first = 0;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--detections" && i + 1 < argc) det_path = argv[++i];
-        else if (a == "--out" && i + 1 < argc) out_path = argv[++i];
-        else if (a == "--images" && i + 1 < argc) images = std::atoi(argv[++i]);
-        else if (a == "--first" && i + 1 < argc) first = std::atoi(argv[++i]);
-        else {
-            std::fprintf(stderr, "usage: %s --detections FILE --out LOG [--images N] [--first K]\n", argv[0]);
-            return 2;
-        }
-    }
-    if (det_path.empty() || out_path.empty() || images <= 0 || first < 0) {
-        std::fprintf(stderr, "sbr_canlog: --detections and --out are required\n");
-        return 2;
-    }
+    CLI::App app{"sbr_canlog: a detections file as the CAN frames the ECU would send (candump log, dbc/sbr.dbc)"};
+    app.add_option("--detections", det_path, "detections, NNNNN.ext;left;top;right;bottom;class_id[;score]")
+        ->required();
+    app.add_option("--out", out_path, "the candump log to write")->required();
+    app.add_option("--images", images, "images (frames) to write")->check(CLI::Range(1, 100000000))->capture_default_str();
+    app.add_option("--first", first, "number of the first image")->check(CLI::Range(0, 99999999))->capture_default_str();
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
     std::ifstream in(det_path);
     if (!in) { std::fprintf(stderr, "sbr_canlog: cannot read %s\n", det_path.c_str()); return 1; }
     std::map<int, std::vector<sbr_host::Detection>> by_image;

@@ -1,31 +1,6 @@
 #include "cli.hpp"
 
-#include <cmath>
-
 namespace sbr_host {
-
-int parse_cli(CLI::App &app, int argc, char **argv) {
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError &e) {
-        const int rc = app.exit(e);
-        return rc == 0 ? 0 : 2;
-    }
-    return -1;
-}
-
-CLI::Validator finite_range(double lo, double hi) {
-    const std::string desc = "in [" + CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + "]";
-    return CLI::Validator(
-        [lo, hi](std::string &s) -> std::string {
-            double v = 0.0;
-            if (!CLI::detail::lexical_cast(s, v) || !std::isfinite(v) || v < lo || v > hi)
-                return "value " + s + " is not a finite number in [" + CLI::detail::to_string(lo) + ", " +
-                       CLI::detail::to_string(hi) + "]";
-            return std::string();
-        },
-        desc);
-}
 
 CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string &what) {
     return app

@@ -3,7 +3,7 @@
 // malformed or out-of-range value with the option's name (exit 2).
 #pragma once
 
-#include <CLI/CLI.hpp>
+#include "cli_core.hpp"
 
 #include <string>
 
@@ -15,13 +15,6 @@ extern "C" {
 }
 
 namespace sbr_host {
-
-// Parse argv: -1 to go on; otherwise the exit status (0 after --help, 2 after a usage
-// error, whose message CLI11 has printed with the option's name).
-int parse_cli(CLI::App &app, int argc, char **argv);
-
-// A finite value in [lo, hi] (CLI::Range lets NaN through).
-CLI::Validator finite_range(double lo, double hi);
 
 // --range A-B[,C-D...]: image numbers (strict: digits only, A <= B, no overflow).
 CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string &what);

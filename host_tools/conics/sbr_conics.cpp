@@ -19,6 +19,7 @@
 // Without --torch/--fit/--bike all run. --save DIR writes one torchlight image per noise level
 // and a few annotated bicycle frames.
 // Everything is seeded (--seed, default 1): the same numbers on every run, apart from times.
+#include "cli_core.hpp"
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -479,19 +480,18 @@ int main(int argc, char **argv) {
     uint32_t seed = 1;
     int trials = 200;
     std::string save;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--torch") torch = true;
-        else if (a == "--fit") fit = true;
-        else if (a == "--bike") bike = true;
-        else if (a == "--seed" && i + 1 < argc) seed = uint32_t(std::stoul(argv[++i]));
-        else if (a == "--trials" && i + 1 < argc) trials = std::max(1, std::stoi(argv[++i]));
-        else if (a == "--save" && i + 1 < argc) save = argv[++i];
-        else {
-            std::fprintf(stderr, "usage: %s [--torch] [--fit] [--bike] [--seed S] [--trials N] [--save DIR]\n", argv[0]);
-            return 2;
-        }
-    }
+    CLI::App app{"sbr_conics: conics on synthetic data (docs/usage/conics.md); without --torch/--fit/--bike "
+                 "all three"};
+    app.add_flag("--torch", torch, "torchlight pose from rendered beams (paper A)");
+    app.add_flag("--fit", fit, "ellipse fit against OpenCV's fitEllipseDirect");
+    app.add_flag("--bike", bike, "bicycle tracking from rendered wheel ellipses (paper B)");
+    app.add_option("--seed", seed, "random seed")->capture_default_str();
+    app.add_option("--trials", trials, "trials (torch: /50, bike: /100)")
+        ->check(CLI::Range(1, 10000000))
+        ->capture_default_str();
+    app.add_option("--save", save, "folder for rendered example frames");
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
     if (!torch && !fit && !bike) torch = fit = bike = true;
     int rc = 0;
     if (torch) rc |= run_torch(seed, std::max(1, trials / 50), save);

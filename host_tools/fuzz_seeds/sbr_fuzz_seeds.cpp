@@ -10,6 +10,7 @@
 // A harness reads its parameters from the input's end and bulk bytes (pixels, points)
 // from its front (libFuzzer's FuzzedDataProvider), so a seed is the real bytes followed by
 // a short tail; the fuzzer mutates both from there.
+#include "cli_core.hpp"
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -148,37 +149,13 @@ int main(int argc, char **argv)
 {
     std::string gtsdb, mpeg7, out;
     int per_set = 40;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--help" || a == "-h") {
-            std::printf("usage: %s --gtsdb DIR --mpeg7 DIR --out DIR [--per-set N]\n", argv[0]);
-            return 0;
-        }
-        if (i + 1 >= argc) {
-            std::fprintf(stderr, "%s needs a value\n", a.c_str());
-            return 2;
-        }
-        const std::string v = argv[++i];
-        if (a == "--gtsdb") gtsdb = v;
-        else if (a == "--mpeg7") mpeg7 = v;
-        else if (a == "--out") out = v;
-        else if (a == "--per-set") {
-            char *end = nullptr;
-            const long n = std::strtol(v.c_str(), &end, 10);
-            if (end == v.c_str() || *end != '\0' || n < 1 || n > 10000) {
-                std::fprintf(stderr, "--per-set: a count 1..10000, not '%s'\n", v.c_str());
-                return 2;
-            }
-            per_set = static_cast<int>(n);
-        } else {
-            std::fprintf(stderr, "unknown option %s\n", a.c_str());
-            return 2;
-        }
-    }
-    if (out.empty()) {
-        std::fprintf(stderr, "--out is required\n");
-        return 2;
-    }
+    CLI::App app{"sbr_fuzz_seeds: seed corpora for the fuzz harnesses (tests/fuzz) from real data"};
+    app.add_option("--gtsdb", gtsdb, "GTSDB folder (sign crops)");
+    app.add_option("--mpeg7", mpeg7, "MPEG-7 folder (contours)");
+    app.add_option("--out", out, "corpus root folder")->required();
+    app.add_option("--per-set", per_set, "seeds per set")->check(CLI::Range(1, 10000))->capture_default_str();
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
     for (const char *t : {"recog", "regions", "picto", "conic", "fd", "model_io"}) fs::create_directories(fs::path(out) / t);
     const int g = gtsdb.empty() ? 0 : gtsdb_seeds(gtsdb, out, per_set);
     const int c = mpeg7.empty() ? 0 : mpeg7_seeds(mpeg7, out, per_set);

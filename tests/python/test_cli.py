@@ -19,6 +19,12 @@ CASES = {
                     ("--max-parts", "-1"), ("--map-subsample", "2,9"), ("--roi", "1,2,3")]),
     "sbr_eval": (["--detections", "d.txt", "--gt", "gt.txt"],
                  [("--threshold", "abc"), ("--iou", "2"), ("--range", "1-x")]),
+    "sbr_bench_mser": ([], [("--rounds", "0"), ("--map", "red"), ("--first", "x")]),
+    "sbr_bench_picto": ([], [("--images", "13"), ("--boxes", "1e3")]),
+    "sbr_bench_fft": ([], [("--sizes", "100"), ("--rounds", "2"), ("--round-ms", "inf")]),
+    "sbr_canlog": (["--detections", "d.txt", "--out", "o.log"], [("--images", "abc"), ("--first", "-1")]),
+    "sbr_conics": ([], [("--trials", "0"), ("--seed", "-3")]),
+    "sbr_fuzz_seeds": (["--out", "o"], [("--per-set", "0")]),
 }
 
 
@@ -42,10 +48,22 @@ def main():
         exe = os.path.join(a.tools, tool)
         h = run([exe, "--help"])
         opts = sorted(set(re.findall(r"^\s+(?:-\w,)?(--[a-z][a-z0-9-]*)", h.stdout, re.M)))
-        # every option line has a description (text after the option's type column)
-        undescribed = [o for o in opts if o != "--help" and not re.search(
-            r"^\s+" + re.escape(o) + r"\b.*\S\s{2,}\S|^\s+" + re.escape(o) + r"\b[^\n]*\n\s{20,}\S",
-            h.stdout, re.M)]
+        # every option has a description: its help block (its line and the indented lines
+        # under it) holds words besides the option's name and its type column
+        undescribed = []
+        lines = h.stdout.splitlines()
+        for o in opts:
+            if o == "--help":
+                continue
+            k = next(i for i, l in enumerate(lines) if re.match(r"^\s+(?:-\w,)?" + re.escape(o) + r"\b", l))
+            block = [lines[k].split(o, 1)[1]]
+            for l in lines[k + 1:]:
+                if not l.strip() or re.match(r"^\s+-", l):
+                    break
+                block.append(l)
+            words = re.sub(r"\b[A-Z]+\b|\[[^\]]*\]|\S*:\S*|=\S+", " ", " ".join(block))
+            if not re.search(r"[a-z]{3,}", words):
+                undescribed.append(o)
         ok = h.returncode == 0 and len(opts) >= 3 and not undescribed
         print(f"{tool} --help: exit {h.returncode}, {len(opts)} options"
               + (f", without a description: {undescribed}" if undescribed else ""))
