@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"
 #include "gtsdb.hpp"
 #include "model_io.hpp"
 
@@ -29,13 +30,6 @@ using namespace sbr_host;
 
 namespace {
 
-void usage(const char *argv0) {
-    std::fprintf(stderr,
-                 "usage: %s --data DIR [--range A-B] [--delta D] [--variation V] [--diversity X]\n"
-                 "          [--min-area A] [--min-fill F] [--maps MASK] [--map-subsample I,R,B,Y]\n"
-                 "          [--map-min-area I,R,B,Y] [--list]\n",
-                 argv0);
-}
 
 }  // namespace
 
@@ -46,33 +40,42 @@ int main(int argc, char **argv) {
     sbr_recog_config_t rc;
     sbr_recog_config_default(&rc);
     sbr_parts_config_t cfg = rc.parts;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        const char *v = i + 1 < argc ? argv[i + 1] : nullptr;
-        if (a == "--list") { list = true; continue; }
-        if (v == nullptr) { usage(argv[0]); return 2; }
-        ++i;
-        if (a == "--data") data = v;
-        else if (a == "--range") {
-            if (std::sscanf(v, "%d-%d", &range_a, &range_b) != 2 || range_a < 0 || range_b < range_a) {
-                usage(argv[0]);
-                return 2;
-            }
-        } else if (a == "--delta") cfg.mser.delta = static_cast<uint32_t>(std::atoi(v));
-        else if (a == "--variation") cfg.mser.max_variation = static_cast<float>(std::atof(v));
-        else if (a == "--diversity") cfg.mser.min_diversity = static_cast<float>(std::atof(v));
-        else if (a == "--min-area") cfg.mser.min_area = static_cast<uint32_t>(std::atoi(v));
-        else if (a == "--min-fill") cfg.min_fill = static_cast<float>(std::atof(v));
-        else if (a == "--maps") cfg.maps = static_cast<uint32_t>(std::strtoul(v, nullptr, 0));
-        else if (a == "--map-subsample" || a == "--map-min-area") {
-            bool ok = true;
-            sbr_host::FrontEnd fe;
-            parse_front_end(a, v, fe, ok);
-            if (!ok) { usage(argv[0]); return 2; }
-            sbr_host::apply_front_end(fe, cfg);
-        } else { usage(argv[0]); return 2; }
+    sbr_host::ImageRanges range;
+    sbr_host::FrontEnd fe;
+    CLI::App app{"sbr_parts_coverage: GTSDB signs whose outline some part traced (front-end diagnostic)"};
+    app.add_option("--data", data, "GTSDB folder")->required();
+    sbr_host::add_range_option(app, range, "one span of image numbers (default 400-599)");
+    app.add_option("--delta", cfg.mser.delta, "MSER delta")->check(CLI::Range(1u, SBR_MSER_MAX_DELTA))->capture_default_str();
+    app.add_option("--variation", cfg.mser.max_variation, "MSER max_variation")
+        ->check(sbr_host::finite_range(0.0, 100.0))
+        ->capture_default_str();
+    app.add_option("--diversity", cfg.mser.min_diversity, "MSER min_diversity")
+        ->check(sbr_host::finite_range(0.0, 1.0))
+        ->capture_default_str();
+    app.add_option("--min-area", cfg.mser.min_area, "MSER min_area")->capture_default_str();
+    app.add_option("--min-fill", cfg.min_fill, "parts.min_fill")->check(sbr_host::finite_range(0.0, 1.0))->capture_default_str();
+    app.add_option("--maps", cfg.maps, "parts.maps (bit k = map kind k)")
+        ->check(CLI::Range(1u, (1u << SBR_MAP_KINDS) - 1u))
+        ->capture_default_str();
+    app.add_option("--map-subsample", fe.sub, "parts.map_subsample per kind (intensity, red, blue, yellow)")
+        ->delimiter(',')
+        ->expected(1, int(SBR_MAP_KINDS))
+        ->check(CLI::Range(1u, SBR_MAP_MAX_SUBSAMPLE));
+    app.add_option("--map-min-area", fe.area, "parts.map_min_area per kind (0: the MSER default)")
+        ->delimiter(',')
+        ->expected(1, int(SBR_MAP_KINDS));
+    app.add_flag("--list", list, "list every sign with its best part");
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
+    if (range.spans.size() > 1) {
+        std::fprintf(stderr, "sbr_parts_coverage: --range takes one span A-B\n");
+        return 2;
     }
-    if (data.empty()) { usage(argv[0]); return 2; }
+    if (!range.empty()) {
+        range_a = range.spans[0].first;
+        range_b = range.spans[0].second;
+    }
+    sbr_host::apply_front_end(fe, cfg);
     if (sbr_parts_config_check(&cfg) != SBR_OK) {
         std::fprintf(stderr, "sbr_parts_coverage: invalid part configuration\n");
         return 2;

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"
 #include "gtsdb.hpp"
 
 extern "C" {
@@ -60,18 +61,6 @@ struct Run {
     }
 };
 
-// A number option: the whole argument must be a number in [lo, hi].
-bool parse_num(const std::string &opt, const std::string &v, double lo, double hi, double *out) {
-    char *end = nullptr;
-    const double x = std::strtod(v.c_str(), &end);
-    if (v.empty() || end == v.c_str() || *end != '\0' || !(x >= lo && x <= hi)) {
-        std::fprintf(stderr, "test_recog_scenes: %s takes a number in [%g, %g], not '%s'\n", opt.c_str(), lo, hi,
-                     v.c_str());
-        return false;
-    }
-    *out = x;
-    return true;
-}
 
 bool found(const std::vector<sbr_detection_t> &dets, int cls, int l, int t, int r, int b, float *best_iou) {
     *best_iou = 0;
@@ -89,26 +78,26 @@ bool found(const std::vector<sbr_detection_t> &dets, int cls, int l, int t, int 
 int main(int argc, char **argv) {
     std::string data;
     double first = 400, last = 599, min_recall = -1, min_crop_recall = -1, max_fp_rate = 0.25;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (i + 1 >= argc) { std::fprintf(stderr, "test_recog_scenes: %s needs a value\n", a.c_str()); return 2; }
-        const std::string v = argv[++i];
-        bool ok = true;
-        if (a == "--data") data = v;
-        else if (a == "--range") {
-            const size_t dash = v.find('-');
-            ok = dash != std::string::npos && parse_num(a, v.substr(0, dash), 0, 99999, &first) &&
-                 parse_num(a, v.substr(dash + 1), first, 99999, &last);
-            if (!ok && dash == std::string::npos) std::fprintf(stderr, "test_recog_scenes: --range A-B\n");
-        } else if (a == "--min-recall") ok = parse_num(a, v, 0, 1, &min_recall);
-        else if (a == "--min-crop-recall") ok = parse_num(a, v, 0, 1, &min_crop_recall);
-        else if (a == "--max-fp-rate") ok = parse_num(a, v, 0, 1000, &max_fp_rate);
-        else { std::fprintf(stderr, "test_recog_scenes: unknown option %s\n", a.c_str()); return 2; }
-        if (!ok) return 2;
-    }
-    if (min_recall < 0 || min_crop_recall < 0) {
-        std::fprintf(stderr, "test_recog_scenes: --min-recall and --min-crop-recall are required\n");
+    sbr_host::ImageRanges range;
+    CLI::App app{"test_recog_scenes: the built-in recogniser on GTSDB scenes against recall and false-detection floors"};
+    app.add_option("--data", data, "GTSDB folder")->required();
+    sbr_host::add_range_option(app, range, "one span of image numbers (default 400-599)");
+    app.add_option("--min-recall", min_recall, "fail below this sign recall")->required()->check(sbr_host::finite_range(0, 1));
+    app.add_option("--min-crop-recall", min_crop_recall, "fail below this recall on sign crops")
+        ->required()
+        ->check(sbr_host::finite_range(0, 1));
+    app.add_option("--max-fp-rate", max_fp_rate, "fail above this many false detections per sign-free frame")
+        ->check(sbr_host::finite_range(0, 1000))
+        ->capture_default_str();
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
+    if (range.spans.size() > 1) {
+        std::fprintf(stderr, "test_recog_scenes: --range takes one span A-B\n");
         return 2;
+    }
+    if (!range.empty()) {
+        first = range.spans[0].first;
+        last = range.spans[0].second;
     }
     const std::string dir = gtsdb_image_dir(data);
     const auto gt = read_gt(dir + "/gt.txt");

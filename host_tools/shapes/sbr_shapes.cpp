@@ -7,6 +7,7 @@
 // Prints the bull's-eye score (2 x class size nearest, query included) per variant, the
 // time of each stage, and as its last line:
 //   bullseye_percent=<x> all_pairs_seconds=<x> opencv_same_method_seconds=<x> opencv_hu_best_bullseye_percent=<x>
+#include "cli_core.hpp"
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -44,18 +45,6 @@ struct Options {
     int max_images = 0;
 };
 
-void usage() {
-    std::puts(
-        "usage: sbr_shapes --data DIR [--n N] [--m M] [--p P] [--sigma S] [--max-images K]\n"
-        "                  [--skip-opencv-fd] [--skip-missing]\n"
-        "\n"
-        "DIR holds binary PBM silhouettes (bit 1 = object), named CLASS-k.pbm (MPEG-7) or\n"
-        "trainimageCLASS_k.pbm (Kimia-99). Every shape is the query once against all shapes\n"
-        "(itself included); the bull's-eye score counts same-class shapes among the 2 x\n"
-        "class-size nearest. Defaults: N=256 (arc-length resampling and FFT), M=16 (kept\n"
-        "coefficients per side), P=32 (correlation size), S=0.01 (contour smoothing, a\n"
-        "fraction of the length).");
-}
 
 std::string class_of(const std::string &stem) {
     const size_t dash = stem.rfind('-');
@@ -108,21 +97,27 @@ struct Variant {
 
 int main(int argc, char **argv) {
     Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> const char * { return i + 1 < argc ? argv[++i] : ""; };
-        if (a == "--data") o.data = next();
-        else if (a == "--n") o.n = static_cast<uint32_t>(std::atoi(next()));
-        else if (a == "--m") o.m = static_cast<uint32_t>(std::atoi(next()));
-        else if (a == "--p") o.p = static_cast<uint32_t>(std::atoi(next()));
-        else if (a == "--sigma") o.sigma = static_cast<float>(std::atof(next()));
-        else if (a == "--max-images") o.max_images = std::atoi(next());
-        else if (a == "--skip-opencv-fd") o.skip_opencv_fd = true;
-        else if (a == "--skip-missing") o.skip_missing = true;
-        else if (a == "--help" || a == "-h") { usage(); return 0; }
-        else { usage(); return 2; }
-    }
-    if (o.data.empty()) { usage(); return 2; }
+    CLI::App app{"sbr_shapes: shape retrieval by FD matching on binary silhouettes (MPEG-7, Kimia-99): every "
+                 "shape is the query once against all; the bull's-eye score counts same-class shapes among the "
+                 "2 x class-size nearest (docs/usage/shapes.md)"};
+    app.add_option("--data", o.data, "folder of PBM silhouettes, CLASS-k.pbm or trainimageCLASS_k.pbm")->required();
+    app.add_option("--n", o.n, "arc-length resampling and FFT length")
+        ->check(CLI::IsMember({16u, 32u, 64u, 128u, 256u, 512u, 1024u}))
+        ->capture_default_str();
+    app.add_option("--m", o.m, "coefficients kept per side")->check(CLI::Range(2u, SBR_FD_MAX_M))->capture_default_str();
+    app.add_option("--p", o.p, "correlation length")
+        ->check(CLI::IsMember({16u, 32u, 64u, 128u, 256u, 512u, 1024u}))
+        ->capture_default_str();
+    app.add_option("--sigma", o.sigma, "contour smoothing, a fraction of the length")
+        ->check(sbr_host::finite_range(0.0, 0.5))
+        ->capture_default_str();
+    app.add_option("--max-images", o.max_images, "use the first K images only (0: all)")
+        ->check(CLI::Range(0, 100000000))
+        ->capture_default_str();
+    app.add_flag("--skip-opencv-fd", o.skip_opencv_fd, "leave out the OpenCV Fourier-descriptor baseline");
+    app.add_flag("--skip-missing", o.skip_missing, "exit 77 (a skipped test) when --data is absent");
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
     if (!fs::is_directory(o.data)) {
         std::printf("%s%s is not a folder\n", o.skip_missing ? "SKIP: " : "sbr_shapes: ", o.data.c_str());
         return o.skip_missing ? 77 : 2;

@@ -20,6 +20,7 @@
 // of the previous frame are kept while valid, the rest by the Hungarian method on the
 // distance. MOTA = 1 - (misses + false positives + id switches) / ground-truth objects;
 // RMSE is the root mean square centre distance over matched pairs.
+#include "cli_core.hpp"
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -958,13 +959,68 @@ std::vector<Result> run_all(const Options &o, const std::vector<Seq> &seqs, cons
     return res;
 }
 
-void usage()
+// -1: go on; otherwise the exit status. seqs_given: --seqs was on the command line.
+int parse_options(int argc, char **argv, Options &o, bool &seqs_given)
 {
-    std::cerr << "usage: sbr_track --labels DIR [--seqs LIST] [--noise PX] [--miss P] [--clutter N]\n"
-                 "                 [--seed S] [--csv] [--out DIR] [--model FILE] [--table]\n"
-                 "       sbr_track --labels DIR --bench-targets N [--noise PX]   (time with N <= 32 targets)\n"
-                 "       sbr_track --labels DIR --learn [--seqs 0000-0005] --model-out FILE [--c-out FILE]\n"
-                 "LIST: comma-separated sequence numbers or ranges, e.g. 0006-0010 or 1,3,5\n";
+    CLI::App app{"sbr_track: the channel tracker (paper E) against a Kalman filter with Hungarian association "
+                 "and a particle filter on KITTI tracking ground truth, corrupted by noise, misses and clutter "
+                 "(docs/usage/track.md); --learn: learn the tracker's motion model"};
+    app.add_option("--labels", o.labels, "KITTI tracking label_02 folder")->required();
+    auto *seqs = app.add_option("--seqs", o.seqs, "sequences: numbers or ranges, e.g. 0006-0010 or 1,3,5")
+                     ->capture_default_str();
+    app.add_option("--noise", o.noise, "detection noise, pixels (Gaussian sigma)")
+        ->check(sbr_host::finite_range(0.0, 99.999))
+        ->capture_default_str();
+    app.add_option("--miss", o.miss, "probability that a detection is missed")
+        ->check(sbr_host::finite_range(0.0, 0.999))
+        ->capture_default_str();
+    app.add_option("--clutter", o.clutter, "false detections per frame (Poisson mean)")
+        ->check(sbr_host::finite_range(0.0, 50.0))
+        ->capture_default_str();
+    app.add_option("--seed", o.seed, "random seed")->capture_default_str();
+    app.add_flag("--csv", o.csv, "print method,rmse_px,mota,id_switches,ms_per_frame");
+    app.add_option("--out", o.out, "write each method's tracks in KITTI's format to this folder");
+    app.add_option("--model", o.model_file, "motion model file (default: the built-in one)");
+    app.add_option("--model-out", o.model_out, "--learn: write the learned model here");
+    app.add_option("--c-out", o.c_out, "--learn: write the learned model as a C table");
+    app.add_flag("--learn", o.learn, "learn the motion model (default sequences 0000-0005)");
+    app.add_option("--vel-count", o.vel_count, "--learn: velocity channels (odd)")
+        ->check(CLI::Range(5u, SBR_TRACK_MAX_VEL))
+        ->capture_default_str();
+    app.add_option("--vel-spacing", o.vel_spacing, "--learn: pixels per period between velocity channels")
+        ->check(sbr_host::finite_range(0.01, 1000.0))
+        ->capture_default_str();
+    app.add_option("--em", g_em_iters, "--learn: passes of the soft association EM")
+        ->check(CLI::Range(0, 100))
+        ->capture_default_str();
+    app.add_option("--tail", g_tail, "--learn: share of a row given to the wide constant-velocity tail")
+        ->check(sbr_host::finite_range(0.0, 1.0))
+        ->capture_default_str();
+    app.add_option("--tail-sigma", g_tail_sigma, "--learn: the tail's standard deviation, velocity channels")
+        ->check(sbr_host::finite_range(0.01, 1000.0))
+        ->capture_default_str();
+    app.add_flag("--table", o.table, "print the result as a Markdown table");
+    app.add_option("--particles", o.particles, "particle filter size")
+        ->check(CLI::Range(16u, 100000u))
+        ->capture_default_str();
+    app.add_option("--accel", o.kf_accel, "Kalman filter's acceleration noise, pixels per frame squared")
+        ->check(sbr_host::finite_range(0.0, 1000.0))
+        ->capture_default_str();
+    app.add_option("--bench-targets", o.bench, "time per frame with this many synthetic targets (0: KITTI)")
+        ->check(CLI::Range(0u, 32u));
+    app.add_option("--cv-model", o.cv_model, "> 0: the channel tracker uses a constant-velocity model (ablation)")
+        ->check(sbr_host::finite_range(0.0, 1000.0));
+    app.add_option("--window", o.window, "the channel tracker's window, channels")->capture_default_str();
+    std::string classes;
+    app.add_option("--classes", classes, "KITTI classes tracked, comma-separated (default Car,Cyclist)");
+    const int parsed = sbr_host::parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
+    seqs_given = seqs->count() > 0;
+    if (!classes.empty()) {
+        o.classes.clear();
+        for (auto &c : split(classes, ',')) o.classes.insert(c);
+    }
+    return -1;
 }
 
 }  // namespace
@@ -973,53 +1029,11 @@ int main(int argc, char **argv)
 {
     Options o;
     bool seqs_given = false;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string {
-            if (i + 1 >= argc) {
-                usage();
-                std::exit(2);
-            }
-            return argv[++i];
-        };
-        if (a == "--labels") o.labels = next();
-        else if (a == "--seqs") { o.seqs = next(); seqs_given = true; }
-        else if (a == "--noise") o.noise = std::atof(next().c_str());
-        else if (a == "--miss") o.miss = std::atof(next().c_str());
-        else if (a == "--clutter") o.clutter = std::atof(next().c_str());
-        else if (a == "--seed") o.seed = static_cast<unsigned>(std::atoi(next().c_str()));
-        else if (a == "--csv") o.csv = true;
-        else if (a == "--out") o.out = next();
-        else if (a == "--model") o.model_file = next();
-        else if (a == "--model-out") o.model_out = next();
-        else if (a == "--c-out") o.c_out = next();
-        else if (a == "--learn") o.learn = true;
-        else if (a == "--vel-count") o.vel_count = static_cast<uint32_t>(std::atoi(next().c_str()));
-        else if (a == "--vel-spacing") o.vel_spacing = static_cast<float>(std::atof(next().c_str()));
-        else if (a == "--em") g_em_iters = std::atoi(next().c_str());
-        else if (a == "--tail") g_tail = std::atof(next().c_str());
-        else if (a == "--tail-sigma") g_tail_sigma = std::atof(next().c_str());
-        else if (a == "--table") o.table = true;
-        else if (a == "--particles") o.particles = static_cast<unsigned>(std::atoi(next().c_str()));
-        else if (a == "--accel") o.kf_accel = std::atof(next().c_str());
-        else if (a == "--bench-targets") o.bench = static_cast<unsigned>(std::atoi(next().c_str()));
-        else if (a == "--cv-model") o.cv_model = std::atof(next().c_str());
-        else if (a == "--window") o.window = static_cast<uint32_t>(std::atoi(next().c_str()));
-        else if (a == "--classes") { o.classes.clear(); for (auto &c : split(next(), ',')) o.classes.insert(c); }
-        else { usage(); return 2; }
-    }
-    if (o.labels.empty() || !(o.noise >= 0 && o.noise < 100) || !(o.miss >= 0 && o.miss < 1) ||
-        !(o.clutter >= 0 && o.clutter <= 50) || o.particles < 16 || o.particles > 100000) {
-        usage();
-        return 2;
-    }
+    const int parsed = parse_options(argc, argv, o, seqs_given);
+    if (parsed >= 0) return parsed;
     if (o.learn && !seqs_given) o.seqs = "0000-0005";
     std::vector<Seq> seqs;
     if (o.bench > 0) {
-        if (o.bench > 32) {
-            usage();
-            return 2;
-        }
         seqs.push_back(synthetic_seq(o.bench, 300, o.seed));
         o.seqs = "synthetic";
     }
@@ -1032,7 +1046,7 @@ int main(int argc, char **argv)
         seqs.push_back(std::move(s));
     }
     if (seqs.empty()) {
-        usage();
+        std::cerr << "sbr_track: --seqs names no sequence\n";
         return 2;
     }
     if (o.learn) {
@@ -1049,7 +1063,7 @@ int main(int argc, char **argv)
             if (!e.empty()) { std::cerr << e << "\n"; return 1; }
         }
         if (!o.c_out.empty()) {
-            char hdr[512];
+            char hdr[1024];
             std::snprintf(hdr, sizeof hdr,
                           " * Regenerate: ./sbr.sh learn-tracker   (runs sbr_track --learn --seqs %s --noise %g\n"
                           " *             --miss %g --clutter %g --seed %u --c-out lib/models/sbr_track_model_kitti.c\n"

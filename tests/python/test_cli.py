@@ -25,6 +25,11 @@ CASES = {
     "sbr_canlog": (["--detections", "d.txt", "--out", "o.log"], [("--images", "abc"), ("--first", "-1")]),
     "sbr_conics": ([], [("--trials", "0"), ("--seed", "-3")]),
     "sbr_fuzz_seeds": (["--out", "o"], [("--per-set", "0")]),
+    "sbr_parts_coverage": (["--data", "d"], [("--range", "9-1"), ("--min-fill", "2"), ("--delta", "0")]),
+    "test_recog_scenes": (["--data", "d", "--min-recall", "0.5", "--min-crop-recall", "0.5"],
+                          [("--max-fp-rate", "-1"), ("--range", "a-b")]),
+    "sbr_shapes": (["--data", "d"], [("--n", "100"), ("--sigma", "x")]),
+    "sbr_track": (["--labels", "l"], [("--noise", "abc"), ("--particles", "5"), ("--bench-targets", "33")]),
 }
 
 
