@@ -981,22 +981,22 @@ int parse_options(int argc, char **argv, Options &o, bool &seqs_given)
     app.add_flag("--csv", o.csv, "print method,rmse_px,mota,id_switches,ms_per_frame");
     app.add_option("--out", o.out, "write each method's tracks in KITTI's format to this folder");
     app.add_option("--model", o.model_file, "motion model file (default: the built-in one)");
-    app.add_option("--model-out", o.model_out, "--learn: write the learned model here");
-    app.add_option("--c-out", o.c_out, "--learn: write the learned model as a C table");
+    app.add_option("--model-out", o.model_out, "(with --learn) write the learned model here");
+    app.add_option("--c-out", o.c_out, "(with --learn) write the learned model as a C table");
     app.add_flag("--learn", o.learn, "learn the motion model (default sequences 0000-0005)");
-    app.add_option("--vel-count", o.vel_count, "--learn: velocity channels (odd)")
+    app.add_option("--vel-count", o.vel_count, "(with --learn) velocity channels (odd)")
         ->check(CLI::Range(5u, SBR_TRACK_MAX_VEL))
         ->capture_default_str();
-    app.add_option("--vel-spacing", o.vel_spacing, "--learn: pixels per period between velocity channels")
+    app.add_option("--vel-spacing", o.vel_spacing, "(with --learn) pixels per period between velocity channels")
         ->check(sbr_host::finite_range(0.01, 1000.0))
         ->capture_default_str();
-    app.add_option("--em", g_em_iters, "--learn: passes of the soft association EM")
+    app.add_option("--em", g_em_iters, "(with --learn) passes of the soft association EM")
         ->check(CLI::Range(0, 100))
         ->capture_default_str();
-    app.add_option("--tail", g_tail, "--learn: share of a row given to the wide constant-velocity tail")
+    app.add_option("--tail", g_tail, "(with --learn) share of a row given to the wide constant-velocity tail")
         ->check(sbr_host::finite_range(0.0, 1.0))
         ->capture_default_str();
-    app.add_option("--tail-sigma", g_tail_sigma, "--learn: the tail's standard deviation, velocity channels")
+    app.add_option("--tail-sigma", g_tail_sigma, "(with --learn) the tail's standard deviation, velocity channels")
         ->check(sbr_host::finite_range(0.01, 1000.0))
         ->capture_default_str();
     app.add_flag("--table", o.table, "print the result as a Markdown table");
