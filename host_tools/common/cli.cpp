@@ -2,13 +2,13 @@
 
 namespace sbr_host {
 
-CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string &what) {
+CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string &what, const std::string &name) {
     return app
         .add_option_function<std::string>(
-            "--range",
-            [&out](const std::string &s) {
+            name,
+            [&out, name](const std::string &s) {
                 if (!parse_image_ranges(s, out))
-                    throw CLI::ValidationError("--range", "wants A-B[,C-D...] with 0 <= A <= B <= " +
+                    throw CLI::ValidationError(name, "wants A-B[,C-D...] with 0 <= A <= B <= " +
                                                               std::to_string(kMaxImageNumber) + ", got '" + s + "'");
             },
             what)

@@ -17,7 +17,8 @@ extern "C" {
 namespace sbr_host {
 
 // --range A-B[,C-D...]: image numbers (strict: digits only, A <= B, no overflow).
-CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string &what);
+CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string &what,
+                              const std::string &name = "--range");
 
 // The recogniser's options that the tools let a user override, bound to the fields of
 // `cfg` (which holds the defaults, shown by --help), in an option group "Recogniser".

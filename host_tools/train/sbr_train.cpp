@@ -46,6 +46,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli.hpp"
 #include "gtsdb.hpp"
 #include "model_io.hpp"
 
@@ -108,36 +109,37 @@ int main(int argc, char **argv) {
     float min_weight = 0.0f;
     std::string from_model;
     FrontEnd front_end;  // --map-subsample, --map-min-area: the part stage learned with
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-        bool fe_ok = true;
-        if (parse_front_end(a, i + 1 < argc ? argv[i + 1] : "", front_end, fe_ok) != 0) {
-            ++i;
-            if (!fe_ok) { std::fprintf(stderr, "sbr_train: bad value for %s\n", a.c_str()); return 2; }
-            continue;
-        }
-        if (a == "--data") data = next();
-        else if (a == "--range") {
-            if (!parse_image_ranges(next(), range)) { std::fprintf(stderr, "--range wants A-B[,C-D...]\n"); return 2; }
-        } else if (a == "--out-c") out_c = next();
-        else if (a == "--out-model") out_model = next();
-        else if (a == "--vote-error") vote_error = std::strtof(next().c_str(), nullptr);
-        else if (a == "--min-support") min_support = std::atoi(next().c_str());
-        else if (a == "--max-protos") max_protos = static_cast<size_t>(std::atoi(next().c_str()));
-        else if (a == "--no-calibrate") calibrate = false;
-        else if (a == "--min-weight") min_weight = std::strtof(next().c_str(), nullptr);
-        else if (a == "--from-model") from_model = next();
-        else {
-            std::fprintf(stderr, "usage: %s [--data DIR] [--range A-B] [--out-c FILE] [--out-model FILE] "
-                                 "[--vote-error E] [--min-support N] [--max-protos N] [--min-weight W] [--no-calibrate]\n"
-                                 "       %s --from-model FILE --out-c FILE\n", argv[0], argv[0]);
-            return 2;
-        }
-    }
-    if (!(vote_error > 0.0f && vote_error <= 4.0f) || min_support < 1 || max_protos < 1 || max_protos > 65535) {
-        std::fprintf(stderr, "sbr_train: bad option value\n");
-        return 2;
+    {
+        CLI::App app{"sbr_train: learns the recogniser's prototype library (part FDs, star-model votes, cascade) "
+                     "from GTSDB (docs/usage/detect.md); --from-model: regenerate the C table from a file"};
+        app.add_option("--data", data, "GTSDB folder")->capture_default_str();
+        add_range_option(app, range, "training images (default 0-399)");
+        app.add_option("--out-c", out_c, "write the library as a C table (lib/models/sbr_model_gtsdb.c)");
+        app.add_option("--out-model", out_model, "write the library as a model file (.sbrm)");
+        app.add_option("--vote-error", vote_error, "largest FD error of a vote")
+            ->check(finite_range(1e-6, 4.0))
+            ->capture_default_str();
+        app.add_option("--min-support", min_support, "training parts a prototype needs")
+            ->check(CLI::Range(1, 1000000))
+            ->capture_default_str();
+        app.add_option("--max-protos", max_protos, "prototypes kept")
+            ->check(CLI::Range(size_t(1), size_t(65535)))
+            ->capture_default_str();
+        app.add_flag("--no-calibrate", [&calibrate](int64_t) { calibrate = false; },
+                     "keep the vote weights uncalibrated");
+        app.add_option("--min-weight", min_weight, "drop prototypes with a smaller vote weight")
+            ->check(finite_range(0.0, 1.0))
+            ->capture_default_str();
+        app.add_option("--from-model", from_model, "regenerate --out-c from this model file, without training");
+        app.add_option("--map-subsample", front_end.sub, "learn with parts.map_subsample per kind (I,R,B,Y)")
+            ->delimiter(',')
+            ->expected(1, int(SBR_MAP_KINDS))
+            ->check(CLI::Range(1u, SBR_MAP_MAX_SUBSAMPLE));
+        app.add_option("--map-min-area", front_end.area, "learn with parts.map_min_area per kind")
+            ->delimiter(',')
+            ->expected(1, int(SBR_MAP_KINDS));
+        const int parsed = parse_cli(app, argc, argv);
+        if (parsed >= 0) return parsed;
     }
     if (!from_model.empty()) {
         // regenerate the C table from a file form, without training

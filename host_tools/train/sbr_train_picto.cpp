@@ -168,6 +168,7 @@
 #include <thread>
 #include <vector>
 
+#include "cli.hpp"
 #include "gtsdb.hpp"
 #include "model_io.hpp"
 
@@ -888,80 +889,73 @@ int main(int argc, char **argv) {
     bool box = true, exposure = false, mirror = false, rotate = true, tview = true;
     BgSwap bg_swap = BgSwap::round, bg_fill = BgSwap::off;
     unsigned seed = 1;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto next = [&]() -> std::string { return i + 1 < argc ? argv[++i] : ""; };
-        bool fe_ok = true;
-        if (parse_front_end(a, i + 1 < argc ? argv[i + 1] : "", g_front_end, fe_ok) != 0) {
-            ++i;
-            if (!fe_ok) { std::fprintf(stderr, "sbr_train_picto: bad value for %s\n", a.c_str()); return 2; }
-            continue;
-        }
-        if (a == "--data") data = next();
-        else if (a == "--range") {
-            if (!parse_image_ranges(next(), range)) { std::fprintf(stderr, "--range wants A-B[,C-D...]\n"); return 2; }
-        } else if (a == "--eval-range") {
-            if (!parse_image_ranges(next(), eval_range)) { std::fprintf(stderr, "--eval-range wants A-B[,C-D...]\n"); return 2; }
-        } else if (a == "--candidates") cand_path = next();
-        else if (a == "--model") model_path = next();
-        else if (a == "--hidden") hidden = std::atoi(next().c_str());
-        else if (a == "--epochs") epochs = std::atoi(next().c_str());
-        else if (a == "--jitter") jitter = std::atoi(next().c_str());
-        else if (a == "--box-jitter") box_jitter = std::atoi(next().c_str());
-        else if (a == "--threshold") threshold = std::strtof(next().c_str(), nullptr);
-        else if (a == "--lr") lr = std::strtof(next().c_str(), nullptr);
-        else if (a == "--bg-fraction") bg_fraction = std::strtof(next().c_str(), nullptr);
-        else if (a == "--dropout") dropout = std::strtof(next().c_str(), nullptr);
-        else if (a == "--decay") decay = std::strtof(next().c_str(), nullptr);
-        else if (a == "--no-box") box = false;
-        else if (a == "--exposure") exposure = true;
-        else if (a == "--bg-swap" || a == "--bg-fill") {
-            const std::string v = next();
-            BgSwap &which = a == "--bg-swap" ? bg_swap : bg_fill;
-            if (v == "off") which = BgSwap::off;
-            else if (v == "round") which = BgSwap::round;
-            else if (v == "triangle") which = BgSwap::triangle;
-            else if (v == "all") which = BgSwap::all;
-            else { std::fprintf(stderr, "%s wants off, round, triangle or all\n", a.c_str()); return 2; }
-        }
-        else if (a == "--mirror") mirror = true;
-        else if (a == "--rotate") rotate = true;
-        else if (a == "--no-rotate") rotate = false;
-        else if (a == "--triangle-view") tview = true;
-        else if (a == "--no-triangle-view") tview = false;
-        else if (a == "--balance") balance = std::strtof(next().c_str(), nullptr);
-        else if (a == "--rare") rare = std::atoi(next().c_str());
-        else if (a == "--from-picto") from_picto = next();
-        else if (a == "--gate") gate = true;
-        else if (a == "--gate-recall") gate_recall = std::strtof(next().c_str(), nullptr);
-        else if (a == "--gate-hidden") gate_hidden = std::atoi(next().c_str());
-        else if (a == "--rim-check") {
-            const std::string list = next();
-            std::stringstream ss(list == "none" ? "" : list);
+    {
+        CLI::App app{"sbr_train_picto: learns the class stage (pictogram classifier, box regression, colour check, "
+                     "gate) from the recogniser's candidates on GTSDB (docs/usage/detect.md)"};
+        const std::map<std::string, BgSwap> swaps{
+            {"off", BgSwap::off}, {"round", BgSwap::round}, {"triangle", BgSwap::triangle}, {"all", BgSwap::all}};
+        std::string rim_list;
+        auto f = [](double lo, double hi) { return finite_range(lo, hi); };
+        app.add_option("--data", data, "GTSDB folder")->capture_default_str();
+        add_range_option(app, range, "training images (default 0-399)");
+        add_range_option(app, eval_range, "also evaluate the classifier on these images", "--eval-range");
+        app.add_option("--candidates", cand_path, "candidate boxes file (default: the recogniser's)");
+        app.add_option("--model", model_path, "part model file (default: the built-in one)");
+        app.add_option("--hidden", hidden, "hidden units")->check(CLI::Range(0, int(SBR_PICTO_HIDDEN_MAX)))->capture_default_str();
+        app.add_option("--epochs", epochs, "epochs per round")->check(CLI::Range(1, 100000))->capture_default_str();
+        app.add_option("--jitter", jitter, "training copies per sign (shifts, scales)")->check(CLI::Range(0, 100000))->capture_default_str();
+        app.add_option("--box-jitter", box_jitter, "extra copies for the box regression")->check(CLI::Range(0, 100000))->capture_default_str();
+        app.add_option("--threshold", threshold, "operating point stored with the model")->check(f(0.0, 1.0))->capture_default_str();
+        app.add_option("--lr", lr, "learning rate")->check(f(1e-9, 10.0))->capture_default_str();
+        app.add_option("--bg-fraction", bg_fraction, "share of background candidates kept")->check(f(1e-6, 1.0))->capture_default_str();
+        app.add_option("--dropout", dropout, "dropout of the hidden units")->check(f(0.0, 0.9))->capture_default_str();
+        app.add_option("--decay", decay, "weight decay")->check(f(0.0, 0.999999))->capture_default_str();
+        app.add_flag("--no-box", [&box](int64_t) { box = false; }, "no box regression");
+        app.add_flag("--exposure", exposure, "exposure changes in the synthetic copies");
+        app.add_option("--bg-swap", bg_swap, "synthetic copies on other backgrounds: off, round, triangle, all")
+            ->transform(CLI::CheckedTransformer(swaps));
+        app.add_option("--bg-fill", bg_fill, "background fill of the copies: off, round, triangle, all")
+            ->transform(CLI::CheckedTransformer(swaps));
+        app.add_flag("--mirror", mirror, "mirror the mirror-symmetric classes");
+        app.add_flag("--rotate,!--no-rotate", rotate, "small rotations in the copies (default on)");
+        app.add_flag("--triangle-view,!--no-triangle-view", tview, "train on triangle views too (default on)");
+        app.add_option("--balance", balance, "class-balanced sampling exponent")->check(f(0.0, 2.0))->capture_default_str();
+        app.add_option("--rare", rare, "extra copies of classes with few signs")->check(CLI::Range(0, 100000))->capture_default_str();
+        app.add_option("--from-picto", from_picto, "no training: add the colour check (and --gate) to this class stage");
+        app.add_flag("--gate", gate, "learn the class stage's gate");
+        app.add_option("--gate-recall", gate_recall, "share of positive candidates the gate passes")
+            ->check(f(1e-6, 1.0))
+            ->capture_default_str();
+        app.add_option("--gate-hidden", gate_hidden, "the gate's rectified units (0: linear)")
+            ->check(CLI::Range(0, int(SBR_PICTO_GATE_HIDDEN_MAX)))
+            ->capture_default_str();
+        app.add_option("--rim-check", rim_list, "classes that get a colour check, e.g. 13, or none (default 13)");
+        app.add_option("--rounds", rounds, "training rounds")->check(CLI::Range(1, 1000))->capture_default_str();
+        app.add_option("--seed", seed, "random seed")->capture_default_str();
+        app.add_option("--out-c", out_c, "write the class stage as a C table (lib/models/sbr_picto_gtsdb.c)");
+        app.add_option("--out", out_file, "write the class stage as a model file (.sbrp)");
+        app.add_option("--map-subsample", g_front_end.sub, "learn with parts.map_subsample per kind (I,R,B,Y)")
+            ->delimiter(',')
+            ->expected(1, int(SBR_MAP_KINDS))
+            ->check(CLI::Range(1u, SBR_MAP_MAX_SUBSAMPLE));
+        app.add_option("--map-min-area", g_front_end.area, "learn with parts.map_min_area per kind")
+            ->delimiter(',')
+            ->expected(1, int(SBR_MAP_KINDS));
+        const int parsed = parse_cli(app, argc, argv);
+        if (parsed >= 0) return parsed;
+        if (!rim_list.empty()) {
+            std::stringstream ss(rim_list == "none" ? "" : rim_list);
             rim_classes.clear();
             for (std::string c; std::getline(ss, c, ',');) {
                 const int k = std::atoi(c.c_str());
-                if (c.empty() || k < 0 || k >= int(SBR_PICTO_CLASSES) || rim_outline(k) == SBR_PICTO_RIM_NONE) {
+                if (c.empty() || c.find_first_not_of("0123456789") != std::string::npos || k >= int(SBR_PICTO_CLASSES) ||
+                    rim_outline(k) == SBR_PICTO_RIM_NONE) {
                     std::fprintf(stderr, "--rim-check wants class ids of discs or triangles, e.g. 13, or none\n");
                     return 2;
                 }
                 rim_classes.push_back(k);
             }
         }
-        else if (a == "--rounds") rounds = std::atoi(next().c_str());
-        else if (a == "--seed") seed = unsigned(std::atoi(next().c_str()));
-        else if (a == "--out-c") out_c = next();
-        else if (a == "--out") out_file = next();
-        else { std::fprintf(stderr, "sbr_train_picto: unknown option %s (see the file's header)\n", a.c_str()); return 2; }
-    }
-    if (hidden < 0 || hidden > int(SBR_PICTO_HIDDEN_MAX) || epochs < 1 || rounds < 1 || box_jitter < 0 || rare < 0 || !(bg_fraction > 0.0f && bg_fraction <= 1.0f) ||
-        !(dropout >= 0.0f && dropout <= 0.9f) || !(decay >= 0.0f && decay < 1.0f) || !(balance >= 0.0f && balance <= 2.0f) ||
-        gate_hidden < 0 || gate_hidden > int(SBR_PICTO_GATE_HIDDEN_MAX) || !(gate_recall > 0.0f && gate_recall <= 1.0f)) {
-        std::fprintf(stderr, "sbr_train_picto: --hidden 0..%u, --epochs >= 1, --rounds >= 1, --box-jitter >= 0, --bg-fraction in (0, 1], "
-                             "--gate-hidden 0..32, --gate-recall in (0, 1], "
-                             "--dropout in [0, 0.9], --decay in [0, 1), --balance in [0, 2]\n",
-                     SBR_PICTO_HIDDEN_MAX);
-        return 2;
     }
     if (box_jitter > 0 && !box) {
         std::fprintf(stderr, "sbr_train_picto: --box-jitter trains the box regression, which --no-box leaves out\n");
