@@ -49,20 +49,22 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
       "parts.maps: bit k = map kind k of include/sbr/map.h (0x1 intensity only)");
     u("--max-nodes", cfg.parts.mser.max_nodes, 0u, 100000000u, "MSER tree nodes (0: the worst case)");
     u("--subsample", cfg.parts.subsample, 1u, SBR_MAP_MAX_SUBSAMPLE, "parts.subsample of every map");
-    app.add_option("--map-subsample", r.front_end.sub,
-                   "parts.map_subsample per kind, in the order intensity, red, blue, yellow")
+    add_front_end_options(app, r.front_end, g);
+}
+
+void add_front_end_options(CLI::App &app, FrontEnd &fe, const std::string &group) {
+    app.add_option("--map-subsample", fe.sub, "parts.map_subsample per kind, in the order intensity, red, blue, yellow")
         ->delimiter(',')
         ->expected(1, int(SBR_MAP_KINDS))
         ->check(CLI::Range(1u, SBR_MAP_MAX_SUBSAMPLE))
         ->type_name("I[,R[,B[,Y]]]")
-        ->group(g);
-    app.add_option("--map-min-area", r.front_end.area,
-                   "parts.map_min_area per kind (0: the MSER default), same order")
+        ->group(group);
+    app.add_option("--map-min-area", fe.area, "parts.map_min_area per kind (0: the MSER default), same order")
         ->delimiter(',')
         ->expected(1, int(SBR_MAP_KINDS))
         ->check(CLI::Range(0u, 100000000u))
         ->type_name("I[,R[,B[,Y]]]")
-        ->group(g);
+        ->group(group);
 }
 
 void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg) { apply_front_end(r.front_end, cfg.parts); }

@@ -27,6 +27,8 @@ struct RecogCli {
     FrontEnd front_end;                // --map-subsample, --map-min-area
 };
 void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r);
+// --map-subsample and --map-min-area (per map kind) into fe, in option group `group`.
+void add_front_end_options(CLI::App &app, FrontEnd &fe, const std::string &group = "");
 // What add_recog_options() cannot bind directly (the per-map lists).
 void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg);
 

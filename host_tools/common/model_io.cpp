@@ -438,16 +438,6 @@ void parts_at_full_resolution(sbr_parts_config_t &parts) {
     }
 }
 
-int parse_front_end(const std::string &opt, const std::string &value, FrontEnd &fe, bool &ok) {
-    ok = true;
-    if (opt != "--map-subsample" && opt != "--map-min-area") return 0;
-    unsigned f[4] = {0, 0, 0, 0};
-    const int got = std::sscanf(value.c_str(), "%u,%u,%u,%u", &f[0], &f[1], &f[2], &f[3]);
-    ok = got >= 1;
-    (opt == "--map-subsample" ? fe.sub : fe.area).assign(f, f + (got > 0 ? got : 0));
-    return 1;
-}
-
 void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts) {
     for (size_t k = 0; k < fe.sub.size(); ++k) parts.map_subsample[k] = fe.sub[k];
     for (size_t k = 0; k < fe.area.size(); ++k) parts.map_min_area[k] = fe.area[k];

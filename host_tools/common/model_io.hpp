@@ -94,8 +94,6 @@ void parts_at_full_resolution(sbr_parts_config_t &parts);
 struct FrontEnd {
     std::vector<unsigned> sub, area;
 };
-// 1: `opt` was one of them (its value parsed into fe; `ok` false for a bad value), 0: not.
-int parse_front_end(const std::string &opt, const std::string &value, FrontEnd &fe, bool &ok);
 void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts);
 
 }  // namespace sbr_host

@@ -57,13 +57,7 @@ int main(int argc, char **argv) {
     app.add_option("--maps", cfg.maps, "parts.maps (bit k = map kind k)")
         ->check(CLI::Range(1u, (1u << SBR_MAP_KINDS) - 1u))
         ->capture_default_str();
-    app.add_option("--map-subsample", fe.sub, "parts.map_subsample per kind (intensity, red, blue, yellow)")
-        ->delimiter(',')
-        ->expected(1, int(SBR_MAP_KINDS))
-        ->check(CLI::Range(1u, SBR_MAP_MAX_SUBSAMPLE));
-    app.add_option("--map-min-area", fe.area, "parts.map_min_area per kind (0: the MSER default)")
-        ->delimiter(',')
-        ->expected(1, int(SBR_MAP_KINDS));
+    sbr_host::add_front_end_options(app, fe);
     app.add_flag("--list", list, "list every sign with its best part");
     const int parsed = sbr_host::parse_cli(app, argc, argv);
     if (parsed >= 0) return parsed;

@@ -131,13 +131,7 @@ int main(int argc, char **argv) {
             ->check(finite_range(0.0, 1.0))
             ->capture_default_str();
         app.add_option("--from-model", from_model, "regenerate --out-c from this model file, without training");
-        app.add_option("--map-subsample", front_end.sub, "learn with parts.map_subsample per kind (I,R,B,Y)")
-            ->delimiter(',')
-            ->expected(1, int(SBR_MAP_KINDS))
-            ->check(CLI::Range(1u, SBR_MAP_MAX_SUBSAMPLE));
-        app.add_option("--map-min-area", front_end.area, "learn with parts.map_min_area per kind")
-            ->delimiter(',')
-            ->expected(1, int(SBR_MAP_KINDS));
+        add_front_end_options(app, front_end);
         const int parsed = parse_cli(app, argc, argv);
         if (parsed >= 0) return parsed;
     }

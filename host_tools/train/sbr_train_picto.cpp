@@ -934,13 +934,7 @@ int main(int argc, char **argv) {
         app.add_option("--seed", seed, "random seed")->capture_default_str();
         app.add_option("--out-c", out_c, "write the class stage as a C table (lib/models/sbr_picto_gtsdb.c)");
         app.add_option("--out", out_file, "write the class stage as a model file (.sbrp)");
-        app.add_option("--map-subsample", g_front_end.sub, "learn with parts.map_subsample per kind (I,R,B,Y)")
-            ->delimiter(',')
-            ->expected(1, int(SBR_MAP_KINDS))
-            ->check(CLI::Range(1u, SBR_MAP_MAX_SUBSAMPLE));
-        app.add_option("--map-min-area", g_front_end.area, "learn with parts.map_min_area per kind")
-            ->delimiter(',')
-            ->expected(1, int(SBR_MAP_KINDS));
+        add_front_end_options(app, g_front_end);
         const int parsed = parse_cli(app, argc, argv);
         if (parsed >= 0) return parsed;
         if (!rim_list.empty()) {
