@@ -144,6 +144,13 @@ static inline float sbr_util_box_iou(const float a[4], const float b[4])
     return iou;
 }
 
+/* Microseconds as seconds: a correctly rounded quotient of two exact floats, so 100000 us
+   is exactly 0.1f (durations enter the core in microseconds, models keep seconds). */
+static inline float sbr_util_seconds(uint32_t us)
+{
+    return (float)us / 1.0e6f;
+}
+
 /* Iterative heap sort of n elements of `size` bytes (no recursion, O(n log n), in place,
    not stable): `before(a, b, mode)` is 1 when a comes strictly before b. */
 void sbr_util_heap_sort(uint8_t *base, uint32_t n, size_t size,

@@ -118,12 +118,6 @@ static void advance(const sbr_bike_model_t *m, sbr_bike_state_t *s, float dt)
     }
 }
 
-/* Microseconds as seconds (a correctly rounded quotient: 40000 us is exactly 0.04f). */
-static float bike_seconds(uint32_t us)
-{
-    return (float)us / 1.0e6f;
-}
-
 sbr_status_t sbr_bike_predict_state(const sbr_bike_model_t *model, const sbr_bike_state_t *state,
                                     uint32_t dt_us, sbr_bike_state_t *out)
 {
@@ -135,7 +129,7 @@ sbr_status_t sbr_bike_predict_state(const sbr_bike_model_t *model, const sbr_bik
         st = SBR_ERR_RANGE;
     } else {
         sbr_bike_state_t s = *state;
-        advance(model, &s, bike_seconds(dt_us));
+        advance(model, &s, sbr_util_seconds(dt_us));
         *out = s;
     }
     return st;
@@ -994,7 +988,7 @@ sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, uint32_t dt_us, const sbr_ellip
                 weigh_and_estimate(pf, &m, result);
             }
         } else {
-            predict_particles(pf, bike_seconds(dt_us));
+            predict_particles(pf, sbr_util_seconds(dt_us));
             cache_predictions(pf);
             associate(pf, ellipses, n, &m);
             result->flags = SBR_BIKE_TRACKING;

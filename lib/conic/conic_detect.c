@@ -48,20 +48,16 @@ sbr_status_t sbr_ellipse_detect_config_check(const sbr_ellipse_detect_config_t *
     return st;
 }
 
-static size_t round8(size_t v)
-{
-    return (v + 7u) & ~(size_t)7u;
-}
 
 /* Bytes of the per-region stage (mask workspace, mask, contour workspace, points). */
 static size_t region_stage_size(uint32_t width, uint32_t height, uint32_t max_points)
 {
     const size_t wh = (size_t)width * (size_t)height;
-    return round8(SBR_MSER_MASK_WORKSPACE_SIZE(width, height)) + round8(wh) +
-           round8(SBR_CONTOUR_WORKSPACE_SIZE(width, height)) +
-           round8((size_t)max_points * sizeof(sbr_point_t)) +
-           round8((size_t)DET_MAX_CONTOURS * sizeof(sbr_contour_t)) +
-           round8((size_t)max_points * sizeof(sbr_pointf_t));
+    return SBR_WS_ALIGN8(SBR_MSER_MASK_WORKSPACE_SIZE(width, height)) + SBR_WS_ALIGN8(wh) +
+           SBR_WS_ALIGN8(SBR_CONTOUR_WORKSPACE_SIZE(width, height)) +
+           SBR_WS_ALIGN8((size_t)max_points * sizeof(sbr_point_t)) +
+           SBR_WS_ALIGN8((size_t)DET_MAX_CONTOURS * sizeof(sbr_contour_t)) +
+           SBR_WS_ALIGN8((size_t)max_points * sizeof(sbr_pointf_t));
 }
 
 size_t sbr_ellipse_detect_workspace_size(const sbr_ellipse_detect_config_t *cfg, uint32_t width,
@@ -73,8 +69,8 @@ size_t sbr_ellipse_detect_workspace_size(const sbr_ellipse_detect_config_t *cfg,
         const size_t mser = sbr_mser_workspace_size(&cfg->mser, width, height);
         const size_t stage = region_stage_size(width, height, cfg->max_contour_points);
         if (mser > 0u) {
-            total = round8((size_t)cfg->max_regions * sizeof(sbr_mser_region_t)) +
-                    ((mser > stage) ? round8(mser) : stage);
+            total = SBR_WS_ALIGN8((size_t)cfg->max_regions * sizeof(sbr_mser_region_t)) +
+                    ((mser > stage) ? SBR_WS_ALIGN8(mser) : stage);
         }
     }
     return total;
@@ -169,11 +165,11 @@ typedef struct det_bufs_s {
 static void region_bufs(uint8_t *shared, uint32_t bw, uint32_t bh, uint32_t max_points,
                         det_bufs_t *b)
 {
-    const size_t off_mask = round8(SBR_MSER_MASK_WORKSPACE_SIZE(bw, bh));
-    const size_t off_cws = off_mask + round8((size_t)bw * bh);
-    const size_t off_pts = off_cws + round8(SBR_CONTOUR_WORKSPACE_SIZE(bw, bh));
-    const size_t off_cons = off_pts + round8((size_t)max_points * sizeof(sbr_point_t));
-    const size_t off_fp = off_cons + round8((size_t)DET_MAX_CONTOURS * sizeof(sbr_contour_t));
+    const size_t off_mask = SBR_WS_ALIGN8(SBR_MSER_MASK_WORKSPACE_SIZE(bw, bh));
+    const size_t off_cws = off_mask + SBR_WS_ALIGN8((size_t)bw * bh);
+    const size_t off_pts = off_cws + SBR_WS_ALIGN8(SBR_CONTOUR_WORKSPACE_SIZE(bw, bh));
+    const size_t off_cons = off_pts + SBR_WS_ALIGN8((size_t)max_points * sizeof(sbr_point_t));
+    const size_t off_fp = off_cons + SBR_WS_ALIGN8((size_t)DET_MAX_CONTOURS * sizeof(sbr_contour_t));
     b->mws = shared;
     b->mask = &shared[off_mask];
     b->cws = &shared[off_cws];
@@ -316,7 +312,7 @@ sbr_status_t sbr_ellipse_detect(const sbr_image_t *image, const sbr_ellipse_dete
     if (st != SBR_OK) {
         return st;
     }
-    region_bytes = round8((size_t)cfg->max_regions * sizeof(sbr_mser_region_t));
+    region_bytes = SBR_WS_ALIGN8((size_t)cfg->max_regions * sizeof(sbr_mser_region_t));
     st = sbr_mser_detect(image, &cfg->mser, &base[region_bytes], workspace_size - region_bytes,
                          regions, cfg->max_regions, &nreg);
     if (st == SBR_ERR_CAPACITY) {

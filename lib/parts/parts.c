@@ -10,8 +10,6 @@
 
 #include <string.h>
 
-#define PARTS_ALIGN(x) ((((size_t)(x)) + 7u) & ~((size_t)7u))
-
 void sbr_parts_config_default(sbr_parts_config_t *cfg)
 {
     if (cfg != NULL) {
@@ -119,15 +117,15 @@ static int parts_layout(uint32_t width, uint32_t height, const sbr_parts_config_
     if (ms == 0u) {
         return 0;
     }
-    l->map = PARTS_ALIGN((size_t)mw * (size_t)mh);
-    l->mser = PARTS_ALIGN(ms);
-    l->regions = PARTS_ALIGN((size_t)cfg->max_regions * sizeof(sbr_mser_region_t));
-    l->mask = PARTS_ALIGN(side * side);
-    l->fill = PARTS_ALIGN(SBR_MSER_MASK_WORKSPACE_SIZE(side, side));
-    l->trace = PARTS_ALIGN(SBR_CONTOUR_WORKSPACE_SIZE(side, side));
-    l->points = PARTS_ALIGN((size_t)cfg->max_contour * sizeof(sbr_point_t));
-    l->pointsf = PARTS_ALIGN((size_t)cfg->max_contour * sizeof(sbr_pointf_t));
-    l->fdwork = PARTS_ALIGN((size_t)cfg->fd_n * sizeof(sbr_complex_t));
+    l->map = SBR_WS_ALIGN8((size_t)mw * (size_t)mh);
+    l->mser = SBR_WS_ALIGN8(ms);
+    l->regions = SBR_WS_ALIGN8((size_t)cfg->max_regions * sizeof(sbr_mser_region_t));
+    l->mask = SBR_WS_ALIGN8(side * side);
+    l->fill = SBR_WS_ALIGN8(SBR_MSER_MASK_WORKSPACE_SIZE(side, side));
+    l->trace = SBR_WS_ALIGN8(SBR_CONTOUR_WORKSPACE_SIZE(side, side));
+    l->points = SBR_WS_ALIGN8((size_t)cfg->max_contour * sizeof(sbr_point_t));
+    l->pointsf = SBR_WS_ALIGN8((size_t)cfg->max_contour * sizeof(sbr_pointf_t));
+    l->fdwork = SBR_WS_ALIGN8((size_t)cfg->fd_n * sizeof(sbr_complex_t));
     l->total = l->map + l->mser + l->regions + l->mask + l->fill + l->trace + l->points +
                l->pointsf + l->fdwork;
     return 1;

@@ -195,18 +195,18 @@ int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_confi
                           recog_layout_t *l)
 {
     const uint32_t work_len = SBR_FD_TABLE_WORK_LEN(cfg->match_p);
-    l->parts_ws = RECOG_ALIGN(sbr_parts_workspace_size(&cfg->parts, width, height));
+    l->parts_ws = SBR_WS_ALIGN8(sbr_parts_workspace_size(&cfg->parts, width, height));
     if (l->parts_ws == 0u) {
         return 0;
     }
-    l->parts = RECOG_ALIGN((size_t)cfg->max_parts * sizeof(sbr_part_t));
-    l->index = RECOG_ALIGN((size_t)cfg->max_parts * SBR_RECOG_INDEX_BYTES);
-    l->results = RECOG_ALIGN((size_t)cfg->max_model_protos * sizeof(sbr_fd_match_t));
+    l->parts = SBR_WS_ALIGN8((size_t)cfg->max_parts * sizeof(sbr_part_t));
+    l->index = SBR_WS_ALIGN8((size_t)cfg->max_parts * SBR_RECOG_INDEX_BYTES);
+    l->results = SBR_WS_ALIGN8((size_t)cfg->max_model_protos * sizeof(sbr_fd_match_t));
     /* the table matcher's four-lane scratch */
-    l->work = RECOG_ALIGN((size_t)work_len * sizeof(sbr_complex_t));
-    l->votes = RECOG_ALIGN((size_t)cfg->max_votes * SBR_RECOG_VOTE_BYTES);
-    l->hyps = RECOG_ALIGN((size_t)cfg->max_hypotheses * SBR_RECOG_HYP_BYTES);
-    l->picto = RECOG_ALIGN(SBR_RECOG_PICTO_BYTES);
+    l->work = SBR_WS_ALIGN8((size_t)work_len * sizeof(sbr_complex_t));
+    l->votes = SBR_WS_ALIGN8((size_t)cfg->max_votes * SBR_RECOG_VOTE_BYTES);
+    l->hyps = SBR_WS_ALIGN8((size_t)cfg->max_hypotheses * SBR_RECOG_HYP_BYTES);
+    l->picto = SBR_WS_ALIGN8(SBR_RECOG_PICTO_BYTES);
     l->total = l->parts_ws + l->parts + l->index + l->results + l->work + l->votes + l->hyps +
                l->picto;
     return 1;

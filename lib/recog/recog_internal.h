@@ -7,7 +7,6 @@
 
 #include "../common/sbr_util.h"
 
-#define RECOG_ALIGN(x) ((((size_t)(x)) + 7u) & ~((size_t)7u))
 #define RECOG_PI 3.14159265f
 
 /* A vote: a predicted sign (centre, size) from one part-prototype match. */

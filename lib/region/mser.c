@@ -545,12 +545,12 @@ static void select_diverse(mser_ctx_t *c, float min_diversity)
         if (a != MSER_NONE) {
             mser_node_t *an = &c->node[a];
             const uint32_t gap = an->size - nd->size;
-            if (((float)gap < (min_diversity * (float)an->size)) && (an->var < nd->var)) {
-                nd->flags = 0u;
-            } else if ((float)gap < (min_diversity * (float)an->size)) {
-                an->flags = 0u;
-            } else {
+            if ((float)gap >= (min_diversity * (float)an->size)) {
                 /* diverse enough */
+            } else if (an->var < nd->var) {
+                nd->flags = 0u;
+            } else {
+                an->flags = 0u;
             }
         }
     }

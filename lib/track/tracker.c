@@ -639,12 +639,6 @@ static sbr_status_t trk_check_instance(const sbr_track_t *trk)
     return st;
 }
 
-/* Microseconds as seconds (a correctly rounded quotient: 100000 us is exactly 0.1f). */
-static float trk_seconds(uint32_t us)
-{
-    return (float)us / 1.0e6f;
-}
-
 static sbr_status_t trk_check_inputs(const sbr_track_t *trk, uint32_t dt_us,
                                      const sbr_track_detection_t *dets, uint32_t n)
 {
@@ -655,7 +649,7 @@ static sbr_status_t trk_check_inputs(const sbr_track_t *trk, uint32_t dt_us,
         st = SBR_ERR_SIZE;
     } else if ((n > 0u) && (dets == NULL)) {
         st = SBR_ERR_NULL;
-    } else if ((dt_us == 0u) || (trk_seconds(dt_us) > (8.0f * m->period))) {
+    } else if ((dt_us == 0u) || (sbr_util_seconds(dt_us) > (8.0f * m->period))) {
         st = SBR_ERR_RANGE;
     } else {
         for (i = 0u; (i < n) && (st == SBR_OK); i++) {
@@ -856,7 +850,7 @@ static void trk_step_geo(const sbr_track_t *trk, uint32_t dt_us, trk_geo_t *g, u
     }
     g->kw *= g->s;
     *sub = 1u;
-    *ratio = trk_seconds(dt_us) / m->period;
+    *ratio = sbr_util_seconds(dt_us) / m->period;
     if (*ratio > 1.5f) {
         *sub = (uint32_t)ceilf(*ratio);
         *ratio /= (float)*sub;
