@@ -374,8 +374,8 @@ cmd_cost() {
 cmd_learn_tracker() {
   setup
   build_native
-  log "sbr_track --learn on KITTI tracking 0000-0005 -> lib/models/sbr_track_model_kitti.c, $BUILD/sbr_track_kitti.stm"
-  "$BUILD/native/host_tools/sbr_track" --labels "$ROOT/../shared/data/kitti_tracking/label_02" --learn \
+  log "sbr_train_track on KITTI tracking 0000-0005 -> lib/models/sbr_track_model_kitti.c, $BUILD/sbr_track_kitti.stm"
+  "$BUILD/native/host_tools/sbr_train_track" --labels "$ROOT/../shared/data/kitti_tracking/label_02" \
       --seqs 0000-0005 --noise 0 --miss 0 --clutter 0 \
       --c-out "$ROOT/lib/models/sbr_track_model_kitti.c" --model-out "$BUILD/sbr_track_kitti.stm" "$@"
 }

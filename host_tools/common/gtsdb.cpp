@@ -19,14 +19,6 @@ PixBox rect_pixbox(const sbr_rect_t &r) {
     return {double(r.x), double(r.y), double(r.x) + r.width, double(r.y) + r.height};
 }
 
-double box_iou(const PixBox &a, const PixBox &b) {
-    const double iw = std::min(a.x1, b.x1) - std::max(a.x0, b.x0);
-    const double ih = std::min(a.y1, b.y1) - std::max(a.y0, b.y0);
-    if (iw <= 0 || ih <= 0) return 0.0;
-    const double in = iw * ih;
-    return in / ((a.x1 - a.x0) * (a.y1 - a.y0) + (b.x1 - b.x0) * (b.y1 - b.y0) - in);
-}
-
 bool parse_detection_line(const std::string &line, DetLine &d) {
     std::stringstream ss(line);
     std::string f[7];

@@ -10,6 +10,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "geometry.hpp"
+
 extern "C" {
 #include "sbr/image.h"
 }
@@ -21,15 +23,9 @@ struct GtBox {
     int class_id = 0;
 };
 
-// A box [x0, x1) x [y0, y1) in pixels. GTSDB's files give inclusive pixel ranges: their
-// right and bottom get + 1.
-struct PixBox {
-    double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-};
+// The box of a ground-truth line (its right and bottom + 1) and of a core rectangle.
 PixBox gt_pixbox(const GtBox &g);
 PixBox rect_pixbox(const sbr_rect_t &r);
-// Intersection over union; 0 for disjoint or empty boxes.
-double box_iou(const PixBox &a, const PixBox &b);
 
 // One line of a detection file, "NNNNN.ext;left;top;right;bottom;class[;score]"
 // (GTSDB's format, inclusive pixels; score 1 when absent), as sbr_detect writes it.

@@ -1,5 +1,5 @@
-// The tracker's motion model on the host: its text file form (sbr_track --model-out /
-// --model).
+// The tracker's motion model on the host: its text file form (sbr_train_track
+// --model-out, sbr_track --model).
 //
 // Text form, version 2:
 //   sbr_track_model 2

@@ -30,6 +30,7 @@ CASES = {
                           [("--max-fp-rate", "-1"), ("--range", "a-b")]),
     "sbr_shapes": (["--data", "d"], [("--n", "100"), ("--sigma", "x")]),
     "sbr_track": (["--labels", "l"], [("--noise", "abc"), ("--particles", "5"), ("--bench-targets", "33")]),
+    "sbr_train_track": (["--labels", "l"], [("--em", "-1"), ("--vel-count", "3"), ("--tail", "nan")]),
     "sbr_train": ([], [("--vote-error", "0"), ("--max-protos", "70000"), ("--range", "1-")]),
     "sbr_train_picto": ([], [("--hidden", "abc"), ("--bg-swap", "sideways"), ("--eval-range", "2-1"),
                              ("--gate-recall", "0")]),
