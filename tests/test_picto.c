@@ -15,6 +15,9 @@
 #define COLOUR_AT (HOG_LEN + (SBR_PICTO_THUMB * SBR_PICTO_THUMB))
 #define CENTRE_AT (COLOUR_AT + 32u)
 #define CC SBR_PICTO_CENTRE_CELLS
+/* the hand-made classifiers: GTSDB's 43 sign classes and the background */
+#define K 43u
+#define OUTPUTS (K + 1u)
 
 static uint8_t g_rgb[H][W][3];
 static uint8_t g_bgr[H][W][3];
@@ -22,7 +25,7 @@ static uint64_t g_ws[SBR_PICTO_WORKSPACE_SIZE / 8u + 1u];
 static float g_f[F];
 static float g_g[F];
 static float g_w1[7u * (F + 1u)];
-static float g_w2[SBR_PICTO_OUTPUTS * (F + 1u)];
+static float g_w2[OUTPUTS * (F + 1u)];
 static float g_w3[SBR_PICTO_BOX_OUTPUTS * (F + 1u)];
 
 void setUp(void) {}
@@ -78,6 +81,7 @@ static void hand_model(sbr_picto_model_t *m)
     m->version = SBR_PICTO_VERSION;
     m->features = F;
     m->hidden = 0u;
+    m->classes = K;
     m->threshold = 0.5f;
     m->w1 = NULL;
     m->w2 = g_w2;
@@ -274,14 +278,14 @@ static void test_format_and_scale(void)
 static void test_classify_values(void)
 {
     sbr_picto_model_t m;
-    float p[SBR_PICTO_OUTPUTS];
+    float p[OUTPUTS];
     float sum = 0.0f;
     uint32_t i;
     hand_model(&m);
     g_w2[(5u * (F + 1u)) + F] = logf(2.0f); /* class 5: twice the weight of the others */
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
-    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, OUTPUTS, g_ws, sizeof g_ws));
+    for (i = 0u; i < OUTPUTS; i++) {
         sum += p[i];
         TEST_ASSERT_FLOAT_WITHIN(1e-6f, ((i == 5u) ? 2.0f : 1.0f) / 45.0f, p[i]);
     }
@@ -295,18 +299,18 @@ static void test_classify_values(void)
     m.hidden = 1u;
     m.w1 = g_w1;
     g_f[0] = 1.0f; /* a = 1, logit 3 */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, OUTPUTS, g_ws, sizeof g_ws));
     TEST_ASSERT_FLOAT_WITHIN(1e-5f, expf(3.0f) / (expf(3.0f) + 43.0f), p[7]);
     g_f[0] = 0.25f; /* a = 0: uniform */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, OUTPUTS, g_ws, sizeof g_ws));
     TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f / 44.0f, p[7]);
     /* regression (fuzzer finding): finite features so large that a logit overflows gave
        SBR_OK with NaN probabilities (a = 2 * 3e38 - 1 = inf, logit 3 a = inf) */
     g_f[0] = 3e38f;
     p[7] = -1.0f;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_classify(&m, g_f, F, p, OUTPUTS, g_ws, sizeof g_ws));
     g_f[0] = 1e6f; /* large but representable: one class takes all */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, OUTPUTS, g_ws, sizeof g_ws));
     TEST_ASSERT_FLOAT_WITHIN(1e-6f, 1.0f, p[7]);
     g_f[0] = 0.25f; /* as the uniform case left it */
 }
@@ -318,15 +322,15 @@ static void test_classify_values(void)
 static void test_classify_matches_reference(void)
 {
     enum { HID = 7 };
-    static float w2[SBR_PICTO_OUTPUTS * (HID + 1)];
+    static float w2[OUTPUTS * (HID + 1)];
     static float w3[SBR_PICTO_BOX_OUTPUTS * (HID + 1)];
     sbr_picto_model_t m;
     double a[HID];
-    double logit[SBR_PICTO_OUTPUTS];
+    double logit[OUTPUTS];
     double d[SBR_PICTO_BOX_OUTPUTS];
     double mx;
     double sum = 0.0;
-    float p[SBR_PICTO_OUTPUTS];
+    float p[OUTPUTS];
     const float box[4] = {10.0f, 20.0f, 50.0f, 40.0f};
     float r[4];
     uint32_t seed = 12345u;
@@ -341,7 +345,7 @@ static void test_classify_matches_reference(void)
         seed = (seed * 1664525u) + 1013904223u;
         g_w1[i] = (float)((int32_t)(seed >> 20) - 2048) / 40000.0f;
     }
-    for (i = 0u; i < (uint32_t)SBR_PICTO_OUTPUTS * (HID + 1u); i++) {
+    for (i = 0u; i < (uint32_t)OUTPUTS * (HID + 1u); i++) {
         seed = (seed * 1664525u) + 1013904223u;
         w2[i] = (float)((int32_t)(seed >> 20) - 2048) / 1024.0f;
     }
@@ -362,7 +366,7 @@ static void test_classify_matches_reference(void)
         a[i] = (s > 0.0) ? s : 0.0;
     }
     TEST_ASSERT_TRUE((a[0] > 0.0) || (a[4] > 0.0)); /* the units are not all idle */
-    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+    for (i = 0u; i < OUTPUTS; i++) {
         double s = (double)w2[(i * (HID + 1u)) + HID];
         for (k = 0u; k < (uint32_t)HID; k++) {
             s += (double)w2[(i * (HID + 1u)) + k] * a[k];
@@ -370,14 +374,14 @@ static void test_classify_matches_reference(void)
         logit[i] = s;
     }
     mx = logit[0];
-    for (i = 1u; i < SBR_PICTO_OUTPUTS; i++) {
+    for (i = 1u; i < OUTPUTS; i++) {
         mx = (logit[i] > mx) ? logit[i] : mx;
     }
-    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+    for (i = 0u; i < OUTPUTS; i++) {
         sum += exp(logit[i] - mx);
     }
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
-    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p, OUTPUTS, g_ws, sizeof g_ws));
+    for (i = 0u; i < OUTPUTS; i++) {
         TEST_ASSERT_FLOAT_WITHIN(2e-6f, (float)(exp(logit[i] - mx) / sum), p[i]);
     }
     for (i = 0u; i < SBR_PICTO_BOX_OUTPUTS; i++) {
@@ -544,8 +548,8 @@ static void test_rim_contrast(void)
    floors finite in [-2, 2]. */
 static void test_rim_tables_checked(void)
 {
-    static uint8_t shape[SBR_PICTO_CLASSES];
-    static float floor_[SBR_PICTO_CLASSES];
+    static uint8_t shape[K];
+    static float floor_[K];
     sbr_picto_model_t m;
     hand_model(&m);
     (void)memset(shape, 0, sizeof shape);
@@ -685,7 +689,7 @@ static void test_bad_input(void)
 {
     sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
     sbr_picto_model_t m;
-    float p[SBR_PICTO_OUTPUTS];
+    float p[OUTPUTS];
     float box[4] = {10.0f, 10.0f, 40.0f, 40.0f};
     fill(100u, 100u, 100u);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gtsdb(&m));
@@ -730,17 +734,17 @@ static void test_bad_input(void)
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_features(&v, box, g_f, F, g_ws, sizeof g_ws));
     TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.0f, g_f[0]);
     /* classifier */
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_classify(NULL, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_classify(&m, NULL, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_classify(&m, g_f, F, NULL, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_classify(&m, g_f, F - 1u, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_classify(NULL, g_f, F, p, OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_classify(&m, NULL, F, p, OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_classify(&m, g_f, F, NULL, OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_classify(&m, g_f, F - 1u, p, OUTPUTS, g_ws, sizeof g_ws));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_classify(&m, g_f, F, p, 43u, g_ws, sizeof g_ws));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, 8u));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_picto_classify(&m, g_f, F, p, OUTPUTS, g_ws, 8u));
     g_f[3] = NAN;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_classify(&m, g_f, F, p, OUTPUTS, g_ws, sizeof g_ws));
     g_f[3] = 0.0f;
     m.version = 7u;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_classify(&m, g_f, F, p, SBR_PICTO_OUTPUTS, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_classify(&m, g_f, F, p, OUTPUTS, g_ws, sizeof g_ws));
 }
 
 /* The gate's features: a uniform box gives a zero grey grid and zero edges and the grey

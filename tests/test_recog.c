@@ -139,8 +139,14 @@ static void learn(float cx, float cy, float r)
         }
     }
     g_model.group_first[SBR_MODEL_GROUPS] = (uint16_t)np;
-    for (i = 0u; i <= SBR_RECOG_CLASSES; i++) {
+    /* GTSDB's 43 classes; the danger signs (11, 18..31) are upward triangles */
+    g_model.class_count = 43u;
+    for (i = 0u; i <= SBR_RECOG_MAX_CLASSES; i++) {
         g_model.class_first[i] = (uint16_t)((i <= 14u) ? 0u : np);
+    }
+    for (i = 0u; i < SBR_RECOG_MAX_CLASSES; i++) {
+        g_model.class_outline[i] = (uint8_t)(((i == 11u) || ((i >= 18u) && (i <= 31u))) ? SBR_PICTO_RIM_TRIANGLE
+                                                                                        : SBR_PICTO_RIM_DISC);
     }
     g_model.version = SBR_MODEL_VERSION;
     g_model.fd_n = g_cfg.parts.fd_n;
@@ -414,6 +420,22 @@ static void test_bad_input(void)
     g_model.version = 99u;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
     g_model.version = SBR_MODEL_VERSION;
+    /* the class tables are the model's: a count in 1..SBR_RECOG_MAX_CLASSES, class ids
+       and outlines within it */
+    g_model.class_count = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    g_model.class_count = SBR_RECOG_MAX_CLASSES + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    g_model.class_count = 14u; /* the prototypes say class 14 */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    g_model.class_count = 15u; /* a dataset of 15 classes: valid */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
+    g_model.class_count = SBR_RECOG_MAX_CLASSES;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
+    g_model.class_count = 43u;
+    g_model.class_outline[42] = (uint8_t)(SBR_PICTO_RIM_TRIANGLE_DOWN + 1u);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_model_check(&g_model));
+    g_model.class_outline[42] = (uint8_t)SBR_PICTO_RIM_DISC;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_check(&g_model));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_model_check(NULL));
 }
@@ -474,7 +496,7 @@ static void test_recognizer_h_statuses(void)
    that always says "no sign" leaves nothing; a corrupted one is refused. */
 static void test_class_stage(void)
 {
-    static float w2[SBR_PICTO_OUTPUTS * (SBR_PICTO_FEATURES + 1u)];
+    static float w2[44u * (SBR_PICTO_FEATURES + 1u)]; /* 43 classes and the background */
     const sbr_image_t v = view();
     uint32_t n = 0u;
     (void)memset(w2, 0, sizeof w2);
@@ -482,6 +504,7 @@ static void test_class_stage(void)
     g_model.picto.version = SBR_PICTO_VERSION;
     g_model.picto.features = SBR_PICTO_FEATURES;
     g_model.picto.hidden = 0u;
+    g_model.picto.classes = 43u;
     g_model.picto.threshold = 0.5f;
     g_model.picto.w1 = NULL;
     g_model.picto.w2 = w2;
@@ -690,6 +713,14 @@ static void test_class_stage(void)
         TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_EQUAL_UINT32(18u, g_dets[0].class_id);
         TEST_ASSERT_FLOAT_WITHIN(1e-4f, p18, g_dets[0].score);
+        /* which classes are triangles is the model's data: with class 18's outline a disc,
+           the triangle view neither looks (no triangle class is probable) nor takes it */
+        g_model.class_outline[18] = (uint8_t)SBR_PICTO_RIM_DISC;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
+                                                       16u, &n, NULL));
+        TEST_ASSERT_TRUE(n >= 1u);
+        TEST_ASSERT_EQUAL_UINT32(3u, g_dets[0].class_id);
+        g_model.class_outline[18] = (uint8_t)SBR_PICTO_RIM_TRIANGLE;
         rc.triangle_score = 1.0f;
         TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &rc, &g_model, g_ws, sizeof g_ws, g_dets,
                                                        16u, &n, NULL));
@@ -715,7 +746,7 @@ static void test_class_stage(void)
         w2[row18 + colour0 + 1u] = 0.0f;
     }
     w2[(3u * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 0.0f;
-    w2[(SBR_PICTO_BACKGROUND * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 8.0f;
+    w2[(43u * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 8.0f; /* the background output */
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &g_cfg, &g_model, g_ws, sizeof g_ws, g_dets,
                                                    16u, &n, NULL));
     TEST_ASSERT_EQUAL_UINT32(0u, n);
@@ -779,7 +810,7 @@ static void test_hostile_frames_builtin(void)
             TEST_ASSERT_EQUAL_UINT32(0u, n); /* flat frames have no regions */
         }
         for (i = 0u; i < n; i++) {
-            TEST_ASSERT_TRUE(g_dets[i].class_id < SBR_RECOG_CLASSES);
+            TEST_ASSERT_TRUE(g_dets[i].class_id < m.class_count);
             TEST_ASSERT_TRUE((g_dets[i].score >= c.min_score) && (g_dets[i].score <= 1.0f));
             TEST_ASSERT_TRUE(g_dets[i].box.x + g_dets[i].box.width <= W);
             TEST_ASSERT_TRUE(g_dets[i].box.y + g_dets[i].box.height <= H);
@@ -802,7 +833,13 @@ static void test_builtin_model_and_sizes(void)
     TEST_ASSERT_EQUAL_UINT32(d.parts.fd_n, m->fd_n);
     TEST_ASSERT_EQUAL_UINT32(d.parts.fd_m, m->fd_m);
     TEST_ASSERT_TRUE(m->proto_count <= d.max_model_protos);
-    TEST_ASSERT_TRUE(m->class_first[SBR_RECOG_CLASSES] > 0u);
+    TEST_ASSERT_EQUAL_UINT32(43u, m->class_count); /* GTSDB's classes, as data of the model */
+    TEST_ASSERT_EQUAL_UINT32(43u, m->picto.classes);
+    TEST_ASSERT_EQUAL_UINT8(SBR_PICTO_RIM_TRIANGLE, m->class_outline[11]);  /* danger signs */
+    TEST_ASSERT_EQUAL_UINT8(SBR_PICTO_RIM_TRIANGLE, m->class_outline[31]);
+    TEST_ASSERT_EQUAL_UINT8(SBR_PICTO_RIM_TRIANGLE_DOWN, m->class_outline[13]); /* yield */
+    TEST_ASSERT_EQUAL_UINT8(SBR_PICTO_RIM_DISC, m->class_outline[0]);  /* 20 km/h */
+    TEST_ASSERT_TRUE(m->class_first[m->class_count] > 0u);
     TEST_ASSERT_EQUAL_UINT32(SBR_PICTO_VERSION, m->picto.version); /* with its class stage */
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m->picto));
     for (s = 1u; s <= 4u; s *= 2u) {
@@ -817,7 +854,7 @@ static void test_builtin_model_and_sizes(void)
     TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_RECOG_WORKSPACE_DEFAULT_SIZE(333u, 251u, 3u),
                              (uint32_t)sbr_recog_workspace_size(&d, 333u, 251u));
     /* the workspace of the default at 1360 x 800 (docs/results/realtime.md) */
-    TEST_ASSERT_EQUAL_UINT32(12774384u, (uint32_t)SBR_RECOG_WORKSPACE_DEFAULT_SIZE(1360u, 800u, 1u));
+    TEST_ASSERT_EQUAL_UINT32(12774552u, (uint32_t)SBR_RECOG_WORKSPACE_DEFAULT_SIZE(1360u, 800u, 1u));
 }
 
 int main(void)

@@ -182,7 +182,7 @@ static void test_scene(void)
     TEST_ASSERT_TRUE(n >= 1u); /* something to compare */
     TEST_ASSERT_TRUE(st.classified >= n);
     for (i = 0u; i < n; i++) {
-        TEST_ASSERT_TRUE(g_dets[i].class_id < SBR_RECOG_CLASSES);
+        TEST_ASSERT_TRUE(g_dets[i].class_id < m.class_count);
         TEST_ASSERT_TRUE((g_dets[i].score >= 0.0f) && (g_dets[i].score <= 1.0f));
         TEST_ASSERT_TRUE((i == 0u) || (g_dets[i].score <= g_dets[i - 1u].score));
         TEST_ASSERT_TRUE(g_dets[i].box.x + g_dets[i].box.width <= W);
@@ -214,8 +214,8 @@ static void test_scene(void)
 static void test_scene_colour_check(void)
 {
     static sbr_detection_t plain[CAP];
-    static uint8_t shape[SBR_PICTO_CLASSES];
-    static float floor_[SBR_PICTO_CLASSES];
+    static uint8_t shape[SBR_PICTO_MAX_CLASSES];
+    static float floor_[SBR_PICTO_MAX_CLASSES];
     sbr_model_t m;
     sbr_recog_config_t c;
     sbr_recog_stats_t st;
@@ -233,7 +233,7 @@ static void test_scene_colour_check(void)
     m.picto.rim_floor = NULL;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, plain, CAP, &n0, &st));
     TEST_ASSERT_EQUAL_UINT32(0u, st.rim_rejected);
-    for (k = 0u; k < SBR_PICTO_CLASSES; k++) {
+    for (k = 0u; k < m.picto.classes; k++) {
         shape[k] = (uint8_t)(((k == 12u) || (k == 14u)) ? SBR_PICTO_RIM_NONE
                              : ((superclass_of(k) == 2u) ? SBR_PICTO_RIM_TRIANGLE
                                                                     : SBR_PICTO_RIM_DISC));
@@ -246,7 +246,7 @@ static void test_scene_colour_check(void)
     TEST_ASSERT_EQUAL_UINT32(n0, n);
     TEST_ASSERT_EQUAL_UINT32(0u, st.rim_rejected);
     TEST_ASSERT_EQUAL_MEMORY(plain, g_dets, n * sizeof g_dets[0]);
-    for (k = 0u; k < SBR_PICTO_CLASSES; k++) {
+    for (k = 0u; k < m.picto.classes; k++) {
         floor_[k] = 2.0f;
     }
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));

@@ -512,7 +512,7 @@ static void test_pictogram_h(void)
     const sbr_image_t v = rgb_view();
     const sbr_image_t gv = grey_view();
     static float feat[SBR_PICTO_FEATURES];
-    float prob[SBR_PICTO_OUTPUTS];
+    float prob[SBR_PICTO_MAX_OUTPUTS];
     const float box[4] = {2.0f, 2.0f, 14.0f, 14.0f};
     const float tiny[4] = {2.0f, 2.0f, 3.0f, 14.0f};
     float refined[4];
@@ -534,16 +534,16 @@ static void test_pictogram_h(void)
     ROW(&t, SBR_ERR_RANGE, sbr_picto_features_outline(&v, box, 2u, feat, SBR_PICTO_FEATURES, ws, sizeof ws));
     ROW(&t, SBR_OK, sbr_picto_features_outline(&v, box, SBR_PICTO_OUTLINE_TRIANGLE, feat, SBR_PICTO_FEATURES,
                                                ws, sizeof ws));
-    ROW(&t, SBR_OK, sbr_picto_classify(&m, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, ws, sizeof ws));
-    ROW(&t, SBR_ERR_NULL, sbr_picto_classify(&m, NULL, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, ws, sizeof ws));
-    ROW(&t, SBR_ERR_SIZE, sbr_picto_classify(&m, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS - 1u, ws, sizeof ws));
-    ROW(&t, SBR_ERR_CORRUPT, sbr_picto_classify(&bad, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, ws, sizeof ws));
-    ROW(&t, SBR_ERR_WORKSPACE, sbr_picto_classify(&m, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, ws, 4u));
+    ROW(&t, SBR_OK, sbr_picto_classify(&m, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_MAX_OUTPUTS, ws, sizeof ws));
+    ROW(&t, SBR_ERR_NULL, sbr_picto_classify(&m, NULL, SBR_PICTO_FEATURES, prob, SBR_PICTO_MAX_OUTPUTS, ws, sizeof ws));
+    ROW(&t, SBR_ERR_SIZE, sbr_picto_classify(&m, feat, SBR_PICTO_FEATURES, prob, m.classes, ws, sizeof ws));
+    ROW(&t, SBR_ERR_CORRUPT, sbr_picto_classify(&bad, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_MAX_OUTPUTS, ws, sizeof ws));
+    ROW(&t, SBR_ERR_WORKSPACE, sbr_picto_classify(&m, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_MAX_OUTPUTS, ws, 4u));
     ROW(&t, SBR_OK, sbr_picto_refine(&m, feat, SBR_PICTO_FEATURES, box, refined, ws, sizeof ws));
     ROW(&t, SBR_ERR_RANGE, sbr_picto_refine(&m, feat, SBR_PICTO_FEATURES, tiny, refined, ws, sizeof ws));
     ROW(&t, SBR_ERR_SIZE, sbr_picto_refine(&m, feat, 3u, box, refined, ws, sizeof ws));
     feat[7] = NAN;
-    ROW(&t, SBR_ERR_RANGE, sbr_picto_classify(&m, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, ws, sizeof ws));
+    ROW(&t, SBR_ERR_RANGE, sbr_picto_classify(&m, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_MAX_OUTPUTS, ws, sizeof ws));
     ROW(&t, SBR_ERR_RANGE, sbr_picto_refine(&m, feat, SBR_PICTO_FEATURES, box, refined, ws, sizeof ws));
     {
         float contrast = 0.0f;

@@ -63,7 +63,7 @@ int main(int argc, char **argv) {
     std::vector<float> ws(SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1);
     std::vector<float> feat(static_cast<size_t>(boxes) * SBR_PICTO_FEATURES);
     std::vector<int> ok(static_cast<size_t>(boxes));
-    std::vector<float> prob(SBR_PICTO_OUTPUTS);
+    std::vector<float> prob(SBR_PICTO_MAX_OUTPUTS);
     double feat_us = 0.0, cls_us = 0.0;
     uint64_t sum = sbr_host::kFnvStart;
     for (int k = 0; k < images; ++k) {
@@ -89,7 +89,7 @@ int main(int argc, char **argv) {
             for (int i = 0; i < boxes; ++i) {
                 if (ok[size_t(i)] &&
                     sbr_picto_classify(&model, &feat[size_t(i) * SBR_PICTO_FEATURES], SBR_PICTO_FEATURES, prob.data(),
-                                       SBR_PICTO_OUTPUTS, ws.data(), SBR_PICTO_WORKSPACE_SIZE) != SBR_OK) {
+                                       SBR_PICTO_MAX_OUTPUTS, ws.data(), SBR_PICTO_WORKSPACE_SIZE) != SBR_OK) {
                     std::fprintf(stderr, "sbr_bench_picto: classify failed on box %d of %s\n", i, name);
                     return 1;
                 }

@@ -1,5 +1,9 @@
 #include "gtsdb.hpp"
 
+extern "C" {
+#include "sbr/pictogram.h"
+}
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -138,6 +142,17 @@ sbr_image_t bgr_view(const cv::Mat &m) {
 }
 
 const char *const kSuperclassNames[4] = {"prohibitory", "mandatory", "danger", "other"};
+
+uint8_t class_outline_of(int c) {
+    switch (c) {
+    case 12: case 14:  // priority road (a diamond), stop (an octagon)
+        return uint8_t(SBR_PICTO_RIM_NONE);
+    case 13:  // yield
+        return uint8_t(SBR_PICTO_RIM_TRIANGLE_DOWN);
+    default:
+        return superclass_of(c) == 2 ? uint8_t(SBR_PICTO_RIM_TRIANGLE) : uint8_t(SBR_PICTO_RIM_DISC);
+    }
+}
 
 int superclass_of(int c) {
     switch (c) {

@@ -59,17 +59,18 @@ bool get(const std::string &s, size_t &off, T &v) {
 }
 
 size_t picto_w1_len(uint32_t hidden) { return size_t(hidden) * (SBR_PICTO_FEATURES + 1u); }
-size_t picto_w2_len(uint32_t hidden) {
-    return size_t(SBR_PICTO_OUTPUTS) * ((hidden > 0 ? hidden : SBR_PICTO_FEATURES) + 1u);
+size_t picto_w2_len(uint32_t hidden, uint32_t classes) {
+    return size_t(classes + 1u) * ((hidden > 0 ? hidden : SBR_PICTO_FEATURES) + 1u);
 }
 size_t picto_w3_len(uint32_t hidden) {
     return size_t(SBR_PICTO_BOX_OUTPUTS) * ((hidden > 0 ? hidden : SBR_PICTO_FEATURES) + 1u);
 }
 bool picto_sizes_ok(const Picto &p) {
-    return p.w1.size() == picto_w1_len(p.hidden) && p.w2.size() == picto_w2_len(p.hidden) &&
+    return p.classes >= 1u && p.classes <= SBR_PICTO_MAX_CLASSES && p.w1.size() == picto_w1_len(p.hidden) &&
+           p.w2.size() == picto_w2_len(p.hidden, p.classes) &&
            (p.w3.empty() || p.w3.size() == picto_w3_len(p.hidden)) &&
            p.rim_shape.size() == p.rim_floor.size() &&
-           (p.rim_shape.empty() || p.rim_shape.size() == SBR_PICTO_CLASSES) &&
+           (p.rim_shape.empty() || p.rim_shape.size() == p.classes) &&
            (p.gate.empty() || (p.gate_hidden <= SBR_PICTO_GATE_HIDDEN_MAX &&
                                 p.gate.size() == SBR_PICTO_GATE_WEIGHTS(p.gate_hidden)));
 }
@@ -91,14 +92,15 @@ void put_picto_weights(std::string &s, const Picto &p) {
         for (float w : p.gate) put(s, w);
     }
 }
-// Sizes the weight arrays for `hidden` and `flags` (picto_flags()); reads them when they
-// fit in s exactly (up to the trailing CRC). Returns false when the size does not match.
+// Sizes the weight arrays for `hidden`, p.classes (in range) and `flags` (picto_flags());
+// reads them when they fit in s exactly (up to the trailing CRC). Returns false when the
+// size does not match.
 bool get_picto_weights(const std::string &s, size_t &off, uint32_t hidden, uint32_t flags, Picto &p) {
     p.hidden = hidden;
     p.w1.assign(picto_w1_len(hidden), 0.0f);
-    p.w2.assign(picto_w2_len(hidden), 0.0f);
+    p.w2.assign(picto_w2_len(hidden, p.classes), 0.0f);
     p.w3.assign((flags & 1u) != 0 ? picto_w3_len(hidden) : 0u, 0.0f);
-    p.rim_shape.assign((flags & 2u) != 0 ? SBR_PICTO_CLASSES : 0u, 0u);
+    p.rim_shape.assign((flags & 2u) != 0 ? p.classes : 0u, 0u);
     p.rim_floor.assign(p.rim_shape.size(), 0.0f);
     const size_t before_gate = off + 4u * (p.w1.size() + p.w2.size() + p.w3.size() + p.rim_floor.size()) +
                                p.rim_shape.size();
@@ -159,13 +161,14 @@ void Model::bind() {
 Picto picto_from_view(const sbr_picto_model_t &v) {
     Picto p;
     p.hidden = v.hidden;
+    p.classes = v.classes;
     p.threshold = v.threshold;
     if (v.w1 != nullptr) p.w1.assign(v.w1, v.w1 + picto_w1_len(v.hidden));
-    if (v.w2 != nullptr) p.w2.assign(v.w2, v.w2 + picto_w2_len(v.hidden));
+    if (v.w2 != nullptr) p.w2.assign(v.w2, v.w2 + picto_w2_len(v.hidden, v.classes));
     if (v.w3 != nullptr) p.w3.assign(v.w3, v.w3 + picto_w3_len(v.hidden));
     if (v.rim_shape != nullptr && v.rim_floor != nullptr) {
-        p.rim_shape.assign(v.rim_shape, v.rim_shape + SBR_PICTO_CLASSES);
-        p.rim_floor.assign(v.rim_floor, v.rim_floor + SBR_PICTO_CLASSES);
+        p.rim_shape.assign(v.rim_shape, v.rim_shape + v.classes);
+        p.rim_floor.assign(v.rim_floor, v.rim_floor + v.classes);
     }
     if (v.gate != nullptr && v.gate_hidden <= SBR_PICTO_GATE_HIDDEN_MAX) {
         p.gate.assign(v.gate, v.gate + SBR_PICTO_GATE_WEIGHTS(v.gate_hidden));
@@ -180,7 +183,7 @@ Model model_from_view(const sbr_model_t &v) {
     Model m;
     m.fds.assign(v.fds, v.fds + v.proto_count);
     m.protos.assign(v.protos, v.protos + v.proto_count);
-    m.cascade.assign(v.cascade, v.cascade + v.class_first[SBR_RECOG_CLASSES]);
+    m.cascade.assign(v.cascade, v.cascade + v.class_first[v.class_count]);
     m.has_picto = v.picto.version != 0;
     if (m.has_picto) m.picto = picto_from_view(v.picto);
     m.view = v;
@@ -196,10 +199,13 @@ std::string model_bytes(const Model &m, std::string &s) {
     put(s, v.fd_m);
     put(s, static_cast<uint32_t>(m.protos.size()));
     put(s, static_cast<uint32_t>(m.cascade.size()));
+    if (v.class_count == 0u || v.class_count > SBR_RECOG_MAX_CLASSES) return "class count out of range";
+    put(s, v.class_count);
     put(s, v.vote_error);
     put(s, v.score_threshold);
     for (auto g : v.group_first) put(s, g);
-    for (auto c : v.class_first) put(s, c);
+    for (uint32_t c = 0; c <= v.class_count; ++c) put(s, v.class_first[c]);
+    for (uint32_t c = 0; c < v.class_count; ++c) put(s, v.class_outline[c]);
     for (const auto &f : m.fds) put(s, f);
     for (const auto &p : m.protos) put(s, p);
     for (auto c : m.cascade) put(s, c);
@@ -239,11 +245,16 @@ std::string parse_model(const std::string &s, const std::string &path, Model &m)
         return path + ": version: format " + std::to_string(v.version) + ", this build reads " +
                std::to_string(SBR_MODEL_VERSION);
     bool ok = get(s, off, v.fd_n) && get(s, off, v.fd_m) && get(s, off, np) && get(s, off, nc) &&
-              get(s, off, v.vote_error) && get(s, off, v.score_threshold);
-    for (auto &g : v.group_first) ok = ok && get(s, off, g);
-    for (auto &c : v.class_first) ok = ok && get(s, off, c);
+              get(s, off, v.class_count);
     if (!ok) return path + ": sizes: truncated header";
-    if (np == 0u || np > 65535u || nc > 65535u * SBR_RECOG_CLASSES) return path + ": sizes: bad counts";
+    if (np == 0u || np > 65535u || v.class_count == 0u || v.class_count > SBR_RECOG_MAX_CLASSES ||
+        nc > 65535u * v.class_count)
+        return path + ": sizes: bad counts";
+    ok = get(s, off, v.vote_error) && get(s, off, v.score_threshold);
+    for (auto &g : v.group_first) ok = ok && get(s, off, g);
+    for (uint32_t c = 0; c <= v.class_count; ++c) ok = ok && get(s, off, v.class_first[c]);
+    for (uint32_t c = 0; c < v.class_count; ++c) ok = ok && get(s, off, v.class_outline[c]);
+    if (!ok) return path + ": sizes: truncated header";
     const size_t need = off + size_t(np) * (sizeof(sbr_fd_t) + sizeof(sbr_model_proto_t)) + size_t(nc) * 2u + 8u;
     if (need > s.size()) return path + ": sizes: file shorter than its counts";
     m.fds.resize(np);
@@ -260,6 +271,7 @@ std::string parse_model(const std::string &s, const std::string &path, Model &m)
         uint32_t box = 0;
         if (hidden > SBR_PICTO_HIDDEN_MAX || !get(s, off, m.picto.threshold) || !get(s, off, box) || box > 7u)
             return path + ": sizes: bad class stage header";
+        m.picto.classes = v.class_count;  // the class stage has the model's classes
         if (!get_picto_weights(s, off, hidden, box, m.picto)) return path + ": sizes: do not match the counts";
     } else if (off + 4u != s.size()) {
         return path + ": sizes: do not match the counts";
@@ -303,15 +315,23 @@ std::string write_model_c(const Model &m, const std::string &path, const std::st
     for (size_t i = 0; i < m.cascade.size(); ++i) o << (i % 16 ? " " : "\n        ") << m.cascade[i] << "u,";
     o << "\n    };\n    static const uint16_t model_group_first[" << (SBR_MODEL_GROUPS + 1u) << "] = {";
     for (unsigned g = 0; g <= SBR_MODEL_GROUPS; ++g) o << (g ? ", " : "") << v.group_first[g] << "u";
-    o << "};\n    static const uint16_t model_class_first[" << (SBR_RECOG_CLASSES + 1u) << "] = {";
-    for (unsigned c = 0; c <= SBR_RECOG_CLASSES; ++c) o << (c % 12 ? " " : "\n        ") << v.class_first[c] << "u,";
+    const unsigned nc = v.class_count;
+    o << "};\n    static const uint16_t model_class_first[" << (nc + 1u) << "] = {";
+    for (unsigned c = 0; c <= nc; ++c) o << (c % 12 ? " " : "\n        ") << v.class_first[c] << "u,";
+    o << "\n    };\n    static const uint8_t model_class_outline[" << nc << "] = {";
+    for (unsigned c = 0; c < nc; ++c) o << (c % 16 ? " " : "\n        ") << unsigned(v.class_outline[c]) << "u,";
     o << "\n    };\n    uint32_t i;\n"
       << "    if (out == NULL) {\n        return SBR_ERR_NULL;\n    }\n"
       << "    out->version = " << v.version << "u;\n    out->fd_n = " << v.fd_n << "u;\n    out->fd_m = " << v.fd_m
       << "u;\n    out->proto_count = " << m.protos.size() << "u;\n    out->fds = model_fds;\n"
       << "    out->protos = model_protos;\n"
       << "    for (i = 0u; i <= SBR_MODEL_GROUPS; i++) {\n        out->group_first[i] = model_group_first[i];\n    }\n"
-      << "    for (i = 0u; i <= SBR_RECOG_CLASSES; i++) {\n        out->class_first[i] = model_class_first[i];\n    }\n"
+      << "    out->class_count = " << nc << "u;\n"
+      << "    for (i = 0u; i <= SBR_RECOG_MAX_CLASSES; i++) {\n        out->class_first[i] = model_class_first[" << nc
+      << "]; /* past the last class: empty */\n    }\n"
+      << "    for (i = 0u; i <= " << nc << "u; i++) {\n        out->class_first[i] = model_class_first[i];\n    }\n"
+      << "    for (i = 0u; i < SBR_RECOG_MAX_CLASSES; i++) {\n        out->class_outline[i] = 0u;\n    }\n"
+      << "    for (i = 0u; i < " << nc << "u; i++) {\n        out->class_outline[i] = model_class_outline[i];\n    }\n"
       << "    out->cascade = model_cascade;\n    out->vote_error = " << flit(v.vote_error)
       << ";\n    out->score_threshold = " << flit(v.score_threshold) << ";\n"
       << "    return sbr_picto_gtsdb(&out->picto); /* the class stage trained with it */\n}\n";
@@ -325,6 +345,7 @@ void Picto::bind() {
     view.version = SBR_PICTO_VERSION;
     view.features = SBR_PICTO_FEATURES;
     view.hidden = hidden;
+    view.classes = classes;
     view.threshold = threshold;
     view.w1 = hidden > 0 ? w1.data() : nullptr;
     view.w2 = w2.data();
@@ -343,6 +364,7 @@ std::string picto_bytes(const Picto &p, std::string &s) {
     put(s, uint32_t(SBR_PICTO_VERSION));
     put(s, uint32_t(SBR_PICTO_FEATURES));
     put(s, p.hidden);
+    put(s, p.classes);
     put(s, p.threshold);
     put(s, picto_flags(p));
     put_picto_weights(s, p);
@@ -373,10 +395,12 @@ std::string parse_picto(const std::string &s, const std::string &path, Picto &p)
     if (version != SBR_PICTO_VERSION)
         return path + ": version: format " + std::to_string(version) + ", this build reads " +
                std::to_string(SBR_PICTO_VERSION);
-    if (!get(s, off, features) || !get(s, off, hidden) || !get(s, off, p.threshold) || !get(s, off, box))
+    if (!get(s, off, features) || !get(s, off, hidden) || !get(s, off, p.classes) || !get(s, off, p.threshold) ||
+        !get(s, off, box))
         return path + ": sizes: truncated header";
-    if (features != SBR_PICTO_FEATURES || hidden > SBR_PICTO_HIDDEN_MAX || box > 7u)
-        return path + ": sizes: features, hidden units or flags out of range";
+    if (features != SBR_PICTO_FEATURES || hidden > SBR_PICTO_HIDDEN_MAX || p.classes == 0u ||
+        p.classes > SBR_PICTO_MAX_CLASSES || box > 7u)
+        return path + ": sizes: features, hidden units, classes or flags out of range";
     if (!get_picto_weights(s, off, hidden, box, p)) return path + ": sizes: do not match the header";
     p.bind();
     const sbr_status_t st = sbr_picto_check(&p.view);
@@ -407,7 +431,8 @@ std::string write_picto_c(const Picto &p, const std::string &path, const std::st
     if (!p.gate.empty()) table("picto_gate", p.gate);
     o << "    if (out == NULL) {\n        return SBR_ERR_NULL;\n    }\n"
       << "    out->version = SBR_PICTO_VERSION;\n    out->features = SBR_PICTO_FEATURES;\n"
-      << "    out->hidden = " << p.hidden << "u;\n    out->threshold = " << flit(p.threshold) << ";\n"
+      << "    out->hidden = " << p.hidden << "u;\n    out->classes = " << p.classes << "u;\n"
+      << "    out->threshold = " << flit(p.threshold) << ";\n"
       << "    out->w1 = " << (p.hidden > 0 ? "picto_w1" : "NULL") << ";\n    out->w2 = picto_w2;\n"
       << "    out->w3 = " << (p.w3.empty() ? "NULL" : "picto_w3") << ";\n"
       << "    out->rim_shape = " << (rim ? "picto_rim_shape" : "NULL") << ";\n"

@@ -2,10 +2,12 @@
 //
 // File form (.sbrm), little-endian, host struct layout of the core's types:
 //   "SBRM" | u32 version | u32 fd_n | u32 fd_m | u32 proto_count | u32 cascade_count |
-//   f32 vote_error | f32 score_threshold | u16 group_first[9] | u16 class_first[44] |
+//   u32 class_count (K) | f32 vote_error | f32 score_threshold | u16 group_first[9] |
+//   u16 class_first[K + 1] | u8 class_outline[K] |
 //   sbr_fd_t fds[proto_count] | sbr_model_proto_t protos[proto_count] |
 //   u16 cascade[cascade_count] | u32 picto (0: no class stage, else hidden + 1) |
-//   [f32 threshold | u32 flags | the class stage's weights and tables as in .sbrp] |
+//   [f32 threshold | u32 flags | the class stage's weights and tables as in .sbrp, for
+//   K classes] |
 //   u32 CRC-32 (IEEE) of every byte before it.
 // A loaded model is checked with sbr_model_check() as well.
 #pragma once
@@ -23,18 +25,20 @@ namespace sbr_host {
 
 // Owns the weights a sbr_picto_model_t points into (the class stage, pictogram.h).
 // File form (.sbrp), little-endian: "SBRP" | u32 version | u32 features | u32 hidden |
-//   f32 threshold | u32 flags (bit 0: box regression, bit 1: colour check, bit 2: gate) |
-//   f32 w1[hidden * (features + 1)] | f32 w2[outputs * (hidden or features, + 1)] |
+//   u32 classes (K) | f32 threshold | u32 flags (bit 0: box regression, bit 1: colour
+//   check, bit 2: gate) |
+//   f32 w1[hidden * (features + 1)] | f32 w2[(K + 1) * (hidden or features, + 1)] |
 //   f32 w3[4 * (hidden or features, + 1)] with bit 0 |
-//   u8 rim_shape[43] | f32 rim_floor[43] with bit 1 |
+//   u8 rim_shape[K] | f32 rim_floor[K] with bit 1 |
 //   u32 gate_hidden | f32 gate_threshold | f32 gate[SBR_PICTO_GATE_WEIGHTS(gate_hidden)]
 //   with bit 2 |
 //   u32 CRC-32 (IEEE) of every byte before it. Checked with sbr_picto_check() as well.
 struct Picto {
     uint32_t hidden = 0;
+    uint32_t classes = 0;  // sign classes (outputs: classes + 1)
     float threshold = 0.5f;
     std::vector<float> w1, w2, w3;  // w3 empty: no box regression
-    std::vector<uint8_t> rim_shape;  // colour check (pictogram.h): empty or 43 entries each
+    std::vector<uint8_t> rim_shape;  // colour check (pictogram.h): empty or `classes` entries each
     std::vector<float> rim_floor;
     std::vector<float> gate;  // the class stage's gate (pictogram.h): empty or its weights
     uint32_t gate_hidden = 0;

@@ -71,7 +71,7 @@ struct Frame {
     std::vector<sbr_part_t> parts;
 };
 
-int group_of(const sbr_part_t &p) { return p.map * 2 + (p.polarity - 1); }
+int group_of(const sbr_part_t &p) { return int(sbr_model_group(p.map, p.polarity)); }
 
 // Parts of one image (workspace per thread).
 bool extract(const std::string &path, const sbr_recog_config_t &cfg, std::vector<uint64_t> &ws,
@@ -411,10 +411,12 @@ int main(int argc, char **argv) {
     for (const auto &b : built) { m.fds.push_back(b.fd); m.protos.push_back(b.p); }
     for (unsigned g = 0; g <= SBR_MODEL_GROUPS; ++g) {
         size_t first = 0;
-        while (first < m.protos.size() && unsigned(m.protos[first].map * 2 + m.protos[first].polarity - 1) < g) ++first;
+        while (first < m.protos.size() && sbr_model_group(m.protos[first].map, m.protos[first].polarity) < g) ++first;
         m.view.group_first[g] = uint16_t(first);
     }
-    for (unsigned c = 0; c < SBR_RECOG_CLASSES; ++c) {
+    m.view.class_count = kGtsdbClasses;
+    for (unsigned c = 0; c < kGtsdbClasses; ++c) {
+        m.view.class_outline[c] = class_outline_of(int(c));
         m.view.class_first[c] = uint16_t(m.cascade.size());
         std::vector<std::pair<float, int>> order;
         for (size_t k = 0; k < m.protos.size(); ++k)
@@ -424,7 +426,7 @@ int main(int argc, char **argv) {
         std::sort(order.rbegin(), order.rend());
         for (const auto &o : order) m.cascade.push_back(uint16_t(o.second));
     }
-    m.view.class_first[SBR_RECOG_CLASSES] = uint16_t(m.cascade.size());
+    m.view.class_first[kGtsdbClasses] = uint16_t(m.cascade.size());
     m.bind();
     sbr_status_t st = sbr_model_check(&m.view);
     if (st != SBR_OK) {

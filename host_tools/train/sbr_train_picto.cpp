@@ -182,7 +182,8 @@ using namespace sbr_host;
 namespace {
 
 constexpr int kF = int(SBR_PICTO_FEATURES);
-constexpr int kK = int(SBR_PICTO_OUTPUTS);
+constexpr int kBackground = int(kGtsdbClasses);  // the background output
+constexpr int kK = kBackground + 1;               // outputs
 
 using Box = PixBox;
 
@@ -429,7 +430,7 @@ void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, i
     std::vector<float> vel(nw, 0.0f);
     std::vector<size_t> fg, bg;
     for (size_t i = 0; i < s.size(); ++i)
-        (s[i].label == int(SBR_PICTO_BACKGROUND) && !s[i].hard ? bg : fg).push_back(i);
+        (s[i].label == kBackground && !s[i].hard ? bg : fg).push_back(i);
     std::vector<float> w = sw;
     for (size_t i : bg) w[i] /= bg_fraction;  // the hard ones are in fg: every epoch
     const size_t batch = 64;
@@ -547,17 +548,6 @@ bool bg_applies(BgSwap m, int c) {
 
 }  // namespace
 
-// The colour check's outline of class c (pictogram.h): discs and triangles; none for the
-// diamond and the octagon.
-sbr_picto_rim_t rim_outline(int c) {
-    switch (sign_shape(c)) {
-    case Shape::triangle: return SBR_PICTO_RIM_TRIANGLE;
-    case Shape::inverted: return SBR_PICTO_RIM_TRIANGLE_DOWN;
-    case Shape::disc: return SBR_PICTO_RIM_DISC;
-    default: return SBR_PICTO_RIM_NONE;
-    }
-}
-
 // --rim-check: the floor of a class's rim contrast, the kRimQuantile quantile of its
 // training signs' contrasts at their annotated boxes (a few of a class's signs are
 // faded or backlit: the floor lets them pass). A class with fewer than 5 training signs
@@ -578,12 +568,12 @@ bool learn_rim_floors(const std::vector<std::string> &files, const std::map<int,
             const PixBox b = gt_pixbox(g);
             const float box[4] = {float(b.x0), float(b.y0), float(b.x1), float(b.y1)};
             float c = 0.0f;
-            if (sbr_picto_rim_contrast(&v, box, uint32_t(rim_outline(g.class_id)), &c) == SBR_OK)
+            if (sbr_picto_rim_contrast(&v, box, uint32_t(class_outline_of(g.class_id)), &c) == SBR_OK)
                 seen[g.class_id].push_back(c);
         }
     }
-    out.rim_shape.assign(SBR_PICTO_CLASSES, uint8_t(SBR_PICTO_RIM_NONE));
-    out.rim_floor.assign(SBR_PICTO_CLASSES, -2.0f);
+    out.rim_shape.assign(kGtsdbClasses, uint8_t(SBR_PICTO_RIM_NONE));
+    out.rim_floor.assign(kGtsdbClasses, -2.0f);
     for (int c : classes) {
         auto &v = seen[c];
         if (v.size() < 5) {
@@ -593,7 +583,7 @@ bool learn_rim_floors(const std::vector<std::string> &files, const std::map<int,
             continue;
         }
         std::sort(v.begin(), v.end());
-        out.rim_shape[size_t(c)] = uint8_t(rim_outline(c));
+        out.rim_shape[size_t(c)] = class_outline_of(c);
         out.rim_floor[size_t(c)] = v[size_t(kRimQuantile * double(v.size()))];
         std::fprintf(stderr, "sbr_train_picto: colour check of class %d: rim contrast floor %.4f (%zu signs, median %.4f)\n",
                      c, double(out.rim_floor[size_t(c)]), v.size(), double(v[v.size() / 2]));
@@ -636,7 +626,7 @@ bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::
         std::vector<uint64_t> ws;
         alignas(8) static thread_local float pws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
         std::vector<float> f, g(kGF);
-        float prob[SBR_PICTO_OUTPUTS];
+        float prob[kK];
         for (size_t i; (i = next++) < files.size();) {
             cv::Mat img = cv::imread(files[i], cv::IMREAD_COLOR);
             if (img.empty()) continue;
@@ -655,9 +645,9 @@ bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::
                     for (const auto &t : gt.at(num))
                         if (box_iou(b, gt_pixbox(t)) >= 0.3) label = 1;
                 if (label == 0 && features(v, b, f) &&
-                    sbr_picto_classify(&out.view, f.data(), uint32_t(kF), prob, SBR_PICTO_OUTPUTS, pws,
+                    sbr_picto_classify(&out.view, f.data(), uint32_t(kF), prob, uint32_t(kK), pws,
                                        sizeof pws) == SBR_OK &&
-                    1.0f - prob[SBR_PICTO_BACKGROUND] >= kGateMass)
+                    1.0f - prob[kBackground] >= kGateMass)
                     label = 1;
                 local.push_back({g, label});
             }
@@ -942,8 +932,8 @@ int main(int argc, char **argv) {
             rim_classes.clear();
             for (std::string c; std::getline(ss, c, ',');) {
                 const int k = std::atoi(c.c_str());
-                if (c.empty() || c.find_first_not_of("0123456789") != std::string::npos || k >= int(SBR_PICTO_CLASSES) ||
-                    rim_outline(k) == SBR_PICTO_RIM_NONE) {
+                if (c.empty() || c.find_first_not_of("0123456789") != std::string::npos || k >= int(kGtsdbClasses) ||
+                    class_outline_of(k) == uint8_t(SBR_PICTO_RIM_NONE)) {
                     std::fprintf(stderr, "--rim-check wants class ids of discs or triangles, e.g. 13, or none\n");
                     return 2;
                 }
@@ -1189,8 +1179,8 @@ int main(int argc, char **argv) {
                 // every detection of an earlier round, with the same label
                 const bool tri = tview && (mine != nullptr || ci % 2 == 0);
                 if (best < 0.3f) {
-                    if (features(v, c, f)) local.push_back({f, int(SBR_PICTO_BACKGROUND)});
-                    if (tri && features(v, c, f, kTriangle)) local.push_back({f, int(SBR_PICTO_BACKGROUND)});
+                    if (features(v, c, f)) local.push_back({f, kBackground});
+                    if (tri && features(v, c, f, kTriangle)) local.push_back({f, kBackground});
                 } else if ((best >= 0.55f || box) && features(v, c, f)) {
                     // near a sign: its class when close enough, and where the sign is
                     local.push_back({f, best >= 0.55f ? cls[bg] : -1});
@@ -1215,7 +1205,7 @@ int main(int argc, char **argv) {
     auto count = [&]() {
         nbg = nreg = 0;
         for (const auto &s : samples) {
-            nbg += s.label == int(SBR_PICTO_BACKGROUND);
+            nbg += s.label == kBackground;
             nreg += s.label < 0;
         }
         nfg = samples.size() - nbg - nreg;
@@ -1244,12 +1234,12 @@ int main(int argc, char **argv) {
         std::vector<float> sw(samples.size(), 1.0f);
         const float wbg = float(nfg) / float(nbg);
         for (size_t i = 0; i < samples.size(); ++i)
-            if (samples[i].label == int(SBR_PICTO_BACKGROUND) && !samples[i].hard) sw[i] = wbg;
+            if (samples[i].label == kBackground && !samples[i].hard) sw[i] = wbg;
         if (balance > 0.0f) {
             // rarer classes weigh more: class c's samples by (n_c / mean)^-balance, scaled
             // so the signs together weigh as before
-            auto sign = [](const Sample &x) { return x.label >= 0 && x.label < int(SBR_PICTO_BACKGROUND); };
-            std::vector<double> nc(SBR_PICTO_BACKGROUND, 0.0);
+            auto sign = [](const Sample &x) { return x.label >= 0 && x.label < kBackground; };
+            std::vector<double> nc(kBackground, 0.0);
             for (const auto &x : samples)
                 if (sign(x)) nc[size_t(x.label)] += 1.0;
             double present = 0.0, total = 0.0, wsum = 0.0;
@@ -1268,6 +1258,7 @@ int main(int argc, char **argv) {
         train(net, samples, sw, epochs, seed, lr, bg_fraction, dropout, decay);
         std::fprintf(stderr, "sbr_train_picto: trained (%.1f s)\n", secs());
         out.hidden = uint32_t(hidden);
+        out.classes = kGtsdbClasses;
         out.threshold = threshold;
         auto fold = [&](std::vector<float> &w) {
             for (size_t r = 0; r < w.size() / (kF + 1); ++r) {

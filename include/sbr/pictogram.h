@@ -23,8 +23,8 @@
  *      L2-normalised on their own): the pictogram's detail (the digits of a speed limit
  *      are only a few pixels wide).
  * 3. A classifier learned by `sbr_train_picto` (a layer of rectified units, or none, then a
- *    softmax) gives the probability of each GTSDB class and of "no sign"
- *    (::SBR_PICTO_BACKGROUND).
+ *    softmax) gives the probability of each of the model's sign classes
+ *    (sbr_picto_model_t::classes, e.g. GTSDB's 43) and of "no sign" (the last output).
  * 4. Optionally (sbr_picto_model_t::w3) a box regression from the same hidden units:
  *    where the sign's own box is relative to the candidate box (centre shift as fractions
  *    of the box's width and height, log of the width and height ratios). The recogniser
@@ -56,14 +56,15 @@ extern "C" {
 #define SBR_PICTO_FEATURES \
     ((SBR_PICTO_CELLS * SBR_PICTO_CELLS * 8u) + (SBR_PICTO_THUMB * SBR_PICTO_THUMB) + 32u + \
      (SBR_PICTO_CENTRE_CELLS * SBR_PICTO_CENTRE_CELLS * 8u))
-/** Classifier outputs: GTSDB classes 0..42 and background. */
-#define SBR_PICTO_OUTPUTS 44u
-/** The background output's index. */
-#define SBR_PICTO_BACKGROUND 43u
+/** Largest number of sign classes of a classifier (sbr_picto_model_t::classes); a bound of
+    the core, not of a dataset (GTSDB has 43). */
+#define SBR_PICTO_MAX_CLASSES 64u
+/** Largest number of classifier outputs: the sign classes and the background. */
+#define SBR_PICTO_MAX_OUTPUTS (SBR_PICTO_MAX_CLASSES + 1u)
 /** Largest hidden layer. */
 #define SBR_PICTO_HIDDEN_MAX 256u
-/** Classifier format version (2: centre histograms and the optional box regression w3). */
-#define SBR_PICTO_VERSION 2u
+/** Classifier format version (3: the class count is the model's). */
+#define SBR_PICTO_VERSION 3u
 /** Box-regression outputs: centre shift in x and y (fractions of the box's width and
     height), natural log of the width and height ratios. */
 #define SBR_PICTO_BOX_OUTPUTS 4u
@@ -93,10 +94,6 @@ extern "C" {
     ((size_t)4u * SBR_PICTO_GATE_GRID * SBR_PICTO_GATE_GRID * sizeof(float))
 /** Sample grid side of sbr_picto_rim_contrast() (its work per box is this squared). */
 #define SBR_PICTO_RIM_GRID 32u
-/** Sign classes with a colour check entry (sbr_picto_model_t::rim_shape): the outputs
-    without the background. */
-#define SBR_PICTO_CLASSES (SBR_PICTO_OUTPUTS - 1u)
-
 /** The outline of a sign class whose rim is checked for colour (sbr_picto_rim_contrast()). */
 typedef enum sbr_picto_rim_e {
     SBR_PICTO_RIM_NONE = 0,          /**< no colour check for this class */
@@ -118,9 +115,11 @@ typedef enum sbr_picto_rim_e {
 /**
  * A learned classifier. Inputs are standardised features ((f - mean) / scale is folded
  * into the first layer by the trainer, so raw features go in).
- * hidden = 0: logits = w2 * [f; 1] with w2 of SBR_PICTO_OUTPUTS rows x (features + 1).
+ * With K = classes, the outputs are the K sign classes (ids 0..K-1) and the background
+ * (output K).
+ * hidden = 0: logits = w2 * [f; 1] with w2 of K + 1 rows x (features + 1).
  * hidden > 0: a = max(0, w1 * [f; 1]) with w1 of hidden rows x (features + 1), then
- *             logits = w2 * [a; 1] with w2 of SBR_PICTO_OUTPUTS rows x (hidden + 1).
+ *             logits = w2 * [a; 1] with w2 of K + 1 rows x (hidden + 1).
  * Box regression (optional): d = w3 * [a; 1] (or w3 * [f; 1] when hidden = 0) with w3 of
  * SBR_PICTO_BOX_OUTPUTS rows: dx, dy, log(w' / w), log(h' / h).
  * Rows are contiguous, the bias last.
@@ -129,12 +128,13 @@ typedef struct sbr_picto_model_s {
     uint32_t version;  /**< ::SBR_PICTO_VERSION */
     uint32_t features; /**< ::SBR_PICTO_FEATURES */
     uint32_t hidden;   /**< hidden units, 0 .. ::SBR_PICTO_HIDDEN_MAX */
+    uint32_t classes;  /**< sign classes K, 1 .. ::SBR_PICTO_MAX_CLASSES (outputs: K + 1) */
     float threshold;   /**< operating point for the reported probability, (0, 1) */
     const float *w1;   /**< hidden x (features + 1), NULL when hidden = 0 */
-    const float *w2;   /**< SBR_PICTO_OUTPUTS x (hidden or features, + 1) */
+    const float *w2;   /**< (classes + 1) x (hidden or features, + 1) */
     const float *w3;   /**< SBR_PICTO_BOX_OUTPUTS x (hidden or features, + 1), or NULL (no
                             box regression: sbr_picto_refine() keeps the box) */
-    /** Colour check (optional; both NULL: none): per sign class (::SBR_PICTO_CLASSES
+    /** Colour check (optional; both NULL: none): per sign class (`classes`
         entries) the outline of its red rim (::sbr_picto_rim_t) and the floor of its rim
         contrast (sbr_picto_rim_contrast(), in [-2, 2]), learned from the class's training
         signs. The recogniser drops a candidate of a class with an outline whose contrast
@@ -281,10 +281,12 @@ sbr_status_t sbr_picto_gate(const sbr_picto_model_t *model, const float *feat, u
  * @param[in]  model  checked with sbr_picto_check() first (not repeated here per call:
  *                    the recogniser checks once per frame).
  * @param[in]  feat   ::SBR_PICTO_FEATURES finite values.
- * @param[out] prob   ::SBR_PICTO_OUTPUTS probabilities summing to 1.
+ * @param[out] prob   model->classes + 1 probabilities summing to 1: the sign classes,
+ *                    then the background.
  * @param[in,out] workspace ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
  * @param[in] len length of the array, in elements
- * @param[in] nprob length of `prob`, >= ::SBR_PICTO_OUTPUTS.
+ * @param[in] nprob length of `prob`, >= model->classes + 1 (::SBR_PICTO_MAX_OUTPUTS
+ *                  always suffices).
  * @param[in] workspace_size its size in bytes
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (len or nprob too small);
  *         ::SBR_ERR_CORRUPT (model header); ::SBR_ERR_RANGE (a non-finite feature, or

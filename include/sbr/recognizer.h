@@ -75,8 +75,9 @@
 extern "C" {
 #endif
 
-/** Classes of the German Traffic Sign Detection Benchmark (ids 0..42). */
-#define SBR_RECOG_CLASSES 43u
+/** Largest number of sign classes of a model (sbr_model_t::class_count); a bound of the
+    core, not of a dataset (GTSDB has 43). */
+#define SBR_RECOG_MAX_CLASSES SBR_PICTO_MAX_CLASSES
 /** Largest sbr_recog_config_t::views. */
 #define SBR_RECOG_MAX_VIEWS 5u
 /** Shift of the extra views, as a fraction of the box's width or height. */
@@ -89,8 +90,9 @@ extern "C" {
 #define SBR_MODEL_NO_CLASS 255u
 /** Groups: map kind (0..3) x polarity (dark, bright). */
 #define SBR_MODEL_GROUPS 8u
-/** Model format version (the generated table and the file form). */
-#define SBR_MODEL_VERSION 3u
+/** Model format version (the generated table and the file form; 4: the class count and
+    the classes' outlines are the model's). */
+#define SBR_MODEL_VERSION 4u
 
 /** One prototype part (see the file comment). */
 typedef struct sbr_model_proto_s {
@@ -113,6 +115,14 @@ typedef struct sbr_model_s {
     uint32_t fd_n;             /**< descriptor resampling size it was trained with */
     uint32_t fd_m;             /**< descriptor M */
     uint32_t proto_count;      /**< prototypes */
+    /** Sign classes of the dataset the model was trained on, 1 .. ::SBR_RECOG_MAX_CLASSES;
+        class ids are 0 .. class_count - 1 (GTSDB: 43). */
+    uint32_t class_count;
+    /** Outline of each class's sign (::sbr_picto_rim_t; ::SBR_PICTO_RIM_NONE: another or
+        unknown outline), class_count entries used: the class stage's triangle view
+        (sbr_recog_config_t::triangle_view) is for the classes with
+        ::SBR_PICTO_RIM_TRIANGLE (GTSDB's danger signs). */
+    uint8_t class_outline[SBR_RECOG_MAX_CLASSES];
     const sbr_fd_t *fds;       /**< proto_count descriptors, sorted by group */
     const sbr_model_proto_t *protos; /**< proto_count prototypes, same order */
     /** Group g = map * 2 + (polarity - 1) holds prototypes group_first[g] ..
@@ -120,8 +130,8 @@ typedef struct sbr_model_s {
     uint16_t group_first[SBR_MODEL_GROUPS + 1u];
     /** Class c's cascade is cascade[class_first[c] .. class_first[c + 1] - 1]
         (prototype indices, most reliable first). */
-    uint16_t class_first[SBR_RECOG_CLASSES + 1u];
-    const uint16_t *cascade;   /**< class_first[SBR_RECOG_CLASSES] entries */
+    uint16_t class_first[SBR_RECOG_MAX_CLASSES + 1u];
+    const uint16_t *cascade;   /**< class_first[class_count] entries */
     float vote_error;          /**< vote threshold it was trained with */
     float score_threshold;     /**< operating point chosen on the training images */
     /** The class stage (pictogram.h) trained with this library; picto.version = 0: none
@@ -131,11 +141,23 @@ typedef struct sbr_model_s {
 
 /**
  * @brief Check a model: version, sizes, group and cascade indices, finite positive
- *        geometry, weights in (0, 1], class ids < ::SBR_RECOG_CLASSES, finite descriptors.
+ *        geometry, weights in (0, 1], class count in 1 .. ::SBR_RECOG_MAX_CLASSES and
+ *        class ids below it, outlines in range, finite descriptors; a class stage with
+ *        the same class count.
  * @param[in] model the model
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_CORRUPT for any inconsistency.
  */
 sbr_status_t sbr_model_check(const sbr_model_t *model);
+
+/**
+ * @brief The prototype group of a part's map and polarity (sbr_model_t::group_first):
+ *        map * 2 + (polarity - 1).
+ * @param[in] map      the part's map (::sbr_map_kind_t)
+ * @param[in] polarity ::SBR_MSER_DARK or ::SBR_MSER_BRIGHT
+ * @return the group, 0 .. ::SBR_MODEL_GROUPS - 1; ::SBR_MODEL_GROUPS for a map or polarity
+ *         out of range.
+ */
+uint32_t sbr_model_group(uint8_t map, uint8_t polarity);
 
 /**
  * @brief The library trained on GTSDB images 00000-00599 (lib/models/sbr_model_gtsdb.c,
@@ -345,7 +367,7 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
 /** The class stage's block: its scratch, a feature vector, the class probabilities and
     their mean over views. */
 #define SBR_RECOG_PICTO_BYTES \
-    (SBR_PICTO_WORKSPACE_SIZE + ((SBR_PICTO_FEATURES + (2u * SBR_PICTO_OUTPUTS)) * sizeof(float)))
+    (SBR_PICTO_WORKSPACE_SIZE + ((SBR_PICTO_FEATURES + (2u * SBR_PICTO_MAX_OUTPUTS)) * sizeof(float)))
 /** @} */
 
 /**

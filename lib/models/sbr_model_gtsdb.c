@@ -974,11 +974,16 @@ sbr_status_t sbr_model_gtsdb(sbr_model_t *out)
         796u, 799u, 832u, 847u, 851u, 867u, 871u, 892u, 893u, 895u, 925u, 956u,
         983u, 1004u, 1010u, 1072u, 1086u, 1099u, 1104u, 1115u,
     };
+    static const uint8_t model_class_outline[43] = {
+        1u, 1u, 1u, 1u, 1u, 1u, 1u, 1u, 1u, 1u, 1u, 2u, 0u, 3u, 0u, 1u,
+        1u, 1u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u, 2u,
+        1u, 1u, 1u, 1u, 1u, 1u, 1u, 1u, 1u, 1u, 1u,
+    };
     uint32_t i;
     if (out == NULL) {
         return SBR_ERR_NULL;
     }
-    out->version = 3u;
+    out->version = 4u;
     out->fd_n = 128u;
     out->fd_m = 12u;
     out->proto_count = 441u;
@@ -987,8 +992,18 @@ sbr_status_t sbr_model_gtsdb(sbr_model_t *out)
     for (i = 0u; i <= SBR_MODEL_GROUPS; i++) {
         out->group_first[i] = model_group_first[i];
     }
-    for (i = 0u; i <= SBR_RECOG_CLASSES; i++) {
+    out->class_count = 43u;
+    for (i = 0u; i <= SBR_RECOG_MAX_CLASSES; i++) {
+        out->class_first[i] = model_class_first[43]; /* past the last class: empty */
+    }
+    for (i = 0u; i <= 43u; i++) {
         out->class_first[i] = model_class_first[i];
+    }
+    for (i = 0u; i < SBR_RECOG_MAX_CLASSES; i++) {
+        out->class_outline[i] = 0u;
+    }
+    for (i = 0u; i < 43u; i++) {
+        out->class_outline[i] = model_class_outline[i];
     }
     out->cascade = model_cascade;
     out->vote_error = 1.199999973e-01f;

@@ -17133,6 +17133,7 @@ sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)
     out->version = SBR_PICTO_VERSION;
     out->features = SBR_PICTO_FEATURES;
     out->hidden = 128u;
+    out->classes = 43u;
     out->threshold = 5.000000000e-01f;
     out->w1 = picto_w1;
     out->w2 = picto_w2;

@@ -81,7 +81,8 @@ static int header_ok(const sbr_picto_model_t *model)
 {
     int ok = 0;
     if ((model->version == SBR_PICTO_VERSION) && (model->features == SBR_PICTO_FEATURES) &&
-        (model->hidden <= SBR_PICTO_HIDDEN_MAX) && (model->w2 != NULL) &&
+        (model->hidden <= SBR_PICTO_HIDDEN_MAX) && (model->classes >= 1u) &&
+        (model->classes <= SBR_PICTO_MAX_CLASSES) && (model->w2 != NULL) &&
         ((model->hidden == 0u) || (model->w1 != NULL))) {
         ok = 1;
     }
@@ -122,7 +123,7 @@ static int rim_tables_ok(const sbr_picto_model_t *model)
         }
     } else {
         uint32_t c;
-        for (c = 0u; (c < SBR_PICTO_CLASSES) && (ok != 0); c++) {
+        for (c = 0u; (c < model->classes) && (ok != 0); c++) {
             const float f = model->rim_floor[c];
             if ((model->rim_shape[c] > (uint8_t)SBR_PICTO_RIM_TRIANGLE_DOWN) ||
                 (isfinite(f) == 0) || (f < -2.0f) || (f > 2.0f)) {
@@ -143,7 +144,7 @@ sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
         return SBR_ERR_CORRUPT;
     }
     if ((all_finite(model->w1, (size_t)model->hidden * (SBR_PICTO_FEATURES + 1u)) == 0) ||
-        (all_finite(model->w2, (size_t)SBR_PICTO_OUTPUTS * last_cols(model)) == 0)) {
+        (all_finite(model->w2, (size_t)(model->classes + 1u) * last_cols(model)) == 0)) {
         return SBR_ERR_CORRUPT;
     }
     if ((model->w3 != NULL) &&
@@ -705,34 +706,36 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
     float mx;
     float sum = 0.0f;
     uint32_t i;
+    uint32_t outputs;
     sbr_status_t st;
 
     if ((model == NULL) || (feat == NULL) || (prob == NULL)) {
         return SBR_ERR_NULL;
     }
-    if (nprob < SBR_PICTO_OUTPUTS) {
-        return SBR_ERR_SIZE;
-    }
     st = run_check(model, feat, len, workspace, workspace_size);
     if (st != SBR_OK) {
         return st;
     }
+    outputs = model->classes + 1u;
+    if (nprob < outputs) {
+        return SBR_ERR_SIZE;
+    }
     affine(model->w2, last_inputs(model, feat, (float *)workspace), last_inputs_n(model),
-           SBR_PICTO_OUTPUTS, prob);
-    if (all_finite(prob, SBR_PICTO_OUTPUTS) == 0) {
+           outputs, prob);
+    if (all_finite(prob, outputs) == 0) {
         return SBR_ERR_RANGE; /* features so large that the logits overflow */
     }
     mx = prob[0];
-    for (i = 1u; i < SBR_PICTO_OUTPUTS; i++) {
+    for (i = 1u; i < outputs; i++) {
         if (prob[i] > mx) {
             mx = prob[i];
         }
     }
-    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+    for (i = 0u; i < outputs; i++) {
         prob[i] = expf(prob[i] - mx);
         sum += prob[i];
     }
-    for (i = 0u; i < SBR_PICTO_OUTPUTS; i++) {
+    for (i = 0u; i < outputs; i++) {
         prob[i] /= sum;
     }
     return SBR_OK;

@@ -7,12 +7,12 @@
 /* Class and score of one classified box: class = the most probable sign class, score = its
    probability, share = its share of the sign classes' probability. Returns the sign
    classes' total probability. */
-static float take_class(recog_hyp_t *h, const float *prob)
+static float take_class(recog_hyp_t *h, const float *prob, uint32_t classes)
 {
     float signs = 0.0f;
     uint32_t best = 0u;
     uint32_t k;
-    for (k = 0u; k < SBR_PICTO_BACKGROUND; k++) {
+    for (k = 0u; k < classes; k++) {
         signs += prob[k];
         if (prob[k] > prob[best]) {
             best = k;
@@ -39,7 +39,7 @@ static int picto_box(const sbr_image_t *view, const sbr_picto_model_t *pm, const
     int ok = 0;
     if ((sbr_picto_features(view, box, b->feat, SBR_PICTO_FEATURES, b->ws,
                             SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
-        (sbr_picto_classify(pm, b->feat, SBR_PICTO_FEATURES, b->prob, SBR_PICTO_OUTPUTS, b->ws,
+        (sbr_picto_classify(pm, b->feat, SBR_PICTO_FEATURES, b->prob, SBR_PICTO_MAX_OUTPUTS, b->ws,
                             SBR_PICTO_WORKSPACE_SIZE) == SBR_OK)) {
         ok = 1;
     }
@@ -59,10 +59,11 @@ static uint32_t average_views(recog_hyp_t *h, const sbr_image_t *view,
     const float dx = SBR_RECOG_VIEW_SHIFT * (box[2] - box[0]);
     const float dy = SBR_RECOG_VIEW_SHIFT * (box[3] - box[1]);
     float *mean = b->mean;
+    const uint32_t outputs = b->classes + 1u;
     float n = 1.0f;
     uint32_t v;
     uint32_t k;
-    for (k = 0u; k < SBR_PICTO_OUTPUTS; k++) {
+    for (k = 0u; k < outputs; k++) {
         mean[k] = b->prob[k];
     }
     for (v = 0u; v < (views - 1u); v++) {
@@ -72,51 +73,51 @@ static uint32_t average_views(recog_hyp_t *h, const sbr_image_t *view,
         vb[2] = box[2] + (dir[v][0] * dx);
         vb[3] = box[3] + (dir[v][1] * dy);
         if (picto_box(view, pm, vb, b) != 0) {
-            for (k = 0u; k < SBR_PICTO_OUTPUTS; k++) {
+            for (k = 0u; k < outputs; k++) {
                 mean[k] += b->prob[k];
             }
             n += 1.0f;
         }
     }
-    for (k = 0u; k < SBR_PICTO_OUTPUTS; k++) {
+    for (k = 0u; k < outputs; k++) {
         mean[k] /= n;
     }
-    (void)take_class(h, mean);
+    (void)take_class(h, mean, b->classes);
     return (uint32_t)n - 1u;
 }
 
-/* Is GTSDB class c a danger sign (an upward red triangle: 11, 18..31)? */
-static int danger_class(uint32_t c)
+/* Is class c's sign an upward triangle (the model's outlines; GTSDB's danger signs)? */
+static int triangle_class(const recog_picto_buf_t *b, uint32_t c)
 {
-    return ((c == 11u) || ((c >= 18u) && (c <= 31u))) ? 1 : 0;
+    return (b->outline[c] == (uint8_t)SBR_PICTO_RIM_TRIANGLE) ? 1 : 0;
 }
 
-/* The danger classes' probability together. */
-static float danger_mass(const float *prob)
+/* The upward-triangle classes' probability together. */
+static float triangle_mass(const recog_picto_buf_t *b)
 {
     float m = 0.0f;
     uint32_t k;
-    for (k = 0u; k < SBR_PICTO_BACKGROUND; k++) {
-        if (danger_class(k) != 0) {
-            m += prob[k];
+    for (k = 0u; k < b->classes; k++) {
+        if (triangle_class(b, k) != 0) {
+            m += b->prob[k];
         }
     }
     return m;
 }
 
 /* config.triangle_view: classify the inside of the triangle inscribed in box; its most
-   probable sign class replaces the hypothesis's class and score when it is a danger sign
-   and more probable than the current score. */
+   probable sign class replaces the hypothesis's class and score when its sign is an upward
+   triangle and it is more probable than the current score. */
 static void triangle_view(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
                           const float box[4], recog_picto_buf_t *b)
 {
     if ((sbr_picto_features_outline(view, box, (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE, b->feat,
                                     SBR_PICTO_FEATURES, b->ws, SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
-        (sbr_picto_classify(pm, b->feat, SBR_PICTO_FEATURES, b->prob, SBR_PICTO_OUTPUTS, b->ws,
+        (sbr_picto_classify(pm, b->feat, SBR_PICTO_FEATURES, b->prob, SBR_PICTO_MAX_OUTPUTS, b->ws,
                             SBR_PICTO_WORKSPACE_SIZE) == SBR_OK)) {
         recog_hyp_t t = *h;
-        (void)take_class(&t, b->prob);
-        if ((danger_class(t.class_id) != 0) && (t.score > h->score)) {
+        (void)take_class(&t, b->prob, b->classes);
+        if ((triangle_class(b, t.class_id) != 0) && (t.score > h->score)) {
             h->class_id = t.class_id;
             h->score = t.score;
             h->share = t.share;
@@ -137,15 +138,15 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
 {
     float box[4];
     float signs; /* the sign classes' probability at the current box */
-    float danger; /* the danger classes' probability at the first box */
+    float danger; /* the upward-triangle classes' probability at the first box */
     uint32_t step = 0u;
     uint32_t steps = 0u;
     centre_box(h, box);
     if (picto_box(view, pm, box, b) == 0) {
         return 0;
     }
-    danger = (cfg->triangle_view != 0u) ? danger_mass(b->prob) : 0.0f;
-    signs = take_class(h, b->prob);
+    danger = (cfg->triangle_view != 0u) ? triangle_mass(b) : 0.0f;
+    signs = take_class(h, b->prob, b->classes);
     if ((signs >= cfg->refine_first_score) && (pm->w3 != NULL)) {
         steps = cfg->refine_steps;
     }
@@ -166,7 +167,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
             h->my = 0.5f * (box[1] + box[3]);
             h->mw = box[2] - box[0];
             h->mh = box[3] - box[1];
-            signs = take_class(h, b->prob);
+            signs = take_class(h, b->prob, b->classes);
             if (signs < cfg->refine_score) {
                 step = steps; /* no longer a likely sign: this was the last move */
             }
@@ -205,7 +206,7 @@ static int gate_passes(const recog_hyp_t *h, const sbr_image_t *view, const sbr_
 static int rim_fails(const recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm)
 {
     int fails = 0;
-    if ((pm->rim_shape != NULL) && (pm->rim_floor != NULL) && (h->class_id < SBR_PICTO_CLASSES) &&
+    if ((pm->rim_shape != NULL) && (pm->rim_floor != NULL) && ((uint32_t)h->class_id < pm->classes) &&
         (pm->rim_shape[h->class_id] != (uint8_t)SBR_PICTO_RIM_NONE)) {
         float box[4];
         float contrast = 0.0f;

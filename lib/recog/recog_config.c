@@ -103,7 +103,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
     return SBR_OK;
 }
 
-uint32_t sbr_recog_priv_group(uint8_t map, uint8_t polarity)
+uint32_t sbr_model_group(uint8_t map, uint8_t polarity)
 {
     uint32_t g = SBR_MODEL_GROUPS;
     if (((polarity == (uint8_t)SBR_MSER_DARK) || (polarity == (uint8_t)SBR_MSER_BRIGHT)) &&
@@ -113,7 +113,7 @@ uint32_t sbr_recog_priv_group(uint8_t map, uint8_t polarity)
     return g;
 }
 
-static int proto_ok(const sbr_model_proto_t *p, uint32_t g)
+static int proto_ok(const sbr_model_proto_t *p, uint32_t g, uint32_t class_count)
 {
     uint32_t k;
     float sum = 0.0f;
@@ -121,7 +121,7 @@ static int proto_ok(const sbr_model_proto_t *p, uint32_t g)
     if ((in_range(p->dx, -100.0f, 100.0f) == 0) || (in_range(p->dy, -100.0f, 100.0f) == 0) ||
         (in_range(p->w, 1.0e-3f, 100.0f) == 0) || (in_range(p->h, 1.0e-3f, 100.0f) == 0) ||
         (in_range(p->weight, 1.0e-6f, 1.0f) == 0) ||
-        (sbr_recog_priv_group(p->map, p->polarity) != g)) { /* also a map or polarity out of range */
+        (sbr_model_group(p->map, p->polarity) != g)) { /* also a map or polarity out of range */
         ok = 0;
     }
     for (k = 0u; (k < SBR_MODEL_PROTO_CLASSES) && (ok != 0); k++) {
@@ -129,7 +129,7 @@ static int proto_ok(const sbr_model_proto_t *p, uint32_t g)
             if (p->class_p[k] != 0.0f) {
                 ok = 0;
             }
-        } else if ((p->class_id[k] >= SBR_RECOG_CLASSES) ||
+        } else if (((uint32_t)p->class_id[k] >= class_count) ||
                    (in_range(p->class_p[k], 0.0f, 1.0f) == 0)) {
             ok = 0;
         } else {
@@ -142,10 +142,30 @@ static int proto_ok(const sbr_model_proto_t *p, uint32_t g)
     return ok;
 }
 
+/* The class tables: the count in range (checked first), outlines in range, the cascade
+   ranges ordered and their prototype indices in range. */
+static int classes_ok(const sbr_model_t *model)
+{
+    uint32_t c;
+    uint32_t i;
+    int ok = 1;
+    for (c = 0u; (c < model->class_count) && (ok != 0); c++) {
+        if ((model->class_first[c + 1u] < model->class_first[c]) ||
+            (model->class_outline[c] > (uint8_t)SBR_PICTO_RIM_TRIANGLE_DOWN)) {
+            ok = 0;
+        }
+    }
+    for (i = 0u; (ok != 0) && (i < model->class_first[model->class_count]); i++) {
+        if (model->cascade[i] >= model->proto_count) {
+            ok = 0;
+        }
+    }
+    return ok;
+}
+
 sbr_status_t sbr_model_check(const sbr_model_t *model)
 {
     uint32_t g;
-    uint32_t c;
     uint32_t i;
     if (model == NULL) {
         return SBR_ERR_NULL;
@@ -159,6 +179,7 @@ sbr_status_t sbr_model_check(const sbr_model_t *model)
         (in_range(model->vote_error, 1.0e-6f, 4.0f) == 0) ||
         (in_range(model->score_threshold, 0.0f, 1.0f) == 0) || (model->group_first[0] != 0u) ||
         (model->group_first[SBR_MODEL_GROUPS] != model->proto_count) ||
+        (model->class_count == 0u) || (model->class_count > SBR_RECOG_MAX_CLASSES) ||
         (model->class_first[0] != 0u)) {
         return SBR_ERR_CORRUPT;
     }
@@ -169,23 +190,15 @@ sbr_status_t sbr_model_check(const sbr_model_t *model)
         for (i = model->group_first[g]; i < model->group_first[g + 1u]; i++) {
             float e = 0.0f;
             /* sbr's descriptors have unit energy: anything else is a damaged table */
-            if ((proto_ok(&model->protos[i], g) == 0) || (model->fds[i].m != model->fd_m) ||
+            if ((proto_ok(&model->protos[i], g, model->class_count) == 0) || (model->fds[i].m != model->fd_m) ||
                 (sbr_fd_check(&model->fds[i], &e) != SBR_OK) || (in_range(e, 0.99f, 1.01f) == 0)) {
                 return SBR_ERR_CORRUPT;
             }
         }
     }
-    for (c = 0u; c < SBR_RECOG_CLASSES; c++) {
-        if (model->class_first[c + 1u] < model->class_first[c]) {
-            return SBR_ERR_CORRUPT;
-        }
-    }
-    for (i = 0u; i < model->class_first[SBR_RECOG_CLASSES]; i++) {
-        if (model->cascade[i] >= model->proto_count) {
-            return SBR_ERR_CORRUPT;
-        }
-    }
-    if ((model->picto.version != 0u) && (sbr_picto_check(&model->picto) != SBR_OK)) {
+    if ((classes_ok(model) == 0) ||
+        ((model->picto.version != 0u) && ((sbr_picto_check(&model->picto) != SBR_OK) ||
+                                          (model->picto.classes != model->class_count)))) {
         return SBR_ERR_CORRUPT;
     }
     return SBR_OK;

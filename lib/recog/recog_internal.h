@@ -98,13 +98,11 @@ typedef struct recog_picto_buf_s {
     float *prob;
     float *mean; /* averaged probabilities of several views */
     void *ws;
+    uint32_t classes;       /* the model's class count (outputs: classes + 1) */
+    const uint8_t *outline; /* the model's class outlines (sbr_model_t::class_outline) */
 } recog_picto_buf_t;
 
 /* recog_config.c */
-
-/* The prototype group of a (map, polarity): map * 2 + polarity - 1, or SBR_MODEL_GROUPS
-   for a polarity that is neither dark nor bright. */
-uint32_t sbr_recog_priv_group(uint8_t map, uint8_t polarity);
 
 /* The workspace layout of a width x height view; 0 if the parts stage cannot run on it. */
 int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_config_t *cfg,

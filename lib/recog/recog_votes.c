@@ -37,7 +37,7 @@ sbr_status_t sbr_recog_priv_cast_votes(recog_ctx_t *c, uint32_t pi)
 {
     const sbr_part_t *p = &c->parts[pi];
     const sbr_model_t *m = c->model;
-    const uint32_t g = sbr_recog_priv_group(p->map, p->polarity);
+    const uint32_t g = sbr_model_group(p->map, p->polarity);
     uint32_t first;
     uint32_t n;
     uint32_t best = 0u;
@@ -199,7 +199,7 @@ void sbr_recog_priv_index_parts(recog_ctx_t *c)
         const sbr_part_t *p = &c->parts[i];
         c->index[i].cx = p->fd.cx;
         c->index[i].part = i;
-        c->index[i].group = sbr_recog_priv_group(p->map, p->polarity); /* SBR_MODEL_GROUPS (never
+        c->index[i].group = sbr_model_group(p->map, p->polarity); /* SBR_MODEL_GROUPS (never
                                                                searched) if invalid */
     }
     sbr_util_heap_sort((uint8_t *)(void *)c->index, c->nparts, sizeof(recog_index_t), index_before, 0);
@@ -248,7 +248,7 @@ static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint3
        margin for rounding); the test itself decides */
     const float xlo = (px - tol) - 1.0f;
     const float xhi = (px + tol) + 1.0f;
-    const uint32_t g = sbr_recog_priv_group(pr->map, pr->polarity); /* < SBR_MODEL_GROUPS: checked */
+    const uint32_t g = sbr_model_group(pr->map, pr->polarity); /* < SBR_MODEL_GROUPS: checked */
     const uint32_t a = index_bound(c, c->group_first[g], c->group_first[g + 1u], xlo, 0);
     const uint32_t b = index_bound(c, a, c->group_first[g + 1u], xhi, 1);
     float best = 0.0f;
@@ -275,7 +275,7 @@ static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint3
 /* The evidence a hypothesis has gathered: class sums, their best, and what all its parts
    give together. */
 typedef struct recog_evidence_s {
-    float cls[SBR_RECOG_CLASSES];
+    float cls[SBR_RECOG_MAX_CLASSES];
     float total;
     float miss; /* probability that no supporting part is a sign's part */
     float best_s;
@@ -296,7 +296,7 @@ static void vote_evidence(const recog_ctx_t *c, uint32_t i, uint32_t j, recog_ev
             const sbr_model_proto_t *q = &m->protos[c->votes[k].proto];
             uint32_t t;
             for (t = 0u; t < SBR_MODEL_PROTO_CLASSES; t++) {
-                if (q->class_id[t] < SBR_RECOG_CLASSES) {
+                if ((uint32_t)q->class_id[t] < m->class_count) {
                     ev->cls[q->class_id[t]] += c->votes[k].weight * q->class_p[t];
                 }
             }
@@ -305,7 +305,7 @@ static void vote_evidence(const recog_ctx_t *c, uint32_t i, uint32_t j, recog_ev
             ev->nprotos++;
         }
     }
-    for (k = 0u; k < SBR_RECOG_CLASSES; k++) {
+    for (k = 0u; k < m->class_count; k++) {
         if (ev->cls[k] > ev->best_s) {
             ev->best_s = ev->cls[k];
             ev->best_c = k;

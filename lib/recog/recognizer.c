@@ -155,8 +155,10 @@ static uint32_t decide_stages(recog_ctx_t *c, const sbr_image_t *view, void *wor
         recog_picto_buf_t pb;
         pb.feat = feat;
         pb.prob = &feat[SBR_PICTO_FEATURES];
-        pb.mean = &pb.prob[SBR_PICTO_OUTPUTS];
-        pb.ws = (void *)&pb.prob[2u * SBR_PICTO_OUTPUTS];
+        pb.mean = &pb.prob[SBR_PICTO_MAX_OUTPUTS];
+        pb.ws = (void *)&pb.prob[2u * SBR_PICTO_MAX_OUTPUTS];
+        pb.classes = c->model->class_count;
+        pb.outline = c->model->class_outline;
         sbr_recog_priv_class_stage(c, view, kept, &pb);
         kept = sbr_recog_priv_compact(c);
         sbr_recog_priv_suppress(c, kept, view->width, view->height, cfg->nms_iou);

@@ -41,8 +41,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             FZ_CHECK(fz_finite(feat[i]));
         }
     }
-    float prob[SBR_PICTO_OUTPUTS];
-    const sbr_status_t cs = sbr_picto_classify(&model, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_OUTPUTS, ws,
+    float prob[SBR_PICTO_MAX_OUTPUTS];
+    const sbr_status_t cs = sbr_picto_classify(&model, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_MAX_OUTPUTS, ws,
                                                SBR_PICTO_WORKSPACE_SIZE);
     FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE);
     if (cs == SBR_OK) {

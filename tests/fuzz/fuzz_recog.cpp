@@ -66,7 +66,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             FZ_CHECK((uint64_t)d.box.x + d.box.width <= img.width && (uint64_t)d.box.y + d.box.height <= img.height);
             FZ_CHECK(fz_finite(d.score) && d.score >= 0.0f && d.score <= 1.0f);
             FZ_CHECK(fz_finite(d.class_share) && d.class_share >= 0.0f && d.class_share <= 1.0f);
-            FZ_CHECK(d.class_id < SBR_RECOG_CLASSES);
+            FZ_CHECK(d.class_id < model.class_count);
             if (i > 0u) {
                 FZ_CHECK(dets[i - 1u].score >= d.score); // highest score first
             }

@@ -131,6 +131,13 @@ int main()
         std::memcpy(&s[12], &hidden, 4u);
         fix_crc(s);
         expect_refused(parse_picto(s), "sizes", ".sbrp hidden units out of range, CRC fixed up");
+        // a class count of 0 or above SBR_PICTO_MAX_CLASSES: sizes
+        for (uint32_t k : {0u, SBR_PICTO_MAX_CLASSES + 1u}) {
+            s = picto;
+            std::memcpy(&s[16], &k, 4u);
+            fix_crc(s);
+            expect_refused(parse_picto(s), "sizes", ".sbrp class count " + std::to_string(k) + ", CRC fixed up");
+        }
     }
 
     {
@@ -138,8 +145,9 @@ int main()
         // load and save back; without them the file is the same minus the tables (older
         // files load); damaged tables are refused
         sbr_host::Picto with = sbr_host::picto_from_view(pv), without = with;
-        with.rim_shape.assign(SBR_PICTO_CLASSES, uint8_t(SBR_PICTO_RIM_NONE));
-        with.rim_floor.assign(SBR_PICTO_CLASSES, -2.0f);
+        const uint32_t K = pv.classes;
+        with.rim_shape.assign(K, uint8_t(SBR_PICTO_RIM_NONE));
+        with.rim_floor.assign(K, -2.0f);
         with.rim_shape[13] = uint8_t(SBR_PICTO_RIM_TRIANGLE_DOWN);
         with.rim_floor[13] = 0.0125f;
         without.rim_shape.clear();
@@ -148,7 +156,7 @@ int main()
         without.bind();
         std::string a, b;
         expect(sbr_host::picto_bytes(with, a).empty() && sbr_host::picto_bytes(without, b).empty(), "write both");
-        expect(a.size() == b.size() + 5u * SBR_PICTO_CLASSES, ".sbrp with the tables is 43 bytes + 43 floats longer");
+        expect(a.size() == b.size() + 5u * K, ".sbrp with the tables is K bytes + K floats longer");
         sbr_host::Picto back;
         expect(sbr_host::parse_picto(a, "rim.sbrp", back).empty() && back.rim_shape == with.rim_shape &&
                    back.rim_floor == with.rim_floor && back.view.rim_shape != nullptr,
@@ -156,7 +164,7 @@ int main()
         expect(sbr_host::parse_picto(b, "plain.sbrp", back).empty() && back.rim_shape.empty() &&
                    back.view.rim_shape == nullptr && back.view.rim_floor == nullptr,
                "a file without them loads without a colour check");
-        const size_t shapes_at = a.size() - 4u - 4u * SBR_PICTO_CLASSES - SBR_PICTO_CLASSES;
+        const size_t shapes_at = a.size() - 4u - 4u * K - K;
         std::string d = a;
         d[shapes_at + 13u] = 9;  // no such outline
         fix_crc(d);
@@ -168,12 +176,12 @@ int main()
         expect_refused(parse_picto(d), "values", ".sbrp rim floor 3, CRC fixed up");
         d = a;
         const uint32_t flags = 7u;
-        std::memcpy(&d[20], &flags, 4u);
+        std::memcpy(&d[24], &flags, 4u);
         fix_crc(d);
         expect_refused(parse_picto(d), "sizes", ".sbrp flags 7, CRC fixed up");
         d = b;
         const uint32_t rim_flag = 3u;  // says tables follow, none do
-        std::memcpy(&d[20], &rim_flag, 4u);
+        std::memcpy(&d[24], &rim_flag, 4u);
         fix_crc(d);
         expect_refused(parse_picto(d), "sizes", ".sbrp flag without tables, CRC fixed up");
         binary_damage(a, ".sbrp with colour check", parse_picto);
@@ -237,12 +245,25 @@ int main()
             fix_crc(s);
             expect_refused(parse_model(s), "sizes", ".sbrm prototype count " + std::to_string(np));
         }
+        // class count 0 and above SBR_RECOG_MAX_CLASSES: sizes
+        for (uint32_t k : {0u, SBR_RECOG_MAX_CLASSES + 1u}) {
+            std::string s = model;
+            std::memcpy(&s[24], &k, 4u);
+            fix_crc(s);
+            expect_refused(parse_model(s), "sizes", ".sbrm class count " + std::to_string(k));
+        }
         // the vote error made NaN: the model check (values)
         std::string s = model;
         const float nan = NAN;
-        std::memcpy(&s[24], &nan, 4u);
+        std::memcpy(&s[28], &nan, 4u);
         fix_crc(s);
         expect_refused(parse_model(s), "values", ".sbrm NaN vote error, CRC fixed up");
+        // the first class's outline out of range (after vote error, score threshold, the
+        // group and class ranges): values
+        s = model;
+        s[36u + 2u * (SBR_MODEL_GROUPS + 1u) + 2u * (mv.class_count + 1u)] = 9;
+        fix_crc(s);
+        expect_refused(parse_model(s), "values", ".sbrm class outline 9, CRC fixed up");
     }
 
     // ---- the tracker's text form
