@@ -171,6 +171,7 @@
 #include "cli.hpp"
 #include "gtsdb.hpp"
 #include "model_io.hpp"
+#include "parallel.hpp"
 
 extern "C" {
 #include "sbr/pictogram.h"
@@ -273,14 +274,6 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     if (picto != nullptr) m.picto = *picto;
     else m.picto.version = 0;
     return recog_boxes(v, rc, m, ws);
-}
-
-// `work` on min(max_threads, the hardware's) threads at once, joined.
-void run_workers(const std::function<void()> &work, unsigned max_threads) {
-    const unsigned nt = std::max(1u, std::min(max_threads, std::thread::hardware_concurrency()));
-    std::vector<std::thread> th;
-    for (unsigned t = 0; t < nt; ++t) th.emplace_back(work);
-    for (auto &t : th) t.join();
 }
 
 bool features(const sbr_image_t &v, const Box &b, std::vector<float> &f,
@@ -622,7 +615,7 @@ bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::
     rc.nms_iou = 1.0f;
     sbr_model_t parts_only = model;
     parts_only.picto.version = 0;
-    run_workers([&]() {
+    run_workers(4u, [&]() {
         std::vector<uint64_t> ws;
         alignas(8) static thread_local float pws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
         std::vector<float> f, g(kGF);
@@ -654,7 +647,7 @@ bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::
             std::lock_guard<std::mutex> lock(mu);
             for (auto &smp : local) samples.push_back(std::move(smp));
         }
-    }, 4u);
+    });
     sort_samples(samples);  // a deterministic order, whatever order the threads collected them in
     std::vector<std::vector<float>> xs;
     std::vector<int> ys;
@@ -865,7 +858,11 @@ cv::Mat synth_copy(const cv::Mat &img, const cv::Mat &near, const Box &b, const 
     return seen;
 }
 
-int main(int argc, char **argv) {
+namespace {
+
+// Options (the defaults are the shipped class stage's, except the seed: ./sbr.sh train
+// passes --seed 2).
+struct Options {
     std::string data = "../shared/data/gtsdb", cand_path, out_c, out_file, model_path;
     int hidden = 128, epochs = 20, jitter = 20, box_jitter = 0;
     ImageRanges range{{{0, 399}}}, eval_range;
@@ -879,449 +876,510 @@ int main(int argc, char **argv) {
     bool box = true, exposure = false, mirror = false, rotate = true, tview = true;
     BgSwap bg_swap = BgSwap::round, bg_fill = BgSwap::off;
     unsigned seed = 1;
-    {
-        CLI::App app{"sbr_train_picto: learns the class stage (pictogram classifier, box regression, colour check, "
-                     "gate) from the recogniser's candidates on GTSDB (docs/usage/detect.md)"};
-        const std::map<std::string, BgSwap> swaps{
-            {"off", BgSwap::off}, {"round", BgSwap::round}, {"triangle", BgSwap::triangle}, {"all", BgSwap::all}};
-        std::string rim_list;
-        auto f = [](double lo, double hi) { return finite_range(lo, hi); };
-        app.add_option("--data", data, "GTSDB folder")->capture_default_str();
-        add_range_option(app, range, "training images (default 0-399)");
-        add_range_option(app, eval_range, "also evaluate the classifier on these images", "--eval-range");
-        app.add_option("--candidates", cand_path, "candidate boxes file (default: the recogniser's)");
-        app.add_option("--model", model_path, "part model file (default: the built-in one)");
-        app.add_option("--hidden", hidden, "hidden units")->check(CLI::Range(0, int(SBR_PICTO_HIDDEN_MAX)))->capture_default_str();
-        app.add_option("--epochs", epochs, "epochs per round")->check(CLI::Range(1, 100000))->capture_default_str();
-        app.add_option("--jitter", jitter, "training copies per sign (shifts, scales)")->check(CLI::Range(0, 100000))->capture_default_str();
-        app.add_option("--box-jitter", box_jitter, "extra copies for the box regression")->check(CLI::Range(0, 100000))->capture_default_str();
-        app.add_option("--threshold", threshold, "operating point stored with the model")->check(f(0.0, 1.0))->capture_default_str();
-        app.add_option("--lr", lr, "learning rate")->check(f(1e-9, 10.0))->capture_default_str();
-        app.add_option("--bg-fraction", bg_fraction, "share of background candidates kept")->check(f(1e-6, 1.0))->capture_default_str();
-        app.add_option("--dropout", dropout, "dropout of the hidden units")->check(f(0.0, 0.9))->capture_default_str();
-        app.add_option("--decay", decay, "weight decay")->check(f(0.0, 0.999999))->capture_default_str();
-        app.add_flag("--no-box", [&box](int64_t) { box = false; }, "no box regression");
-        app.add_flag("--exposure", exposure, "exposure changes in the synthetic copies");
-        app.add_option("--bg-swap", bg_swap, "synthetic copies on other backgrounds: off, round, triangle, all")
-            ->transform(CLI::CheckedTransformer(swaps));
-        app.add_option("--bg-fill", bg_fill, "background fill of the copies: off, round, triangle, all")
-            ->transform(CLI::CheckedTransformer(swaps));
-        app.add_flag("--mirror", mirror, "mirror the mirror-symmetric classes");
-        app.add_flag("--rotate,!--no-rotate", rotate, "small rotations in the copies (default on)");
-        app.add_flag("--triangle-view,!--no-triangle-view", tview, "train on triangle views too (default on)");
-        app.add_option("--balance", balance, "class-balanced sampling exponent")->check(f(0.0, 2.0))->capture_default_str();
-        app.add_option("--rare", rare, "extra copies of classes with few signs")->check(CLI::Range(0, 100000))->capture_default_str();
-        app.add_option("--from-picto", from_picto, "no training: add the colour check (and --gate) to this class stage");
-        app.add_flag("--gate", gate, "learn the class stage's gate");
-        app.add_option("--gate-recall", gate_recall, "share of positive candidates the gate passes")
-            ->check(f(1e-6, 1.0))
-            ->capture_default_str();
-        app.add_option("--gate-hidden", gate_hidden, "the gate's rectified units (0: linear)")
-            ->check(CLI::Range(0, int(SBR_PICTO_GATE_HIDDEN_MAX)))
-            ->capture_default_str();
-        app.add_option("--rim-check", rim_list, "classes that get a colour check, e.g. 13, or none (default 13)");
-        app.add_option("--rounds", rounds, "training rounds")->check(CLI::Range(1, 1000))->capture_default_str();
-        app.add_option("--seed", seed, "random seed")->capture_default_str();
-        app.add_option("--out-c", out_c, "write the class stage as a C table (lib/models/sbr_picto_gtsdb.c)");
-        app.add_option("--out", out_file, "write the class stage as a model file (.sbrp)");
-        add_front_end_options(app, g_front_end);
-        const int parsed = parse_cli(app, argc, argv);
-        if (parsed >= 0) return parsed;
-        if (!rim_list.empty()) {
-            std::stringstream ss(rim_list == "none" ? "" : rim_list);
-            rim_classes.clear();
-            for (std::string c; std::getline(ss, c, ',');) {
-                const int k = std::atoi(c.c_str());
-                if (c.empty() || c.find_first_not_of("0123456789") != std::string::npos || k >= int(kGtsdbClasses) ||
-                    class_outline_of(k) == uint8_t(SBR_PICTO_RIM_NONE)) {
-                    std::fprintf(stderr, "--rim-check wants class ids of discs or triangles, e.g. 13, or none\n");
-                    return 2;
-                }
-                rim_classes.push_back(k);
+};
+
+// -1: go on; otherwise the exit status.
+int parse_options(int argc, char **argv, Options &o) {
+    CLI::App app{"sbr_train_picto: learns the class stage (pictogram classifier, box regression, colour check, "
+                 "gate) from the recogniser's candidates on GTSDB (docs/usage/detect.md)"};
+    const std::map<std::string, BgSwap> swaps{
+        {"off", BgSwap::off}, {"round", BgSwap::round}, {"triangle", BgSwap::triangle}, {"all", BgSwap::all}};
+    std::string rim_list;
+    auto f = [](double lo, double hi) { return finite_range(lo, hi); };
+    app.add_option("--data", o.data, "GTSDB folder")->capture_default_str();
+    add_range_option(app, o.range, "training images (default 0-399)");
+    add_range_option(app, o.eval_range, "also evaluate the classifier on these images", "--eval-range");
+    app.add_option("--candidates", o.cand_path, "candidate boxes file (default: the recogniser's)");
+    app.add_option("--model", o.model_path, "part model file (default: the built-in one)");
+    app.add_option("--hidden", o.hidden, "hidden units")->check(CLI::Range(0, int(SBR_PICTO_HIDDEN_MAX)))->capture_default_str();
+    app.add_option("--epochs", o.epochs, "epochs per round")->check(CLI::Range(1, 100000))->capture_default_str();
+    app.add_option("--jitter", o.jitter, "training copies per sign (shifts, scales)")->check(CLI::Range(0, 100000))->capture_default_str();
+    app.add_option("--box-jitter", o.box_jitter, "extra copies for the box regression")->check(CLI::Range(0, 100000))->capture_default_str();
+    app.add_option("--threshold", o.threshold, "operating point stored with the model")->check(f(0.0, 1.0))->capture_default_str();
+    app.add_option("--lr", o.lr, "learning rate")->check(f(1e-9, 10.0))->capture_default_str();
+    app.add_option("--bg-fraction", o.bg_fraction, "share of background candidates kept")->check(f(1e-6, 1.0))->capture_default_str();
+    app.add_option("--dropout", o.dropout, "dropout of the hidden units")->check(f(0.0, 0.9))->capture_default_str();
+    app.add_option("--decay", o.decay, "weight decay")->check(f(0.0, 0.999999))->capture_default_str();
+    app.add_flag("--no-box", [&o](int64_t) { o.box = false; }, "no box regression");
+    app.add_flag("--exposure", o.exposure, "exposure changes in the synthetic copies");
+    app.add_option("--bg-swap", o.bg_swap, "synthetic copies on other backgrounds: off, round, triangle, all")
+        ->transform(CLI::CheckedTransformer(swaps));
+    app.add_option("--bg-fill", o.bg_fill, "background fill of the copies: off, round, triangle, all")
+        ->transform(CLI::CheckedTransformer(swaps));
+    app.add_flag("--mirror", o.mirror, "mirror the mirror-symmetric classes");
+    app.add_flag("--rotate,!--no-rotate", o.rotate, "small rotations in the copies (default on)");
+    app.add_flag("--triangle-view,!--no-triangle-view", o.tview, "train on triangle views too (default on)");
+    app.add_option("--balance", o.balance, "class-balanced sampling exponent")->check(f(0.0, 2.0))->capture_default_str();
+    app.add_option("--rare", o.rare, "extra copies of classes with few signs")->check(CLI::Range(0, 100000))->capture_default_str();
+    app.add_option("--from-picto", o.from_picto, "no training: add the colour check (and --gate) to this class stage");
+    app.add_flag("--gate", o.gate, "learn the class stage's gate");
+    app.add_option("--gate-recall", o.gate_recall, "share of positive candidates the gate passes")
+        ->check(f(1e-6, 1.0))
+        ->capture_default_str();
+    app.add_option("--gate-hidden", o.gate_hidden, "the gate's rectified units (0: linear)")
+        ->check(CLI::Range(0, int(SBR_PICTO_GATE_HIDDEN_MAX)))
+        ->capture_default_str();
+    app.add_option("--rim-check", rim_list, "classes that get a colour check, e.g. 13, or none (default 13)");
+    app.add_option("--rounds", o.rounds, "training rounds")->check(CLI::Range(1, 1000))->capture_default_str();
+    app.add_option("--seed", o.seed, "random seed")->capture_default_str();
+    app.add_option("--out-c", o.out_c, "write the class stage as a C table (lib/models/sbr_picto_gtsdb.c)");
+    app.add_option("--out", o.out_file, "write the class stage as a model file (.sbrp)");
+    add_front_end_options(app, g_front_end);
+    const int parsed = parse_cli(app, argc, argv);
+    if (parsed >= 0) return parsed;
+    if (!rim_list.empty()) {
+        std::stringstream ss(rim_list == "none" ? "" : rim_list);
+        o.rim_classes.clear();
+        for (std::string c; std::getline(ss, c, ',');) {
+            const int k = std::atoi(c.c_str());
+            if (c.empty() || c.find_first_not_of("0123456789") != std::string::npos || k >= int(kGtsdbClasses) ||
+                class_outline_of(k) == uint8_t(SBR_PICTO_RIM_NONE)) {
+                std::fprintf(stderr, "--rim-check wants class ids of discs or triangles, e.g. 13, or none\n");
+                return 2;
             }
+            o.rim_classes.push_back(k);
         }
     }
-    if (box_jitter > 0 && !box) {
+    if (o.box_jitter > 0 && !o.box) {
         std::fprintf(stderr, "sbr_train_picto: --box-jitter trains the box regression, which --no-box leaves out\n");
         return 2;
     }
-    const auto t0 = std::chrono::steady_clock::now();
-    auto secs = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-    const std::string dir = gtsdb_image_dir(data);
-    const auto gt = read_gt(dir + "/gt.txt");
-    if (gt.empty()) { std::fprintf(stderr, "sbr_train_picto: no ground truth in %s\n", dir.c_str()); return 77; }
-    Model part_model;
-    sbr_model_t builtin{};
-    const sbr_model_t *pm = &builtin;
-    if (!model_path.empty()) {
-        const std::string e = load_model(model_path, part_model);
-        if (!e.empty()) { std::fprintf(stderr, "sbr_train_picto: %s\n", e.c_str()); return 1; }
-        pm = &part_model.view;
-    } else {
-        sbr_model_gtsdb(&builtin);
-    }
-    const auto cand_file = cand_path.empty() ? std::map<int, std::vector<Box>>{} : read_boxes(cand_path);
+    return -1;
+}
 
-    std::vector<std::string> files;
-    for (const auto &f : list_images(dir)) {
-        const int n = image_number(f);
-        if (range.contains(n)) files.push_back(f);
-    }
-    if (!from_picto.empty()) {
-        // no training: the colour check of --rim-check learned on these images and added
-        // to a class stage trained before (to measure the check alone)
-        Picto out;
-        const std::string e = load_picto(from_picto, out);
-        if (!e.empty()) { std::fprintf(stderr, "sbr_train_picto: %s\n", e.c_str()); return 1; }
-        if ((rim_classes.empty() && !gate) || out_file.empty()) {
-            std::fprintf(stderr, "sbr_train_picto: --from-picto needs --rim-check or --gate, and --out\n");
-            return 2;
-        }
-        if (!rim_classes.empty() && !learn_rim_floors(files, gt, rim_classes, out)) return 1;
-        if (gate && !learn_gate(files, gt, *pm, out, gate_recall, gate_hidden, seed)) return 1;
-        return report_write("sbr_train_picto", out_file, save_picto(out, out_file)) ? 0 : 1;
-    }
-    // --rare N: training signs per class, and how many rounds of synthetic copies a class
-    // with fewer than N signs gets (ceil(N / n) - 1, at most kRareMax)
-    std::map<int, int> per_class;
-    for (const auto &f : files)
-        if (gt.count(image_number(f)))
-            for (const auto &g : gt.at(image_number(f))) ++per_class[g.class_id];
-    auto rare_rounds = [&](int c) {
-        const int n = per_class.count(c) ? per_class.at(c) : 0;
-        if (rare <= 0 || n == 0 || n >= rare) return 0;
-        return std::min(kRareMax, (rare + n - 1) / n - 1);
-    };
-    std::vector<Sample> samples;
-    std::mutex mu;
-    std::atomic<size_t> next{0};
-    // first round: annotated boxes, jittered copies and the part model's candidates;
-    // later rounds (mine != nullptr): only the whole recogniser's detections with the
-    // previous round's class stage, so its own mistakes become training samples
-    const sbr_picto_model_t *mine = nullptr;
-    auto swapped = [&](int c) { return bg_applies(bg_swap, c); };
-    auto filled = [&](int c) { return bg_applies(bg_fill, c); };
-    auto work = [&]() {
-        std::vector<uint64_t> ws;
-        std::mt19937 rng;
-        std::uniform_real_distribution<float> U(-1.0f, 1.0f);
-        for (size_t i; (i = next++) < files.size();) {
-            const int num = image_number(files[i]);
-            rng.seed(seed * 100003u + unsigned(num));
-            cv::Mat img = cv::imread(files[i], cv::IMREAD_COLOR);
-            if (img.empty()) continue;
-            const sbr_image_t v = bgr_view(img);
-            std::vector<Box> gts;
-            std::vector<int> cls;
-            if (gt.count(num))
-                for (const auto &g : gt.at(num)) { gts.push_back(gt_pixbox(g)); cls.push_back(g.class_id); }
-            std::vector<Sample> local;
-            std::vector<float> f;
-            for (size_t g = 0; g < gts.size() && mine == nullptr; ++g) {
-                const Box &b = gts[g];
-                const float w = float(b.x1 - b.x0), h = float(b.y1 - b.y0);
-                // the sign's neighbourhood (one sign size around it) clipped to the image,
-                // where the transformed copies are taken from
-                const int mx0 = std::max(0, int(b.x0 - w)), my0 = std::max(0, int(b.y0 - h));
-                const int mx1 = std::min(img.cols, int(b.x1 + w) + 1), my1 = std::min(img.rows, int(b.y1 + h) + 1);
-                const cv::Mat near = img(cv::Rect(mx0, my0, mx1 - mx0, my1 - my0));
-                for (int j = 0; j <= jitter; ++j) {
-                    Box q = b;
-                    if (j > 0) {
-                        const float cx = 0.5f * float(b.x0 + b.x1) + 0.08f * w * U(rng);
-                        const float cy = 0.5f * float(b.y0 + b.y1) + 0.08f * h * U(rng);
-                        const float s = 1.0f + 0.08f * U(rng);
-                        const float hw = 0.5f * w * s * (1.0f + 0.04f * U(rng)), hh = 0.5f * h * s * (1.0f + 0.04f * U(rng));
-                        q = {cx - hw, cy - hh, cx + hw, cy + hh};
-                    }
-                    // the copy: box qs of image `seen` (the frame, or a transformed
-                    // neighbourhood), with that class; mirrored copies flip the target's
-                    // horizontal shift
-                    cv::Mat seen;
-                    sbr_image_t sv = v;
-                    Box qs = q;
-                    int label = cls[g];
-                    bool mirrored = false;
-                    // every other copy as a farther sign: the neighbourhood shrunk (area
-                    // averaging) so the sign is 1.5 to 4 times smaller, at least 12 px
-                    const float shrink = 1.5f + 1.25f * (U(rng) + 1.0f);
-                    if (j % 2 == 1 && w / shrink >= 12.0f) {
-                        cv::resize(near, seen, cv::Size(), 1.0 / shrink, 1.0 / shrink, cv::INTER_AREA);
-                        const float fx = float(seen.cols) / float(mx1 - mx0), fy = float(seen.rows) / float(my1 - my0);
-                        qs = {(float(q.x0) - float(mx0)) * fx, (float(q.y0) - float(my0)) * fy,
-                              (float(q.x1) - float(mx0)) * fx, (float(q.y1) - float(my0)) * fy};
-                    } else if (j % 4 == 2 && exposure) {
-                        // another exposure: the neighbourhood's values through a random
-                        // gamma (0.5 to 2) and contrast (0.5 to 1) about mid-grey
-                        const float gam = std::exp(0.6931472f * U(rng)), con = 0.75f + 0.25f * U(rng);
-                        expose(near, gam, con, seen);
-                        qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
-                    } else if (j % 4 == 2 && (swapped(cls[g]) || filled(cls[g]))) {
-                        // the sign in front of another background: the neighbourhood outside
-                        // the sign's outline (grown by 5 %) replaced, so the box's corners
-                        // (clutter behind the sign) are not part of what a class looks like.
-                        // --bg-swap: by an equally large piece of the same frame that
-                        // overlaps no annotated sign (no such piece in 20 draws: the plain
-                        // copy); --bg-fill: by a plain random colour (sky to night) with a
-                        // vertical gradient and a little noise. A sign both apply to
-                        // alternates between them.
-                        const int nw = mx1 - mx0, nh = my1 - my0;
-                        cv::Mat mask = cv::Mat::zeros(nh, nw, CV_8U);
-                        std::vector<cv::Point> poly;
-                        for (const cv::Point2f &u : sign_outline(cls[g])) {
-                            const float gx = 0.5f + 1.05f * (u.x - 0.5f), gy = 0.5f + 1.05f * (u.y - 0.5f);
-                            poly.emplace_back(int(std::lround(b.x0 - float(mx0) + gx * w)),
-                                              int(std::lround(b.y0 - float(my0) + gy * h)));
-                        }
-                        cv::fillConvexPoly(mask, poly, cv::Scalar(255));
-                        const bool fill = filled(cls[g]) && (!swapped(cls[g]) || j % 8 == 6);
-                        if (fill) {
-                            const float level = 127.5f * (U(rng) + 1.0f), slope = 40.0f * U(rng);
-                            const float tint[3] = {25.0f * U(rng), 25.0f * U(rng), 25.0f * U(rng)};
-                            seen.create(nh, nw, CV_8UC3);
-                            for (int y = 0; y < nh; ++y) {
-                                const float base = level + slope * (float(y) / float(std::max(1, nh - 1)) - 0.5f);
-                                for (int x = 0; x < nw; ++x)
-                                    for (int k = 0; k < 3; ++k)
-                                        seen.at<cv::Vec3b>(y, x)[k] = cv::saturate_cast<uint8_t>(base + tint[k] + 3.0f * U(rng));
-                            }
-                            near.copyTo(seen, mask);
-                        }
-                        for (int t = 0; t < 20 && seen.empty() && nw < img.cols && nh < img.rows; ++t) {
-                            const int bx = int(float(img.cols - nw) * 0.5f * (U(rng) + 1.0f));
-                            const int by = int(float(img.rows - nh) * 0.5f * (U(rng) + 1.0f));
-                            const Box piece{float(bx), float(by), float(bx + nw), float(by + nh)};
-                            bool clear = true;
-                            for (const Box &o : gts)
-                                if (piece.x0 < o.x1 && o.x0 < piece.x1 && piece.y0 < o.y1 && o.y0 < piece.y1) clear = false;
-                            if (!clear) continue;
-                            seen = img(cv::Rect(bx, by, nw, nh)).clone();
-                            near.copyTo(seen, mask);
-                        }
-                        qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
-                        if (seen.empty()) qs = q;
-                    } else if (j > 0 && j % 4 == 0 && rotate && symmetry_order(cls[g]) > 1 &&
-                               (!mirror || j % 8 == 0)) {
-                        // the sign turned by a multiple of its symmetry angle about its
-                        // centre: the same class and the same box target (the outline
-                        // stays, the jittered box q is not turned)
-                        const int order = symmetry_order(cls[g]);
-                        const int turns = 1 + int(std::floor(0.5f * (U(rng) + 1.0f) * float(order - 1) * 0.9999f));
-                        const cv::Point2f centre(0.5f * (b.x0 + b.x1) - float(mx0), 0.5f * (b.y0 + b.y1) - float(my0));
-                        const cv::Mat rot = cv::getRotationMatrix2D(centre, 360.0 * turns / order, 1.0);
-                        cv::warpAffine(near, seen, rot, near.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
-                        qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
-                    } else if (j > 0 && j % 4 == 0 && mirror && mirror_class(cls[g]) >= 0) {
-                        // the mirror image: the neighbourhood flipped left to right, the
-                        // class its mirror class (keep right <-> keep left, ...)
-                        cv::flip(near, seen, 1);
-                        const float W = float(mx1 - mx0);
-                        qs = {W - (q.x1 - float(mx0)), q.y0 - float(my0), W - (q.x0 - float(mx0)), q.y1 - float(my0)};
-                        label = mirror_class(cls[g]);
-                        mirrored = true;
-                    }
-                    if (!seen.empty()) sv = bgr_view(seen);
-                    if (!features(sv, qs, f)) continue;
-                    local.push_back({f, label});
-                    if (box) {
-                        // the target is the same in the frame's coordinates (shift and
-                        // scale invariant), mirrored for a mirror image
-                        local.back().has_box = true;
-                        box_target(q, b, local.back().t);
-                        if (mirrored) local.back().t[0] = -local.back().t[0];
-                    }
-                    // --triangle-view: every fourth copy also as the triangle view
-                    if (tview && j % 4 == 0 && features(sv, qs, f, kTriangle)) local.push_back({f, label});
-                }
-                // --rare: synthetic copies of a rare class's sign, from their own random
-                // stream (the copies above stay as they were): the neighbourhood seen in
-                // perspective, blurred, under another exposure, partly occluded and often
-                // farther away (synth_copy()); for the class only (no box target)
-                const int extra = mine == nullptr ? rare_rounds(cls[g]) * jitter : 0;
-                std::mt19937 srng(seed * 100003u + unsigned(num) * 977u + unsigned(g) + 11u);
-                for (int j = 0; j < extra; ++j) {
-                    Box qs;
-                    const cv::Mat seen = synth_copy(img, near, b, gts, mx0, my0, srng, qs);
-                    if (seen.empty()) continue;
-                    const sbr_image_t sv = bgr_view(seen);
-                    if (!features(sv, qs, f)) continue;
-                    local.push_back({f, cls[g]});
-                    if (tview && j % 4 == 0 && features(sv, qs, f, kTriangle)) local.push_back({f, cls[g]});
-                }
-                // --box-jitter: copies placed farther off (centre up to 25 % of the sign's
-                // size away, scale 0.74 to 1.35) for the box regression only, from their
-                // own random stream so the copies above stay as they were
-                std::mt19937 brng;
-                if (box_jitter > 0) brng.seed(seed * 100003u + unsigned(num) * 131u + unsigned(g) + 7u);
-                for (int j = 0; j < box_jitter; ++j) {
-                    const float cx = 0.5f * float(b.x0 + b.x1) + 0.25f * w * U(brng);
-                    const float cy = 0.5f * float(b.y0 + b.y1) + 0.25f * h * U(brng);
-                    const float s = std::exp(0.3f * U(brng));
-                    const float hw = 0.5f * w * s * (1.0f + 0.04f * U(brng)), hh = 0.5f * h * s * (1.0f + 0.04f * U(brng));
-                    const Box q{cx - hw, cy - hh, cx + hw, cy + hh};
-                    if (!features(v, q, f)) continue;
-                    local.push_back({f, -1});
-                    local.back().has_box = true;
-                    box_target(q, b, local.back().t);
-                }
-            }
-            const std::vector<Box> cands = cand_path.empty() || mine != nullptr ? recog_candidates(v, *pm, mine, tview, ws)
-                                                             : (cand_file.count(num) ? cand_file.at(num) : std::vector<Box>{});
-            for (size_t ci = 0; ci < cands.size(); ++ci) {
-                const Box &c = cands[ci];
-                float best = 0;
-                size_t bg = 0;
-                for (size_t g = 0; g < gts.size(); ++g) {
-                    const float o = float(box_iou(c, gts[g]));
-                    if (o > best) { best = o; bg = g; }
-                }
-                // --triangle-view: the triangle view of every other candidate and of
-                // every detection of an earlier round, with the same label
-                const bool tri = tview && (mine != nullptr || ci % 2 == 0);
-                if (best < 0.3f) {
-                    if (features(v, c, f)) local.push_back({f, kBackground});
-                    if (tri && features(v, c, f, kTriangle)) local.push_back({f, kBackground});
-                } else if ((best >= 0.55f || box) && features(v, c, f)) {
-                    // near a sign: its class when close enough, and where the sign is
-                    local.push_back({f, best >= 0.55f ? cls[bg] : -1});
-                    if (box) {
-                        local.back().has_box = true;
-                        box_target(c, gts[bg], local.back().t);
-                    }
-                    if (tri && best >= 0.55f && features(v, c, f, kTriangle)) local.push_back({f, cls[bg]});
-                }
-            }
-            std::lock_guard<std::mutex> lk(mu);
-            for (auto &s : local) samples.push_back(std::move(s));
-        }
-    };
-    auto collect = [&]() {
-        next = 0;
-        run_workers(work, 4u);
-        // deterministic order whatever the threads did
-        sort_samples(samples);
-    };
-    size_t nbg = 0, nreg = 0, nfg = 0;
-    auto count = [&]() {
-        nbg = nreg = 0;
-        for (const auto &s : samples) {
-            nbg += s.label == kBackground;
-            nreg += s.label < 0;
-        }
-        nfg = samples.size() - nbg - nreg;
-        std::fprintf(stderr,
-                     "sbr_train_picto: %zu sign samples, %zu background samples, %zu boxes for the box regression only, "
-                     "from %zu images (%.1f s)\n",
-                     nfg, nbg, nreg, files.size(), secs());
-    };
-    collect();
-    count();
-    if (nfg == 0 || nbg == 0) { std::fprintf(stderr, "sbr_train_picto: nothing to learn from\n"); return 1; }
+// One annotated sign of an image: its box, size and class, and its neighbourhood (one
+// sign size around it, clipped to the image) that the transformed copies are taken from.
+struct Site {
+    const cv::Mat *img;
+    const sbr_image_t *view;
+    const std::vector<Box> *gts;  // every annotated box of the image
+    Box b;
+    float w, h;
+    int mx0, my0, mx1, my1;
+    cv::Mat near;
+    int cls;
+};
 
-    // standardise
-    std::vector<float> mean(kF, 0.0f), sd(kF, 0.0f);
-    for (const auto &s : samples)
-        for (int k = 0; k < kF; ++k) mean[k] += s.f[k];
-    for (auto &m : mean) m /= float(samples.size());
-    for (const auto &s : samples)
-        for (int k = 0; k < kF; ++k) sd[k] += (s.f[k] - mean[k]) * (s.f[k] - mean[k]);
-    for (auto &d : sd) d = std::sqrt(d / float(samples.size())) + 1e-3f;
-    for (auto &s : samples)
-        for (int k = 0; k < kF; ++k) s.f[k] = (s.f[k] - mean[k]) / sd[k];
-    // train; fold the standardisation into the layer that reads the features and the
-    // target units into the box rows
-    auto fit = [&](Picto &out) {
-        std::vector<float> sw(samples.size(), 1.0f);
-        const float wbg = float(nfg) / float(nbg);
-        for (size_t i = 0; i < samples.size(); ++i)
-            if (samples[i].label == kBackground && !samples[i].hard) sw[i] = wbg;
-        if (balance > 0.0f) {
-            // rarer classes weigh more: class c's samples by (n_c / mean)^-balance, scaled
-            // so the signs together weigh as before
-            auto sign = [](const Sample &x) { return x.label >= 0 && x.label < kBackground; };
-            std::vector<double> nc(kBackground, 0.0);
-            for (const auto &x : samples)
-                if (sign(x)) nc[size_t(x.label)] += 1.0;
-            double present = 0.0, total = 0.0, wsum = 0.0;
-            for (double c : nc) { present += c > 0.0; total += c; }
-            const double mean_n = total / std::max(present, 1.0);
-            for (size_t i = 0; i < samples.size(); ++i)
-                if (sign(samples[i])) {
-                    sw[i] = float(std::pow(nc[size_t(samples[i].label)] / mean_n, -double(balance)));
-                    wsum += sw[i];
-                }
-            for (size_t i = 0; i < samples.size(); ++i)
-                if (sign(samples[i])) sw[i] *= float(total / wsum);
+Site make_site(const cv::Mat &img, const sbr_image_t &v, const std::vector<Box> &gts, size_t g, int cls) {
+    Site st{&img, &v, &gts, gts[g], 0.0f, 0.0f, 0, 0, 0, 0, cv::Mat(), cls};
+    const Box &b = st.b;
+    st.w = float(b.x1 - b.x0);
+    st.h = float(b.y1 - b.y0);
+    st.mx0 = std::max(0, int(b.x0 - st.w));
+    st.my0 = std::max(0, int(b.y0 - st.h));
+    st.mx1 = std::min(img.cols, int(b.x1 + st.w) + 1);
+    st.my1 = std::min(img.rows, int(b.y1 + st.h) + 1);
+    st.near = img(cv::Rect(st.mx0, st.my0, st.mx1 - st.mx0, st.my1 - st.my0));
+    return st;
+}
+
+// A training copy of a sign: the jittered box q; the box qs of image `seen` (empty: the
+// frame itself) with class `label`; mirrored copies flip the target's horizontal shift.
+struct Copy {
+    Box q;
+    cv::Mat seen;
+    Box qs;
+    int label;
+    bool mirrored;
+};
+
+// Copy j of a sign (j = 0: the annotated box itself), drawn from rng in a fixed order.
+Copy make_copy(const Options &o, const Site &site, int j, std::mt19937 &rng) {
+    std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+    const Box &b = site.b;
+    const float w = site.w, h = site.h;
+    const int mx0 = site.mx0, my0 = site.my0, mx1 = site.mx1, my1 = site.my1;
+    const cv::Mat &near = site.near;
+    const cv::Mat &img = *site.img;
+    const std::vector<Box> &gts = *site.gts;
+    Box q = b;
+    if (j > 0) {
+        const float cx = 0.5f * float(b.x0 + b.x1) + 0.08f * w * U(rng);
+        const float cy = 0.5f * float(b.y0 + b.y1) + 0.08f * h * U(rng);
+        const float s = 1.0f + 0.08f * U(rng);
+        const float hw = 0.5f * w * s * (1.0f + 0.04f * U(rng)), hh = 0.5f * h * s * (1.0f + 0.04f * U(rng));
+        q = {cx - hw, cy - hh, cx + hw, cy + hh};
+    }
+    // the copy: box qs of image `seen` (the frame, or a transformed
+    // neighbourhood), with that class; mirrored copies flip the target's
+    // horizontal shift
+    cv::Mat seen;
+    Box qs = q;
+    int label = site.cls;
+    bool mirrored = false;
+    // every other copy as a farther sign: the neighbourhood shrunk (area
+    // averaging) so the sign is 1.5 to 4 times smaller, at least 12 px
+    const float shrink = 1.5f + 1.25f * (U(rng) + 1.0f);
+    if (j % 2 == 1 && w / shrink >= 12.0f) {
+        cv::resize(near, seen, cv::Size(), 1.0 / shrink, 1.0 / shrink, cv::INTER_AREA);
+        const float fx = float(seen.cols) / float(mx1 - mx0), fy = float(seen.rows) / float(my1 - my0);
+        qs = {(float(q.x0) - float(mx0)) * fx, (float(q.y0) - float(my0)) * fy,
+              (float(q.x1) - float(mx0)) * fx, (float(q.y1) - float(my0)) * fy};
+    } else if (j % 4 == 2 && o.exposure) {
+        // another exposure: the neighbourhood's values through a random
+        // gamma (0.5 to 2) and contrast (0.5 to 1) about mid-grey
+        const float gam = std::exp(0.6931472f * U(rng)), con = 0.75f + 0.25f * U(rng);
+        expose(near, gam, con, seen);
+        qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
+    } else if (j % 4 == 2 && (bg_applies(o.bg_swap, site.cls) || bg_applies(o.bg_fill, site.cls))) {
+        // the sign in front of another background: the neighbourhood outside
+        // the sign's outline (grown by 5 %) replaced, so the box's corners
+        // (clutter behind the sign) are not part of what a class looks like.
+        // --bg-swap: by an equally large piece of the same frame that
+        // overlaps no annotated sign (no such piece in 20 draws: the plain
+        // copy); --bg-fill: by a plain random colour (sky to night) with a
+        // vertical gradient and a little noise. A sign both apply to
+        // alternates between them.
+        const int nw = mx1 - mx0, nh = my1 - my0;
+        cv::Mat mask = cv::Mat::zeros(nh, nw, CV_8U);
+        std::vector<cv::Point> poly;
+        for (const cv::Point2f &u : sign_outline(site.cls)) {
+            const float gx = 0.5f + 1.05f * (u.x - 0.5f), gy = 0.5f + 1.05f * (u.y - 0.5f);
+            poly.emplace_back(int(std::lround(b.x0 - float(mx0) + gx * w)),
+                              int(std::lround(b.y0 - float(my0) + gy * h)));
         }
-        Net net;
-        net.h = hidden;
-        train(net, samples, sw, epochs, seed, lr, bg_fraction, dropout, decay);
-        std::fprintf(stderr, "sbr_train_picto: trained (%.1f s)\n", secs());
-        out.hidden = uint32_t(hidden);
-        out.classes = kGtsdbClasses;
-        out.threshold = threshold;
-        auto fold = [&](std::vector<float> &w) {
-            for (size_t r = 0; r < w.size() / (kF + 1); ++r) {
-                float *row = &w[r * (kF + 1)];
-                float bias = row[kF];
-                for (int k = 0; k < kF; ++k) {
-                    row[k] /= sd[k];
-                    bias -= row[k] * mean[k];
-                }
-                row[kF] = bias;
+        cv::fillConvexPoly(mask, poly, cv::Scalar(255));
+        const bool fill = bg_applies(o.bg_fill, site.cls) && (!bg_applies(o.bg_swap, site.cls) || j % 8 == 6);
+        if (fill) {
+            const float level = 127.5f * (U(rng) + 1.0f), slope = 40.0f * U(rng);
+            const float tint[3] = {25.0f * U(rng), 25.0f * U(rng), 25.0f * U(rng)};
+            seen.create(nh, nw, CV_8UC3);
+            for (int y = 0; y < nh; ++y) {
+                const float base = level + slope * (float(y) / float(std::max(1, nh - 1)) - 0.5f);
+                for (int x = 0; x < nw; ++x)
+                    for (int k = 0; k < 3; ++k)
+                        seen.at<cv::Vec3b>(y, x)[k] = cv::saturate_cast<uint8_t>(base + tint[k] + 3.0f * U(rng));
             }
+            near.copyTo(seen, mask);
+        }
+        for (int t = 0; t < 20 && seen.empty() && nw < img.cols && nh < img.rows; ++t) {
+            const int bx = int(float(img.cols - nw) * 0.5f * (U(rng) + 1.0f));
+            const int by = int(float(img.rows - nh) * 0.5f * (U(rng) + 1.0f));
+            const Box piece{float(bx), float(by), float(bx + nw), float(by + nh)};
+            bool clear = true;
+            for (const Box &o : gts)
+                if (piece.x0 < o.x1 && o.x0 < piece.x1 && piece.y0 < o.y1 && o.y0 < piece.y1) clear = false;
+            if (!clear) continue;
+            seen = img(cv::Rect(bx, by, nw, nh)).clone();
+            near.copyTo(seen, mask);
+        }
+        qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
+        if (seen.empty()) qs = q;
+    } else if (j > 0 && j % 4 == 0 && o.rotate && symmetry_order(site.cls) > 1 &&
+               (!o.mirror || j % 8 == 0)) {
+        // the sign turned by a multiple of its symmetry angle about its
+        // centre: the same class and the same box target (the outline
+        // stays, the jittered box q is not turned)
+        const int order = symmetry_order(site.cls);
+        const int turns = 1 + int(std::floor(0.5f * (U(rng) + 1.0f) * float(order - 1) * 0.9999f));
+        const cv::Point2f centre(0.5f * (b.x0 + b.x1) - float(mx0), 0.5f * (b.y0 + b.y1) - float(my0));
+        const cv::Mat rot = cv::getRotationMatrix2D(centre, 360.0 * turns / order, 1.0);
+        cv::warpAffine(near, seen, rot, near.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+        qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
+    } else if (j > 0 && j % 4 == 0 && o.mirror && mirror_class(site.cls) >= 0) {
+        // the mirror image: the neighbourhood flipped left to right, the
+        // class its mirror class (keep right <-> keep left, ...)
+        cv::flip(near, seen, 1);
+        const float W = float(mx1 - mx0);
+        qs = {W - (q.x1 - float(mx0)), q.y0 - float(my0), W - (q.x0 - float(mx0)), q.y1 - float(my0)};
+        label = mirror_class(site.cls);
+        mirrored = true;
+    }
+    return Copy{q, seen, qs, label, mirrored};
+}
+
+// The training samples of the images: the first round's (annotated boxes, their jittered
+// and synthetic copies, the part model's candidates) or, with a class stage `mine`, the
+// whole recogniser's detections with it on the training images (its own mistakes).
+class SampleCollector {
+public:
+    SampleCollector(const Options &o, const std::vector<std::string> &files, const std::map<int, std::vector<GtBox>> &gt,
+                    const sbr_model_t &pm)
+        : o_(o), files_(files), gt_(gt), pm_(pm) {
+        if (!o.cand_path.empty()) cand_file_ = read_boxes(o.cand_path);
+        // --rare N: training signs per class
+        for (const auto &f : files)
+            if (gt.count(image_number(f)))
+                for (const auto &g : gt.at(image_number(f))) ++per_class_[g.class_id];
+    }
+    // Every image on 4 threads; the samples in a deterministic order.
+    std::vector<Sample> collect(const sbr_picto_model_t *mine) const {
+        std::vector<Sample> samples;
+        std::mutex mu;
+        struct Worker {
+            std::vector<uint64_t> ws;
+            std::mt19937 rng;
         };
-        if (hidden > 0) {
-            fold(net.w1);
-        } else {
-            fold(net.w2);
-            fold(net.w3);
-        }
-        for (auto &x : net.w3) x *= kTargetScale;
-        out.w1 = net.w1;
-        out.w2 = net.w2;
-        out.w3.clear();
-        if (box) out.w3 = net.w3;
-        out.bind();
-        return sbr_picto_check(&out.view) == SBR_OK;
-    };
-    Picto out;
-    for (int round = 1; round <= rounds; ++round) {
-        if (round > 1) {
-            // the recogniser's detections with this class stage on the training images
-            std::vector<Sample> first;
-            first.swap(samples);
-            mine = &out.view;
-            collect();
-            mine = nullptr;
-            std::fprintf(stderr, "sbr_train_picto: round %d: %zu detections of round %d added\n", round,
-                         samples.size(), round - 1);
-            for (auto &x : samples) {
-                for (int k = 0; k < kF; ++k) x.f[k] = (x.f[k] - mean[k]) / sd[k];
-                x.hard = true;
-            }
-            for (auto &x : first) samples.push_back(std::move(x));
-            sort_samples(samples);
-            count();
-        }
-        if (!fit(out)) { std::fprintf(stderr, "sbr_train_picto: trained weights fail the check\n"); return 1; }
+        parallel_for<Worker>(files_.size(), 4u, [&](size_t i, Worker &wk) {
+            std::vector<Sample> local;
+            image(i, mine, wk.ws, wk.rng, local);
+            std::lock_guard<std::mutex> lk(mu);
+            for (auto &x : local) samples.push_back(std::move(x));
+        });
+        sort_samples(samples);
+        return samples;
     }
 
-    if (!rim_classes.empty() && !learn_rim_floors(files, gt, rim_classes, out)) return 1;
+private:
+    // How many rounds of synthetic copies a class with fewer than --rare signs gets
+    // (ceil(N / n) - 1, at most kRareMax).
+    int rare_rounds(int c) const {
+        const int n = per_class_.count(c) ? per_class_.at(c) : 0;
+        if (o_.rare <= 0 || n == 0 || n >= o_.rare) return 0;
+        return std::min(kRareMax, (o_.rare + n - 1) / n - 1);
+    }
+    void image(size_t i, const sbr_picto_model_t *mine, std::vector<uint64_t> &ws, std::mt19937 &rng,
+               std::vector<Sample> &local) const;
+    void sign_copies(const Site &site, std::mt19937 &rng, std::vector<Sample> &local) const;
+    void rare_copies(const Site &site, int num, size_t g, std::vector<Sample> &local) const;
+    void box_jitter_copies(const Site &site, int num, size_t g, std::vector<Sample> &local) const;
+    void candidates(const sbr_image_t &v, const std::vector<Box> &cands, const std::vector<Box> &gts,
+                    const std::vector<int> &cls, bool mined, std::vector<Sample> &local) const;
+
+    const Options &o_;
+    const std::vector<std::string> &files_;
+    const std::map<int, std::vector<GtBox>> &gt_;
+    const sbr_model_t &pm_;
+    std::map<int, std::vector<Box>> cand_file_;
+    std::map<int, int> per_class_;
+};
+
+// The jittered, shrunk, re-exposed, re-backgrounded, turned or mirrored copies of a sign
+// (make_copy()), each with its box target and every fourth also as the triangle view.
+void SampleCollector::sign_copies(const Site &site, std::mt19937 &rng, std::vector<Sample> &local) const {
+    std::vector<float> f;
+    for (int j = 0; j <= o_.jitter; ++j) {
+        const Copy c = make_copy(o_, site, j, rng);
+        const sbr_image_t sv = c.seen.empty() ? *site.view : bgr_view(c.seen);
+        if (!features(sv, c.qs, f)) continue;
+        local.push_back({f, c.label});
+        if (o_.box) {
+            // the target is the same in the frame's coordinates (shift and scale
+            // invariant), mirrored for a mirror image
+            local.back().has_box = true;
+            box_target(c.q, site.b, local.back().t);
+            if (c.mirrored) local.back().t[0] = -local.back().t[0];
+        }
+        // --triangle-view: every fourth copy also as the triangle view
+        if (o_.tview && j % 4 == 0 && features(sv, c.qs, f, kTriangle)) local.push_back({f, c.label});
+    }
+}
+
+// --rare: synthetic copies of a rare class's sign, from their own random stream (the
+// copies above stay as they were): the neighbourhood seen in perspective, blurred, under
+// another exposure, partly occluded and often farther away (synth_copy()); for the class
+// only (no box target).
+void SampleCollector::rare_copies(const Site &site, int num, size_t g, std::vector<Sample> &local) const {
+    const int extra = rare_rounds(site.cls) * o_.jitter;
+    std::mt19937 srng(o_.seed * 100003u + unsigned(num) * 977u + unsigned(g) + 11u);
+    std::vector<float> f;
+    for (int j = 0; j < extra; ++j) {
+        Box qs;
+        const cv::Mat seen = synth_copy(*site.img, site.near, site.b, *site.gts, site.mx0, site.my0, srng, qs);
+        if (seen.empty()) continue;
+        const sbr_image_t sv = bgr_view(seen);
+        if (!features(sv, qs, f)) continue;
+        local.push_back({f, site.cls});
+        if (o_.tview && j % 4 == 0 && features(sv, qs, f, kTriangle)) local.push_back({f, site.cls});
+    }
+}
+
+// --box-jitter: copies placed farther off (centre up to 25 % of the sign's size away,
+// scale 0.74 to 1.35) for the box regression only, from their own random stream so the
+// copies above stay as they were.
+void SampleCollector::box_jitter_copies(const Site &site, int num, size_t g, std::vector<Sample> &local) const {
+    std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+    std::mt19937 brng;
+    if (o_.box_jitter > 0) brng.seed(o_.seed * 100003u + unsigned(num) * 131u + unsigned(g) + 7u);
+    const Box &b = site.b;
+    const float w = site.w, h = site.h;
+    std::vector<float> f;
+    for (int j = 0; j < o_.box_jitter; ++j) {
+        const float cx = 0.5f * float(b.x0 + b.x1) + 0.25f * w * U(brng);
+        const float cy = 0.5f * float(b.y0 + b.y1) + 0.25f * h * U(brng);
+        const float s = std::exp(0.3f * U(brng));
+        const float hw = 0.5f * w * s * (1.0f + 0.04f * U(brng)), hh = 0.5f * h * s * (1.0f + 0.04f * U(brng));
+        const Box q{cx - hw, cy - hh, cx + hw, cy + hh};
+        if (!features(*site.view, q, f)) continue;
+        local.push_back({f, -1});
+        local.back().has_box = true;
+        box_target(q, b, local.back().t);
+    }
+}
+
+// The recogniser's boxes: background below IoU 0.3 with every sign; near a sign, its
+// class (IoU >= 0.55) and where the sign is. --triangle-view: the triangle view of every
+// other candidate and of every mined detection, with the same label.
+void SampleCollector::candidates(const sbr_image_t &v, const std::vector<Box> &cands, const std::vector<Box> &gts,
+                                 const std::vector<int> &cls, bool mined, std::vector<Sample> &local) const {
+    std::vector<float> f;
+    for (size_t ci = 0; ci < cands.size(); ++ci) {
+        const Box &c = cands[ci];
+        float best = 0;
+        size_t bg = 0;
+        for (size_t g = 0; g < gts.size(); ++g) {
+            const float ov = float(box_iou(c, gts[g]));
+            if (ov > best) { best = ov; bg = g; }
+        }
+        const bool tri = o_.tview && (mined || ci % 2 == 0);
+        if (best < 0.3f) {
+            if (features(v, c, f)) local.push_back({f, kBackground});
+            if (tri && features(v, c, f, kTriangle)) local.push_back({f, kBackground});
+        } else if ((best >= 0.55f || o_.box) && features(v, c, f)) {
+            local.push_back({f, best >= 0.55f ? cls[bg] : -1});
+            if (o_.box) {
+                local.back().has_box = true;
+                box_target(c, gts[bg], local.back().t);
+            }
+            if (tri && best >= 0.55f && features(v, c, f, kTriangle)) local.push_back({f, cls[bg]});
+        }
+    }
+}
+
+void SampleCollector::image(size_t i, const sbr_picto_model_t *mine, std::vector<uint64_t> &ws, std::mt19937 &rng,
+                            std::vector<Sample> &local) const {
+    const int num = image_number(files_[i]);
+    rng.seed(o_.seed * 100003u + unsigned(num));
+    cv::Mat img = cv::imread(files_[i], cv::IMREAD_COLOR);
+    if (img.empty()) return;
+    const sbr_image_t v = bgr_view(img);
+    std::vector<Box> gts;
+    std::vector<int> cls;
+    if (gt_.count(num))
+        for (const auto &g : gt_.at(num)) { gts.push_back(gt_pixbox(g)); cls.push_back(g.class_id); }
+    for (size_t g = 0; g < gts.size() && mine == nullptr; ++g) {
+        const Site site = make_site(img, v, gts, g, cls[g]);
+        sign_copies(site, rng, local);
+        rare_copies(site, num, g, local);
+        box_jitter_copies(site, num, g, local);
+    }
+    const bool from_recogniser = o_.cand_path.empty() || mine != nullptr;
+    const std::vector<Box> cands = from_recogniser ? recog_candidates(v, pm_, mine, o_.tview, ws)
+                                                   : (cand_file_.count(num) ? cand_file_.at(num) : std::vector<Box>{});
+    candidates(v, cands, gts, cls, mine != nullptr, local);
+}
+
+// Samples by kind: signs, background, boxes for the box regression only.
+struct Counts {
+    size_t fg = 0, bg = 0, reg = 0;
+};
+
+Counts count_samples(const std::vector<Sample> &samples, size_t images, double secs) {
+    Counts c;
+    for (const auto &s : samples) {
+        c.bg += s.label == kBackground;
+        c.reg += s.label < 0;
+    }
+    c.fg = samples.size() - c.bg - c.reg;
+    std::fprintf(stderr,
+                 "sbr_train_picto: %zu sign samples, %zu background samples, %zu boxes for the box regression only, "
+                 "from %zu images (%.1f s)\n",
+                 c.fg, c.bg, c.reg, images, secs);
+    return c;
+}
+
+// The features' mean and standard deviation over the samples (+ 1e-3), to standardise.
+struct Standard {
+    std::vector<float> mean = std::vector<float>(kF, 0.0f), sd = std::vector<float>(kF, 0.0f);
+    void apply(Sample &s) const {
+        for (int k = 0; k < kF; ++k) s.f[k] = (s.f[k] - mean[k]) / sd[k];
+    }
+};
+
+Standard standardise(std::vector<Sample> &samples) {
+    Standard st;
+    for (const auto &s : samples)
+        for (int k = 0; k < kF; ++k) st.mean[k] += s.f[k];
+    for (auto &m : st.mean) m /= float(samples.size());
+    for (const auto &s : samples)
+        for (int k = 0; k < kF; ++k) st.sd[k] += (s.f[k] - st.mean[k]) * (s.f[k] - st.mean[k]);
+    for (auto &d : st.sd) d = std::sqrt(d / float(samples.size())) + 1e-3f;
+    for (auto &s : samples) st.apply(s);
+    return st;
+}
+
+// Sample weights: background weighted up to the signs; with --balance, rarer classes'
+// samples by (n_c / mean)^-balance, scaled so the signs together weigh as before.
+std::vector<float> sample_weights(const std::vector<Sample> &samples, const Counts &n, float balance) {
+    std::vector<float> sw(samples.size(), 1.0f);
+    const float wbg = float(n.fg) / float(n.bg);
+    for (size_t i = 0; i < samples.size(); ++i)
+        if (samples[i].label == kBackground && !samples[i].hard) sw[i] = wbg;
+    if (balance <= 0.0f) return sw;
+    auto sign = [](const Sample &x) { return x.label >= 0 && x.label < kBackground; };
+    std::vector<double> nc(kBackground, 0.0);
+    for (const auto &x : samples)
+        if (sign(x)) nc[size_t(x.label)] += 1.0;
+    double present = 0.0, total = 0.0, wsum = 0.0;
+    for (double c : nc) { present += c > 0.0; total += c; }
+    const double mean_n = total / std::max(present, 1.0);
+    for (size_t i = 0; i < samples.size(); ++i)
+        if (sign(samples[i])) {
+            sw[i] = float(std::pow(nc[size_t(samples[i].label)] / mean_n, -double(balance)));
+            wsum += sw[i];
+        }
+    for (size_t i = 0; i < samples.size(); ++i)
+        if (sign(samples[i])) sw[i] *= float(total / wsum);
+    return sw;
+}
+
+// Train the network on the samples; fold the standardisation into the layer that reads
+// the features and the target units into the box rows. False when the weights fail the
+// core's check.
+bool fit(const Options &o, const std::vector<Sample> &samples, const Counts &n, const Standard &st, Picto &out,
+         std::chrono::steady_clock::time_point t0) {
+    const std::vector<float> sw = sample_weights(samples, n, o.balance);
+    Net net;
+    net.h = o.hidden;
+    train(net, samples, sw, o.epochs, o.seed, o.lr, o.bg_fraction, o.dropout, o.decay);
+    std::fprintf(stderr, "sbr_train_picto: trained (%.1f s)\n",
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    out.hidden = uint32_t(o.hidden);
+    out.classes = kGtsdbClasses;
+    out.threshold = o.threshold;
+    auto fold = [&](std::vector<float> &w) {
+        for (size_t r = 0; r < w.size() / (kF + 1); ++r) {
+            float *row = &w[r * (kF + 1)];
+            float bias = row[kF];
+            for (int k = 0; k < kF; ++k) {
+                row[k] /= st.sd[k];
+                bias -= row[k] * st.mean[k];
+            }
+            row[kF] = bias;
+        }
+    };
+    if (o.hidden > 0) {
+        fold(net.w1);
+    } else {
+        fold(net.w2);
+        fold(net.w3);
+    }
+    for (auto &x : net.w3) x *= kTargetScale;
+    out.w1 = net.w1;
+    out.w2 = net.w2;
+    out.w3.clear();
+    if (o.box) out.w3 = net.w3;
+    out.bind();
+    return sbr_picto_check(&out.view) == SBR_OK;
+}
+
+// The generated table's opening comment: the command that regenerates it and what it
+// learned from.
+std::string c_header(const Options &o, const Counts &n) {
     char bal[96] = "";
-    if (balance > 0.0f) std::snprintf(bal, sizeof bal, " --balance %g", double(balance));
-    if (!rim_classes.empty()) {
+    if (o.balance > 0.0f) std::snprintf(bal, sizeof bal, " --balance %g", double(o.balance));
+    if (!o.rim_classes.empty()) {
         std::string r = " --rim-check ";
-        for (size_t i = 0; i < rim_classes.size(); ++i) r += (i ? "," : "") + std::to_string(rim_classes[i]);
+        for (size_t i = 0; i < o.rim_classes.size(); ++i) r += (i ? "," : "") + std::to_string(o.rim_classes[i]);
         std::snprintf(bal + std::strlen(bal), sizeof bal - std::strlen(bal), "%s", r.c_str());
     }
-    if (rare > 0) std::snprintf(bal + std::strlen(bal), sizeof bal - std::strlen(bal), " --rare %d", rare);
+    if (o.rare > 0) std::snprintf(bal + std::strlen(bal), sizeof bal - std::strlen(bal), " --rare %d", o.rare);
     auto mode_name = [](BgSwap m) {
         return m == BgSwap::all ? "all" : m == BgSwap::round ? "round" : m == BgSwap::triangle ? "triangle" : "off";
     };
-    std::string swap_flag = std::string(" --bg-swap ") + mode_name(bg_swap);
-    if (bg_fill != BgSwap::off) swap_flag += std::string(" --bg-fill ") + mode_name(bg_fill);
-    if (!tview) swap_flag += " --no-triangle-view";
+    std::string swap_flag = std::string(" --bg-swap ") + mode_name(o.bg_swap);
+    if (o.bg_fill != BgSwap::off) swap_flag += std::string(" --bg-fill ") + mode_name(o.bg_fill);
+    if (!o.tview) swap_flag += " --no-triangle-view";
     char head[768];
     std::snprintf(head, sizeof head,
                   "Class stage (pictogram classifier) of sbr's recogniser. GENERATED by sbr_train_picto - do not edit.\n"
@@ -1330,48 +1388,132 @@ int main(int argc, char **argv) {
                   "            --out-c lib/models/sbr_picto_gtsdb.c on GTSDB)\n"
                   "Training: GTSDB images %s, %zu sign samples, %zu background samples,\n"
                   "%zu boxes for the box regression only.",
-                  range.str().c_str(), hidden, epochs, jitter, double(bg_fraction), double(dropout), double(decay),
-                  box ? "" : " --no-box", exposure ? " --exposure" : "", swap_flag.c_str(),
-                  mirror ? (rotate ? " --mirror" : " --mirror --no-rotate") : (rotate ? "" : " --no-rotate"),
-                  bal, rounds, seed, range.str(true).c_str(), nfg, nbg, nreg);
-    if (gate) {
-        if (!learn_gate(files, gt, *pm, out, gate_recall, gate_hidden, seed)) return 1;
-        std::snprintf(head + std::strlen(head), sizeof head - std::strlen(head),
-                      "\nGate (--gate --gate-hidden %d --gate-recall %g): threshold %.4f.", gate_hidden,
-                      double(gate_recall), double(out.gate_threshold));
-    }
-    if (!out_c.empty() && !report_write("sbr_train_picto", out_c, write_picto_c(out, out_c, head))) return 1;
-    if (!out_file.empty() && !report_write("sbr_train_picto", out_file, save_picto(out, out_file))) return 1;
+                  o.range.str().c_str(), o.hidden, o.epochs, o.jitter, double(o.bg_fraction), double(o.dropout),
+                  double(o.decay), o.box ? "" : " --no-box", o.exposure ? " --exposure" : "", swap_flag.c_str(),
+                  o.mirror ? (o.rotate ? " --mirror" : " --mirror --no-rotate") : (o.rotate ? "" : " --no-rotate"),
+                  bal, o.rounds, o.seed, o.range.str(true).c_str(), n.fg, n.bg, n.reg);
+    return head;
+}
 
-    if (!eval_range.empty()) {
-        // diagnostic on other images (normally the development split), with the core's
-        // classifier: the class of every annotated box
-        int n_gt = 0, n_ok = 0;
-        std::map<std::pair<int, int>, int> conf;
-        alignas(8) static float cws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
-        std::vector<float> f, p(kK);
-        for (const auto &file : list_images(dir)) {
-            const int num = image_number(file);
-            if (!eval_range.contains(num) || !gt.count(num)) continue;
-            cv::Mat img = cv::imread(file, cv::IMREAD_COLOR);
-            if (img.empty()) continue;
-            const sbr_image_t v = bgr_view(img);
-            for (const auto &g : gt.at(num)) {
-                ++n_gt;
-                if (!features(v, gt_pixbox(g), f) ||
-                    sbr_picto_classify(&out.view, f.data(), kF, p.data(), kK, cws, sizeof cws) != SBR_OK)
-                    continue;
-                const int best = int(std::max_element(p.begin(), p.end() - 1) - p.begin());
-                n_ok += best == g.class_id;
-                if (best != g.class_id) conf[{g.class_id, best}]++;
-            }
+// --eval-range: a diagnostic on other images (normally the development split), with the
+// core's classifier: the class of every annotated box, and the most frequent confusions.
+void evaluate(const Options &o, const std::string &dir, const std::map<int, std::vector<GtBox>> &gt,
+              const Picto &out) {
+    int n_gt = 0, n_ok = 0;
+    std::map<std::pair<int, int>, int> conf;
+    alignas(8) static float cws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
+    std::vector<float> f, p(kK);
+    for (const auto &file : list_images(dir)) {
+        const int num = image_number(file);
+        if (!o.eval_range.contains(num) || !gt.count(num)) continue;
+        cv::Mat img = cv::imread(file, cv::IMREAD_COLOR);
+        if (img.empty()) continue;
+        const sbr_image_t v = bgr_view(img);
+        for (const auto &g : gt.at(num)) {
+            ++n_gt;
+            if (!features(v, gt_pixbox(g), f) ||
+                sbr_picto_classify(&out.view, f.data(), kF, p.data(), kK, cws, sizeof cws) != SBR_OK)
+                continue;
+            const int best = int(std::max_element(p.begin(), p.end() - 1) - p.begin());
+            n_ok += best == g.class_id;
+            if (best != g.class_id) conf[{g.class_id, best}]++;
         }
-        std::printf("eval: class accuracy on annotated boxes %d / %d = %.4f\n", n_ok, n_gt, n_gt ? double(n_ok) / n_gt : 0.0);
-        std::vector<std::pair<int, std::pair<int, int>>> cl;
-        for (const auto &c : conf) cl.push_back({c.second, c.first});
-        std::sort(cl.rbegin(), cl.rend());
-        for (size_t i = 0; i < std::min<size_t>(8, cl.size()); ++i)
-            std::printf("  true %d -> %d: %d\n", cl[i].second.first, cl[i].second.second, cl[i].first);
     }
+    std::printf("eval: class accuracy on annotated boxes %d / %d = %.4f\n", n_ok, n_gt, n_gt ? double(n_ok) / n_gt : 0.0);
+    std::vector<std::pair<int, std::pair<int, int>>> cl;
+    for (const auto &c : conf) cl.push_back({c.second, c.first});
+    std::sort(cl.rbegin(), cl.rend());
+    for (size_t i = 0; i < std::min<size_t>(8, cl.size()); ++i)
+        std::printf("  true %d -> %d: %d\n", cl[i].second.first, cl[i].second.second, cl[i].first);
+}
+
+// --from-picto: no training, the colour check of --rim-check (and the gate with --gate)
+// learned on these images and added to a class stage trained before.
+int add_to_picto(const Options &o, const std::vector<std::string> &files, const std::map<int, std::vector<GtBox>> &gt,
+                 const sbr_model_t &pm) {
+    Picto out;
+    const std::string e = load_picto(o.from_picto, out);
+    if (!e.empty()) { std::fprintf(stderr, "sbr_train_picto: %s\n", e.c_str()); return 1; }
+    if ((o.rim_classes.empty() && !o.gate) || o.out_file.empty()) {
+        std::fprintf(stderr, "sbr_train_picto: --from-picto needs --rim-check or --gate, and --out\n");
+        return 2;
+    }
+    if (!o.rim_classes.empty() && !learn_rim_floors(files, gt, o.rim_classes, out)) return 1;
+    if (o.gate && !learn_gate(files, gt, pm, out, o.gate_recall, o.gate_hidden, o.seed)) return 1;
+    return report_write("sbr_train_picto", o.out_file, save_picto(out, o.out_file)) ? 0 : 1;
+}
+
+// The rounds: train on the first round's samples; each later round adds the recogniser's
+// detections with the class stage so far (hard samples) and trains again.
+bool train_rounds(const Options &o, const SampleCollector &sc, size_t images, std::vector<Sample> &samples,
+                  Counts &n, Picto &out, std::chrono::steady_clock::time_point t0) {
+    auto secs = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    const Standard st = standardise(samples);
+    for (int round = 1; round <= o.rounds; ++round) {
+        if (round > 1) {
+            std::vector<Sample> mined = sc.collect(&out.view);
+            std::fprintf(stderr, "sbr_train_picto: round %d: %zu detections of round %d added\n", round, mined.size(),
+                         round - 1);
+            for (auto &x : mined) {
+                st.apply(x);
+                x.hard = true;
+            }
+            for (auto &x : samples) mined.push_back(std::move(x));
+            samples.swap(mined);
+            sort_samples(samples);
+            n = count_samples(samples, images, secs());
+        }
+        if (!fit(o, samples, n, st, out, t0)) {
+            std::fprintf(stderr, "sbr_train_picto: trained weights fail the check\n");
+            return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    Options o;
+    const int parsed = parse_options(argc, argv, o);
+    if (parsed >= 0) return parsed;
+    const auto t0 = std::chrono::steady_clock::now();
+    auto secs = [&]() { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+    const std::string dir = gtsdb_image_dir(o.data);
+    const auto gt = read_gt(dir + "/gt.txt");
+    if (gt.empty()) { std::fprintf(stderr, "sbr_train_picto: no ground truth in %s\n", dir.c_str()); return 77; }
+    Model part_model;
+    sbr_model_t builtin{};
+    const sbr_model_t *pm = &builtin;
+    if (!o.model_path.empty()) {
+        const std::string e = load_model(o.model_path, part_model);
+        if (!e.empty()) { std::fprintf(stderr, "sbr_train_picto: %s\n", e.c_str()); return 1; }
+        pm = &part_model.view;
+    } else {
+        sbr_model_gtsdb(&builtin);
+    }
+    std::vector<std::string> files;
+    for (const auto &f : list_images(dir))
+        if (o.range.contains(image_number(f))) files.push_back(f);
+    if (!o.from_picto.empty()) return add_to_picto(o, files, gt, *pm);
+
+    const SampleCollector sc(o, files, gt, *pm);
+    std::vector<Sample> samples = sc.collect(nullptr);
+    Counts n = count_samples(samples, files.size(), secs());
+    if (n.fg == 0 || n.bg == 0) { std::fprintf(stderr, "sbr_train_picto: nothing to learn from\n"); return 1; }
+    Picto out;
+    if (!train_rounds(o, sc, files.size(), samples, n, out, t0)) return 1;
+    if (!o.rim_classes.empty() && !learn_rim_floors(files, gt, o.rim_classes, out)) return 1;
+    std::string head = c_header(o, n);
+    if (o.gate) {
+        if (!learn_gate(files, gt, *pm, out, o.gate_recall, o.gate_hidden, o.seed)) return 1;
+        char g[128];
+        std::snprintf(g, sizeof g, "\nGate (--gate --gate-hidden %d --gate-recall %g): threshold %.4f.", o.gate_hidden,
+                      double(o.gate_recall), double(out.gate_threshold));
+        head += g;
+    }
+    if (!o.out_c.empty() && !report_write("sbr_train_picto", o.out_c, write_picto_c(out, o.out_c, head))) return 1;
+    if (!o.out_file.empty() && !report_write("sbr_train_picto", o.out_file, save_picto(out, o.out_file))) return 1;
+    if (!o.eval_range.empty()) evaluate(o, dir, gt, out);
     return 0;
 }
