@@ -93,10 +93,8 @@ struct Variant {
     bool multires;
 };
 
-}  // namespace
-
-int main(int argc, char **argv) {
-    Options o;
+// -1: go on; otherwise the exit status.
+int parse_options(int argc, char **argv, Options &o) {
     CLI::App app{"sbr_shapes: shape retrieval by FD matching on binary silhouettes (MPEG-7, Kimia-99): every "
                  "shape is the query once against all; the bull's-eye score counts same-class shapes among the "
                  "2 x class-size nearest (docs/usage/shapes.md)"};
@@ -122,55 +120,67 @@ int main(int argc, char **argv) {
         std::printf("%s%s is not a folder\n", o.skip_missing ? "SKIP: " : "sbr_shapes: ", o.data.c_str());
         return o.skip_missing ? 77 : 2;
     }
-    sbr_fft_t fft_n, fft_p;
-    if (sbr_fft_init(&fft_n, o.n) != SBR_OK || sbr_fft_init(&fft_p, o.p) != SBR_OK ||
-        o.m < 2 || o.m > SBR_FD_MAX_M || 2 * o.m >= o.n || 2 * o.m + 1 > o.p) {
+    if (o.m < 2 || o.m > SBR_FD_MAX_M || 2 * o.m >= o.n || 2 * o.m + 1 > o.p) {
         std::fprintf(stderr, "sbr_shapes: unsupported N=%u M=%u P=%u\n", o.n, o.m, o.p);
         return 2;
     }
+    return -1;
+}
 
+// The silhouettes: files sorted by name, their classes (the name before the last - or _),
+// and the bull's-eye window (twice the first class's size).
+struct Dataset {
     std::vector<fs::path> files;
-    for (const auto &e : fs::directory_iterator(o.data))
-        if (e.path().extension() == ".pbm") files.push_back(e.path());
-    std::sort(files.begin(), files.end());
-    if (o.max_images > 0 && files.size() > static_cast<size_t>(o.max_images)) files.resize(o.max_images);
-    const size_t count = files.size();
-    if (count == 0) {
-        std::fprintf(stderr, "sbr_shapes: no .pbm files in %s\n", o.data.c_str());
-        return 2;
-    }
+    std::vector<int> cls;
     std::map<std::string, int> class_ids;
-    std::vector<int> cls(count);
+    size_t class_size = 0, window = 0;
+    size_t count() const { return files.size(); }
+};
+
+bool load_dataset(const Options &o, Dataset &d) {
+    for (const auto &e : fs::directory_iterator(o.data))
+        if (e.path().extension() == ".pbm") d.files.push_back(e.path());
+    std::sort(d.files.begin(), d.files.end());
+    if (o.max_images > 0 && d.files.size() > static_cast<size_t>(o.max_images)) d.files.resize(o.max_images);
+    if (d.files.empty()) {
+        std::fprintf(stderr, "sbr_shapes: no .pbm files in %s\n", o.data.c_str());
+        return false;
+    }
     std::map<int, size_t> class_count;
-    for (size_t i = 0; i < count; ++i) {
-        const std::string c = class_of(files[i].stem().string());
-        const auto it = class_ids.emplace(c, static_cast<int>(class_ids.size())).first;
-        cls[i] = it->second;
-        class_count[cls[i]]++;
+    d.cls.resize(d.count());
+    for (size_t i = 0; i < d.count(); ++i) {
+        const std::string c = class_of(d.files[i].stem().string());
+        const auto it = d.class_ids.emplace(c, static_cast<int>(d.class_ids.size())).first;
+        d.cls[i] = it->second;
+        class_count[d.cls[i]]++;
     }
-    const size_t class_size = class_count.begin()->second;
-    const size_t window = 2 * class_size;
+    d.class_size = class_count.begin()->second;
+    d.window = 2 * d.class_size;
+    return true;
+}
 
-    // ---- stage 1: read ----------------------------------------------------------------
-    auto t0 = Clock::now();
-    std::vector<cv::Mat> masks(count);
-    for (size_t i = 0; i < count; ++i) {
-        cv::Mat img = cv::imread(files[i].string(), cv::IMREAD_GRAYSCALE);
+// Stage 1: the silhouettes as masks (PBM bit 1 = object, decoded as black).
+bool read_masks(const Dataset &d, std::vector<cv::Mat> &masks) {
+    masks.resize(d.count());
+    for (size_t i = 0; i < d.count(); ++i) {
+        cv::Mat img = cv::imread(d.files[i].string(), cv::IMREAD_GRAYSCALE);
         if (img.empty()) {
-            std::fprintf(stderr, "sbr_shapes: cannot read %s\n", files[i].c_str());
-            return 1;
+            std::fprintf(stderr, "sbr_shapes: cannot read %s\n", d.files[i].c_str());
+            return false;
         }
-        masks[i] = (img == 0);  // PBM bit 1 = object, decoded as black
+        masks[i] = (img == 0);
     }
-    const double t_read = seconds_since(t0);
+    return true;
+}
 
-    // ---- stage 2: sbr contours (largest outer boundary of each silhouette) -----------
-    t0 = Clock::now();
-    std::vector<std::vector<sbr_point_t>> contours(count);
+// Stage 2: sbr's contours, the largest outer boundary of each silhouette.
+bool sbr_contours(const Dataset &d, const std::vector<cv::Mat> &masks,
+                  std::vector<std::vector<sbr_point_t>> &contours) {
+    contours.assign(d.count(), {});
     std::vector<uint8_t> ws;
     std::vector<sbr_point_t> pts;
     std::vector<sbr_contour_t> cts(4096);
-    for (size_t i = 0; i < count; ++i) {
+    for (size_t i = 0; i < d.count(); ++i) {
         const cv::Mat &m = masks[i];
         sbr_image_t v{static_cast<uint32_t>(m.cols), static_cast<uint32_t>(m.rows),
                       static_cast<uint32_t>(m.step), SBR_PIXEL_GRAY8, m.data};
@@ -183,8 +193,8 @@ int main(int argc, char **argv) {
                                                static_cast<uint32_t>(cts.size()), &nc)) == SBR_ERR_CAPACITY)
             pts.resize(pts.size() * 2);
         if (st != SBR_OK || nc == 0) {
-            std::fprintf(stderr, "sbr_shapes: no contour in %s (%s)\n", files[i].c_str(), sbr_status_str(st));
-            return 1;
+            std::fprintf(stderr, "sbr_shapes: no contour in %s (%s)\n", d.files[i].c_str(), sbr_status_str(st));
+            return false;
         }
         int64_t best_area = -1;
         uint32_t best = 0;
@@ -195,53 +205,33 @@ int main(int argc, char **argv) {
         }
         contours[i].assign(pts.begin() + cts[best].first, pts.begin() + cts[best].first + cts[best].length);
     }
-    const double t_contours = seconds_since(t0);
+    return true;
+}
 
-    // ---- stage 3: sbr descriptors -----------------------------------------------------
-    t0 = Clock::now();
-    std::vector<sbr_fd_t> fd(count), fd_mir(count), fd_s(count), fd_smir(count), fd_lo(count), fd_lomir(count);
-    std::vector<sbr_complex_t> work(std::max(o.n, SBR_FD_TABLE_WORK_LEN(o.p)));
-    const uint32_t m_lo = std::max(2u, o.m / 2);
-    for (size_t i = 0; i < count; ++i) {
-        const auto &c = contours[i];
-        if (sbr_fd_from_points(&fft_n, c.data(), static_cast<uint32_t>(c.size()), o.m, work.data(),
-                               static_cast<uint32_t>(work.size()), &fd[i]) != SBR_OK) {
-            std::fprintf(stderr, "sbr_shapes: degenerate contour in %s\n", files[i].c_str());
-            return 1;
-        }
-        sbr_fd_mirror(&fd[i], &fd_mir[i]);
-        sbr_fd_smooth(&fd[i], o.sigma, &fd_s[i]);
-        sbr_fd_mirror(&fd_s[i], &fd_smir[i]);
-        sbr_fd_from_points(&fft_n, c.data(), static_cast<uint32_t>(c.size()), m_lo, work.data(),
-                           static_cast<uint32_t>(work.size()), &fd_lo[i]);
-        sbr_fd_smooth(&fd_lo[i], o.sigma, &fd_lo[i]);
-        sbr_fd_mirror(&fd_lo[i], &fd_lomir[i]);
-    }
-    const double t_fd = seconds_since(t0);
-
-    // ---- stage 4: all pairs with sbr's matcher, per variant -----------------------------
+// sbr's matcher for all pairs: the FFTs, one table call per query row (the prototypes
+// j > i are contiguous, as an ECU matches a region against its prototype library:
+// arguments are checked once per row).
+struct Matcher {
+    sbr_fft_t fft_n, fft_p, fft_lo;
+    uint32_t m_lo = 2, p_lo = 16;  // the second resolution
     sbr_fd_match_config_t cfg;
-    sbr_fd_match_config_default(&cfg);
-    cfg.mode = SBR_FD_ROTATION_INVARIANT;
-    cfg.refine = 0;
-    sbr_fft_t fft_lo;
-    uint32_t p_lo = 16;
-    while (p_lo < 2 * m_lo + 1) p_lo *= 2;
-    sbr_fft_init(&fft_lo, p_lo);
-    const Variant variants[] = {
-        {"plain FD correlation (rotation invariant)", false, false, false},
-        {"+ mirror", true, false, false},
-        {"+ mirror + contour smoothing", true, true, false},
-        {"+ mirror + smoothing + two resolutions (M and M/2)", true, true, true},
-    };
-    const size_t nvar = sizeof(variants) / sizeof(variants[0]);
-    std::vector<double> var_be(nvar), var_sec(nvar);
-    std::vector<float> dist(count * count);
-    // One table call per query row (the prototypes j > i are contiguous), as an ECU
-    // matches a region against its prototype library: arguments are checked once per row.
-    std::vector<sbr_fd_match_t> res(count), res2(count);
-    auto row = [&](const sbr_fft_t &f, const std::vector<sbr_fd_t> &q, size_t i,
-                   const std::vector<sbr_fd_t> &protos, std::vector<sbr_fd_match_t> &out) {
+    std::vector<sbr_complex_t> work;
+    size_t count = 0;
+    bool init(const Options &o, size_t n) {
+        count = n;
+        if (sbr_fft_init(&fft_n, o.n) != SBR_OK || sbr_fft_init(&fft_p, o.p) != SBR_OK) return false;
+        m_lo = std::max(2u, o.m / 2);
+        while (p_lo < 2 * m_lo + 1) p_lo *= 2;
+        sbr_fft_init(&fft_lo, p_lo);
+        sbr_fd_match_config_default(&cfg);
+        cfg.mode = SBR_FD_ROTATION_INVARIANT;
+        cfg.refine = 0;
+        work.resize(std::max(o.n, SBR_FD_TABLE_WORK_LEN(o.p)));
+        return true;
+    }
+    // q[i] against protos[i + 1 ..] into out.
+    void row(const sbr_fft_t &f, const std::vector<sbr_fd_t> &q, size_t i, const std::vector<sbr_fd_t> &protos,
+             std::vector<sbr_fd_match_t> &out) {
         uint32_t best = 0;
         const sbr_status_t st = sbr_fd_match_table(&f, &cfg, &q[i], &protos[i + 1],
                                                    static_cast<uint32_t>(count - i - 1), work.data(),
@@ -250,47 +240,91 @@ int main(int argc, char **argv) {
             std::fprintf(stderr, "sbr_shapes: matching failed (%s)\n", sbr_status_str(st));
             std::exit(1);
         }
-    };
-    // The headline is "+ mirror": smoothing and a second resolution were measured not to
-    // help on MPEG-7 (the table shows them), so the headline does not pay for them. When
-    // the OpenCV reference runs, the headline is measured there, interleaved with it.
-    const size_t head = 1;
-    for (size_t v = 0; v < nvar; ++v) {
-        if (v == head && !o.skip_opencv_fd) continue;
-        const Variant &var = variants[v];
-        const auto &base = var.smooth ? fd_s : fd;
-        const auto &mir = var.smooth ? fd_smir : fd_mir;
-        t0 = Clock::now();
-        for (size_t i = 0; i < count; ++i) {
-            dist[i * count + i] = 0.0f;
-            if (i + 1 == count) break;
-            const size_t k = count - i - 1;
-            std::vector<float> e(k);
-            row(fft_p, base, i, base, res);
-            for (size_t t = 0; t < k; ++t) e[t] = res[t].error;
-            if (var.mirror) {
-                row(fft_p, base, i, mir, res2);
-                for (size_t t = 0; t < k; ++t) e[t] = std::min(e[t], res2[t].error);
-            }
-            if (var.multires) {
-                row(fft_lo, fd_lo, i, fd_lo, res);
-                if (var.mirror) row(fft_lo, fd_lo, i, fd_lomir, res2);
-                for (size_t t = 0; t < k; ++t)
-                    e[t] += var.mirror ? std::min(res[t].error, res2[t].error) : res[t].error;
-            }
-            for (size_t t = 0; t < k; ++t) {
-                const size_t j = i + 1 + t;
-                dist[i * count + j] = dist[j * count + i] = e[t];
-            }
-            if (i % 100 == 0) std::fprintf(stderr, "\r[%zu/%zu] %s      ", v + 1, nvar, var.name);
-        }
-        var_sec[v] = seconds_since(t0);
-        var_be[v] = bullseye(dist, cls, window, class_size);
     }
-    std::fprintf(stderr, "\n");
+};
 
-    // ---- OpenCV: Hu moments + matchShapes I1..I3 ----------------------------------------
-    t0 = Clock::now();
+// Stage 3: the descriptors of every variant: plain, mirrored, smoothed, and at M / 2.
+struct Descriptors {
+    std::vector<sbr_fd_t> fd, mir, s, smir, lo, lomir;
+};
+
+bool sbr_descriptors(const Options &o, const Dataset &d, const std::vector<std::vector<sbr_point_t>> &contours,
+                     Matcher &mt, Descriptors &D) {
+    const size_t count = d.count();
+    for (auto *v : {&D.fd, &D.mir, &D.s, &D.smir, &D.lo, &D.lomir}) v->resize(count);
+    for (size_t i = 0; i < count; ++i) {
+        const auto &c = contours[i];
+        if (sbr_fd_from_points(&mt.fft_n, c.data(), static_cast<uint32_t>(c.size()), o.m, mt.work.data(),
+                               static_cast<uint32_t>(mt.work.size()), &D.fd[i]) != SBR_OK) {
+            std::fprintf(stderr, "sbr_shapes: degenerate contour in %s\n", d.files[i].c_str());
+            return false;
+        }
+        sbr_fd_mirror(&D.fd[i], &D.mir[i]);
+        sbr_fd_smooth(&D.fd[i], o.sigma, &D.s[i]);
+        sbr_fd_mirror(&D.s[i], &D.smir[i]);
+        sbr_fd_from_points(&mt.fft_n, c.data(), static_cast<uint32_t>(c.size()), mt.m_lo, mt.work.data(),
+                           static_cast<uint32_t>(mt.work.size()), &D.lo[i]);
+        sbr_fd_smooth(&D.lo[i], o.sigma, &D.lo[i]);
+        sbr_fd_mirror(&D.lo[i], &D.lomir[i]);
+    }
+    return true;
+}
+
+const Variant kVariants[] = {
+    {"plain FD correlation (rotation invariant)", false, false, false},
+    {"+ mirror", true, false, false},
+    {"+ mirror + contour smoothing", true, true, false},
+    {"+ mirror + smoothing + two resolutions (M and M/2)", true, true, true},
+};
+constexpr size_t kVariantCount = sizeof(kVariants) / sizeof(kVariants[0]);
+// The headline is "+ mirror": smoothing and a second resolution were measured not to help
+// on MPEG-7 (the table shows them), so the headline does not pay for them. When the
+// OpenCV reference runs, the headline is measured there, interleaved with it.
+constexpr size_t kHeadline = 1;
+
+// Stage 4: all pairs of one variant into dist (symmetric).
+void variant_distances(const Variant &var, size_t v, const Descriptors &D, Matcher &mt, std::vector<float> &dist) {
+    const size_t count = mt.count;
+    const auto &base = var.smooth ? D.s : D.fd;
+    const auto &mir = var.smooth ? D.smir : D.mir;
+    std::vector<sbr_fd_match_t> res(count), res2(count);
+    for (size_t i = 0; i < count; ++i) {
+        dist[i * count + i] = 0.0f;
+        if (i + 1 == count) break;
+        const size_t k = count - i - 1;
+        std::vector<float> e(k);
+        mt.row(mt.fft_p, base, i, base, res);
+        for (size_t t = 0; t < k; ++t) e[t] = res[t].error;
+        if (var.mirror) {
+            mt.row(mt.fft_p, base, i, mir, res2);
+            for (size_t t = 0; t < k; ++t) e[t] = std::min(e[t], res2[t].error);
+        }
+        if (var.multires) {
+            mt.row(mt.fft_lo, D.lo, i, D.lo, res);
+            if (var.mirror) mt.row(mt.fft_lo, D.lo, i, D.lomir, res2);
+            for (size_t t = 0; t < k; ++t) e[t] += var.mirror ? std::min(res[t].error, res2[t].error) : res[t].error;
+        }
+        for (size_t t = 0; t < k; ++t) {
+            const size_t j = i + 1 + t;
+            dist[i * count + j] = dist[j * count + i] = e[t];
+        }
+        if (i % 100 == 0) std::fprintf(stderr, "\r[%zu/%zu] %s      ", v + 1, kVariantCount, var.name);
+    }
+}
+
+// The figures of a run, for the report.
+struct Results {
+    double t_read = 0, t_contours = 0, t_fd = 0, t_hu = 0;
+    double var_be[kVariantCount] = {}, var_sec[kVariantCount] = {};
+    double hu_be[3] = {}, hu_check = 0;
+    double t_cv = 0, cv_be = 0, t_sbr_il = 0;
+};
+
+// OpenCV: findContours, Hu moments and matchShapes I1..I3 (our Hu formulas are OpenCV's:
+// compared with cv::matchShapes on a sample of pairs).
+void opencv_hu(const Dataset &d, const std::vector<cv::Mat> &masks, std::vector<float> &dist, Results &r) {
+    const size_t count = d.count();
+    const auto t0 = Clock::now();
     std::vector<std::array<double, 7>> hu(count);
     std::vector<std::vector<cv::Point>> cv_contours(count);
     for (size_t i = 0; i < count; ++i) {
@@ -305,107 +339,150 @@ int main(int argc, char **argv) {
         cv_contours[i] = cs[best];
         cv::HuMoments(cv::moments(cs[best]), hu[i].data());
     }
-    double hu_be[3];
     for (int method = 1; method <= 3; ++method) {
         for (size_t i = 0; i < count; ++i)
             for (size_t j = 0; j < count; ++j)
                 dist[i * count + j] = static_cast<float>(hu_distance(hu[i].data(), hu[j].data(), method));
-        hu_be[method - 1] = bullseye(dist, cls, window, class_size);
+        r.hu_be[method - 1] = bullseye(dist, d.cls, d.window, d.class_size);
     }
-    const double t_hu = seconds_since(t0);
-    // our Hu formulas are OpenCV's: compare with cv::matchShapes on a sample of pairs
-    double hu_check = 0.0;
+    r.t_hu = seconds_since(t0);
     for (size_t s = 0; s < std::min<size_t>(count, 50); ++s) {
         const size_t i = (s * 7919) % count, j = (s * 104729 + 3) % count;
         for (int method = 1; method <= 3; ++method) {
             const double ref = cv::matchShapes(cv_contours[i], cv_contours[j], method, 0.0);
-            hu_check = std::max(hu_check, std::fabs(ref - hu_distance(hu[i].data(), hu[j].data(), method)));
+            r.hu_check = std::max(r.hu_check, std::fabs(ref - hu_distance(hu[i].data(), hu[j].data(), method)));
         }
     }
+}
 
-    // ---- OpenCV same method: FD correlation with cv::dft per pair -----------------------
-    double t_cv = 0.0, cv_be = 0.0, t_sbr_il = 0.0;
-    if (!o.skip_opencv_fd) {
-        // Same descriptors (sbr's coefficients, as cv::Mat), correlation through cv::dft.
-        const int P = static_cast<int>(o.p), M = static_cast<int>(o.m);
-        std::vector<cv::Mat> q(count), qm(count);
-        for (size_t i = 0; i < count; ++i) {
-            q[i] = cv::Mat(1, 2 * M + 1, CV_32FC2, reinterpret_cast<void *>(fd[i].c)).clone();
-            qm[i] = cv::Mat(1, 2 * M + 1, CV_32FC2, reinterpret_cast<void *>(fd_mir[i].c)).clone();
+// OpenCV, the same method: FD correlation through cv::dft per pair on sbr's coefficients.
+struct CvCorrelation {
+    int P, M;
+    cv::Mat buf, out;
+    CvCorrelation(int p, int m) : P(p), M(m), buf(1, p, CV_32FC2), out(1, p, CV_32FC2) {}
+    float error(const cv::Mat &a, const cv::Mat &b) {
+        buf.setTo(cv::Scalar::all(0));
+        const cv::Vec2f *pa = a.ptr<cv::Vec2f>(), *pb = b.ptr<cv::Vec2f>();
+        cv::Vec2f *pbuf = buf.ptr<cv::Vec2f>();
+        for (int k = 0; k <= 2 * M; ++k) {
+            const int at = k >= M ? k - M : P + k - M;
+            pbuf[at] = cv::Vec2f(pa[k][0] * pb[k][0] + pa[k][1] * pb[k][1], pa[k][0] * pb[k][1] - pa[k][1] * pb[k][0]);
         }
-        cv::Mat buf(1, P, CV_32FC2), out(1, P, CV_32FC2);
-        auto cv_err = [&](const cv::Mat &a, const cv::Mat &b) {
-            buf.setTo(cv::Scalar::all(0));
-            const cv::Vec2f *pa = a.ptr<cv::Vec2f>(), *pb = b.ptr<cv::Vec2f>();
-            cv::Vec2f *pbuf = buf.ptr<cv::Vec2f>();
-            for (int k = 0; k <= 2 * M; ++k) {
-                const int at = k >= M ? k - M : P + k - M;
-                pbuf[at] = cv::Vec2f(pa[k][0] * pb[k][0] + pa[k][1] * pb[k][1],
-                                     pa[k][0] * pb[k][1] - pa[k][1] * pb[k][0]);
-            }
-            cv::dft(buf, out, cv::DFT_INVERSE);
-            float best = 0.0f;
-            const cv::Vec2f *po = out.ptr<cv::Vec2f>();
-            for (int l = 0; l < P; ++l) best = std::max(best, po[l][0] * po[l][0] + po[l][1] * po[l][1]);
-            return 2.0f - 2.0f * std::sqrt(best);
-        };
-        // Row by row, OpenCV's row and then sbr's headline row again, each timed: both see
-        // the same machine load, so their ratio is robust against a noisy machine. Both
-        // timed loops write the row's upper triangle (contiguous); the lower triangle is
-        // mirrored afterwards, outside the timing, for both alike.
-        std::vector<float> dist_sbr(count * count);
-        for (size_t i = 0; i < count; ++i) {
-            dist[i * count + i] = 0.0f;
-            dist_sbr[i * count + i] = 0.0f;
+        cv::dft(buf, out, cv::DFT_INVERSE);
+        float best = 0.0f;
+        const cv::Vec2f *po = out.ptr<cv::Vec2f>();
+        for (int l = 0; l < P; ++l) best = std::max(best, po[l][0] * po[l][0] + po[l][1] * po[l][1]);
+        return 2.0f - 2.0f * std::sqrt(best);
+    }
+};
+
+// Row by row, OpenCV's row and then sbr's headline row again, each timed: both see the
+// same machine load, so their ratio is robust against a noisy machine. Both timed loops
+// write the row's upper triangle (contiguous); the lower triangle is mirrored afterwards,
+// outside the timing, for both alike.
+void opencv_same_method(const Options &o, const Dataset &d, const Descriptors &D, Matcher &mt,
+                        std::vector<float> &dist, Results &r) {
+    const size_t count = d.count();
+    const int M = static_cast<int>(o.m);
+    std::vector<cv::Mat> q(count), qm(count);
+    for (size_t i = 0; i < count; ++i) {
+        q[i] = cv::Mat(1, 2 * M + 1, CV_32FC2, const_cast<void *>(static_cast<const void *>(D.fd[i].c))).clone();
+        qm[i] = cv::Mat(1, 2 * M + 1, CV_32FC2, const_cast<void *>(static_cast<const void *>(D.mir[i].c))).clone();
+    }
+    CvCorrelation cc(static_cast<int>(o.p), M);
+    std::vector<float> dist_sbr(count * count);
+    std::vector<sbr_fd_match_t> res(count), res2(count);
+    for (size_t i = 0; i < count; ++i) {
+        dist[i * count + i] = 0.0f;
+        dist_sbr[i * count + i] = 0.0f;
+        auto t0 = Clock::now();
+        float *cv_row = &dist[i * count];
+        for (size_t j = i + 1; j < count; ++j) cv_row[j] = std::min(cc.error(q[i], q[j]), cc.error(q[i], qm[j]));
+        r.t_cv += seconds_since(t0);
+        if (i + 1 < count) {
+            const size_t k = count - i - 1;
             t0 = Clock::now();
-            float *cv_row = &dist[i * count];
-            for (size_t j = i + 1; j < count; ++j)
-                cv_row[j] = std::min(cv_err(q[i], q[j]), cv_err(q[i], qm[j]));
-            t_cv += seconds_since(t0);
-            if (i + 1 < count) {
-                const size_t k = count - i - 1;
-                t0 = Clock::now();
-                row(fft_p, fd, i, fd, res);
-                row(fft_p, fd, i, fd_mir, res2);
-                float *sbr_row = &dist_sbr[i * count + i + 1];
-                for (size_t t = 0; t < k; ++t) sbr_row[t] = std::min(res[t].error, res2[t].error);
-                t_sbr_il += seconds_since(t0);
-            }
-            if (i % 100 == 0) std::fprintf(stderr, "\r[OpenCV same method] %zu/%zu   ", i, count);
+            mt.row(mt.fft_p, D.fd, i, D.fd, res);
+            mt.row(mt.fft_p, D.fd, i, D.mir, res2);
+            float *sbr_row = &dist_sbr[i * count + i + 1];
+            for (size_t t = 0; t < k; ++t) sbr_row[t] = std::min(res[t].error, res2[t].error);
+            r.t_sbr_il += seconds_since(t0);
         }
-        std::fprintf(stderr, "\n");
-        for (size_t i = 0; i < count; ++i)
-            for (size_t j = i + 1; j < count; ++j) {
-                dist[j * count + i] = dist[i * count + j];
-                dist_sbr[j * count + i] = dist_sbr[i * count + j];
-            }
-        cv_be = bullseye(dist, cls, window, class_size);
-        var_sec[head] = t_sbr_il;
-        var_be[head] = bullseye(dist_sbr, cls, window, class_size);
+        if (i % 100 == 0) std::fprintf(stderr, "\r[OpenCV same method] %zu/%zu   ", i, count);
     }
+    std::fprintf(stderr, "\n");
+    for (size_t i = 0; i < count; ++i)
+        for (size_t j = i + 1; j < count; ++j) {
+            dist[j * count + i] = dist[i * count + j];
+            dist_sbr[j * count + i] = dist_sbr[i * count + j];
+        }
+    r.cv_be = bullseye(dist, d.cls, d.window, d.class_size);
+    r.var_sec[kHeadline] = r.t_sbr_il;
+    r.var_be[kHeadline] = bullseye(dist_sbr, d.cls, d.window, d.class_size);
+}
 
-    // ---- report ------------------------------------------------------------------------
+void report(const Options &o, const Dataset &d, const Matcher &mt, const Results &r) {
+    const size_t count = d.count();
     const size_t pairs = count * (count - 1) / 2;
-    std::printf("data: %s: %zu shapes, %zu classes of %zu; bull's-eye window %zu\n", o.data.c_str(),
-                count, class_ids.size(), class_size, window);
-    std::printf("sbr: N=%u M=%u P=%u smoothing sigma=%.3f, second resolution M=%u P=%u\n", o.n, o.m,
-                o.p, static_cast<double>(o.sigma), m_lo, p_lo);
+    std::printf("data: %s: %zu shapes, %zu classes of %zu; bull's-eye window %zu\n", o.data.c_str(), count,
+                d.class_ids.size(), d.class_size, d.window);
+    std::printf("sbr: N=%u M=%u P=%u smoothing sigma=%.3f, second resolution M=%u P=%u\n", o.n, o.m, o.p,
+                static_cast<double>(o.sigma), mt.m_lo, mt.p_lo);
     std::printf("stage times (s): read %.3f, sbr contours %.3f, sbr descriptors %.3f, "
-                "OpenCV contours+Hu+ranking %.3f\n", t_read, t_contours, t_fd, t_hu);
+                "OpenCV contours+Hu+ranking %.3f\n", r.t_read, r.t_contours, r.t_fd, r.t_hu);
     std::printf("%-56s %10s %12s\n", "variant (sbr, all pairs, one core)", "bull's-eye", "seconds");
-    for (size_t v = 0; v < nvar; ++v)
-        std::printf("%-56s %9.2f%% %12.3f%s\n", variants[v].name, var_be[v], var_sec[v],
-                    v == head ? "  <- headline" : "");
+    for (size_t v = 0; v < kVariantCount; ++v)
+        std::printf("%-56s %9.2f%% %12.3f%s\n", kVariants[v].name, r.var_be[v], r.var_sec[v],
+                    v == kHeadline ? "  <- headline" : "");
     std::printf("OpenCV matchShapes (Hu): I1 %.2f%%, I2 %.2f%%, I3 %.2f%% (max deviation from "
-                "cv::matchShapes on 150 pairs: %.2g)\n", hu_be[0], hu_be[1], hu_be[2], hu_check);
+                "cv::matchShapes on 150 pairs: %.2g)\n", r.hu_be[0], r.hu_be[1], r.hu_be[2], r.hu_check);
     if (!o.skip_opencv_fd)
         std::printf("OpenCV same method (cv::dft per pair, headline variant), timed row by row "
                     "interleaved with sbr's headline rows: OpenCV %.3f s, sbr %.3f s, bull's-eye "
-                    "%.2f%%; sbr is %.2fx faster\n", t_cv, t_sbr_il, cv_be, t_cv / t_sbr_il);
-    const double all_pairs = var_sec[head];
+                    "%.2f%%; sbr is %.2fx faster\n", r.t_cv, r.t_sbr_il, r.cv_be, r.t_cv / r.t_sbr_il);
     std::printf("all pairs: %zu unordered pairs (distances are symmetric)\n", pairs);
     std::printf("bullseye_percent=%.2f all_pairs_seconds=%.3f opencv_same_method_seconds=%.3f "
-                "opencv_hu_best_bullseye_percent=%.2f\n", var_be[head], all_pairs, t_cv,
-                std::max({hu_be[0], hu_be[1], hu_be[2]}));
+                "opencv_hu_best_bullseye_percent=%.2f\n", r.var_be[kHeadline], r.var_sec[kHeadline], r.t_cv,
+                std::max({r.hu_be[0], r.hu_be[1], r.hu_be[2]}));
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    Options o;
+    const int parsed = parse_options(argc, argv, o);
+    if (parsed >= 0) return parsed;
+    Dataset d;
+    Matcher mt;
+    if (!load_dataset(o, d)) return 2;
+    if (!mt.init(o, d.count())) {
+        std::fprintf(stderr, "sbr_shapes: unsupported N=%u M=%u P=%u\n", o.n, o.m, o.p);
+        return 2;
+    }
+    Results r;
+    auto t0 = Clock::now();
+    std::vector<cv::Mat> masks;
+    if (!read_masks(d, masks)) return 1;
+    r.t_read = seconds_since(t0);
+    t0 = Clock::now();
+    std::vector<std::vector<sbr_point_t>> contours;
+    if (!sbr_contours(d, masks, contours)) return 1;
+    r.t_contours = seconds_since(t0);
+    t0 = Clock::now();
+    Descriptors D;
+    if (!sbr_descriptors(o, d, contours, mt, D)) return 1;
+    r.t_fd = seconds_since(t0);
+    std::vector<float> dist(d.count() * d.count());
+    for (size_t v = 0; v < kVariantCount; ++v) {
+        if (v == kHeadline && !o.skip_opencv_fd) continue;
+        t0 = Clock::now();
+        variant_distances(kVariants[v], v, D, mt, dist);
+        r.var_sec[v] = seconds_since(t0);
+        r.var_be[v] = bullseye(dist, d.cls, d.window, d.class_size);
+    }
+    std::fprintf(stderr, "\n");
+    opencv_hu(d, masks, dist, r);
+    if (!o.skip_opencv_fd) opencv_same_method(o, d, D, mt, dist, r);
+    report(o, d, mt, r);
     return 0;
 }
