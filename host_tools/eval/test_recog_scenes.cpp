@@ -73,20 +73,22 @@ bool found(const std::vector<sbr_detection_t> &dets, int cls, int l, int t, int 
     return ok;
 }
 
-}  // namespace
-
-int main(int argc, char **argv) {
+struct Options {
     std::string data;
     double first = 400, last = 599, min_recall = -1, min_crop_recall = -1, max_fp_rate = 0.25;
+};
+
+// -1: go on; otherwise the exit status.
+int parse_options(int argc, char **argv, Options &o) {
     sbr_host::ImageRanges range;
     CLI::App app{"test_recog_scenes: the built-in recogniser on GTSDB scenes against recall and false-detection floors"};
-    app.add_option("--data", data, "GTSDB folder")->required();
+    app.add_option("--data", o.data, "GTSDB folder")->required();
     sbr_host::add_range_option(app, range, "one span of image numbers (default 400-599)");
-    app.add_option("--min-recall", min_recall, "fail below this sign recall")->required()->check(sbr_host::finite_range(0, 1));
-    app.add_option("--min-crop-recall", min_crop_recall, "fail below this recall on sign crops")
+    app.add_option("--min-recall", o.min_recall, "fail below this sign recall")->required()->check(sbr_host::finite_range(0, 1));
+    app.add_option("--min-crop-recall", o.min_crop_recall, "fail below this recall on sign crops")
         ->required()
         ->check(sbr_host::finite_range(0, 1));
-    app.add_option("--max-fp-rate", max_fp_rate, "fail above this many false detections per sign-free frame")
+    app.add_option("--max-fp-rate", o.max_fp_rate, "fail above this many false detections per sign-free frame")
         ->check(sbr_host::finite_range(0, 1000))
         ->capture_default_str();
     const int parsed = sbr_host::parse_cli(app, argc, argv);
@@ -96,70 +98,92 @@ int main(int argc, char **argv) {
         return 2;
     }
     if (!range.empty()) {
-        first = range.spans[0].first;
-        last = range.spans[0].second;
+        o.first = range.spans[0].first;
+        o.last = range.spans[0].second;
     }
-    const std::string dir = gtsdb_image_dir(data);
+    return -1;
+}
+
+struct Tally {
+    int signs = 0, found_n = 0, crops = 0, crops_found = 0, frames = 0, fps = 0, images = 0;
+};
+
+// One annotated sign: found in its frame's detections, and in a crop of 4 x its size
+// with the sign a quarter off centre.
+void check_sign(Run &run, const cv::Mat &img, int num, const GtBox &g, const std::vector<sbr_detection_t> &dets,
+                float thr, Tally &t) {
+    float o = 0;
+    const bool ok = found(dets, g.class_id, g.left, g.top, g.right, g.bottom, &o);
+    ++t.signs;
+    t.found_n += ok;
+    if (!ok)
+        std::printf("miss  %05d class %d (%s) at %d,%d: best IoU with that class %.2f\n", num, g.class_id,
+                    class_name(g.class_id), g.left, g.top, double(o));
+    const int s = std::max(g.right - g.left, g.bottom - g.top) + 1;
+    const int x0 = std::clamp(g.left - s - s / 2, 0, img.cols - 1), y0 = std::clamp(g.top - s - s / 4, 0, img.rows - 1);
+    const int x1 = std::min(img.cols, x0 + 4 * s), y1 = std::min(img.rows, y0 + 4 * s);
+    const cv::Mat crop = img(cv::Rect(x0, y0, x1 - x0, y1 - y0)).clone();
+    char what[32];
+    std::snprintf(what, sizeof what, "crop of %05d", num);
+    const auto cd = run.detect(crop, thr, what);
+    const bool cok = found(cd, g.class_id, g.left - x0, g.top - y0, g.right - x0, g.bottom - y0, &o);
+    ++t.crops;
+    t.crops_found += cok;
+    if (!cok)
+        std::printf("miss  crop of %05d class %d, %dx%d px: best IoU with that class %.2f\n", num, g.class_id,
+                    x1 - x0, y1 - y0, double(o));
+}
+
+// The figures against the floors; the number of failures.
+int verdict(const Options &o, const Tally &t, int errors) {
+    int failures = errors;
+    const double recall = t.signs ? double(t.found_n) / t.signs : 0.0;
+    const double crop_recall = t.crops ? double(t.crops_found) / t.crops : 0.0;
+    const double rate = t.frames ? double(t.fps) / t.frames : 0.0;
+    const bool r_ok = t.signs > 0 && recall >= o.min_recall;
+    const bool c_ok = t.crops > 0 && crop_recall >= o.min_crop_recall;
+    const bool f_ok = t.frames > 0 && rate <= o.max_fp_rate;
+    std::printf("%s frames %05d-%05d: %d images, %d signs, found %d (recall %.3f, floor %.3f)\n", r_ok ? "ok  " : "FAIL",
+                int(o.first), int(o.last), t.images, t.signs, t.found_n, recall, o.min_recall);
+    std::printf("%s crops: %d, found %d (recall %.3f, floor %.3f)\n", c_ok ? "ok  " : "FAIL", t.crops, t.crops_found,
+                crop_recall, o.min_crop_recall);
+    std::printf("%s sign-free frames: %d, detections at the operating point %d (%.3f per frame, limit %.2f)\n",
+                f_ok ? "ok  " : "FAIL", t.frames, t.fps, rate, o.max_fp_rate);
+    std::printf("%s recogniser errors: %d\n", errors ? "FAIL" : "ok  ", errors);
+    failures += !r_ok + !c_ok + !f_ok;
+    std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);
+    return failures;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    Options o;
+    const int parsed = parse_options(argc, argv, o);
+    if (parsed >= 0) return parsed;
+    const std::string dir = gtsdb_image_dir(o.data);
     const auto gt = read_gt(dir + "/gt.txt");
-    if (gt.empty()) { std::printf("SKIP: no GTSDB ground truth under %s\n", data.c_str()); return 77; }
+    if (gt.empty()) { std::printf("SKIP: no GTSDB ground truth under %s\n", o.data.c_str()); return 77; }
     Run run;
     if (sbr_model_gtsdb(&run.model) != SBR_OK) { std::printf("FAIL: sbr_model_gtsdb\n"); return 1; }
     sbr_recog_config_default(&run.cfg);
     const float thr = run.model.picto.threshold;
-
-    int signs = 0, found_n = 0, crops = 0, crops_found = 0, frames = 0, fps = 0, images = 0;
+    Tally t;
     for (const auto &f : list_images(dir)) {
         const int num = image_number(f);
-        if (num < int(first) || num > int(last)) continue;
+        if (num < int(o.first) || num > int(o.last)) continue;
         cv::Mat img = cv::imread(f, cv::IMREAD_COLOR);
         if (img.empty()) { std::printf("FAIL %05d: cannot read the image\n", num); ++run.errors; continue; }
-        ++images;
+        ++t.images;
         char what[32];
         std::snprintf(what, sizeof what, "frame %05d", num);
         const auto dets = run.detect(img, thr, what);
         if (!gt.count(num)) {
-            ++frames;
-            fps += int(dets.size());
+            ++t.frames;
+            t.fps += int(dets.size());
             continue;
         }
-        for (const auto &g : gt.at(num)) {
-            float o = 0;
-            const bool ok = found(dets, g.class_id, g.left, g.top, g.right, g.bottom, &o);
-            ++signs;
-            found_n += ok;
-            if (!ok)
-                std::printf("miss  %05d class %d (%s) at %d,%d: best IoU with that class %.2f\n", num, g.class_id,
-                            class_name(g.class_id), g.left, g.top, double(o));
-            // the crop: 4 x the sign's size, the sign a quarter off centre
-            const int s = std::max(g.right - g.left, g.bottom - g.top) + 1;
-            const int x0 = std::clamp(g.left - s - s / 2, 0, img.cols - 1), y0 = std::clamp(g.top - s - s / 4, 0, img.rows - 1);
-            const int x1 = std::min(img.cols, x0 + 4 * s), y1 = std::min(img.rows, y0 + 4 * s);
-            const cv::Mat crop = img(cv::Rect(x0, y0, x1 - x0, y1 - y0)).clone();
-            std::snprintf(what, sizeof what, "crop of %05d", num);
-            const auto cd = run.detect(crop, thr, what);
-            const bool cok = found(cd, g.class_id, g.left - x0, g.top - y0, g.right - x0, g.bottom - y0, &o);
-            ++crops;
-            crops_found += cok;
-            if (!cok)
-                std::printf("miss  crop of %05d class %d, %dx%d px: best IoU with that class %.2f\n", num, g.class_id,
-                            x1 - x0, y1 - y0, double(o));
-        }
+        for (const auto &g : gt.at(num)) check_sign(run, img, num, g, dets, thr, t);
     }
-    int failures = run.errors;
-    const double recall = signs ? double(found_n) / signs : 0.0;
-    const double crop_recall = crops ? double(crops_found) / crops : 0.0;
-    const double rate = frames ? double(fps) / frames : 0.0;
-    const bool r_ok = signs > 0 && recall >= min_recall;
-    const bool c_ok = crops > 0 && crop_recall >= min_crop_recall;
-    const bool f_ok = frames > 0 && rate <= max_fp_rate;
-    std::printf("%s frames %05d-%05d: %d images, %d signs, found %d (recall %.3f, floor %.3f)\n", r_ok ? "ok  " : "FAIL",
-                int(first), int(last), images, signs, found_n, recall, min_recall);
-    std::printf("%s crops: %d, found %d (recall %.3f, floor %.3f)\n", c_ok ? "ok  " : "FAIL", crops, crops_found,
-                crop_recall, min_crop_recall);
-    std::printf("%s sign-free frames: %d, detections at the operating point %d (%.3f per frame, limit %.2f)\n",
-                f_ok ? "ok  " : "FAIL", frames, fps, rate, max_fp_rate);
-    std::printf("%s recogniser errors: %d\n", run.errors ? "FAIL" : "ok  ", run.errors);
-    failures += !r_ok + !c_ok + !f_ok;
-    std::printf("%s: %d failure(s)\n", failures ? "FAILED" : "PASSED", failures);
-    return failures ? 1 : 0;
+    return verdict(o, t, run.errors) ? 1 : 0;
 }
