@@ -87,12 +87,14 @@ setup() {
 setup_venv() {
   local venv="$BUILD/venv" req="$ROOT/tests/python/requirements.txt"
   local want
-  want="$(cat "$req" "$ROOT/dashboard/requirements.txt")"
+  want="$(cat "$req" "$ROOT/dashboard/requirements.txt" "$ROOT/dashboard/pyproject.toml")"
   if [ ! -x "$venv/bin/python" ] || [ "$want" != "$(cat "$venv/requirements.installed" 2>/dev/null)" ]; then
     log "python environment: $venv"
     rm -rf "$venv"
     python3 -m venv "$venv"
     "$venv/bin/pip" install -q --disable-pip-version-check -r "$req"
+    # the dashboard package and its console script, editable: the checkout's code runs
+    "$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation --no-deps -e "$ROOT/dashboard"
     printf '%s\n' "$want" > "$venv/requirements.installed"
   fi
 }
@@ -396,7 +398,7 @@ cmd_dashboard() {
     [ -f "$ROOT/out/sbr_can.log" ] || { echo "no out/sbr_can.log: run ./sbr.sh detect first, or give --log/--socketcan/--virtual" >&2; return 2; }
     args=(--log "$ROOT/out/sbr_can.log" "${args[@]}")
   fi
-  exec "$BUILD/venv/bin/python" "$ROOT/dashboard/sbr-dashboard" "${args[@]}"
+  exec "$BUILD/venv/bin/sbr-dashboard" "${args[@]}"
 }
 
 # usage_of NAME: the header's lines of one subcommand (./sbr.sh NAME --help).

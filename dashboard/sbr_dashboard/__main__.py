@@ -1,8 +1,10 @@
 """sbr dashboard: a live view of sbr's CAN traffic, decoded with the DBC alone.
 
-  python -m sbr_dashboard --log FILE [--fast | --rate R]    replay a candump log
-  python -m sbr_dashboard --socketcan IFACE                 a live SocketCAN interface
-  python -m sbr_dashboard --virtual CHANNEL [--feed-log F]  python-can's virtual bus
+  sbr-dashboard --log FILE [--fast | --rate R]    replay a candump log
+  sbr-dashboard --socketcan IFACE                 a live SocketCAN interface
+  sbr-dashboard --virtual CHANNEL [--feed-log F]  python-can's virtual bus
+(the console script of the package in dashboard/, pyproject.toml; python -m sbr_dashboard
+does the same)
 options: --dbc FILE (default dbc/sbr.dbc), --terminal (no web page), --host, --port,
          --timeout-factor F (default 3), --wait-client (start the input only once a page
          is connected, so that it sees the whole replay), --exit-after-end S (stop S seconds after a log
@@ -26,7 +28,7 @@ DEFAULT_DBC = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
 
 
 def main(argv=None):
-    ap = argparse.ArgumentParser(prog="sbr_dashboard", description=__doc__.split("\n")[0])
+    ap = argparse.ArgumentParser(prog="sbr-dashboard", description=__doc__.split("\n")[0])
     src = ap.add_mutually_exclusive_group(required=True)
     src.add_argument("--log", help="candump log to replay")
     src.add_argument("--socketcan", metavar="IFACE", help="live SocketCAN interface, e.g. can0")

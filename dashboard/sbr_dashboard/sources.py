@@ -109,8 +109,25 @@ class LogSource(Source):
             self.monitor.end_of_source("end of log")
 
 
+class MonitorListener(can.Listener):
+    """python-can's listener interface for a Source: every received frame goes to the
+    source's monitor (stamped with the bus's receive time, or now when the bus gives none);
+    an error in the receive thread ends the source with its reason."""
+
+    def __init__(self, source):
+        self.source = source
+
+    def on_message_received(self, msg):
+        self.source._feed(msg, msg.timestamp or time.time())
+
+    def on_error(self, exc):
+        self.source.error = str(exc)
+        self.source.monitor.end_of_source(f"source failed: {exc}")
+
+
 class BusSource(Source):
-    """A live python-can bus: SocketCAN (`interface='socketcan'`) or the virtual bus."""
+    """A live python-can bus: SocketCAN (`interface='socketcan'`) or the virtual bus, read
+    by python-can's Notifier (its own receive thread) into a MonitorListener."""
 
     def __init__(self, monitor, interface, channel):
         super().__init__(monitor)
@@ -124,13 +141,11 @@ class BusSource(Source):
         return time.time()
 
     def run(self):
+        notifier = can.Notifier(self.bus, [MonitorListener(self)], timeout=0.1)
         try:
-            while not self.stop_event.is_set():
-                msg = self.bus.recv(timeout=0.1)
-                if msg is not None:
-                    # a receive time from the bus; virtual buses stamp time.time() too
-                    self._feed(msg, msg.timestamp or time.time())
+            self.stop_event.wait()
         finally:
+            notifier.stop()
             self.bus.shutdown()
 
 

@@ -1,6 +1,6 @@
+"""The dashboard's tests run against the installed package (./sbr.sh installs it into
+build/venv: pip install -e dashboard)."""
 import os
-import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, os.path.dirname(HERE))
 DBC = os.path.join(os.path.dirname(os.path.dirname(HERE)), "dbc", "sbr.dbc")

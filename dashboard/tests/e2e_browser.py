@@ -113,7 +113,8 @@ class Dashboard:
     def __init__(self, python, log, rate, work, name):
         self.out = open(os.path.join(work, f"{name}.out"), "w+")
         self.proc = subprocess.Popen(
-            [python, os.path.join(DASHBOARD, "sbr-dashboard"), "--log", log, "--rate", str(rate),
+            # the console script the package installs beside the interpreter (pyproject.toml)
+            [os.path.join(os.path.dirname(python), "sbr-dashboard"), "--log", log, "--rate", str(rate),
              "--port", "0", "--wait-client"], stdout=subprocess.PIPE, stderr=self.out, text=True)
         line = self.proc.stdout.readline()
         m = re.search(r"open (http://\S+)", line)

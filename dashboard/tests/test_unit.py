@@ -12,7 +12,7 @@ import pytest
 from frames import DBC, Sender, frame, model
 from sbr_dashboard.dbc import Crc8, DbcError, DbcModel
 from sbr_dashboard.monitor import E2EChecker, Monitor, TimeoutMonitor
-from sbr_dashboard.sources import BusSource, LogSource
+from sbr_dashboard.sources import BusSource, LogSource, MonitorListener
 from sbr_dashboard.terminal import render
 from sbr_dashboard.web import WebServer
 
@@ -293,6 +293,26 @@ def test_virtual_bus_source():
         tx.shutdown()
         src.stop()
         src.thread.join(2)
+
+
+def test_bus_source_is_a_python_can_listener():
+    """Frames reach the monitor through python-can's Listener interface; an error in the
+    Notifier's receive thread ends the source with its reason instead of vanishing."""
+    mon = Monitor(M)
+    src = BusSource(mon, "virtual", "sbr-listener")
+    try:
+        lis = MonitorListener(src)
+        assert isinstance(lis, can.Listener)
+        s = Sender(M)
+        for fid, data in s.cycle(0, signs=[(7, 100, 99, 0)]):
+            lis(can.Message(arbitration_id=fid, data=data, is_extended_id=False, timestamp=12.5))
+        snap = mon.snapshot()
+        assert snap["frames"] == 4 and snap["speed_limit"] == 100
+        lis.on_error(OSError("bus off"))
+        assert src.error == "bus off"
+        assert mon.source_ended
+    finally:
+        src.bus.shutdown()
 
 
 def test_tracked_objects_list_per_cycle():
