@@ -399,6 +399,28 @@ static void trk_normalise(float *d, size_t n)
     }
 }
 
+/* Velocity channel j's mass of every position channel p, times the transition t0 + t1
+   to velocity channel k, added to out at positions p + sh (share t0) and p + sh + 1
+   (share t1), inside the window. */
+static void trk_shift_add(const trk_geo_t *g, const float *d, uint32_t j, uint32_t k, int32_t sh,
+                          float t0, float t1, float *out)
+{
+    uint32_t p;
+    for (p = 0u; p < g->w; p++) {
+        const float c = d[((size_t)p * g->v) + j];
+        if (c > 0.0f) {
+            const int32_t q = (int32_t)p + sh;
+            if ((q >= 0) && (q < (int32_t)g->w)) {
+                out[((size_t)q * g->v) + k] += c * t0;
+            }
+            if (((q + 1) >= 0) && ((q + 1) < (int32_t)g->w)) {
+                const int32_t q1 = q + 1;
+                out[((size_t)q1 * g->v) + k] += c * t1;
+            }
+        }
+    }
+}
+
 /* One prediction sub-step of one axis: ratio = sub-step / period. */
 static void trk_predict_axis(const sbr_track_t *trk, const trk_geo_t *g, uint32_t axis,
                              float *d, float *origin, float ratio)
@@ -446,21 +468,7 @@ static void trk_predict_axis(const sbr_track_t *trk, const trk_geo_t *g, uint32_
                 t += rw[r] * tab[((size_t)ridx[r] * vv) + ((size_t)j * g->v) + k];
             }
             if (t > 0.0f) {
-                const float t0 = t * (1.0f - f);
-                const float t1 = t * f;
-                for (p = 0u; p < g->w; p++) {
-                    const float c = d[((size_t)p * g->v) + j];
-                    if (c > 0.0f) {
-                        const int32_t q = (int32_t)p + sh;
-                        if ((q >= 0) && (q < (int32_t)g->w)) {
-                            out[((size_t)q * g->v) + k] += c * t0;
-                        }
-                        if (((q + 1) >= 0) && ((q + 1) < (int32_t)g->w)) {
-                            const int32_t q1 = q + 1;
-                            out[((size_t)q1 * g->v) + k] += c * t1;
-                        }
-                    }
-                }
+                trk_shift_add(g, d, j, k, sh, t * (1.0f - f), t * f, out);
             }
         }
     }
