@@ -25,6 +25,7 @@ extern "C" {
 #include "baselines.hpp"
 #include "clear_mot.hpp"
 #include "kitti.hpp"
+#include "kitti_cli.hpp"
 #include "track_model_io.hpp"
 
 using namespace sbr_track_host;
@@ -32,9 +33,9 @@ using namespace sbr_track_host;
 namespace {
 
 struct Options {
-    std::string labels, seqs = "0006-0010", out, model_file;
-    double noise = 3.0, miss = 0.1, clutter = 1.0;
-    unsigned seed = 1, particles = 500;
+    KittiInput in = kitti_input("0006-0010");
+    std::string out, model_file;
+    unsigned particles = 500;
     bool csv = false, table = false;
     double kf_accel = 3.0, vel0 = 8.0;
     unsigned bench = 0;     // > 0: time per frame with this many targets (synthetic)
@@ -42,7 +43,6 @@ struct Options {
     uint32_t window = 25;
     uint32_t vel_count = 41;   // the constant-velocity model's grid (--cv-model)
     float vel_spacing = 3.5f;
-    std::set<std::string> classes{"Car", "Cyclist"};
 };
 
 // The core's channel tracker behind the baselines' interface: the same track management
@@ -116,8 +116,8 @@ void run_seq(const Options &o, const Seq &seq, const std::vector<std::vector<Det
     fp.particles = o.particles;
     auto channel = std::make_unique<ChannelTracker>(o, model, r);
     workspace = channel->workspace_bytes();
-    std::unique_ptr<FrameTracker> trackers[3] = {std::move(channel), make_kalman(fp, o.seed, seq.width, seq.height),
-                                                 make_particle(fp, o.seed, seq.width, seq.height)};
+    std::unique_ptr<FrameTracker> trackers[3] = {std::move(channel), make_kalman(fp, o.in.seed, seq.width, seq.height),
+                                                 make_particle(fp, o.in.seed, seq.width, seq.height)};
     for (size_t m = 0; m < 3; ++m) {
         outs[m].resize(seq.gt.size());
         for (size_t f = 0; f < dets.size(); ++f) {
@@ -137,7 +137,7 @@ std::vector<Result> run_all(const Options &o, const std::vector<Seq> &seqs, cons
     for (size_t m = 0; m < 3; ++m) res[m].method = kMethods[m];
     const double r = std::max(noise, 1.0);
     for (const Seq &seq : seqs) {
-        const auto dets = corrupt(seq, noise, miss, clutter, o.seed);
+        const auto dets = corrupt(seq, noise, miss, clutter, o.in.seed);
         std::vector<std::vector<Hyp>> outs[3];
         run_seq(o, seq, dets, model, r, res, workspace, outs);
         for (size_t m = 0; m < 3; ++m) {
@@ -162,18 +162,7 @@ int parse_options(int argc, char **argv, Options &o)
     CLI::App app{"sbr_track: the channel tracker (paper E) against a Kalman filter with Hungarian association "
                  "and a particle filter on KITTI tracking ground truth, corrupted by noise, misses and clutter "
                  "(docs/usage/track.md); the motion model is learned by sbr_train_track"};
-    app.add_option("--labels", o.labels, "KITTI tracking label_02 folder")->required();
-    app.add_option("--seqs", o.seqs, "sequences: numbers or ranges, e.g. 0006-0010 or 1,3,5")->capture_default_str();
-    app.add_option("--noise", o.noise, "detection noise, pixels (Gaussian sigma)")
-        ->check(sbr_host::finite_range(0.0, 99.999))
-        ->capture_default_str();
-    app.add_option("--miss", o.miss, "probability that a detection is missed")
-        ->check(sbr_host::finite_range(0.0, 0.999))
-        ->capture_default_str();
-    app.add_option("--clutter", o.clutter, "false detections per frame (Poisson mean)")
-        ->check(sbr_host::finite_range(0.0, 50.0))
-        ->capture_default_str();
-    app.add_option("--seed", o.seed, "random seed")->capture_default_str();
+    add_kitti_options(app, o.in);
     app.add_flag("--csv", o.csv, "print method,rmse_px,mota,id_switches,ms_per_frame");
     app.add_option("--out", o.out, "write each method's tracks in KITTI's format to this folder");
     app.add_option("--model", o.model_file, "motion model file from sbr_train_track --model-out (default: the built-in one)");
@@ -193,14 +182,9 @@ int parse_options(int argc, char **argv, Options &o)
         ->check(sbr_host::finite_range(0.01, 1000.0))
         ->capture_default_str();
     app.add_option("--window", o.window, "the channel tracker's window, channels")->capture_default_str();
-    std::string classes;
-    app.add_option("--classes", classes, "KITTI classes tracked, comma-separated (default Car,Cyclist)");
     const int parsed = sbr_host::parse_cli(app, argc, argv);
     if (parsed >= 0) return parsed;
-    if (!classes.empty()) {
-        o.classes.clear();
-        for (auto &c : split_list(classes, ',')) o.classes.insert(c);
-    }
+    parse_kitti(o.in);
     return -1;
 }
 
@@ -242,8 +226,8 @@ void print_results(const Options &o, const std::vector<Result> &res, const sbr_t
                         r.ms_per_frame());
         return;
     }
-    std::printf("sbr_track: sequences %s, noise %.1f px, miss %.2f, clutter %.1f per frame, seed %u\n", o.seqs.c_str(),
-                o.noise, o.miss, o.clutter, o.seed);
+    std::printf("sbr_track: sequences %s, noise %.1f px, miss %.2f, clutter %.1f per frame, seed %u\n", o.in.seqs.c_str(),
+                o.in.noise, o.in.miss, o.in.clutter, o.in.seed);
     std::printf("channel tracker: 32 targets, window %u, %u velocity channels of %.2f px, %u x %u regions, "
                 "workspace %zu bytes, model tables %zu bytes\n",
                 o.window, model.vel_count, static_cast<double>(model.vel_spacing), model.regions[0], model.regions[1],
@@ -266,7 +250,7 @@ void print_table(const Options &o, const std::vector<Seq> &seqs, const sbr_track
     size_t workspace = 0;
     for (double nz : {1.0, 3.0, 6.0})
         for (double ms : {0.0, 0.1, 0.3}) {
-            const auto t = run_all(o, seqs, model, nz, ms, o.clutter, false, workspace);
+            const auto t = run_all(o, seqs, model, nz, ms, o.in.clutter, false, workspace);
             std::printf("| %.0f | %.1f | %.3f | %.3f | %.3f | %.4f | %.4f | %.4f |\n", nz, ms, t[0].mot.rmse(),
                         t[1].mot.rmse(), t[2].mot.rmse(), t[0].mot.mota(), t[1].mot.mota(), t[2].mot.mota());
         }
@@ -281,22 +265,18 @@ int main(int argc, char **argv)
     if (parsed >= 0) return parsed;
     std::vector<Seq> seqs;
     if (o.bench > 0) {
-        seqs.push_back(synthetic_seq(o.bench, 300, o.seed));
-        o.seqs = "synthetic";
+        seqs.push_back(synthetic_seq(o.bench, 300, o.in.seed));
+        o.in.seqs = "synthetic";
     } else {
-        const std::vector<std::string> names = parse_seqs(o.seqs);
-        const std::string e = load_seqs(o.labels, names, o.classes, seqs);
-        if (!e.empty()) {
-            std::cerr << "sbr_track: " << e << "\n";
-            return names.empty() ? 2 : 77;  // 77: the data is not there (tests skip)
-        }
+        const int st = load_kitti(o.in, "sbr_track", seqs);
+        if (st >= 0) return st;
     }
     sbr_track_model_t model{};
     sbr_host::TrackModel loaded;
     if (!load_model(o, seqs.front(), model, loaded)) return 2;
     try {
         size_t workspace = 0;
-        const auto res = run_all(o, seqs, model, o.noise, o.miss, o.clutter, !o.out.empty(), workspace);
+        const auto res = run_all(o, seqs, model, o.in.noise, o.in.miss, o.in.clutter, !o.out.empty(), workspace);
         print_results(o, res, model, workspace);
         if (o.table) print_table(o, seqs, model);
         const bool met = res[0].mot.rmse() <= res[1].mot.rmse() && res[0].mot.mota() >= res[1].mot.mota();

@@ -14,6 +14,7 @@ extern "C" {
 }
 
 #include "kitti.hpp"
+#include "kitti_cli.hpp"
 #include "motion_learning.hpp"
 #include "track_model_io.hpp"
 
@@ -22,11 +23,9 @@ using namespace sbr_track_host;
 namespace {
 
 struct Options {
-    std::string labels, seqs = "0000-0005", model_out, c_out;
-    double noise = 3.0, miss = 0.1, clutter = 1.0;
-    unsigned seed = 1;
+    KittiInput in = kitti_input("0000-0005");
+    std::string model_out, c_out;
     LearnParams learn;
-    std::set<std::string> classes{"Car", "Cyclist"};
 };
 
 // -1: go on; otherwise the exit status.
@@ -34,18 +33,7 @@ int parse_options(int argc, char **argv, Options &o)
 {
     CLI::App app{"sbr_train_track: learn the channel tracker's motion model from KITTI tracking labels without "
                  "track ids (docs/usage/track.md)"};
-    app.add_option("--labels", o.labels, "KITTI tracking label_02 folder")->required();
-    app.add_option("--seqs", o.seqs, "sequences: numbers or ranges, e.g. 0000-0005 or 1,3,5")->capture_default_str();
-    app.add_option("--noise", o.noise, "detection noise, pixels (Gaussian sigma)")
-        ->check(sbr_host::finite_range(0.0, 99.999))
-        ->capture_default_str();
-    app.add_option("--miss", o.miss, "probability that a detection is missed")
-        ->check(sbr_host::finite_range(0.0, 0.999))
-        ->capture_default_str();
-    app.add_option("--clutter", o.clutter, "false detections per frame (Poisson mean)")
-        ->check(sbr_host::finite_range(0.0, 50.0))
-        ->capture_default_str();
-    app.add_option("--seed", o.seed, "random seed of the corruption")->capture_default_str();
+    add_kitti_options(app, o.in);
     app.add_option("--model-out", o.model_out, "write the learned model file here (sbr_track --model)");
     app.add_option("--c-out", o.c_out, "write the learned model as a generated C table here");
     app.add_option("--vel-count", o.learn.vel_count, "velocity channels (odd)")
@@ -63,14 +51,9 @@ int parse_options(int argc, char **argv, Options &o)
     app.add_option("--tail-sigma", o.learn.tail_sigma, "the tail's standard deviation, velocity channels")
         ->check(sbr_host::finite_range(0.01, 1000.0))
         ->capture_default_str();
-    std::string classes;
-    app.add_option("--classes", classes, "KITTI classes learned from, comma-separated (default Car,Cyclist)");
     const int parsed = sbr_host::parse_cli(app, argc, argv);
     if (parsed >= 0) return parsed;
-    if (!classes.empty()) {
-        o.classes.clear();
-        for (auto &c : split_list(classes, ',')) o.classes.insert(c);
-    }
+    parse_kitti(o.in);
     return -1;
 }
 
@@ -85,7 +68,7 @@ std::string c_header(const Options &o, const sbr_host::TrackModel &d, const Lear
                   " * Learned from %ld detection triples and %ld pairs, without track ids (%d passes of\n"
                   " * soft-association EM). %u x %u regions, %u velocity channels of %.2f px.\n"
                   " * Data: KITTI (Geiger, Lenz, Urtasun, CVPR 2012), CC BY-NC-SA 3.0: research use.\n",
-                  o.seqs.c_str(), o.noise, o.miss, o.clutter, o.seed, st.triples, st.pairs, o.learn.em_iters,
+                  o.in.seqs.c_str(), o.in.noise, o.in.miss, o.in.clutter, o.in.seed, st.triples, st.pairs, o.learn.em_iters,
                   d.m.regions[0], d.m.regions[1], d.m.vel_count, static_cast<double>(d.m.vel_spacing));
     return hdr;
 }
@@ -98,19 +81,15 @@ int main(int argc, char **argv)
     const int parsed = parse_options(argc, argv, o);
     if (parsed >= 0) return parsed;
     std::vector<Seq> seqs;
-    const std::vector<std::string> names = parse_seqs(o.seqs);
-    const std::string le = load_seqs(o.labels, names, o.classes, seqs);
-    if (!le.empty()) {
-        std::cerr << "sbr_train_track: " << le << "\n";
-        return names.empty() ? 2 : 77;  // 77: the data is not there (tests skip)
-    }
+    const int ls = load_kitti(o.in, "sbr_train_track", seqs);
+    if (ls >= 0) return ls;
     std::vector<std::vector<std::vector<Det>>> dets;
-    for (const Seq &s : seqs) dets.push_back(corrupt(s, o.noise, o.miss, o.clutter, o.seed));
+    for (const Seq &s : seqs) dets.push_back(corrupt(s, o.in.noise, o.in.miss, o.in.clutter, o.in.seed));
     LearnStats stats;
     sbr_host::TrackModel d = learn_motion_model(seqs, dets, o.learn, stats);
     const sbr_status_t st = sbr_track_model_check(&d.m);
     std::printf("learned from %zu sequences (%s), %ld detection triples, %ld pairs, no track ids: %s\n", seqs.size(),
-                o.seqs.c_str(), stats.triples, stats.pairs, sbr_status_str(st));
+                o.in.seqs.c_str(), stats.triples, stats.pairs, sbr_status_str(st));
     if (st != SBR_OK) return 1;
     std::string e;
     if (!o.model_out.empty()) e = sbr_host::save_track_model(d, o.model_out);
