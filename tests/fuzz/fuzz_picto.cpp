@@ -1,6 +1,7 @@
 // Fuzz harness: pictogram features (box and triangle outline), classification and box
 // refinement with the built-in class stage, its colour check and its gate. On SBR_OK:
-// features finite; probabilities finite in [0, 1] summing to 1; refined boxes finite and
+// features finite; the model's classes + 1 probabilities finite in [0, 1] summing to 1
+// (nothing written beyond them); refined boxes finite and
 // not empty; gate features and scores finite.
 #include "fuzz_common.hpp"
 
@@ -41,15 +42,25 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             FZ_CHECK(fz_finite(feat[i]));
         }
     }
+    // the model's classes + 1 outputs are written, the rest of the caller's array is not
     float prob[SBR_PICTO_MAX_OUTPUTS];
+    for (float &p : prob) {
+        p = -7.0f;
+    }
+    const uint32_t outputs = model.classes + 1u;
     const sbr_status_t cs = sbr_picto_classify(&model, feat, SBR_PICTO_FEATURES, prob, SBR_PICTO_MAX_OUTPUTS, ws,
                                                SBR_PICTO_WORKSPACE_SIZE);
     FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE);
     if (cs == SBR_OK) {
         float sum = 0.0f;
-        for (float p : prob) {
-            FZ_CHECK(fz_finite(p) && p >= 0.0f && p <= 1.0f);
-            sum += p;
+        for (uint32_t i = 0u; i < SBR_PICTO_MAX_OUTPUTS; i++) {
+            const float p = prob[i];
+            if (i < outputs) {
+                FZ_CHECK(fz_finite(p) && p >= 0.0f && p <= 1.0f);
+                sum += p;
+            } else {
+                FZ_CHECK(p == -7.0f);
+            }
         }
         FZ_CHECK(std::fabs(sum - 1.0f) < 1e-3f);
     }
