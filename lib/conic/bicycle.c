@@ -324,6 +324,30 @@ static float pair_score(const sbr_ellipse_t *p, const sbr_ellipse_t *q, const sb
     return score;
 }
 
+/* Insert the pair (p, q) of score s into pairs[0 .. *kept), kept sorted best (lowest)
+   first and at most cap long: a pair that falls off the end is dropped. */
+static void insert_pair(sbr_wheel_pair_t *pairs, uint32_t cap, uint32_t *kept, const sbr_ellipse_t *p,
+                        const sbr_ellipse_t *q, uint32_t first, uint32_t second, float s)
+{
+    uint32_t pos = *kept;
+    while ((pos > 0u) && (pairs[pos - 1u].score > s)) {
+        if (pos < cap) {
+            pairs[pos] = pairs[pos - 1u];
+        }
+        pos--;
+    }
+    if (pos < cap) {
+        pairs[pos].wheel[0] = *p;
+        pairs[pos].wheel[1] = *q;
+        pairs[pos].first = first;
+        pairs[pos].second = second;
+        pairs[pos].score = s;
+        if (*kept < cap) {
+            (*kept)++;
+        }
+    }
+}
+
 /* Pairs of groups, best first, at most cap; returns how many qualified in all. */
 static uint32_t pair_groups(const wheel_group_t *g, uint32_t ng, const sbr_bike_model_t *m,
                             sbr_wheel_pair_t *pairs, uint32_t cap)
@@ -338,24 +362,8 @@ static uint32_t pair_groups(const wheel_group_t *g, uint32_t ng, const sbr_bike_
             const sbr_ellipse_t q = group_ellipse(&g[j]);
             const float s = pair_score(&p, &q, m);
             if (s >= 0.0f) {
-                uint32_t pos = kept;
                 total++;
-                while ((pos > 0u) && (pairs[pos - 1u].score > s)) {
-                    if (pos < cap) {
-                        pairs[pos] = pairs[pos - 1u];
-                    }
-                    pos--;
-                }
-                if (pos < cap) {
-                    pairs[pos].wheel[0] = p;
-                    pairs[pos].wheel[1] = q;
-                    pairs[pos].first = g[i].first;
-                    pairs[pos].second = g[j].first;
-                    pairs[pos].score = s;
-                    if (kept < cap) {
-                        kept++;
-                    }
-                }
+                insert_pair(pairs, cap, &kept, &p, &q, g[i].first, g[j].first, s);
             }
         }
     }

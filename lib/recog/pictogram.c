@@ -283,6 +283,25 @@ static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uin
     return rows->h[k];
 }
 
+/* One source sub-row's samples into the patch row's sums: per channel and horizontal
+   sub-sample, the vertical interpolation between rows h0 and h1 (weight fy of h1). */
+static void picto_accumulate(const float *h0, const float *h1, float fy, uint32_t nx, float acc[3][PS])
+{
+    uint32_t c;
+    for (c = 0u; c < 3u; c++) {
+        uint32_t i;
+        for (i = 0u; i < nx; i++) {
+            const float *t0 = &h0[(c * ROW_SAMPLES) + (i * PS)];
+            const float *t1 = &h1[(c * ROW_SAMPLES) + (i * PS)];
+            float *ac = &acc[c][0];
+            uint32_t u;
+            for (u = 0u; u < PS; u++) {
+                ac[u] += t0[u] + (fy * (t1[u] - t0[u]));
+            }
+        }
+    }
+}
+
 /* Resample the box into grey (g) and chromaticity (cr, cb) patches: each patch pixel is
    the mean of nx x ny bilinear samples (nx, ny = the box's scale, 1..4), the
    taps in `taps` (2 PS 4 entries) and `rows` as scratch. The sums run over the
@@ -321,18 +340,7 @@ static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap
             uint32_t s1;
             const float *h0 = picto_row(img, tx, nx, ch, yt->lo, 2u, rows, &s0);
             const float *h1 = picto_row(img, tx, nx, ch, yt->hi, s0, rows, &s1);
-            uint32_t c;
-            for (c = 0u; c < 3u; c++) {
-                uint32_t i;
-                for (i = 0u; i < nx; i++) {
-                    const float *t0 = &h0[(c * ROW_SAMPLES) + (i * PS)];
-                    const float *t1 = &h1[(c * ROW_SAMPLES) + (i * PS)];
-                    float *ac = &acc[c][0];
-                    for (u = 0u; u < PS; u++) {
-                        ac[u] += t0[u] + (fy * (t1[u] - t0[u]));
-                    }
-                }
-            }
+            picto_accumulate(h0, h1, fy, nx, acc);
         }
         for (u = 0u; u < PS; u++) {
             const float a0 = acc[0][u] * inv;

@@ -735,6 +735,23 @@ static void trk_candidates(sbr_track_t *trk, const trk_geo_t *g, uint32_t t,
     trk->ncand[t] = nc;
 }
 
+/* Target t's free candidates against the best pair so far (*bt = SBR_TRACK_MAX_TARGETS:
+   none yet): a cheaper one becomes the best (cost *best, target *bt, detection *bd). */
+static void trk_best_candidate(const sbr_track_t *trk, uint32_t t, const uint8_t *used, float *best,
+                               uint32_t *bt, uint32_t *bd)
+{
+    uint32_t c;
+    for (c = 0u; c < trk->ncand[t]; c++) {
+        const size_t idx = ((size_t)t * SBR_TRACK_CANDIDATES) + c;
+        const uint32_t d = trk->cand_det[idx];
+        if ((used[d] == 0u) && ((*bt == SBR_TRACK_MAX_TARGETS) || (trk->cand_cost[idx] < *best))) {
+            *best = trk->cand_cost[idx];
+            *bt = t;
+            *bd = d;
+        }
+    }
+}
+
 /* Greedy global assignment within one group (confirmed or tentative targets). */
 static void trk_assign(sbr_track_t *trk, uint32_t confirmed, uint8_t *used)
 {
@@ -748,17 +765,7 @@ static void trk_assign(sbr_track_t *trk, uint32_t confirmed, uint8_t *used)
             const sbr_track_slot_t *s = &trk->slot[t];
             if (((s->flags & TRK_ALIVE) != 0u) && (s->det < 0) &&
                 ((s->flags & SBR_TRACK_CONFIRMED) == confirmed)) {
-                uint32_t c;
-                for (c = 0u; c < trk->ncand[t]; c++) {
-                    const size_t idx = ((size_t)t * SBR_TRACK_CANDIDATES) + c;
-                    const uint32_t d = trk->cand_det[idx];
-                    if ((used[d] == 0u) &&
-                        ((bt == SBR_TRACK_MAX_TARGETS) || (trk->cand_cost[idx] < best))) {
-                        best = trk->cand_cost[idx];
-                        bt = t;
-                        bd = d;
-                    }
-                }
+                trk_best_candidate(trk, t, used, &best, &bt, &bd);
             }
         }
         if (bt == SBR_TRACK_MAX_TARGETS) {
