@@ -2,13 +2,15 @@
 # sbr's one entry point: set-up, the main job and the tests.
 #
 #   ./sbr.sh detect [--input DIR] [--out DIR] [--range A-B] [--baseline FILE]
-#                   [--model FILE.sbrm --picto FILE.sbrp]
+#                   [--model FILE.sbrm --picto FILE.sbrp] [recogniser options]
 #                                               the main job (docs/usage/detect.md): the recogniser
 #                                               over a folder of images (default: GTSDB's
 #                                               development split 00400-00599), detections,
 #                                               annotated images, CAN log, summary;
 #                                               --baseline: an earlier version's
-#                                               detections_all.txt, compared in evaluation.txt
+#                                               detections_all.txt, compared in evaluation.txt;
+#                                               other options go to sbr_detect (--threshold,
+#                                               --views, ...: sbr_detect --help)
 #   ./sbr.sh dashboard [--log FILE | --socketcan IF | --virtual CH] [options]
 #                                               the reference dashboard (dashboard/), default:
 #                                               replay out/sbr_can.log; --help for options
@@ -244,7 +246,7 @@ cmd_fuzz() {
 }
 
 cmd_detect() {
-  local input="" out="$ROOT/out" range="" baseline="" models=() note=""
+  local input="" out="$ROOT/out" range="" baseline="" models=() note="" extra=()
   while [ $# -gt 0 ]; do
     case "$1" in
       --input) input="$2"; shift 2 ;;
@@ -253,9 +255,14 @@ cmd_detect() {
       --range) range="$2"; shift 2 ;;
       --baseline) baseline="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"; shift 2 ;;
       -h|--help) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0"; return 0 ;;
-      *) echo "unknown option $1" >&2; return 2 ;;
+      # the recogniser's options (and their values) go to sbr_detect, which checks them
+      *) extra+=("$1"); shift ;;
     esac
   done
+  if [ -n "$input" ] && [ ! -d "$input" ]; then
+    echo "sbr.sh detect: --input $input: no such folder (nothing was written)" >&2
+    return 2
+  fi
   if [ -z "$input" ]; then
     if [ -d "$ROOT/../shared/data/gtsdb" ]; then
       input="$ROOT/../shared/data/gtsdb"
@@ -280,7 +287,7 @@ on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model FILE 
   "$tools/sbr_detect" --input "$input" ${range:+--range "$range"} \
       --detections "$out/detections.txt" --all-detections "$out/detections_all.txt" \
       --annotated "$out/annotated" --canlog "$out/sbr_can.log" --summary "$out/summary.txt" \
-      ${models[@]+"${models[@]}"}
+      ${models[@]+"${models[@]}"} ${extra[@]+"${extra[@]}"}
   if [ -n "$note" ]; then
     { echo "$note"; echo; cat "$out/summary.txt"; } > "$out/summary.txt.new" && mv "$out/summary.txt.new" "$out/summary.txt"
     printf '\n%s\n' "$note"

@@ -9,6 +9,7 @@ import argparse
 import os
 import re
 import subprocess
+import tempfile
 import sys
 
 # tool: (arguments that satisfy its required options, [(option, bad value), ...])
@@ -53,6 +54,15 @@ def main():
             r = run(["bash", a.sbr_sh, sub, "--help"])
             good = r.returncode == 0 and f"./sbr.sh {sub}" in r.stdout and "==" not in r.stdout
             print(f"sbr.sh {sub} --help: exit {r.returncode}{'' if good else ' (usage missing or it ran)'}")
+            failures += not good
+        # a missing input folder is refused before anything is set up or written
+        with tempfile.TemporaryDirectory() as tmp:
+            out = os.path.join(tmp, "out")
+            missing = os.path.join(tmp, "no-such-folder")
+            r = run(["bash", a.sbr_sh, "detect", "--input", missing, "--out", out, "--threshold", "0.5"])
+            good = r.returncode == 2 and missing in r.stderr and not os.path.exists(out)
+            print(f"sbr.sh detect --input MISSING: exit {r.returncode}, output folder "
+                  f"{'created' if os.path.exists(out) else 'not created'}")
             failures += not good
     for tool, (required, bad) in CASES.items():
         exe = os.path.join(a.tools, tool)
