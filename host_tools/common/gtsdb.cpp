@@ -77,6 +77,13 @@ std::vector<std::string> list_images(const std::string &dir) {
     return out;
 }
 
+std::vector<std::string> list_images(const std::string &dir, const ImageRanges &range) {
+    std::vector<std::string> out;
+    for (auto &f : list_images(dir))
+        if (range.empty() || range.contains(image_number(f))) out.push_back(std::move(f));
+    return out;
+}
+
 int image_number(const std::string &path) {
     const std::string stem = fs::path(path).stem().string();
     if (stem.empty() || !std::all_of(stem.begin(), stem.end(), ::isdigit)) return -1;

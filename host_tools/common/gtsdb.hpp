@@ -66,6 +66,9 @@ constexpr long kMaxImageNumber = 99999999;
 // False (and out untouched) unless s is one or more spans A-B with 0 <= A <= B,
 // separated by commas.
 bool parse_image_ranges(const std::string &s, ImageRanges &out);
+// The images of a folder (list_images()) whose number is in `range`; every image when
+// the range is empty.
+std::vector<std::string> list_images(const std::string &dir, const ImageRanges &range);
 
 // FNV-1a (64 bit) of n bytes, continuing from h (start: kFnvStart): checksums with which
 // benchmarks show that two builds computed bit-identical results.

@@ -451,11 +451,7 @@ int main(int argc, char **argv) {
     CallgrindClock cg;
     if (!configure(o, m.model, cg)) return 2;
     const std::string dir = gtsdb_image_dir(o.input);
-    std::vector<std::string> files;
-    for (const auto &f : list_images(dir)) {
-        const int n = image_number(f);
-        if (o.range.empty() || o.range.contains(n)) files.push_back(f);
-    }
+    const std::vector<std::string> files = list_images(dir, o.range);
     if (files.empty()) { std::fprintf(stderr, "sbr_detect: no images in %s\n", dir.c_str()); return 1; }
     Outputs out;
     if (!open_outputs(o, out)) return 1;

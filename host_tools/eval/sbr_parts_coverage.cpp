@@ -32,7 +32,7 @@ namespace {
 
 struct Options {
     std::string data;
-    int range_a = 400, range_b = 599;
+    ImageRanges range{{{400, 599}}};
     bool list = false;
     sbr_parts_config_t cfg;
     uint32_t max_parts = 0;
@@ -45,11 +45,10 @@ int parse_options(int argc, char **argv, Options &o) {
     o.cfg = rc.parts;
     o.max_parts = rc.max_parts;
     sbr_parts_config_t &cfg = o.cfg;
-    ImageRanges range;
     FrontEnd fe;
     CLI::App app{"sbr_parts_coverage: GTSDB signs whose outline some part traced (front-end diagnostic)"};
     app.add_option("--data", o.data, "GTSDB folder")->required();
-    add_range_option(app, range, "one span of image numbers (default 400-599)");
+    add_range_option(app, o.range, "images (default 400-599)");
     app.add_option("--delta", cfg.mser.delta, "MSER delta")->check(CLI::Range(1u, SBR_MSER_MAX_DELTA))->capture_default_str();
     app.add_option("--variation", cfg.mser.max_variation, "MSER max_variation")
         ->check(finite_range(0.0, 100.0))
@@ -66,14 +65,6 @@ int parse_options(int argc, char **argv, Options &o) {
     app.add_flag("--list", o.list, "list every sign with its best part");
     const int parsed = parse_cli(app, argc, argv);
     if (parsed >= 0) return parsed;
-    if (range.spans.size() > 1) {
-        std::fprintf(stderr, "sbr_parts_coverage: --range takes one span A-B\n");
-        return 2;
-    }
-    if (!range.empty()) {
-        o.range_a = range.spans[0].first;
-        o.range_b = range.spans[0].second;
-    }
     apply_front_end(fe, cfg);
     if (sbr_parts_config_check(&cfg) != SBR_OK) {
         std::fprintf(stderr, "sbr_parts_coverage: invalid part configuration\n");
@@ -122,9 +113,8 @@ int measure(const Options &o, const std::string &dir, const std::map<int, std::v
     if (sbr_fft_init(&fft, o.cfg.fd_n) != SBR_OK) return 2;
     std::vector<sbr_part_t> parts(o.max_parts);
     std::vector<uint8_t> ws;
-    for (const auto &entry : list_images(dir)) {
+    for (const auto &entry : list_images(dir, o.range)) {
         const int id = image_number(entry);
-        if (id < o.range_a || id > o.range_b) continue;
         const cv::Mat img = cv::imread(entry, cv::IMREAD_COLOR);
         if (img.empty()) {
             std::fprintf(stderr, "sbr_parts_coverage: cannot read %s\n", entry.c_str());

@@ -75,15 +75,15 @@ bool found(const std::vector<sbr_detection_t> &dets, int cls, int l, int t, int 
 
 struct Options {
     std::string data;
-    double first = 400, last = 599, min_recall = -1, min_crop_recall = -1, max_fp_rate = 0.25;
+    sbr_host::ImageRanges range{{{400, 599}}};
+    double min_recall = -1, min_crop_recall = -1, max_fp_rate = 0.25;
 };
 
 // -1: go on; otherwise the exit status.
 int parse_options(int argc, char **argv, Options &o) {
-    sbr_host::ImageRanges range;
     CLI::App app{"test_recog_scenes: the built-in recogniser on GTSDB scenes against recall and false-detection floors"};
     app.add_option("--data", o.data, "GTSDB folder")->required();
-    sbr_host::add_range_option(app, range, "one span of image numbers (default 400-599)");
+    sbr_host::add_range_option(app, o.range, "images (default 400-599)");
     app.add_option("--min-recall", o.min_recall, "fail below this sign recall")->required()->check(sbr_host::finite_range(0, 1));
     app.add_option("--min-crop-recall", o.min_crop_recall, "fail below this recall on sign crops")
         ->required()
@@ -91,17 +91,7 @@ int parse_options(int argc, char **argv, Options &o) {
     app.add_option("--max-fp-rate", o.max_fp_rate, "fail above this many false detections per sign-free frame")
         ->check(sbr_host::finite_range(0, 1000))
         ->capture_default_str();
-    const int parsed = sbr_host::parse_cli(app, argc, argv);
-    if (parsed >= 0) return parsed;
-    if (range.spans.size() > 1) {
-        std::fprintf(stderr, "test_recog_scenes: --range takes one span A-B\n");
-        return 2;
-    }
-    if (!range.empty()) {
-        o.first = range.spans[0].first;
-        o.last = range.spans[0].second;
-    }
-    return -1;
+    return sbr_host::parse_cli(app, argc, argv);
 }
 
 struct Tally {
@@ -143,8 +133,8 @@ int verdict(const Options &o, const Tally &t, int errors) {
     const bool r_ok = t.signs > 0 && recall >= o.min_recall;
     const bool c_ok = t.crops > 0 && crop_recall >= o.min_crop_recall;
     const bool f_ok = t.frames > 0 && rate <= o.max_fp_rate;
-    std::printf("%s frames %05d-%05d: %d images, %d signs, found %d (recall %.3f, floor %.3f)\n", r_ok ? "ok  " : "FAIL",
-                int(o.first), int(o.last), t.images, t.signs, t.found_n, recall, o.min_recall);
+    std::printf("%s frames %s: %d images, %d signs, found %d (recall %.3f, floor %.3f)\n", r_ok ? "ok  " : "FAIL",
+                o.range.str(true).c_str(), t.images, t.signs, t.found_n, recall, o.min_recall);
     std::printf("%s crops: %d, found %d (recall %.3f, floor %.3f)\n", c_ok ? "ok  " : "FAIL", t.crops, t.crops_found,
                 crop_recall, o.min_crop_recall);
     std::printf("%s sign-free frames: %d, detections at the operating point %d (%.3f per frame, limit %.2f)\n",
@@ -169,9 +159,8 @@ int main(int argc, char **argv) {
     sbr_recog_config_default(&run.cfg);
     const float thr = run.model.picto.threshold;
     Tally t;
-    for (const auto &f : list_images(dir)) {
+    for (const auto &f : list_images(dir, o.range)) {
         const int num = image_number(f);
-        if (num < int(o.first) || num > int(o.last)) continue;
         cv::Mat img = cv::imread(f, cv::IMREAD_COLOR);
         if (img.empty()) { std::printf("FAIL %05d: cannot read the image\n", num); ++run.errors; continue; }
         ++t.images;

@@ -39,7 +39,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
-#include <mutex>
 #include <set>
 #include <string>
 #include <vector>
@@ -571,8 +570,7 @@ int main(int argc, char **argv) {
     TrainingSet ts;
     const std::string dir = gtsdb_image_dir(o.data);
     ts.gt = read_gt(dir + "/gt.txt");
-    for (const auto &f : list_images(dir))
-        if (o.range.contains(image_number(f))) ts.files.push_back(f);
+    ts.files = list_images(dir, o.range);
     if (ts.files.empty() || ts.gt.empty()) {
         std::fprintf(stderr, "sbr_train: no training images or no gt.txt in %s\n", dir.c_str());
         return 77;

@@ -152,20 +152,17 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
-#include <functional>
 #include <map>
 #include <mutex>
 #include <random>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cli.hpp"
@@ -608,21 +605,25 @@ bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::
                 const sbr_model_t &model, Picto &out, float recall, int hidden, unsigned seed) {
     std::vector<Sample> samples;  // f: the gate features, label: 1 positive, 0 negative
     std::mutex mu;
-    std::atomic<size_t> next{0};
     sbr_recog_config_t rc;  // the class stage's candidates: every hypothesis, no floor
     sbr_recog_config_default(&rc);
     rc.min_score = 0.0f;
     rc.nms_iou = 1.0f;
     sbr_model_t parts_only = model;
     parts_only.picto.version = 0;
-    run_workers(4u, [&]() {
+    struct Worker {
         std::vector<uint64_t> ws;
-        alignas(8) static thread_local float pws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
-        std::vector<float> f, g(kGF);
+        std::vector<float> f, g = std::vector<float>(kGF);
         float prob[kK];
-        for (size_t i; (i = next++) < files.size();) {
+    };
+    parallel_for<Worker>(files.size(), 4u, [&](size_t i, Worker &wk) {
+        alignas(8) static thread_local float pws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
+        std::vector<uint64_t> &ws = wk.ws;
+        std::vector<float> &f = wk.f, &g = wk.g;
+        float *prob = wk.prob;
+        {
             cv::Mat img = cv::imread(files[i], cv::IMREAD_COLOR);
-            if (img.empty()) continue;
+            if (img.empty()) return;
             const sbr_image_t v = bgr_view(img);
             const int num = image_number(files[i]);
             std::vector<Box> boxes = recog_boxes(v, rc, parts_only, ws);
@@ -1403,9 +1404,9 @@ void evaluate(const Options &o, const std::string &dir, const std::map<int, std:
     std::map<std::pair<int, int>, int> conf;
     alignas(8) static float cws[SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1];
     std::vector<float> f, p(kK);
-    for (const auto &file : list_images(dir)) {
+    for (const auto &file : list_images(dir, o.eval_range)) {
         const int num = image_number(file);
-        if (!o.eval_range.contains(num) || !gt.count(num)) continue;
+        if (!gt.count(num)) continue;
         cv::Mat img = cv::imread(file, cv::IMREAD_COLOR);
         if (img.empty()) continue;
         const sbr_image_t v = bgr_view(img);
@@ -1492,9 +1493,7 @@ int main(int argc, char **argv) {
     } else {
         sbr_model_gtsdb(&builtin);
     }
-    std::vector<std::string> files;
-    for (const auto &f : list_images(dir))
-        if (o.range.contains(image_number(f))) files.push_back(f);
+    const std::vector<std::string> files = list_images(dir, o.range);
     if (!o.from_picto.empty()) return add_to_picto(o, files, gt, *pm);
 
     const SampleCollector sc(o, files, gt, *pm);
