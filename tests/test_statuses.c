@@ -529,7 +529,7 @@ static void test_pictogram_h(void)
     ROW(&t, SBR_ERR_NULL, sbr_picto_features(&v, NULL, feat, SBR_PICTO_FEATURES, ws, sizeof ws));
     ROW(&t, SBR_ERR_SIZE, sbr_picto_features(&v, box, feat, SBR_PICTO_FEATURES - 1u, ws, sizeof ws));
     ROW(&t, SBR_ERR_RANGE, sbr_picto_features(&v, tiny, feat, SBR_PICTO_FEATURES, ws, sizeof ws));
-    ROW(&t, SBR_ERR_RANGE, sbr_picto_features(&gv, box, feat, SBR_PICTO_FEATURES, ws, sizeof ws));
+    ROW(&t, SBR_OK, sbr_picto_features(&gv, box, feat, SBR_PICTO_FEATURES, ws, sizeof ws));
     ROW(&t, SBR_ERR_WORKSPACE, sbr_picto_features(&v, box, feat, SBR_PICTO_FEATURES, ws, 16u));
     ROW(&t, SBR_ERR_RANGE, sbr_picto_features_outline(&v, box, 2u, feat, SBR_PICTO_FEATURES, ws, sizeof ws));
     ROW(&t, SBR_OK, sbr_picto_features_outline(&v, box, SBR_PICTO_OUTLINE_TRIANGLE, feat, SBR_PICTO_FEATURES,
@@ -561,7 +561,7 @@ static void test_pictogram_h(void)
         ROW(&t, SBR_OK, sbr_picto_gate_features(&v, box, gf, SBR_PICTO_GATE_FEATURES, ws, sizeof ws));
         ROW(&t, SBR_ERR_NULL, sbr_picto_gate_features(&v, NULL, gf, SBR_PICTO_GATE_FEATURES, ws, sizeof ws));
         ROW(&t, SBR_ERR_RANGE, sbr_picto_gate_features(&v, tiny, gf, SBR_PICTO_GATE_FEATURES, ws, sizeof ws));
-        ROW(&t, SBR_ERR_RANGE, sbr_picto_gate_features(&gv, box, gf, SBR_PICTO_GATE_FEATURES, ws, sizeof ws));
+        ROW(&t, SBR_OK, sbr_picto_gate_features(&gv, box, gf, SBR_PICTO_GATE_FEATURES, ws, sizeof ws));
         ROW(&t, SBR_ERR_SIZE, sbr_picto_gate_features(&v, box, gf, 3u, ws, sizeof ws));
         ROW(&t, SBR_ERR_WORKSPACE, sbr_picto_gate_features(&v, box, gf, SBR_PICTO_GATE_FEATURES, ws, 16u));
         gm.gate = NULL;

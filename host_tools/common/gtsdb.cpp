@@ -143,7 +143,7 @@ sbr_image_t bgr_view(const cv::Mat &m) {
     v.width = static_cast<uint32_t>(m.cols);
     v.height = static_cast<uint32_t>(m.rows);
     v.stride = static_cast<uint32_t>(m.step[0]);
-    v.format = SBR_PIXEL_BGR888;
+    v.format = m.channels() == 1 ? SBR_PIXEL_GRAY8 : SBR_PIXEL_BGR888;
     v.data = m.data;
     return v;
 }

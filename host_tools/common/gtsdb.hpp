@@ -75,7 +75,7 @@ std::vector<std::string> list_images(const std::string &dir, const ImageRanges &
 constexpr uint64_t kFnvStart = 1469598103934665603ull;
 uint64_t fnv1a(uint64_t h, const void *p, size_t n);
 
-// A BGR888 view of an 8-bit, 3-channel OpenCV image.
+// A BGR888 view of an 8-bit, 3-channel OpenCV image (a GRAY8 view of a 1-channel one).
 sbr_image_t bgr_view(const cv::Mat &m);
 
 // GTSDB's sign classes (ids 0..42): the class count and each class's sign outline

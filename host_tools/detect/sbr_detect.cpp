@@ -2,7 +2,7 @@
 //
 //   sbr_detect --input DIR --detections FILE [--annotated DIR] [--canlog FILE]
 //              [--all-detections FILE] [--summary FILE] [--model FILE] [--picto FILE]
-//              [--no-picto] [--range A-B]
+//              [--no-picto] [--range A-B] [--grey]
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N] [--callgrind]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
 //              [--refine-first-score S] [--refine-score S] [--views N] [--view-score S] [--maps MASK]
@@ -20,6 +20,8 @@
 //   recogniser's floor is lowered to that): for precision-recall curves and AP.
 // --annotated: each image with its operating-point boxes and class names (JPEG).
 // --canlog: a candump log with the CAN frames of every processed image (dbc/sbr.dbc).
+// --grey: each image converted to grey (OpenCV's BGR2GRAY) and given to the recogniser as
+//   a GRAY8 frame, as a monochrome camera would (the annotated images stay in colour).
 // --sequence: the images (sorted by name) are consecutive frames of one drive, 10 per
 //   second: the CAN log's confirmed signs come from the channel tracker (each sign once
 //   per pass, with a stable track id) instead of treating every image as a still.
@@ -146,7 +148,7 @@ void annotate(cv::Mat &img, const std::vector<sbr_detection_t> &dets) {
 // Everything the command line sets.
 struct Options {
     std::string input, det_path, all_path, annotated, canlog, model_path, picto_path, summary_path;
-    bool no_picto = false, quiet = false, sequence = false, callgrind = false;
+    bool no_picto = false, quiet = false, sequence = false, callgrind = false, grey = false;
     ImageRanges range;
     float threshold = -1.0f;  // < 0: the model's operating point
     int repeat = 1;
@@ -181,6 +183,7 @@ int parse_options(int argc, char **argv, Options &o) {
         ->expected(4)
         ->type_name("X,Y,W,H");
     app.add_flag("--quiet", o.quiet, "no progress bar");
+    app.add_flag("--grey", o.grey, "give the recogniser each image as a grey (GRAY8) frame");
     app.add_option("--repeat", o.repeat, "runs per frame; the fastest is reported")
         ->check(CLI::Range(1, 20))
         ->capture_default_str();
@@ -352,7 +355,9 @@ bool run_image(const Options &o, const sbr_model_t *model, CallgrindClock &cg, c
         ++t.failed;
         error = true;
     } else {
-        const sbr_image_t v = bgr_view(img);
+        cv::Mat grey;
+        if (o.grey) cv::cvtColor(img, grey, cv::COLOR_BGR2GRAY);
+        const sbr_image_t v = bgr_view(o.grey ? grey : img);
         const uint32_t w = o.use_roi ? o.roi.width : v.width, h = o.use_roi ? o.roi.height : v.height;
         const size_t need = sbr_recog_workspace_size(&o.cfg, w, h);
         if (need > t.ws.size() * 8) t.ws.assign(need / 8 + 1, 0);

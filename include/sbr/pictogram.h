@@ -178,14 +178,15 @@ sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out);
  * @brief Features of the box [x0, x1) x [y0, y1) of an image (pixel units, pixel (i, j)
  *        covers [i, i + 1) x [j, j + 1)). The box may reach outside the image by up to its
  *        own size (samples there repeat the border).
- * @param[in]  img        RGB888 or BGR888 view.
+ * @param[in]  img        RGB888, BGR888 or GRAY8 view (a grey view gives the features of
+ *                        an image with R = G = B: neutral chromaticities).
  * @param[in]  box        x0, y0, x1, y1; finite, at least ::SBR_PICTO_MIN_BOX wide and high.
  * @param[out] feat       ::SBR_PICTO_FEATURES values.
  * @param[in]  len        length of feat, >= ::SBR_PICTO_FEATURES.
  * @param[in,out] workspace  ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
  * @param[in] workspace_size its size in bytes
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (len); ::SBR_ERR_RANGE (box not
- *         finite, too small, or too far outside; a grey image); errors of
+ *         finite, too small, or too far outside); errors of
  *         sbr_image_check(); ::SBR_ERR_WORKSPACE.
  */
 sbr_status_t sbr_picto_features(const sbr_image_t *img, const float box[4], float *feat,
@@ -246,7 +247,7 @@ sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], 
  *        bilinear samples (points outside the image repeat its border), about a tenth of
  *        the work of sbr_picto_features(). Features as ::SBR_PICTO_GATE_FEATURES says, all
  *        invariant to brightness and contrast except the chromaticities.
- * @param[in]  img       RGB888 or BGR888 view.
+ * @param[in]  img       RGB888, BGR888 or GRAY8 view (grey: as an image with R = G = B).
  * @param[in]  box       x0, y0, x1, y1 as for sbr_picto_features(); finite, at least
  *                       ::SBR_PICTO_MIN_BOX wide and high, each |coordinate| <=
  *                       ::SBR_PICTO_MAX_COORD.
@@ -255,8 +256,8 @@ sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], 
  * @param[in,out] workspace ::SBR_PICTO_GATE_WORKSPACE_SIZE bytes, 4-byte aligned.
  * @param[in] len length of the array, in elements
  * @param[in] workspace_size its size in bytes
- * @return ::SBR_OK; ::SBR_ERR_NULL; errors of sbr_image_check(); ::SBR_ERR_RANGE (a grey
- *         image, a box not finite, too small or too far out); ::SBR_ERR_SIZE (len);
+ * @return ::SBR_OK; ::SBR_ERR_NULL; errors of sbr_image_check(); ::SBR_ERR_RANGE (a box
+ *         not finite, too small or too far out); ::SBR_ERR_SIZE (len);
  *         ::SBR_ERR_WORKSPACE.
  */
 sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4], float *feat,

@@ -175,8 +175,8 @@ typedef struct sbr_recog_config_s {
         + blue, the blue map at half resolution (map_subsample[SBR_MAP_BLUE] = 2) with
         regions from 40 of its pixels (map_min_area[SBR_MAP_BLUE] = 40, signs from about
         15 px). Trade-off: maps and subsample set most of the time and memory; subsample 2
-        quarters both and loses signs below about 24 px. GRAY8 frames need maps =
-        intensity only. Why these: docs/results/recognition.md. */
+        quarters both and loses signs below about 24 px. On a GRAY8 frame only the
+        intensity map of `maps` is used (the colour kinds are skipped). Why these: docs/results/recognition.md. */
     sbr_parts_config_t parts;
     /** Correlation size P (a supported FFT size, >= 2M + 1). Default 32. Larger P locates
         the peak on a finer grid before refinement; the cost grows with P log P. */
@@ -396,7 +396,12 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
 
 /**
  * @brief Detect signs.
- * @param[in]  img       RGB888 or BGR888 frame.
+ * @param[in]  img       RGB888, BGR888 or GRAY8 frame. A GRAY8 frame (a monochrome camera)
+ *                       gives parts from the intensity map alone, the class stage reads
+ *                       it as an image with R = G = B, and the colour check
+ *                       (sbr_picto_model_t::rim_floor) is skipped; the built-in models are
+ *                       trained on colour, so grey frames find fewer signs
+ *                       (docs/results/recognition.md).
  * @param[in]  roi       region of interest (NULL: the whole frame); boxes are reported in
  *                       frame pixels.
  * @param[in]  cfg       options.
@@ -405,14 +410,16 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
  * @param[out] dets      detections, highest score first.
  * @param[in]  capacity  length of `dets`.
  * @param[out] count     detections written.
- * @param[out] stats     counters (may be NULL).
+ * @param[out] stats     counters (may be NULL). Zeroed first; written on ::SBR_OK and
+ *                       ::SBR_ERR_CAPACITY, all zero after any other status.
  * @param[in] workspace_size its size in bytes
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad configuration, or model and
  *         configuration disagree on fd_n/fd_m or the model exceeds max_model_protos);
  *         ::SBR_ERR_CORRUPT (model fails sbr_model_check()); ::SBR_ERR_SIZE / ::SBR_ERR_ALIGN
  *         (bad view: size, or a stride; a frame or ROI too small for the maps; SIZE also
  *         for a capacity of 0);
- *         ::SBR_ERR_RANGE also for a ROI that is empty or leaves the frame;
+ *         ::SBR_ERR_RANGE also for a ROI that is empty or leaves the frame, and for a
+ *         GRAY8 frame when parts.maps has no intensity map;
  *         ::SBR_ERR_WORKSPACE;
  *         ::SBR_ERR_CAPACITY when `dets` ran full (the best `capacity` are written).
  *         Internal bounds (parts, votes, hypotheses, MSER nodes) that run full do not fail

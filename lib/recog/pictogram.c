@@ -175,16 +175,36 @@ typedef struct picto_tap_s {
 typedef char picto_tap_fits[((sizeof(picto_tap_t) * 2u * PS * 4u) <= (PS * PS * sizeof(float)))
                                 ? 1 : -1];
 
-/* The byte offsets of red, green and blue in a pixel of an RGB888 or BGR888 view. */
-static void colour_channels(const sbr_image_t *img, uint32_t ch[3])
+/* Where a pixel's red, green and blue bytes are, and its size in bytes: RGB888, BGR888,
+   or GRAY8 (one byte read as all three: a grey frame is an image with R = G = B). */
+typedef struct picto_px_s {
+    uint32_t ch[3];
+    uint32_t bpp;
+} picto_px_t;
+
+static void colour_channels(const sbr_image_t *img, picto_px_t *px)
 {
-    ch[0] = 0u;
-    ch[1] = 1u;
-    ch[2] = 2u;
+    px->ch[0] = 0u;
+    px->ch[1] = 1u;
+    px->ch[2] = 2u;
+    px->bpp = 3u;
     if (img->format == SBR_PIXEL_BGR888) {
-        ch[0] = 2u;
-        ch[2] = 0u;
+        px->ch[0] = 2u;
+        px->ch[2] = 0u;
+    } else if (img->format == SBR_PIXEL_GRAY8) {
+        px->ch[1] = 0u;
+        px->ch[2] = 0u;
+        px->bpp = 1u;
+    } else {
+        /* RGB888 */
     }
+}
+
+/* 1 for the formats the class stage's features read (RGB888, BGR888, GRAY8). */
+static int picto_format_ok(const sbr_image_t *img)
+{
+    return ((img->format == SBR_PIXEL_RGB888) || (img->format == SBR_PIXEL_BGR888) ||
+            (img->format == SBR_PIXEL_GRAY8)) ? 1 : 0;
 }
 
 /* The taps of `count` output pixels with n sub-samples each along one axis: sub-sample i
@@ -238,7 +258,7 @@ typedef char picto_ws_fits[((((4u * PS * PS) + (2u * ROW_FLOATS)) * sizeof(float
 
 /* The slot holding source row r (filled if need be, never slot `keep`). */
 static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uint32_t n,
-                              const uint32_t ch[3], uint32_t r, uint32_t keep,
+                              const picto_px_t *px, uint32_t r, uint32_t keep,
                               picto_rows_t *rows, uint32_t *slot)
 {
     uint32_t k = 0u;
@@ -248,9 +268,10 @@ static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uin
         k = 1u;
     } else {
         const uint8_t *src = &img->data[(size_t)r * img->stride];
-        const uint32_t c0 = ch[0];
-        const uint32_t c1 = ch[1];
-        const uint32_t c2 = ch[2];
+        const uint32_t c0 = px->ch[0];
+        const uint32_t c1 = px->ch[1];
+        const uint32_t c2 = px->ch[2];
+        const uint32_t bpp = px->bpp;
         uint32_t i;
         if (keep == 0u) {
             k = 1u;
@@ -263,8 +284,8 @@ static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uin
             uint32_t u;
             for (u = 0u; u < PS; u++) {
                 const picto_tap_t *xt = &tx[(u * n) + i];
-                const uint8_t *pa = &src[xt->lo * 3u];
-                const uint8_t *pb = &src[xt->hi * 3u];
+                const uint8_t *pa = &src[xt->lo * bpp];
+                const uint8_t *pb = &src[xt->hi * bpp];
                 const float f = xt->f;
                 float a = (float)pa[c0];
                 float b = (float)pb[c0];
@@ -318,9 +339,9 @@ static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap
     const float inv = 1.0f / ((float)nx * (float)ny);
     const picto_tap_t *tx = taps;
     const picto_tap_t *ty = &taps[PS * 4u];
-    uint32_t ch[3];
+    picto_px_t px;
     uint32_t v;
-    colour_channels(img, ch);
+    colour_channels(img, &px);
     picto_taps(box[0], sx, nx, img->width, PS, &taps[0]);
     picto_taps(box[1], sy, ny, img->height, PS, &taps[PS * 4u]);
     rows->tag[0] = PICTO_NO_ROW;
@@ -338,8 +359,8 @@ static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap
             const float fy = yt->f;
             uint32_t s0;
             uint32_t s1;
-            const float *h0 = picto_row(img, tx, nx, ch, yt->lo, 2u, rows, &s0);
-            const float *h1 = picto_row(img, tx, nx, ch, yt->hi, s0, rows, &s1);
+            const float *h0 = picto_row(img, tx, nx, &px, yt->lo, 2u, rows, &s0);
+            const float *h1 = picto_row(img, tx, nx, &px, yt->hi, s0, rows, &s1);
             picto_accumulate(h0, h1, fy, nx, acc);
         }
         for (u = 0u; u < PS; u++) {
@@ -435,7 +456,7 @@ static sbr_status_t features_check(const sbr_image_t *img, const float box[4], u
     if (st != SBR_OK) {
         return st;
     }
-    if ((img->format != SBR_PIXEL_RGB888) && (img->format != SBR_PIXEL_BGR888)) {
+    if (picto_format_ok(img) == 0) {
         return SBR_ERR_RANGE;
     }
     if (len < SBR_PICTO_FEATURES) {
@@ -803,9 +824,9 @@ static uint32_t clamp_index(float p, uint32_t n)
 }
 
 /* What sbr_picto_rim_contrast() and sbr_picto_gate_features() check of their image and
-   box: ::SBR_ERR_NULL, sbr_image_check()'s errors, ::SBR_ERR_RANGE for a grey image or a
-   box outside box_in_domain(). */
-static sbr_status_t colour_box_check(const sbr_image_t *img, const float box[4])
+   box: ::SBR_ERR_NULL, sbr_image_check()'s errors, ::SBR_ERR_RANGE for a box outside
+   box_in_domain() or a grey image unless `grey` is 1. */
+static sbr_status_t colour_box_check(const sbr_image_t *img, const float box[4], int grey)
 {
     sbr_status_t st;
     if ((img == NULL) || (box == NULL)) {
@@ -815,7 +836,7 @@ static sbr_status_t colour_box_check(const sbr_image_t *img, const float box[4])
     if (st != SBR_OK) {
         return st;
     }
-    if (((img->format != SBR_PIXEL_RGB888) && (img->format != SBR_PIXEL_BGR888)) ||
+    if ((picto_format_ok(img) == 0) || ((grey == 0) && (img->format == SBR_PIXEL_GRAY8)) ||
         (box_in_domain(box) == 0)) {
         return SBR_ERR_RANGE;
     }
@@ -834,13 +855,13 @@ sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], 
     uint32_t n_mid = 0u;
     uint32_t i;
     uint32_t j;
-    uint32_t ch[3];
+    picto_px_t px;
     float k_in;
     float k_mid;
     if (contrast == NULL) {
         return SBR_ERR_NULL;
     }
-    st = colour_box_check(img, box);
+    st = colour_box_check(img, box, 0);
     if (st != SBR_OK) {
         return st;
     }
@@ -849,7 +870,7 @@ sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], 
     }
     bw = box[2] - box[0];
     bh = box[3] - box[1];
-    colour_channels(img, ch);
+    colour_channels(img, &px);
     k_in = (shape == (uint32_t)SBR_PICTO_RIM_DISC) ? 0.75f : 0.6f;
     k_mid = (shape == (uint32_t)SBR_PICTO_RIM_DISC) ? 0.6f : 0.45f;
     for (j = 0u; j < SBR_PICTO_RIM_GRID; j++) {
@@ -859,10 +880,10 @@ sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], 
         for (i = 0u; i < SBR_PICTO_RIM_GRID; i++) {
             const float u = ((float)i + 0.5f) / (float)SBR_PICTO_RIM_GRID;
             if (in_outline(shape, u, v, 1.0f) != 0) {
-                const uint8_t *px = &row[(size_t)clamp_index(box[0] + (u * bw), img->width) * 3u];
-                const float r = (float)px[ch[0]];
-                const float g = (float)px[ch[1]];
-                const float b = (float)px[ch[2]];
+                const uint8_t *p = &row[(size_t)clamp_index(box[0] + (u * bw), img->width) * 3u];
+                const float r = (float)p[px.ch[0]];
+                const float g = (float)p[px.ch[1]];
+                const float b = (float)p[px.ch[2]];
                 const float red = (r - ((g > b) ? g : b)) / (r + g + b + 3.0f);
                 if (in_outline(shape, u, v, k_in) == 0) {
                     rim += red;
@@ -961,7 +982,7 @@ static uint32_t gate_prev(uint32_t i)
 /* Mean of the image over the 2 x 2 bilinear samples of grid cell (u, v), per channel (r,
    g, b order): tx, ty the taps of the grid's sub-samples (picto_taps(), 2 per cell). */
 static void gate_cell(const sbr_image_t *img, const picto_tap_t *tx, const picto_tap_t *ty,
-                      uint32_t u, uint32_t v, const uint32_t ch[3], float out[3])
+                      uint32_t u, uint32_t v, const picto_px_t *px, float out[3])
 {
     uint32_t i;
     uint32_t j;
@@ -976,10 +997,10 @@ static void gate_cell(const sbr_image_t *img, const picto_tap_t *tx, const picto
             const picto_tap_t *xt = &tx[(u * 2u) + i];
             uint32_t c;
             for (c = 0u; c < 3u; c++) {
-                const float a = (float)r0[(xt->lo * 3u) + ch[c]];
-                const float b = (float)r0[(xt->hi * 3u) + ch[c]];
-                const float d = (float)r1[(xt->lo * 3u) + ch[c]];
-                const float e = (float)r1[(xt->hi * 3u) + ch[c]];
+                const float a = (float)r0[(xt->lo * px->bpp) + px->ch[c]];
+                const float b = (float)r0[(xt->hi * px->bpp) + px->ch[c]];
+                const float d = (float)r1[(xt->lo * px->bpp) + px->ch[c]];
+                const float e = (float)r1[(xt->hi * px->bpp) + px->ch[c]];
                 const float top = a + (xt->f * (b - a));
                 const float bot = d + (xt->f * (e - d));
                 out[c] += 0.25f * (top + (yt->f * (bot - top)));
@@ -1025,13 +1046,13 @@ sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4],
     float mean = 0.0f;
     float var = 0.0f;
     float sd;
-    uint32_t ch[3];
+    picto_px_t px;
     uint32_t i;
     sbr_status_t st;
     if (feat == NULL) {
         return SBR_ERR_NULL;
     }
-    st = colour_box_check(img, box);
+    st = colour_box_check(img, box, 1);
     if (st != SBR_OK) {
         return st;
     }
@@ -1042,7 +1063,7 @@ sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4],
         (sbr_util_aligned(workspace, 4u) == 0)) {
         return SBR_ERR_WORKSPACE;
     }
-    colour_channels(img, ch);
+    colour_channels(img, &px);
     g = (float *)workspace;
     tx = (picto_tap_t *)(void *)&g[GG * GG];
     ty = &tx[GG * 2u];
@@ -1057,7 +1078,7 @@ sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4],
         float c[3];
         float sum;
         float *col = &feat[G_COLOUR + ((((v / 3u) * 4u) + (u / 3u)) * 2u)];
-        gate_cell(img, tx, ty, u, v, ch, c);
+        gate_cell(img, tx, ty, u, v, &px, c);
         sum = (c[0] + c[1]) + c[2];
         g[i] = sum * (1.0f / 3.0f);
         mean += g[i];

@@ -202,11 +202,12 @@ static int gate_passes(const recog_hyp_t *h, const sbr_image_t *view, const sbr_
 
 /* The class stage's colour check (sbr_picto_model_t::rim_floor): 1 when the model has one
    for the candidate's class and the rim of its box is less red against its inside than
-   the class's threshold, or when it cannot be measured. */
+   the class's threshold, or when it cannot be measured. A grey frame has no colour to
+   check: 0. */
 static int rim_fails(const recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm)
 {
     int fails = 0;
-    if ((pm->rim_shape != NULL) && (pm->rim_floor != NULL) && ((uint32_t)h->class_id < pm->classes) &&
+    if ((view->format != SBR_PIXEL_GRAY8) && (pm->rim_shape != NULL) && (pm->rim_floor != NULL) && ((uint32_t)h->class_id < pm->classes) &&
         (pm->rim_shape[h->class_id] != (uint8_t)SBR_PICTO_RIM_NONE)) {
         float box[4];
         float contrast = 0.0f;

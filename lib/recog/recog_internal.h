@@ -72,6 +72,7 @@ typedef struct recog_layout_s {
 typedef struct recog_ctx_s {
     const sbr_recog_config_t *cfg;
     const sbr_model_t *model;
+    sbr_parts_config_t parts_cfg; /* cfg->parts, the intensity map alone on a grey frame */
     sbr_fft_t fft_p;
     sbr_fd_match_config_t mcfg;  /* votes: screened at the vote error */
     sbr_fd_match_config_t vcfg;  /* cascade: screened at the verification error */

@@ -17,16 +17,11 @@ static void stage_end(recog_ctx_t *c, uint32_t s, uint32_t *t0)
     }
 }
 
-/* The view the recogniser works on (the ROI of img, or img; an RGB888 or BGR888 frame)
-   and the ROI's offset in img. */
+/* The view the recogniser works on (the ROI of img, or img) and the ROI's offset in img. */
 static sbr_status_t detect_view(const sbr_image_t *img, const sbr_rect_t *roi, sbr_image_t *view,
                                 uint32_t *ox, uint32_t *oy)
 {
     sbr_status_t st;
-    if ((img->format != SBR_PIXEL_RGB888) && (img->format != SBR_PIXEL_BGR888)) {
-        st = sbr_image_check(img);
-        return (st != SBR_OK) ? st : SBR_ERR_RANGE;
-    }
     if (roi != NULL) {
         st = sbr_image_roi(img, roi, view);
         *ox = roi->x;
@@ -51,6 +46,18 @@ static sbr_status_t detect_check(const sbr_recog_config_t *cfg, const sbr_model_
         st = SBR_ERR_RANGE;
     }
     return st;
+}
+
+/* The part extraction's options for this view: the configuration's, with only the
+   intensity map for a grey frame (::SBR_ERR_RANGE when the configuration has none). */
+static sbr_status_t view_parts(const sbr_recog_config_t *cfg, const sbr_image_t *view,
+                               sbr_parts_config_t *out)
+{
+    *out = cfg->parts;
+    if (view->format == SBR_PIXEL_GRAY8) {
+        out->maps &= 1u << (uint32_t)SBR_MAP_INTENSITY;
+    }
+    return (out->maps != 0u) ? SBR_OK : SBR_ERR_RANGE;
 }
 
 /* The context of one call: matchers, and the arrays in the workspace (layout l). */
@@ -95,7 +102,7 @@ static sbr_status_t evidence_stages(recog_ctx_t *c, const sbr_image_t *view,
 {
     const sbr_recog_config_t *cfg = c->cfg;
     uint32_t i;
-    sbr_status_t st = sbr_parts_extract(view, &cfg->parts, fft_n, workspace, parts_ws, c->parts,
+    sbr_status_t st = sbr_parts_extract(view, &c->parts_cfg, fft_n, workspace, parts_ws, c->parts,
                                         cfg->max_parts, &c->nparts, &c->st.parts_stats);
     if (st == SBR_ERR_CAPACITY) {
         c->st.capacity_hit |= 1u;
@@ -216,6 +223,9 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
     int full;
     sbr_status_t st;
 
+    if (stats != NULL) {
+        (void)memset(stats, 0, sizeof *stats);
+    }
     if ((img == NULL) || (cfg == NULL) || (model == NULL) || (dets == NULL) || (count == NULL)) {
         return SBR_ERR_NULL;
     }
@@ -235,7 +245,8 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
         return SBR_ERR_WORKSPACE;
     }
     if ((sbr_fft_init(&fft_n, cfg->parts.fd_n) != SBR_OK) ||
-        (ctx_init(&c, cfg, model, workspace, &l) != SBR_OK)) {
+        (ctx_init(&c, cfg, model, workspace, &l) != SBR_OK) ||
+        (view_parts(cfg, &view, &c.parts_cfg) != SBR_OK)) {
         return SBR_ERR_RANGE;
     }
     if (cfg->clock != NULL) {

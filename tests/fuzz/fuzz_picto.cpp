@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         have = true;
     }
     std::vector<uint8_t> buf;
-    const sbr_image_t img = fz_image(in, buf, 72u, 72u, SBR_PIXEL_RGB888);
+    const sbr_image_t img = fz_image(in, buf, 72u, 72u, in.ConsumeBool() ? SBR_PIXEL_RGB888 : SBR_PIXEL_GRAY8);
     float box[4];
     for (float &b : box) {
         b = fz_float(in, -40.0f, 110.0f);

@@ -1,7 +1,8 @@
 // Fuzz harness: the recogniser. Frames from the input (size, stride, format, pixels), a
 // ROI, configuration fields overwritten from the input, the built-in model, a result
 // array of some capacity. On SBR_OK / SBR_ERR_CAPACITY: count <= capacity, every box
-// inside the frame (and the ROI), scores finite in [0, 1], classes of GTSDB.
+// inside the frame (and the ROI), scores finite in [0, 1], classes of GTSDB; after any
+// other status the statistics are all zero.
 #include "fuzz_common.hpp"
 
 #include <cstddef>
@@ -23,7 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     sbr_recog_config_default(&cfg);
     fz_edit_fields(in, &cfg, offsetof(sbr_recog_config_t, clock), 4u);
     std::vector<uint8_t> buf;
-    const sbr_image_t img = fz_image(in, buf, 96u, 96u, in.ConsumeBool() ? SBR_PIXEL_RGB888 : SBR_PIXEL_BGR888);
+    const sbr_pixel_format_t formats[3] = {SBR_PIXEL_RGB888, SBR_PIXEL_BGR888, SBR_PIXEL_GRAY8};
+    const sbr_image_t img = fz_image(in, buf, 96u, 96u, formats[in.ConsumeIntegralInRange<uint32_t>(0u, 2u)]);
     sbr_rect_t roi;
     const bool use_roi = in.ConsumeBool();
     roi.x = fz_u32(in, 0u, img.width);
@@ -73,6 +75,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
     } else {
         FZ_CHECK(st == SBR_ERR_NULL || count == 0u || count == 12345u);
+        const uint8_t *sb = reinterpret_cast<const uint8_t *>(&stats);
+        for (size_t i = 0u; i < sizeof stats; i++) {
+            FZ_CHECK(sb[i] == 0u); // documented: all zero after an error
+        }
     }
     return 0;
 }
