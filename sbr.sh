@@ -284,16 +284,19 @@ on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model FILE 
   build_native
   local tools="$BUILD/native/host_tools"
   log "sbr_detect over $input${range:+ (images $range)}"
+  local gt="" status=0
+  for g in "$input/gt.txt" "$input/FullIJCNN2013/gt.txt"; do [ -f "$g" ] && gt="$g" && break; done
+  # status 3: some images failed (reported); the rest is evaluated, the status kept
   "$tools/sbr_detect" --input "$input" ${range:+--range "$range"} \
       --detections "$out/detections.txt" --all-detections "$out/detections_all.txt" \
-      --annotated "$out/annotated" --canlog "$out/sbr_can.log" --summary "$out/summary.txt" \
-      ${models[@]+"${models[@]}"} ${extra[@]+"${extra[@]}"}
+      --annotated "$out/annotated" ${gt:+--overview "$out/overview.png"} \
+      --canlog "$out/sbr_can.log" --summary "$out/summary.txt" \
+      ${models[@]+"${models[@]}"} ${extra[@]+"${extra[@]}"} || status=$?
+  [ "$status" -eq 0 ] || [ "$status" -eq 3 ] || return "$status"
   if [ -n "$note" ]; then
     { echo "$note"; echo; cat "$out/summary.txt"; } > "$out/summary.txt.new" && mv "$out/summary.txt.new" "$out/summary.txt"
     printf '\n%s\n' "$note"
   fi
-  local gt=""
-  for g in "$input/gt.txt" "$input/FullIJCNN2013/gt.txt"; do [ -f "$g" ] && gt="$g" && break; done
   if [ -n "$gt" ]; then
     log "sbr_eval against $gt"
     local thr
@@ -305,7 +308,9 @@ on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model FILE 
     { echo; echo "evaluation (sbr_eval, operating point score >= ${thr:-0}):"; cat "$out/evaluation.txt.new"; } >> "$out/summary.txt"
     rm -f "$out/evaluation.txt.new"
   fi
-  log "wrote $out: detections.txt, detections_all.txt, annotated/, sbr_can.log, summary.txt${gt:+, evaluation.txt, pr_curve.png}"
+  log "wrote $out: detections.txt, detections_all.txt, annotated/, sbr_can.log, summary.txt${gt:+, evaluation.txt, pr_curve.png, overview.png}"
+  [ "$status" -eq 0 ] || echo "sbr.sh detect: some images failed (listed in $out/summary.txt)" >&2
+  return "$status"
 }
 
 cmd_train() {

@@ -8,7 +8,9 @@ extern "C" {
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <cctype>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 namespace fs = std::filesystem;
@@ -82,6 +84,53 @@ std::vector<std::string> list_images(const std::string &dir, const ImageRanges &
     for (auto &f : list_images(dir))
         if (range.empty() || range.contains(image_number(f))) out.push_back(std::move(f));
     return out;
+}
+
+namespace {
+
+// The byte count a binary PPM/PGM's header promises (header included), or 0 when the
+// header cannot be read.
+size_t ppm_expected_size(const std::vector<unsigned char> &b) {
+    std::string head(b.begin(), b.begin() + std::min<size_t>(b.size(), 512));
+    size_t pos = 2;
+    long v[3] = {0, 0, 0};
+    for (long &x : v) {
+        while (pos < head.size() && (std::isspace(static_cast<unsigned char>(head[pos])) || head[pos] == '#')) {
+            if (head[pos] == '#') pos = head.find('\n', pos);
+            if (pos == std::string::npos) return 0;
+            ++pos;
+        }
+        const size_t start = pos;
+        while (pos < head.size() && std::isdigit(static_cast<unsigned char>(head[pos]))) ++pos;
+        if (pos == start || pos - start > 9) return 0;
+        x = std::atol(head.substr(start, pos - start).c_str());
+    }
+    if (pos >= head.size() || v[0] <= 0 || v[1] <= 0 || v[2] <= 0) return 0;
+    const size_t channels = head[1] == '6' ? 3 : 1, bytes = v[2] > 255 ? 2 : 1;
+    return pos + 1 + size_t(v[0]) * size_t(v[1]) * channels * bytes;
+}
+
+}  // namespace
+
+std::string image_file_problem(const std::string &path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return "cannot open the file";
+    const std::vector<unsigned char> b((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    if (b.empty()) return "empty file";
+    const size_t n = b.size();
+    if (n >= 2 && b[0] == 0xFF && b[1] == 0xD8) {
+        for (size_t i = n - 1; i >= 1 && i + 1024 >= n; --i)
+            if (b[i - 1] == 0xFF && b[i] == 0xD9) return "";
+        return "truncated JPEG (no end-of-image marker)";
+    }
+    if (n >= 8 && b[0] == 0x89 && b[1] == 'P' && b[2] == 'N' && b[3] == 'G')
+        return n >= 12 && std::equal(b.end() - 8, b.end() - 4, "IEND") ? "" : "truncated PNG (no IEND chunk)";
+    if (n >= 2 && b[0] == 'P' && (b[1] == '5' || b[1] == '6')) {
+        const size_t want = ppm_expected_size(b);
+        if (want == 0) return "unreadable PPM header";
+        return n >= want ? "" : "truncated PPM (" + std::to_string(n) + " of " + std::to_string(want) + " bytes)";
+    }
+    return "";
 }
 
 int image_number(const std::string &path) {

@@ -48,6 +48,12 @@ std::string gtsdb_image_dir(const std::string &dir);
 // Image files (.jpg, .jpeg, .png, .ppm) of a folder, sorted by name.
 std::vector<std::string> list_images(const std::string &dir);
 
+// Why an image file cannot be trusted to decode whole, or "" when it looks complete:
+// empty, a JPEG without its end-of-image marker in the last kilobyte, a PNG without its
+// IEND chunk at the end, a PPM shorter than its header's size. OpenCV decodes a truncated
+// JPEG without an error (the missing rows grey), so readers check this first.
+std::string image_file_problem(const std::string &path);
+
 // Image number of a file name like "00123.jpg" (-1 if it has none).
 int image_number(const std::string &path);
 

@@ -1,6 +1,6 @@
 // sbr_detect: runs sbr's recogniser over a folder of recorded images.
 //
-//   sbr_detect --input DIR --detections FILE [--annotated DIR] [--canlog FILE]
+//   sbr_detect --input DIR --detections FILE [--annotated DIR] [--overview FILE] [--gt FILE|none] [--canlog FILE]
 //              [--all-detections FILE] [--summary FILE] [--model FILE] [--picto FILE]
 //              [--no-picto] [--range A-B] [--grey]
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N] [--callgrind]
@@ -18,7 +18,14 @@
 //   plus a score 0..1).
 // --all-detections: the same format with every detection down to score 0.05 (the
 //   recogniser's floor is lowered to that): for precision-recall curves and AP.
-// --annotated: each image with its operating-point boxes and class names (JPEG).
+// --annotated: each image with its operating-point boxes and class names (JPEG). With
+//   ground truth (--gt FILE, default the gt.txt beside the images; --gt none: without)
+//   the detections are judged at class level as sbr_eval does (IoU >= 0.5, same class):
+//   found ones in their superclass's colour, false ones magenta and marked "FP", missed
+//   signs as dashed boxes with their class; labels placed clear of each other and inside
+//   the image (host_tools/common/annotate.hpp).
+// --overview: a contact sheet (PNG) of the 12 images with the most missed signs and false
+//   detections, worst first, each cropped around its errors (needs ground truth).
 // --canlog: a candump log with the CAN frames of every processed image (dbc/sbr.dbc).
 // --grey: each image converted to grey (OpenCV's BGR2GRAY) and given to the recogniser as
 //   a GRAY8 frame, as a monochrome camera would (the annotated images stay in colour).
@@ -42,6 +49,11 @@
 //   bound and --max-parts, --max-votes, --max-hypotheses the recogniser's bounds of those
 //   names (smaller: less workspace); --gate 0 turns the class stage's gate off (it is used
 //   when the class stage has one).
+// A file that is empty, truncated (a JPEG without its end marker, a PNG without IEND, a
+//   short PPM) or undecodable is a failed image: reported, counted in the summary, and the
+//   exit status is 3 when some images failed (1 when all did, or on a set-up error; 2 for
+//   bad options). The progress bar (with an estimate of the time left) is drawn only when
+//   stderr is a terminal.
 // Time is measured per frame on one core (the tool is single-threaded). --repeat N runs the
 //   recogniser N times on each frame (1..20, default 1) and keeps each frame's fastest run
 //   and that run's stage times: a shared or virtual machine's interruptions only ever add
@@ -65,6 +77,9 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
+#include "annotate.hpp"
 #include "can_output.hpp"
 #include "cli.hpp"
 #include "gtsdb.hpp"
@@ -119,36 +134,23 @@ double percentile(std::vector<double> v, double p) {
     return i + 1 < v.size() ? v[i] * (1 - f) + v[i + 1] * f : v[i];
 }
 
-void progress(size_t done, size_t total, double ms_avg) {
-    const int width = 40;
+// The progress bar with the time left, on a terminal only (a log gets none).
+void progress(size_t done, size_t total, double ms_avg, double elapsed_s) {
+    const int width = 30;
     const int filled = total ? int(double(width) * double(done) / double(total)) : width;
-    std::fprintf(stderr, "\r[%s%s] %zu/%zu  %.0f ms/frame", std::string(size_t(filled), '#').c_str(),
-                 std::string(size_t(width - filled), '.').c_str(), done, total, ms_avg);
+    const double left_s = done ? elapsed_s / double(done) * double(total - done) : 0.0;
+    std::fprintf(stderr, "\r[%s%s] %zu/%zu  %.0f ms/frame  %d:%02d left ", std::string(size_t(filled), '#').c_str(),
+                 std::string(size_t(width - filled), '.').c_str(), done, total, ms_avg, int(left_s) / 60,
+                 int(left_s) % 60);
     if (done == total) std::fprintf(stderr, "\n");
     std::fflush(stderr);
 }
 
-void annotate(cv::Mat &img, const std::vector<sbr_detection_t> &dets) {
-    for (const auto &d : dets) {
-        const cv::Scalar colour[4] = {{0, 0, 255}, {255, 128, 0}, {0, 200, 255}, {0, 200, 0}};
-        const cv::Scalar c = colour[superclass_of(d.class_id)];
-        const cv::Rect r(int(d.box.x), int(d.box.y), int(d.box.width), int(d.box.height));
-        cv::rectangle(img, r, c, 2);
-        char label[96];
-        std::snprintf(label, sizeof label, "%d %s %.2f", d.class_id, class_name(d.class_id), double(d.score));
-        int base = 0;
-        const cv::Size ts = cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, 0.45, 1, &base);
-        const int y = std::max(ts.height + 2, r.y - 3);
-        cv::rectangle(img, cv::Rect(r.x, y - ts.height - 2, ts.width + 4, ts.height + 5), c, cv::FILLED);
-        cv::putText(img, label, cv::Point(r.x + 2, y), cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(255, 255, 255), 1,
-                    cv::LINE_AA);
-    }
-}
-
 // Everything the command line sets.
 struct Options {
-    std::string input, det_path, all_path, annotated, canlog, model_path, picto_path, summary_path;
+    std::string input, det_path, all_path, annotated, overview, gt_path, canlog, model_path, picto_path, summary_path;
     bool no_picto = false, quiet = false, sequence = false, callgrind = false, grey = false;
+    bool progress = false;  // a progress bar: stderr is a terminal and not --quiet
     ImageRanges range;
     float threshold = -1.0f;  // < 0: the model's operating point
     int repeat = 1;
@@ -168,7 +170,10 @@ int parse_options(int argc, char **argv, Options &o) {
                    "detections at the operating point, NNNNN.jpg;left;top;right;bottom;class_id;score")
         ->required();
     app.add_option("--all-detections", o.all_path, "every detection down to score 0.05 (PR curves, AP)");
-    app.add_option("--annotated", o.annotated, "folder for the images with their boxes (JPEG)");
+    app.add_option("--annotated", o.annotated,
+                   "folder for the images with their boxes (JPEG); with ground truth, misses and false detections marked");
+    app.add_option("--overview", o.overview, "contact sheet (PNG) of the images with the most errors (needs ground truth)");
+    app.add_option("--gt", o.gt_path, "ground truth for --annotated/--overview (default: gt.txt beside the images; none: without)");
     app.add_option("--canlog", o.canlog, "candump log of the CAN frames (dbc/sbr.dbc)");
     app.add_option("--summary", o.summary_path, "write the summary (also printed) to this file");
     app.add_option("--model", o.model_path, "prototype library file (sbr_train --out-model); default built-in");
@@ -194,6 +199,7 @@ int parse_options(int argc, char **argv, Options &o) {
     add_recog_options(app, o.cfg, o.rc);
     const int rc = parse_cli(app, argc, argv);
     if (rc >= 0) return rc;
+    o.progress = !o.quiet && isatty(STDERR_FILENO) != 0;
     if (!o.roi_v.empty()) {
         o.roi = {o.roi_v[0], o.roi_v[1], o.roi_v[2], o.roi_v[3]};
         o.use_roi = true;
@@ -257,13 +263,44 @@ bool configure(Options &o, const sbr_model_t *model, CallgrindClock &cg) {
     return st == SBR_OK;
 }
 
+// The ground truth the annotated pictures are judged by, and what they found.
+struct Annotation {
+    std::string gt_path;  // empty: no ground truth
+    std::map<int, std::vector<GtBox>> gt;
+    WorstImages worst{12};
+    size_t missed = 0, false_dets = 0;
+};
+
 // The output files.
 struct Outputs {
     std::ofstream det, all;
     std::unique_ptr<CanLogWriter> can;
+    Annotation ann;
 };
 
-bool open_outputs(const Options &o, Outputs &out) {
+// --gt, or the gt.txt beside the images; false when a given file cannot be read or
+// --overview has no ground truth.
+bool load_ground_truth(const Options &o, const std::string &dir, Annotation &a) {
+    if (o.annotated.empty() && o.overview.empty()) return true;
+    if (o.gt_path == "none") a.gt_path.clear();
+    else if (!o.gt_path.empty()) a.gt_path = o.gt_path;
+    else if (fs::is_regular_file(fs::path(dir) / "gt.txt")) a.gt_path = (fs::path(dir) / "gt.txt").string();
+    if (!a.gt_path.empty()) {
+        a.gt = read_gt(a.gt_path);
+        if (a.gt.empty() && !fs::is_regular_file(a.gt_path)) {
+            std::fprintf(stderr, "sbr_detect: --gt %s: cannot read it\n", a.gt_path.c_str());
+            return false;
+        }
+    }
+    if (!o.overview.empty() && a.gt_path.empty()) {
+        std::fprintf(stderr, "sbr_detect: --overview needs ground truth (--gt FILE or a gt.txt beside the images)\n");
+        return false;
+    }
+    return true;
+}
+
+bool open_outputs(const Options &o, const std::string &dir, Outputs &out) {
+    if (!load_ground_truth(o, dir, out.ann)) return false;
     out.det.open(o.det_path);
     if (!out.det) { std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.det_path.c_str()); return false; }
     if (!o.all_path.empty()) out.all.open(o.all_path);
@@ -283,7 +320,9 @@ struct Tally {
     std::vector<double> ms_total;
     std::vector<std::vector<double>> ms_stage = std::vector<std::vector<double>>(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
+    std::vector<std::string> failures;  // "file: why", the first few
     size_t capacity_kind[5] = {0, 0, 0, 0, 0};
+    uint32_t max_candidates = 0;  // the class stage's bound, for the summary
     size_t classified = 0, refined = 0, views = 0, rim_rejected = 0, gated = 0, frames_run = 0;
     uint64_t parts_total = 0;
     double sum_ms = 0;
@@ -340,52 +379,86 @@ void count_stats(const sbr_recog_stats_t &stats, sbr_status_t st, double ms, Tal
     ++t.frames_run;
 }
 
-// One image: detections written, counted, drawn, and its CAN frames. False when the CAN
-// log's tracker cannot be set up.
+// A failed image: reported (below the progress bar), counted, the first few kept for the
+// summary.
+void image_failed(const Options &o, const std::string &file, const std::string &why, Tally &t) {
+    std::fprintf(stderr, "%ssbr_detect: %s: %s\n", o.progress ? "\n" : "", file.c_str(), why.c_str());
+    ++t.failed;
+    if (t.failures.size() < 10) t.failures.push_back(fs::path(file).filename().string() + ": " + why);
+}
+
+// The recogniser on a decoded image: detections written and counted; `kept` those at the
+// operating point. False when the core refused the frame.
+bool detect_image(const Options &o, const sbr_model_t *model, CallgrindClock &cg, const std::string &file,
+                  const cv::Mat &img, Outputs &out, Tally &t, std::vector<sbr_detection_t> &kept,
+                  sbr_recog_stats_t &stats, float &frame_ms) {
+    const std::string name = fs::path(file).stem().string() + ".jpg";
+    cv::Mat grey;
+    if (o.grey) cv::cvtColor(img, grey, cv::COLOR_BGR2GRAY);
+    const sbr_image_t v = bgr_view(o.grey ? grey : img);
+    const uint32_t w = o.use_roi ? o.roi.width : v.width, h = o.use_roi ? o.roi.height : v.height;
+    const size_t need = sbr_recog_workspace_size(&o.cfg, w, h);
+    if (need > t.ws.size() * 8) t.ws.assign(need / 8 + 1, 0);
+    t.ws_bytes = std::max(t.ws_bytes, need);
+    uint32_t n = 0;
+    double ms = 0.0;
+    const sbr_status_t st = detect_timed(o, model, cg, file, v, t, n, ms, stats);
+    frame_ms = float(ms);
+    count_stats(stats, st, ms, t);
+    if (st != SBR_OK && st != SBR_ERR_CAPACITY) {
+        image_failed(o, file, std::string("the recogniser refused it: ") + sbr_status_str(st), t);
+        return false;
+    }
+    for (uint32_t k = 0; k < n; ++k) {
+        const auto &d = t.dets[k];
+        char line[160];
+        std::snprintf(line, sizeof line, "%s;%u;%u;%u;%u;%u;%.4f\n", name.c_str(), d.box.x, d.box.y,
+                      d.box.x + d.box.width - 1, d.box.y + d.box.height - 1, unsigned(d.class_id), double(d.score));
+        if (out.all.is_open()) { out.all << line; ++t.nall; }
+        if (d.score >= o.threshold) { out.det << line; kept.push_back(d); ++t.ndet; }
+    }
+    return true;
+}
+
+// The annotated picture of one image, judged against its ground truth when there is one;
+// offered to the contact sheet.
+void annotate_image(const Options &o, const std::string &file, cv::Mat &img,
+                    const std::vector<sbr_detection_t> &kept, Annotation &a) {
+    const int number = image_number(file);
+    std::vector<DetLine> dets;
+    for (const auto &d : kept)
+        dets.push_back({number, double(d.box.x), double(d.box.y), double(d.box.x + d.box.width - 1),
+                        double(d.box.y + d.box.height - 1), int(d.class_id), double(d.score)});
+    const auto g = a.gt.find(number);
+    const std::vector<Mark> marks =
+        judge(dets, g != a.gt.end() ? g->second : std::vector<GtBox>{}, !a.gt_path.empty());
+    for (const Mark &m : marks) {
+        a.missed += m.kind == MarkKind::kMissed;
+        a.false_dets += m.kind == MarkKind::kFalse;
+    }
+    draw_marks(img, marks, !a.gt_path.empty());
+    const std::string name = fs::path(file).stem().string() + ".jpg";
+    if (!o.annotated.empty()) cv::imwrite((fs::path(o.annotated) / name).string(), img);
+    if (!o.overview.empty()) a.worst.offer(fs::path(file).stem().string(), img, marks);
+}
+
+// One image: read, detections written, counted, drawn, and its CAN frames. False when
+// the CAN log's tracker cannot be set up.
 bool run_image(const Options &o, const sbr_model_t *model, CallgrindClock &cg, const std::string &file, bool first,
                Outputs &out, Tally &t) {
-    cv::Mat img = cv::imread(file, cv::IMREAD_COLOR);
-    const std::string name = fs::path(file).stem().string() + ".jpg";
     std::vector<sbr_detection_t> kept;
     sbr_recog_stats_t stats{};
     float frame_ms = 0.0f;
-    bool error = false;
-    if (img.empty()) {
-        std::fprintf(stderr, "\nsbr_detect: cannot read %s\n", file.c_str());
-        ++t.failed;
-        error = true;
-    } else {
-        cv::Mat grey;
-        if (o.grey) cv::cvtColor(img, grey, cv::COLOR_BGR2GRAY);
-        const sbr_image_t v = bgr_view(o.grey ? grey : img);
-        const uint32_t w = o.use_roi ? o.roi.width : v.width, h = o.use_roi ? o.roi.height : v.height;
-        const size_t need = sbr_recog_workspace_size(&o.cfg, w, h);
-        if (need > t.ws.size() * 8) t.ws.assign(need / 8 + 1, 0);
-        t.ws_bytes = std::max(t.ws_bytes, need);
-        uint32_t n = 0;
-        double ms = 0.0;
-        const sbr_status_t st = detect_timed(o, model, cg, file, v, t, n, ms, stats);
-        if (st != SBR_OK && st != SBR_ERR_CAPACITY) {
-            std::fprintf(stderr, "\nsbr_detect: %s: %s\n", file.c_str(), sbr_status_str(st));
-            ++t.failed;
-            error = true;
-            n = 0;
-        }
-        frame_ms = float(ms);
-        count_stats(stats, st, ms, t);
-        for (uint32_t k = 0; k < n; ++k) {
-            const auto &d = t.dets[k];
-            char line[160];
-            std::snprintf(line, sizeof line, "%s;%u;%u;%u;%u;%u;%.4f\n", name.c_str(), d.box.x, d.box.y,
-                          d.box.x + d.box.width - 1, d.box.y + d.box.height - 1, unsigned(d.class_id), double(d.score));
-            if (out.all.is_open()) { out.all << line; ++t.nall; }
-            if (d.score >= o.threshold) { out.det << line; kept.push_back(d); ++t.ndet; }
-        }
-        if (!o.annotated.empty()) {
-            annotate(img, kept);
-            cv::imwrite((fs::path(o.annotated) / name).string(), img);
-        }
+    cv::Mat img;
+    std::string problem = image_file_problem(file);
+    if (problem.empty()) {
+        img = cv::imread(file, cv::IMREAD_COLOR);
+        if (img.empty()) problem = "cannot decode it";
     }
+    bool error = !problem.empty();
+    if (error) image_failed(o, file, problem, t);
+    else error = !detect_image(o, model, cg, file, img, out, t, kept, stats, frame_ms);
+    if (!error && (!o.annotated.empty() || !o.overview.empty())) annotate_image(o, file, img, kept, out.ann);
     if (out.can) {
         std::vector<Detection> cd;
         for (const auto &d : kept)
@@ -400,6 +473,38 @@ bool run_image(const Options &o, const sbr_model_t *model, CallgrindClock &cg, c
     return true;
 }
 
+// What the internal bounds did: each bounds a frame's work and memory. The class stage's
+// candidate bound is meant to be reached on street frames (it decides the class stage's
+// cost); the others, when reached, may lose evidence.
+std::string bounds_text(const Options &o, const Tally &t) {
+    std::ostringstream s;
+    const size_t fr = t.frames_run;
+    s << "internal bounds (each caps a frame's work and memory; docs/usage/detect.md):\n";
+    s << "  class-stage candidates (--max-candidates " << o.cfg.max_candidates << "): reached on "
+      << t.capacity_kind[4] << " of " << fr << " frames";
+    if (t.capacity_kind[4] > 0)
+        s << ", as designed:\n    the class stage classifies the " << o.cfg.max_candidates
+          << " candidates of best part score of a frame and skips the rest,\n"
+             "    which fixes its time per frame; a sign skipped there counts as a miss";
+    s << "\n";
+    const char *names[4] = {"parts (--max-parts ", "votes (--max-votes ", "hypotheses (--max-hypotheses ",
+                            "MSER tree nodes (--max-nodes "};
+    const uint32_t limits[4] = {o.cfg.max_parts, o.cfg.max_votes, o.cfg.max_hypotheses, o.cfg.parts.mser.max_nodes};
+    std::string unreached;
+    for (unsigned b = 0; b < 4; ++b) {
+        const std::string what = names[b] + std::to_string(limits[b]) + ")";
+        if (t.capacity_kind[b] == 0) {
+            unreached += (unreached.empty() ? "" : ", ") + what;
+            continue;
+        }
+        s << "  " << what << ": reached on " << t.capacity_kind[b] << " of " << fr
+          << " frames: those frames lost some " << (b == 3 ? "regions of a map" : "evidence")
+          << " (a larger bound: more workspace)\n";
+    }
+    if (!unreached.empty()) s << "  not reached: " << unreached << "\n";
+    return s.str();
+}
+
 std::string summary(const Options &o, const sbr_model_t *model, const std::string &dir, size_t nfiles,
                     const Outputs &out, const Tally &t) {
     std::ostringstream s;
@@ -408,6 +513,8 @@ std::string summary(const Options &o, const sbr_model_t *model, const std::strin
                                                  "class stage (pictograms)"};
     s << "sbr_detect summary\n";
     s << "input: " << dir << " (" << nfiles << " images, " << t.failed << " failed)\n";
+    for (const std::string &f : t.failures) s << "  failed: " << f << "\n";
+    if (t.failed > t.failures.size()) s << "  (and " << t.failed - t.failures.size() << " more)\n";
     s << "model: " << (o.model_path.empty() ? "built-in (lib/models/sbr_model_gtsdb.c)" : o.model_path) << ", "
       << model->proto_count << " prototypes, class stage "
       << (model->picto.version != 0 ? (o.picto_path.empty() ? "built-in (lib/models/sbr_picto_gtsdb.c)" : o.picto_path)
@@ -428,9 +535,7 @@ std::string summary(const Options &o, const sbr_model_t *model, const std::strin
     }
     s << "workspace: " << t.ws_bytes << " bytes (" << (o.use_roi ? "ROI" : "frame") << ", subsample "
       << o.cfg.parts.subsample << ")\n";
-    s << "frames with an internal bound reached: " << t.capacity_frames << " (parts " << t.capacity_kind[0]
-      << ", votes " << t.capacity_kind[1] << ", hypotheses " << t.capacity_kind[2] << ", MSER " << t.capacity_kind[3]
-      << ", candidates " << t.capacity_kind[4] << ")\n";
+    s << bounds_text(o, t);
     if (t.frames_run > 0 && t.classified > 0) {
         const double fr = double(t.frames_run);
         std::snprintf(buf, sizeof buf,
@@ -442,6 +547,11 @@ std::string summary(const Options &o, const sbr_model_t *model, const std::strin
     }
     if (out.can) s << "CAN log: " << o.canlog << " (" << out.can->frames_written() << " frames)\n";
     if (!o.annotated.empty()) s << "annotated images: " << o.annotated << "\n";
+    if (!out.ann.gt_path.empty() && (!o.annotated.empty() || !o.overview.empty()))
+        s << "judged against " << out.ann.gt_path << " (class level, IoU >= 0.5): " << out.ann.missed
+          << " signs missed (dashed boxes), " << out.ann.false_dets << " false detections (magenta, FP)\n";
+    if (!o.overview.empty())
+        s << "overview of the worst images: " << o.overview << " (" << out.ann.worst.size() << " images)\n";
     return s.str();
 }
 
@@ -455,18 +565,29 @@ int main(int argc, char **argv) {
     if (!load_models(o, m)) return 1;
     CallgrindClock cg;
     if (!configure(o, m.model, cg)) return 2;
+    if (!fs::is_directory(o.input)) { std::fprintf(stderr, "sbr_detect: --input %s: no such folder\n", o.input.c_str()); return 1; }
     const std::string dir = gtsdb_image_dir(o.input);
     const std::vector<std::string> files = list_images(dir, o.range);
-    if (files.empty()) { std::fprintf(stderr, "sbr_detect: no images in %s\n", dir.c_str()); return 1; }
+    if (files.empty()) {
+        std::fprintf(stderr, "sbr_detect: no .jpg, .jpeg, .png or .ppm images in %s%s\n", dir.c_str(),
+                     o.range.empty() ? "" : (" numbered " + o.range.str()).c_str());
+        return 1;
+    }
     Outputs out;
-    if (!open_outputs(o, out)) return 1;
+    if (!open_outputs(o, dir, out)) return 1;
     Tally t;
+    const auto t0 = std::chrono::steady_clock::now();
     for (size_t i = 0; i < files.size(); ++i) {
         if (!run_image(o, m.model, cg, files[i], i == 0, out, t)) return 1;
-        if (!o.quiet) progress(i + 1, files.size(), t.ms_total.empty() ? 0.0 : t.sum_ms / double(t.ms_total.size()));
+        if (o.progress)
+            progress(i + 1, files.size(), t.ms_total.empty() ? 0.0 : t.sum_ms / double(t.ms_total.size()),
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
+    if (!o.overview.empty() && out.ann.worst.size() > 0 && !out.ann.worst.write(o.overview))
+        std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.overview.c_str());
     const std::string s = summary(o, m.model, dir, files.size(), out, t);
     std::fputs(s.c_str(), stdout);
     if (!o.summary_path.empty()) std::ofstream(o.summary_path) << s;
-    return t.failed == files.size() ? 1 : 0;
+    if (t.failed > 0) std::fprintf(stderr, "sbr_detect: %zu of %zu images failed\n", t.failed, files.size());
+    return t.failed == files.size() ? 1 : (t.failed > 0 ? 3 : 0);
 }

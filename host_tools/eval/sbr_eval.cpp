@@ -104,33 +104,17 @@ double prec(const Prf &p) { return p.tp + p.fp ? double(p.tp) / double(p.tp + p.
 double rec(const Prf &p) { return p.tp + p.fn ? double(p.tp) / double(p.tp + p.fn) : 0.0; }
 double f1(const Prf &p) { const double a = prec(p), b = rec(p); return a + b > 0 ? 2 * a * b / (a + b) : 0.0; }
 
-// Greedy matching of detections to ground truth in one image set. `key` decides which gt a
-// detection may match (same superclass or same class). Returns per detection: matched gt
-// index or -1; `gt_hit` marks matched gt.
+// Greedy matching of detections to ground truth (sbr_host::greedy_match) within each image.
+// `key` decides which gt a detection may match (same superclass or same class). Returns
+// per detection: matched gt index or -1; `gt_hit` marks matched gt.
 template <class Key>
 std::vector<int> match(const std::vector<Box> &dets, const std::vector<Box> &gts, double thr, Key key,
                        std::vector<char> &gt_hit) {
-    std::vector<size_t> order(dets.size());
-    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return dets[a].score > dets[b].score; });
-    std::map<int, std::vector<size_t>> gt_by_image;
-    for (size_t g = 0; g < gts.size(); ++g) gt_by_image[gts[g].image].push_back(g);
-    gt_hit.assign(gts.size(), 0);
-    std::vector<int> m(dets.size(), -1);
-    for (size_t i : order) {
-        const Box &d = dets[i];
-        double best = thr;
-        int bg = -1;
-        auto it = gt_by_image.find(d.image);
-        if (it == gt_by_image.end()) continue;
-        for (size_t g : it->second) {
-            if (gt_hit[g] || !key(d, gts[g])) continue;
-            const double v = iou(d, gts[g]);
-            if (v >= best) { best = v; bg = static_cast<int>(g); }
-        }
-        if (bg >= 0) { m[i] = bg; gt_hit[static_cast<size_t>(bg)] = 1; }
-    }
-    return m;
+    std::vector<double> scores(dets.size());
+    for (size_t i = 0; i < dets.size(); ++i) scores[i] = dets[i].score;
+    return sbr_host::greedy_match(scores, gts.size(), thr, [&](size_t d, size_t g) {
+        return dets[d].image == gts[g].image && key(dets[d], gts[g]) ? iou(dets[d], gts[g]) : -1.0;
+    }, gt_hit);
 }
 
 // AP: precision made monotone from the right, integrated over recall (all points).
@@ -154,40 +138,6 @@ double average_precision(std::vector<std::pair<double, bool>> scored, long n_gt,
     return ap;
 }
 
-void plot_pr(const std::string &path, const std::array<std::vector<std::pair<double, double>>, 4> &curves,
-             const std::array<double, 4> &ap) {
-    const int W = 640, H = 520, x0 = 60, y0 = 30, pw = 540, ph = 420;
-    cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
-    for (int k = 0; k <= 10; ++k) {
-        const int x = x0 + pw * k / 10, y = y0 + ph - ph * k / 10;
-        cv::line(img, {x, y0}, {x, y0 + ph}, cv::Scalar(225, 225, 225));
-        cv::line(img, {x0, y}, {x0 + pw, y}, cv::Scalar(225, 225, 225));
-        char t[8];
-        std::snprintf(t, sizeof t, "%.1f", k / 10.0);
-        cv::putText(img, t, {x - 10, y0 + ph + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0));
-        cv::putText(img, t, {x0 - 35, y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0));
-    }
-    cv::rectangle(img, {x0, y0}, {x0 + pw, y0 + ph}, cv::Scalar(0, 0, 0));
-    cv::putText(img, "recall", {x0 + pw / 2 - 20, H - 12}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
-    cv::putText(img, "precision", {5, y0 - 10}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
-    const cv::Scalar col[4] = {cv::Scalar(40, 40, 220), cv::Scalar(220, 90, 20), cv::Scalar(20, 160, 230),
-                               cv::Scalar(60, 160, 60)};
-    for (int s = 0; s < 4; ++s) {
-        cv::Point prev(x0, y0);
-        bool first = true;
-        for (auto &rp : curves[s]) {
-            const cv::Point p(x0 + static_cast<int>(rp.first * pw), y0 + ph - static_cast<int>(rp.second * ph));
-            if (!first) cv::line(img, prev, p, col[s], 2, cv::LINE_AA);
-            prev = p;
-            first = false;
-        }
-        char t[64];
-        std::snprintf(t, sizeof t, "%s AP %.3f", kSuper[s], ap[s]);
-        cv::putText(img, t, {x0 + 10, y0 + ph - 80 + 18 * s}, cv::FONT_HERSHEY_SIMPLEX, 0.5, col[s], 1, cv::LINE_AA);
-    }
-    cv::imwrite(path, img);
-}
-
 // Everything sbr_eval reports about one detections file.
 struct Eval {
     std::array<Prf, 4> sp{};                                        // per superclass
@@ -201,6 +151,77 @@ struct Eval {
     std::vector<int> match_cls;  // per detection: gt matched at class level, or -1
     std::map<std::pair<int, int>, long> conf;  // (gt class or -1, det class or -1)
 };
+
+// Markers that tell the superclasses apart where their curves coincide (e.g. all at
+// precision 1): circle, square, triangle, diamond.
+void draw_marker(cv::Mat &img, cv::Point p, int kind, const cv::Scalar &c, int r, bool filled) {
+    const int t = filled ? cv::FILLED : 2;
+    if (kind == 0) {
+        cv::circle(img, p, r, c, t, cv::LINE_AA);
+    } else if (kind == 1) {
+        cv::rectangle(img, {p.x - r, p.y - r}, {p.x + r, p.y + r}, c, t, cv::LINE_AA);
+    } else {
+        const std::vector<cv::Point> tri = {{p.x, p.y - r - 1}, {p.x + r + 1, p.y + r}, {p.x - r - 1, p.y + r}};
+        const std::vector<cv::Point> dia = {{p.x, p.y - r - 1}, {p.x + r + 1, p.y}, {p.x, p.y + r + 1}, {p.x - r - 1, p.y}};
+        const std::vector<cv::Point> &poly = kind == 2 ? tri : dia;
+        if (filled) cv::fillConvexPoly(img, poly, c, cv::LINE_AA);
+        else cv::polylines(img, poly, true, c, 2, cv::LINE_AA);
+    }
+}
+
+// The precision-recall plot: per superclass the curve down to the operating point (thick),
+// its continuation down to the lowest score in the file (thin: what a lower threshold
+// would give), markers staggered along each curve so coinciding curves stay visible, and
+// the operating point as a large filled marker. Precision runs to 1.04 so a curve at 1.0
+// lies inside the frame.
+void plot_pr(const std::string &path, const Eval &at_op, const Eval &full) {
+    const int W = 760, H = 640, x0 = 60, y0 = 30, pw = 660, ph = 440;
+    const double pmax = 1.04, rmax = 1.02;
+    auto to_px = [&](double r, double p) {
+        return cv::Point(x0 + int(std::lround(r / rmax * pw)), y0 + ph - int(std::lround(p / pmax * ph)));
+    };
+    cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
+    for (int k = 0; k <= 10; ++k) {
+        const cv::Point px = to_px(k / 10.0, 0.0), py = to_px(0.0, k / 10.0);
+        cv::line(img, {px.x, y0}, {px.x, y0 + ph}, cv::Scalar(225, 225, 225));
+        cv::line(img, {x0, py.y}, {x0 + pw, py.y}, cv::Scalar(225, 225, 225));
+        char t[8];
+        std::snprintf(t, sizeof t, "%.1f", k / 10.0);
+        cv::putText(img, t, {px.x - 10, y0 + ph + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0));
+        cv::putText(img, t, {x0 - 35, py.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0));
+    }
+    cv::rectangle(img, {x0, y0}, {x0 + pw, y0 + ph}, cv::Scalar(0, 0, 0));
+    cv::putText(img, "recall", {x0 + pw / 2 - 20, y0 + ph + 38}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
+    cv::putText(img, "precision", {5, y0 - 10}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
+    const cv::Scalar col[4] = {cv::Scalar(40, 40, 220), cv::Scalar(220, 90, 20), cv::Scalar(20, 160, 230),
+                               cv::Scalar(60, 160, 60)};
+    for (int s = 0; s < 4; ++s) {
+        for (int part = 0; part < 2; ++part) {  // the continuation thin, then the curve to the operating point
+            const auto &curve = part == 0 ? full.curves[s] : at_op.curves[s];
+            for (size_t i = 1; i < curve.size(); ++i)
+                cv::line(img, to_px(curve[i - 1].first, curve[i - 1].second), to_px(curve[i].first, curve[i].second),
+                         col[s], part == 0 ? 1 : 2, cv::LINE_AA);
+        }
+        // a marker every 0.1 of recall, shifted by a quarter step per superclass
+        const auto &curve = at_op.curves[s];
+        size_t i = 0;
+        for (double r = 0.025 * (s + 1); r < 1.0 && !curve.empty(); r += 0.1) {
+            while (i + 1 < curve.size() && curve[i].first < r) ++i;
+            if (curve[i].first + 1e-9 < r) break;
+            draw_marker(img, to_px(curve[i].first, curve[i].second), s, col[s], 4, false);
+        }
+        if (at_op.n_gt[s] > 0) draw_marker(img, to_px(rec(at_op.sp[s]), prec(at_op.sp[s])), s, col[s], 7, true);
+        char t[96];
+        std::snprintf(t, sizeof t, "%s: AP %.3f, operating point precision %.3f recall %.3f", kSuper[s], at_op.ap[s],
+                      prec(at_op.sp[s]), rec(at_op.sp[s]));
+        const cv::Point at(x0 + 10, y0 + ph + 64 + 20 * s);
+        draw_marker(img, {at.x, at.y - 5}, s, col[s], 5, true);
+        cv::putText(img, t, {at.x + 12, at.y}, cv::FONT_HERSHEY_SIMPLEX, 0.4, col[s], 1, cv::LINE_AA);
+    }
+    cv::putText(img, "thick: down to the operating point (large filled marker); thin: lower scores",
+                {x0 + 10, H - 8}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(90, 90, 90), 1, cv::LINE_AA);
+    cv::imwrite(path, img);
+}
 
 Eval evaluate(const std::vector<Box> &dets, const std::vector<Box> &gts, double iou_thr) {
     Eval e;
@@ -439,9 +460,12 @@ std::set<int> images_of(const Options &o, const std::vector<Box> &gts_all, const
     return image_set;
 }
 
+// "25 road works", or "none" for -1 (a missed sign's detection, a false detection's sign).
+std::string class_text(int c) { return c < 0 ? "none" : std::to_string(c) + " " + sbr_host::class_name(c); }
+
 // The figures at the operating point: superclasses, class level, per class, the most
 // frequent errors, the plot. Returns the mean superclass AP.
-double print_report(const Options &o, const Eval &e, size_t images, size_t ngts, size_t ndets) {
+double print_report(const Options &o, const Eval &e, const Eval &full, size_t images, size_t ngts, size_t ndets) {
     const auto &sp = e.sp;
     const auto &ap = e.ap;
     const Prf &total = e.total;
@@ -470,11 +494,10 @@ double print_report(const Options &o, const Eval &e, size_t images, size_t ngts,
     std::printf("most frequent errors (gt -> detected; 'none' = missed / false detection):\n");
     for (size_t k = 0; k < std::min(o.confusion_n, errs.size()); ++k) {
         const auto &er = errs[k];
-        const std::string a = er.second.first < 0 ? "none" : std::to_string(er.second.first);
-        const std::string b = er.second.second < 0 ? "none" : std::to_string(er.second.second);
-        std::printf("  %5ld  %4s -> %s\n", er.first, a.c_str(), b.c_str());
+        std::printf("  %5ld  %-28s -> %s\n", er.first, class_text(er.second.first).c_str(),
+                    class_text(er.second.second).c_str());
     }
-    plot_pr(o.plot_path, e.curves, ap);
+    plot_pr(o.plot_path, e, full);
     std::printf("precision-recall plot: %s\n", o.plot_path.c_str());
     return ap_mean;
 }
@@ -494,13 +517,15 @@ int main(int argc, char **argv) {
     const std::set<int> image_set = images_of(o, gts_all, dets_all);
     const std::vector<Box> dets = select(dets_all, image_set, o.score_thr), gts = select(gts_all, image_set, 0.0);
     const Eval e = evaluate(dets, gts, o.iou_thr);
-    const double ap_mean = print_report(o, e, image_set.size(), gts.size(), dets.size());
+    // any score, for the plot's tail and for what lies on a changed sign
+    const double any = -std::numeric_limits<double>::infinity();
+    const double ap_mean =
+        print_report(o, e, evaluate(select(dets_all, image_set, any), gts, o.iou_thr), image_set.size(), gts.size(),
+                     dets.size());
     double worst = 0.0;
     Eval base_eval;
     if (!o.base_path.empty()) {
         const std::vector<Box> base = select(base_all, image_set, o.score_thr);
-        // any score, for what lies on a changed sign
-        const double any = -std::numeric_limits<double>::infinity();
         base_eval = evaluate(base, gts, o.iou_thr);
         worst = print_baseline(o.base_path, base_eval, e, base, dets, select(base_all, image_set, any),
                                select(dets_all, image_set, any), gts, o.iou_thr, o.list_n);
