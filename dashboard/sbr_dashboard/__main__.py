@@ -21,7 +21,7 @@ import time
 from .dbc import DbcError, DbcModel
 from .monitor import Monitor
 from .sources import BusSource, LogSource, SourceError, feed_log_to_bus
-from .terminal import HOME_CLEAR, render
+from .terminal import HOME_CLEAR, render, terminal_width
 
 DEFAULT_DBC = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.abspath(__file__)))), "dbc", "sbr.dbc")
@@ -30,19 +30,23 @@ DEFAULT_DBC = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
 def main(argv=None):
     ap = argparse.ArgumentParser(prog="sbr-dashboard", description=__doc__.split("\n")[0])
     src = ap.add_mutually_exclusive_group(required=True)
-    src.add_argument("--log", help="candump log to replay")
+    src.add_argument("--log", metavar="FILE", help="candump log to replay")
     src.add_argument("--socketcan", metavar="IFACE", help="live SocketCAN interface, e.g. can0")
     src.add_argument("--virtual", metavar="CHANNEL", help="python-can virtual bus channel")
-    ap.add_argument("--feed-log", help="with --virtual: play this log onto the bus")
-    ap.add_argument("--fast", action="store_true", help="replay as fast as possible")
-    ap.add_argument("--rate", type=float, default=1.0, help="replay speed factor (default 1)")
-    ap.add_argument("--dbc", default=DEFAULT_DBC)
-    ap.add_argument("--terminal", action="store_true", help="terminal view instead of the page")
-    ap.add_argument("--once", action="store_true", help="terminal: one screen at the end of the log")
-    ap.add_argument("--host", default="127.0.0.1")
-    ap.add_argument("--port", type=int, default=8080, help="0: any free port")
-    ap.add_argument("--timeout-factor", type=float, default=3.0)
-    ap.add_argument("--exit-after-end", type=float, default=None)
+    ap.add_argument("--feed-log", metavar="FILE", help="with --virtual: play this candump log onto the bus")
+    ap.add_argument("--fast", action="store_true", help="replay the log as fast as possible")
+    ap.add_argument("--rate", type=float, default=1.0, help="replay speed factor (default 1: the log's own timing)")
+    ap.add_argument("--dbc", default=DEFAULT_DBC, help="the DBC that describes the messages (default: dbc/sbr.dbc)")
+    ap.add_argument("--terminal", action="store_true",
+                    help="terminal view instead of the page, laid out to the terminal's width")
+    ap.add_argument("--once", action="store_true",
+                    help="with --terminal: print one screen when the log has ended, then exit")
+    ap.add_argument("--host", default="127.0.0.1", help="address the page is served on (default 127.0.0.1)")
+    ap.add_argument("--port", type=int, default=8080, help="port of the page (default 8080; 0: any free port)")
+    ap.add_argument("--timeout-factor", type=float, default=3.0, metavar="F",
+                    help="a message times out after F times its GenMsgCycleTime without a frame (default 3)")
+    ap.add_argument("--exit-after-end", type=float, default=None, metavar="S",
+                    help="stop S seconds after a log has ended (default: keep serving the page)")
     ap.add_argument("--wait-client", action="store_true",
                     help="start the input when the first page connects")
     a = ap.parse_args(argv)
@@ -98,12 +102,12 @@ def main(argv=None):
     try:
         while not stop.is_set():
             if a.terminal and not a.once:
-                sys.stdout.write(HOME_CLEAR + render(monitor.snapshot()))
+                sys.stdout.write(HOME_CLEAR + render(monitor.snapshot(), terminal_width()))
                 sys.stdout.flush()
             if monitor.source_ended:
                 ended_at = ended_at or time.monotonic()
                 if a.once:
-                    sys.stdout.write(render(monitor.snapshot()))
+                    sys.stdout.write(render(monitor.snapshot(), terminal_width()))
                     break
                 if a.exit_after_end is not None and time.monotonic() - ended_at >= a.exit_after_end:
                     break

@@ -20,6 +20,16 @@ timestamps; the wall clock for live buses). One timeout is counted per silence; 
 message shows "timeout" until a frame arrives again. When a log has been replayed to its
 end no more source time passes, so no timeouts are declared after its last frame.
 
+Timing, per message, from every frame of its identifier (checked or not): the frames that
+arrive less than a quarter of the cycle time after the one before belong to the same
+cycle (a message with several frames per image, e.g. one per detection); the measured
+period is the mean time between the first frames of consecutive cycles over the last 200
+cycles, the jitter their standard deviation, beside the DBC's GenMsgCycleTime.
+
+The trace keeps the last 1000 frames (time, identifier, DLC, bytes, check result); the
+snapshot carries the newest TRACE_SHOWN. The problems list (the newest PROBLEMS_SHOWN
+events, one text line each) is the same on the page and in the terminal.
+
 Absent values: a raw value at the top of a signal's range that the DBC's value table names
 (e.g. 255 "NoSign", 63 "NoDetection", 255 "NotAvailable") means "absent".
 
@@ -33,6 +43,47 @@ import threading
 import time
 
 E2E_KINDS = ("crc", "repeated", "skipped", "bad_counter", "length")
+TRACE_KEPT = 1000
+TRACE_SHOWN = 200
+PROBLEMS_SHOWN = 20
+PERIOD_WINDOW = 200
+
+
+class PeriodMeter:
+    """Cycle period and jitter of one message (see the module's note on timing)."""
+
+    def __init__(self, cycle_ms):
+        self.gap = 0.25 * cycle_ms / 1000.0
+        self.last = None
+        self.cycle_start = None
+        self.frames_in_cycle = 0
+        self.intervals = collections.deque(maxlen=PERIOD_WINDOW)
+        self.cycles = 0
+        self.frames = 0
+
+    def received(self, t):
+        self.frames += 1
+        if self.last is None or t - self.last >= self.gap:
+            if self.cycle_start is not None:
+                self.intervals.append(t - self.cycle_start)
+            self.cycle_start = t
+            self.cycles += 1
+        self.last = t
+
+    def figures(self):
+        """period_ms, jitter_ms (None until two cycles), frames per cycle."""
+        n = len(self.intervals)
+        if n == 0:
+            return None, None, None
+        mean = sum(self.intervals) / n
+        var = sum((x - mean) ** 2 for x in self.intervals) / n
+        return (round(mean * 1000.0, 2), round(var ** 0.5 * 1000.0, 2),
+                round(self.frames / self.cycles, 2))
+
+
+def event_text(e):
+    """The one line a problem is shown as, on the page and in the terminal."""
+    return f"{e['t']:.2f} s {e['message'] or '-'} {e['kind']}: {e['detail']}"
 
 
 class E2EChecker:
@@ -118,6 +169,11 @@ class Monitor:
                                 out_of_range=0, timeouts=0, state="waiting",
                                 **{k: 0 for k in E2E_KINDS})
                       for fid, s in model.messages.items()}
+        self.periods = {fid: PeriodMeter(s.cycle_ms) for fid, s in model.messages.items()}
+        self.last_frame = {}  # fid -> (dlc, hex bytes) of the newest frame
+        self.signals = {}     # fid -> decoded signals of the newest valid frame
+        self.trace = collections.deque(maxlen=TRACE_KEPT)
+        self.objects_reported = 0  # tracked-object frames that named an object
         self.frames = 0
         self.unknown = 0
         self.events = collections.deque(maxlen=40)
@@ -188,11 +244,21 @@ class Monitor:
         self._tick(t)
         self.frames += 1
         spec = self.model.messages.get(fid)
-        if spec is None or odd:
+        known = spec is not None and not odd
+        if known:
+            self.periods[fid].received(t)
+            self.last_frame[fid] = (len(data), data.hex(" ").upper())
+        check = self._check(t, fid, data, spec) if known else "unknown"
+        if not known:
             self.unknown += 1
             if self.unknown <= 5 or self.unknown % 100 == 0:
                 self._event(t, None, "unknown", f"id 0x{fid:X} ({self.unknown} so far)")
-            return
+        self.trace.append(dict(t=round(t - self.t0, 4), id=f"0x{fid:03X}",
+                               name=spec.name if spec is not None else "", dlc=len(data),
+                               data=data.hex(" ").upper(), check=check))
+
+    def _check(self, t, fid, data, spec):
+        """The checks of one frame of a known message; the result for the trace."""
         st = self.stats[fid]
         st["received"] += 1
         result = self.e2e[fid].check(data)
@@ -205,7 +271,7 @@ class Monitor:
             self._event(t, fid, "e2e", detail)
             st["state"] = "e2e error"
             if result != "skipped":
-                return
+                return result
         msg = spec.message
         try:
             raw = msg.decode(data, decode_choices=False, scaling=False)
@@ -213,7 +279,7 @@ class Monitor:
         except Exception as e:  # never expected for a frame of the right length
             st["out_of_range"] += 1
             self._event(t, fid, "range", f"cannot decode: {e}")
-            return
+            return "range"
         bad = []
         for sig in msg.signals:
             v = phys[sig.name]
@@ -225,13 +291,18 @@ class Monitor:
             st["out_of_range"] += 1
             st["state"] = "range error"
             self._event(t, fid, "range", "; ".join(bad))
-            return
+            return "range"
         st["valid"] += 1
         if self.timeouts.received(fid, t):
             self._event(t, fid, "recovered", "frames arrive again")
         if result != "skipped":
             st["state"] = "ok"
+        self.signals[fid] = [dict(name=sig.name, value=phys[sig.name], raw=int(raw[sig.name]),
+                                  unit=sig.unit or "",
+                                  choice=self._name(spec, sig.name, int(raw[sig.name])) or "")
+                             for sig in msg.signals]
         self._apply(t, spec, msg, raw, phys)
+        return "ok" if result in ("ok", "first") else result
 
     # -- application ---------------------------------------------------------------------
     def _name(self, spec, sig_name, raw):
@@ -296,6 +367,7 @@ class Monitor:
             if self._absent(msg, "SBR_Obj_TrackId", track):
                 self.objects = []
                 return
+            self.objects_reported += 1
             self._pending_objs.append(dict(
                 track=track, x=phys["SBR_Obj_PosX"], y=phys["SBR_Obj_PosY"],
                 vx=phys["SBR_Obj_VelX"], vy=phys["SBR_Obj_VelY"],
@@ -329,8 +401,11 @@ class Monitor:
             source_time=0.0 if self.t0 is None else round((self.now or self.t0) - self.t0, 3),
             frames=self.frames, unknown=self.unknown, totals=totals,
             timeout_factor=self.timeout_factor,
-            messages=[dict(id=f"0x{fid:03X}", **st) for fid, st in sorted(self.stats.items())],
+            messages=[self._message_view(fid, st) for fid, st in sorted(self.stats.items())],
             events=list(self.events),
+            problems=[event_text(e) for e in list(self.events)[:PROBLEMS_SHOWN]],
+            trace=list(self.trace)[-TRACE_SHOWN:],
+            tracker_seen=self.objects_reported > 0,
             speed_limit=self.speed_limit,
             speed_limit_sign=self.speed_limit_sign,
             signs=self.signs, detections=self.detections, objects=self.objects,
@@ -339,6 +414,12 @@ class Monitor:
                         processing_ms_mean=self._proc_sum / self.status_count
                         if self.status_count else None,
                         status=self.status, flag_counts=dict(self.flag_counts)))
+
+    def _message_view(self, fid, st):
+        period, jitter, per_cycle = self.periods[fid].figures()
+        dlc, data = self.last_frame.get(fid, (None, ""))
+        return dict(id=f"0x{fid:03X}", period_ms=period, jitter_ms=jitter, frames_per_cycle=per_cycle,
+                    dlc=dlc, data=data, signals=self.signals.get(fid, []), **st)
 
     def wait_change(self, version, timeout):
         """Block until the state version differs from `version` (or timeout)."""

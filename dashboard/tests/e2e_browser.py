@@ -4,7 +4,14 @@ dashboard replays it, headless Chromium (Debian's, driven by Playwright) opens t
 and what the page shows equals what the log holds. Then fault injection: a copy of the log
 with a flipped bit, a repeated frame, a lost frame (skipped counter), a message silent for
 one second, a value outside its DBC range and an unknown identifier; the page shows each
-error state and keeps running. Screenshots are kept in --work.
+error state and keeps running. What a CAN engineer checks: a message row expanded shows the
+signals of its newest frame; the row's DLC and bytes are the log's last frame of that
+identifier and its measured period is within 10 % of the log's; the trace filter keeps
+only the frames of the identifier typed in; the stills log (no tracker) says so instead
+of "0 tracked objects". The terminal view, run under a pseudo-terminal of 80 and of 120
+columns, has no line longer than the terminal (so none is wrapped inside a number) and the
+same problems list as the page, line for line. Screenshots are kept in --work (the page,
+a row expanded, the trace view, the terminal at 80 and 120 columns).
 
 The expected values are computed here from the log lines themselves (own candump parser,
 own CRC, bit fields read by hand from the DBC's layout), not by the dashboard's code.
@@ -14,8 +21,13 @@ usage: e2e_browser.py --detect-tool SBR_DETECT --input GTSDB_DIR --work DIR
 Exit 77 (ctest: skipped) when the images or the browser are missing.
 """
 import argparse
+import fcntl
+import html
 import os
+import pty
 import re
+import struct
+import termios
 import shutil
 import subprocess
 import sys
@@ -109,6 +121,106 @@ def inject_faults(frames):
     return result, want
 
 
+def log_period_ms(frames, fid, cycle_ms=100.0):
+    """The log's own cycle period of one identifier: mean time between the first frames of
+    consecutive cycles (frames less than a quarter cycle apart are one cycle)."""
+    starts, last = [], None
+    for t, _, f, _ in frames:
+        if f != fid:
+            continue
+        if last is None or (t - last) / 1000.0 >= 0.25 * cycle_ms:  # times in microseconds
+            starts.append(t)
+        last = t
+    return (starts[-1] - starts[0]) / 1000.0 / (len(starts) - 1)
+
+
+def terminal_screen(python, log, cols, rows=60):
+    """The dashboard's --terminal --once screen under a pseudo-terminal of cols columns."""
+    master, slave = pty.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", rows, cols, 0, 0))
+    env = dict(os.environ)
+    env.pop("COLUMNS", None)
+    env.pop("LINES", None)
+    proc = subprocess.Popen([os.path.join(os.path.dirname(python), "sbr-dashboard"), "--log", log, "--fast",
+                             "--terminal", "--once"], stdin=slave, stdout=slave, stderr=slave, env=env)
+    os.close(slave)
+    out = b""
+    while True:
+        try:
+            chunk = os.read(master, 65536)
+        except OSError:
+            break
+        if not chunk:
+            break
+        out += chunk
+    os.close(master)
+    assert proc.wait(30) == 0, proc.returncode
+    return out.decode().replace("\r\n", "\n")
+
+
+def terminal_problems(screen):
+    """The problems section of a terminal screen, continuation lines joined."""
+    lines = screen.split("\n")
+    start = lines.index("recent problems:") + 1
+    out = []
+    for ln in lines[start:]:
+        if ln.startswith("      ") and out:
+            out[-1] += " " + ln.strip()
+        elif ln.startswith("  "):
+            out.append(ln.strip())
+    return out
+
+
+def shot_text(browser, text, path, cols):
+    """A screenshot of a terminal screen, drawn in a monospace page cols characters wide."""
+    page = browser.new_page(viewport={"width": cols * 9 + 40, "height": 400})
+    page.set_content("<body style='margin:0;background:#000'><pre style='margin:12px;color:#ddd;"
+                     f"font:15px monospace;width:{cols}ch'>{html.escape(text)}</pre></body>")
+    page.screenshot(path=path, full_page=True)
+    page.close()
+    print(f"screenshot: {path}")
+
+
+def check_engineer_views(page, frames, work):
+    """A row expanded (signals, DLC, bytes, period), then the trace filter."""
+    fid, name = 0x301, "SBR_EcuStatus"
+    last = [d for _, _, f, d in frames if f == fid][-1]
+    row = page.locator(f'#messages tr.msg[data-msg="{name}"]')
+    row.click()
+    page.wait_for_selector(f'#messages tr.signals[data-for="{name}"]')
+    dlc = row.locator("td.dlc").inner_text()
+    data = row.locator("td.bytes").inner_text()
+    period = float(row.locator("td.period").inner_text().split()[0])
+    want_period = log_period_ms(frames, fid)
+    assert dlc == str(len(last)), (dlc, len(last))
+    assert data == bytes(last).hex(" ").upper(), (data, bytes(last).hex(" "))
+    assert abs(period - want_period) <= 0.1 * want_period, (period, want_period)
+    sig = page.locator(f'#messages tr.signals[data-for="{name}"] table.sig tbody tr')
+    values = {r.locator("td.sig-name").inner_text(): r.locator("td.sig-value").inner_text() for r in sig.all()}
+    assert values["SBR_Status_FrameCounter"] == str(bits(last, 16, 16)), values
+    assert values["SBR_Status_ProcessingTime"].endswith(" ms"), values
+    print(f"message detail: {name} DLC {dlc}, bytes {data}, period {period} ms (log {want_period:.1f} ms), "
+          f"{len(values)} signals with units")
+    page.screenshot(path=os.path.join(work, "dashboard_row_expanded.png"), full_page=True)
+    print(f"screenshot: {os.path.join(work, 'dashboard_row_expanded.png')}")
+    page.fill("#trace-filter", "0x310")
+    page.wait_for_timeout(200)
+    ids = page.locator("#trace tbody tr").evaluate_all("rs => rs.map(r => r.dataset.id)")
+    shown = int(page.locator("#trace-count").inner_text())
+    want = sum(1 for _, _, f, _ in frames[-shown:] if f == 0x310)
+    assert ids and set(ids) == {"0x310"} and len(ids) == want, (len(ids), want, set(ids))
+    page.fill("#trace-filter", "SBR_EcuStatus")
+    page.wait_for_timeout(200)
+    ids = page.locator("#trace tbody tr").evaluate_all("rs => rs.map(r => r.dataset.id)")
+    assert ids and set(ids) == {"0x301"}, set(ids)
+    page.locator("#trace-panel").scroll_into_view_if_needed()
+    page.locator("#trace-panel").screenshot(path=os.path.join(work, "dashboard_trace.png"))
+    print(f"trace filter: 0x310 -> {want} of the last {shown} frames; screenshot "
+          f"{os.path.join(work, 'dashboard_trace.png')}")
+    page.fill("#trace-filter", "")
+    assert "no tracker runs" in page.locator("#obj-text").inner_text()  # a log of stills
+
+
 class Dashboard:
     def __init__(self, python, log, rate, work, name):
         self.out = open(os.path.join(work, f"{name}.out"), "w+")
@@ -149,7 +261,7 @@ def page_values(page):
                 timeouts=int(t("#t-timeouts")), range=int(t("#t-range")),
                 unknown=int(t("#h-unknown")), rows=rows, source_state=t("#source-state"),
                 link=t("#link-state"), updates=int(page.evaluate("document.body.dataset.updates")),
-                events=page.locator("#events li").all_inner_texts())
+                events=[e.strip() for e in page.locator("#events li").all_inner_texts()])
 
 
 def open_page(browser, url, shot):
@@ -201,7 +313,8 @@ def main():
         # 1. the clean log
         dash = Dashboard(sys.executable, log, a.rate, a.work, "dashboard_clean")
         try:
-            _, v = open_page(browser, dash.url, os.path.join(a.work, "dashboard_e2e.png"))
+            page, v = open_page(browser, dash.url, os.path.join(a.work, "dashboard_e2e.png"))
+            check_engineer_views(page, frames, a.work)
         finally:
             dash.stop()
         print("page (clean log):", {k: v[k] for k in v if k not in ("rows", "events")})
@@ -247,6 +360,17 @@ def main():
             assert v["link"] == "live", "the page keeps running"
         finally:
             dash.stop()
+        # 3. the terminal: the page's problems, lines that fit, at 80 and 120 columns
+        for cols in (80, 120):
+            screen = terminal_screen(sys.executable, fault_log, cols)
+            longest = max(len(ln) for ln in screen.split("\n"))
+            assert longest <= cols, (cols, longest)
+            problems = terminal_problems(screen)
+            assert problems == v["events"], (cols, problems, v["events"])
+            with open(os.path.join(a.work, f"terminal_{cols}.txt"), "w") as f:
+                f.write(screen)
+            shot_text(browser, screen, os.path.join(a.work, f"terminal_{cols}.png"), cols)
+            print(f"terminal at {cols} columns: longest line {longest}, the page's {len(problems)} problems")
         browser.close()
     print("dashboard end-to-end: OK")
     return 0

@@ -332,3 +332,84 @@ def test_tracked_objects_list_per_cycle():
     assert "tracked objects: #7 (640,300), #9 (100,700)" in render(snap)
     feed_all(mon, s.cycle(1), 0.1)  # "no object" frame
     assert mon.snapshot()["objects"] == []
+
+
+# -- what a CAN engineer reads: timing, bytes, signals, trace, problems ---------------------
+def test_period_jitter_bytes_and_signals_per_message():
+    mon = Monitor(M)
+    snd = Sender(M)
+    # two detections per image (two frames of 0x310 a cycle), images 100 ms apart with
+    # +-5 ms of alternating jitter
+    for k in range(21):
+        t = 0.1 * k + (0.005 if k % 2 else -0.005)
+        feed_all(mon, snd.cycle(k, dets=[(1, 90, 300, 200), (14, 80, 800, 300)]), t)
+    msgs = {m["name"]: m for m in mon.snapshot()["messages"]}
+    det = msgs["SBR_Detection"]
+    assert det["frames_per_cycle"] == 2.0
+    assert det["period_ms"] == pytest.approx(100.0, abs=0.6)
+    assert det["jitter_ms"] == pytest.approx(10.0, abs=0.6)  # the cycle steps 90, 110, 90, ...
+    assert det["dlc"] == 8 and det["cycle_ms"] == 100
+    last = snd.cycle(21, dets=[(1, 90, 300, 200)])
+    feed_all(mon, last, 2.1)
+    status = {m["name"]: m for m in mon.snapshot()["messages"]}["SBR_EcuStatus"]
+    assert status["data"] == bytes(last[1][1]).hex(" ").upper()
+    sig = {g["name"]: g for g in status["signals"]}
+    assert sig["SBR_Status_FrameCounter"]["value"] == 21 and sig["SBR_Status_ProcessingTime"]["unit"] == "ms"
+    det_sig = {g["name"]: g for g in {m["name"]: m for m in mon.snapshot()["messages"]}["SBR_Detection"]["signals"]}
+    assert det_sig["SBR_Det_Class"]["choice"] == M.choice_name(0x310, "SBR_Det_Class", 1)
+
+
+def test_trace_keeps_frames_with_their_check():
+    mon = Monitor(M)
+    snd = Sender(M)
+    feed_all(mon, snd.cycle(0), 0.0)
+    bad = bytearray(snd(0x301, SBR_Status_FrameCounter=1))
+    bad[3] ^= 1
+    mon.feed(0.1, 0x301, bad)
+    mon.feed(0.1, 0x7FF, bytes(3))
+    tr = mon.snapshot()["trace"]
+    assert [f["check"] for f in tr[-2:]] == ["crc", "unknown"]
+    assert tr[-2]["id"] == "0x301" and tr[-2]["data"] == bad.hex(" ").upper() and tr[-1]["dlc"] == 3
+    assert all(f["check"] == "ok" for f in tr[:-2])
+    for k in range(1, 400):
+        feed_all(mon, snd.cycle(k), 0.1 * k)
+    assert len(mon.snapshot()["trace"]) == 200
+
+
+def test_terminal_fits_its_width_and_lists_the_page_problems():
+    mon = Monitor(M, source="log " + "/very/long/path/of/a/recorded/drive" * 3 + ".log")
+    snd = Sender(M)
+    signs = [(1, 30, 95, 3), (40, 255, 90, 1), (42, 255, 80, 2), (12, 255, 99, 9)]
+    for k in range(10):
+        feed_all(mon, snd.cycle(k, dets=[(1, 90, 1300, 700)] * 4, signs=signs), 0.1 * k)
+    for k in range(8):
+        mon.feed(1.0 + 0.01 * k, 0x7FF, bytes(8))
+        mon.feed(1.0, 0x301, bytes(8))
+    s = mon.snapshot()
+    assert s["problems"] and len(s["problems"]) <= 20
+    for width in (80, 100, 120):
+        screen = render(s, width)
+        lines = screen.rstrip("\n").split("\n")
+        assert max(len(ln) for ln in lines) <= width
+        start = lines.index("recent problems:") + 1
+        got = []
+        for ln in lines[start:]:
+            if ln.startswith("      ") and got:
+                got[-1] += " " + ln.strip()
+            else:
+                got.append(ln.strip())
+        assert got == s["problems"], width  # broken at spaces only
+        # the detections' list breaks between items: every "@(x,y)" whole on its line
+        assert screen.count("@(1300,700)") == 4
+
+
+def test_no_tracker_on_stills_is_said():
+    mon = Monitor(M)
+    snd = Sender(M)
+    feed_all(mon, snd.cycle(0), 0.0)
+    s = mon.snapshot()
+    assert s["tracker_seen"] is False
+    assert "no tracker runs" in render(s, 80)
+    mon.feed(0.1, 0x320, snd(0x320, SBR_Obj_TrackId=3, SBR_Obj_PosX=100, SBR_Obj_PosY=50))
+    s = mon.snapshot()
+    assert s["tracker_seen"] is True and "tracked objects: #3" in render(s, 80)

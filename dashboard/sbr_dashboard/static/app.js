@@ -67,6 +67,55 @@ function renderPlane(s) {
   svg.innerHTML = out;
 }
 
+const expanded = new Set();  // message names whose signals are shown
+let lastState = null;
+
+function messageRow(m) {
+  const cols = ["received", "valid", "crc", "repeated", "skipped", "bad_counter", "length", "out_of_range", "timeouts"];
+  const period = m.period_ms == null ? "--" : `${fmt(m.period_ms, 1)} ms`;
+  const off = m.period_ms != null && Math.abs(m.period_ms - m.cycle_ms) > 0.1 * m.cycle_ms;
+  return `<tr data-msg="${esc(m.name)}" class="msg state-${m.state.replace(/ /g, "-")}${expanded.has(m.name) ? " open" : ""}">` +
+    `<td>${m.id}</td><td class="name">${esc(m.name)}</td><td class="state">${esc(m.state)}</td>` +
+    `<td class="dlc">${m.dlc == null ? "--" : m.dlc}</td><td class="bytes">${esc(m.data || "--")}</td>` +
+    `<td class="cycle">${m.cycle_ms} ms</td><td class="period${off ? " nonzero" : ""}">${period}</td>` +
+    `<td class="jitter">${m.jitter_ms == null ? "--" : fmt(m.jitter_ms, 1) + " ms"}</td>` +
+    cols.map((c) => `<td class="${c}${c !== "received" && c !== "valid" && m[c] > 0 ? " nonzero" : ""}">${m[c]}</td>`).join("") +
+    `</tr>`;
+}
+
+function signalRows(m) {
+  if (!m.signals.length) return `<tr class="signals" data-for="${esc(m.name)}"><td></td><td colspan="16">no valid frame yet</td></tr>`;
+  const rows = m.signals.map((g) =>
+    `<tr><td class="sig-name">${esc(g.name)}</td><td class="sig-value">${esc(g.value)}${g.unit ? " " + esc(g.unit) : ""}</td>` +
+    `<td class="sig-raw">raw ${g.raw}</td><td class="sig-choice">${esc(g.choice)}</td></tr>`).join("");
+  return `<tr class="signals" data-for="${esc(m.name)}"><td></td><td colspan="16">` +
+    `<table class="sig"><thead><tr><th>signal (newest valid frame)</th><th>value</th><th>raw</th><th>DBC value name</th></tr></thead>` +
+    `<tbody>${rows}</tbody></table></td></tr>`;
+}
+
+function renderMessages(s) {
+  $("messages").tBodies[0].innerHTML = s.messages.map((m) =>
+    messageRow(m) + (expanded.has(m.name) ? signalRows(m) : "")).join("");
+}
+
+function traceMatches(f, q, problemsOnly) {
+  if (problemsOnly && f.check === "ok") return false;
+  if (!q) return true;
+  q = q.trim().toLowerCase();
+  return f.id.toLowerCase() === q || f.id.toLowerCase() === "0x" + q.replace(/^0x0*/, "").padStart(3, "0") ||
+    f.name.toLowerCase().includes(q);
+}
+
+function renderTrace() {
+  if (!lastState) return;
+  const q = $("trace-filter").value, only = $("trace-problems").checked;
+  const shown = lastState.trace.filter((f) => traceMatches(f, q, only)).reverse();
+  $("trace-count").textContent = lastState.trace.length;
+  $("trace").tBodies[0].innerHTML = shown.map((f) =>
+    `<tr class="check-${esc(f.check)}" data-id="${f.id}"><td>${fmt(f.t, 4)}</td><td>${f.id}</td><td>${esc(f.name || "?")}</td>` +
+    `<td>${f.dlc}</td><td class="bytes">${esc(f.data)}</td><td class="check">${esc(f.check)}</td></tr>`).join("");
+}
+
 function render(s) {
   $("source").textContent = s.source;
   const st = $("source-state");
@@ -81,7 +130,9 @@ function render(s) {
     `<div class="sign-name">${esc(x.class_name || x.class_id)}</div>` +
     `<div><span class="sign-conf">${fmt(x.confidence, 0)}</span>% · age ${x.age}</div></div>`).join("");
   $("det-count").textContent = s.detections.length;
-  $("obj-count").textContent = s.objects.length;
+  $("obj-text").innerHTML = s.tracker_seen
+    ? `<span id="obj-count">${s.objects.length}</span> tracked objects`
+    : `no tracker runs (no tracked object reported: stills)<span id="obj-count" hidden>0</span>`;
   renderPlane(s);
   const h = s.health, status = h.status || {};
   $("h-fps").textContent = fmt(h.fps, 1);
@@ -99,20 +150,27 @@ function render(s) {
   setCount("t-timeouts", s.totals.timeouts);
   setCount("t-range", s.totals.out_of_range);
   $("h-time").textContent = `${fmt(s.source_time, 1)} s`;
-  const cols = ["received", "valid", "crc", "repeated", "skipped", "bad_counter", "length", "out_of_range", "timeouts"];
-  $("messages").tBodies[0].innerHTML = s.messages.map((m) =>
-    `<tr data-msg="${esc(m.name)}" class="state-${m.state.replace(/ /g, "-")}"><td>${m.id}</td><td>${esc(m.name)}</td><td>${m.cycle_ms} ms</td>` +
-    `<td class="state">${esc(m.state)}</td>` +
-    cols.map((c) => `<td class="${c}${c !== "received" && c !== "valid" && m[c] > 0 ? " nonzero" : ""}">${m[c]}</td>`).join("") +
-    `</tr>`).join("");
-  $("events").innerHTML = s.events.map((e) =>
-    `<li class="${e.kind}">${fmt(e.t, 2)} s ${esc(e.message)} <b>${esc(e.kind)}</b> ${esc(e.detail)}</li>`).join("");
+  renderMessages(s);
+  $("events").innerHTML = s.problems.map((t, i) =>
+    `<li class="${esc(s.events[i] ? s.events[i].kind : "")}">${esc(t)}</li>`).join("");
+  lastState = s;
+  renderTrace();
   document.body.dataset.version = s.version;
   document.body.dataset.updates = Number(document.body.dataset.updates || 0) + 1;
   document.body.dataset.ended = s.source_ended ? "1" : "0";
 }
 
+document.addEventListener("click", (ev) => {
+  const row = ev.target.closest("tr.msg");
+  if (!row) return;
+  const name = row.dataset.msg;
+  if (expanded.has(name)) expanded.delete(name); else expanded.add(name);
+  if (lastState) renderMessages(lastState);
+});
+
 function connect() {
+  $("trace-filter").addEventListener("input", renderTrace);
+  $("trace-problems").addEventListener("change", renderTrace);
   const es = new EventSource("/events");
   es.onopen = () => { $("link-state").textContent = "live"; $("link-state").className = "badge ok"; };
   es.onmessage = (ev) => render(JSON.parse(ev.data));
