@@ -20,6 +20,7 @@
 #define CAP 64u
 
 static uint8_t g_rgb[H][W][3];
+static uint8_t g_grey[H][W];
 static uint64_t g_ws[700000u / 8u];
 static sbr_detection_t g_dets[CAP];
 
@@ -258,6 +259,58 @@ static void test_scene_colour_check(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
 }
 
+/* The scene as a GRAY8 frame (each pixel the mean of its channels), as a monochrome
+   camera gives it: the whole recogniser with the built-in models runs on it, its
+   detections are well-formed, the drawn prohibitory sign (a dark ring in grey) is still
+   found with its superclass and box; the colour check, which would drop every candidate
+   of a checked class in colour with the highest floor, is skipped. */
+static void test_scene_grey(void)
+{
+    static uint8_t shape[SBR_PICTO_MAX_CLASSES];
+    static float floor_[SBR_PICTO_MAX_CLASSES];
+    sbr_model_t m;
+    sbr_recog_config_t c;
+    sbr_recog_stats_t st;
+    sbr_image_t v;
+    sbr_image_t g;
+    uint32_t n = 0u;
+    uint32_t i;
+    uint32_t x;
+    uint32_t y;
+    int found = 0;
+    scene_setup(&v, &c);
+    for (y = 0u; y < H; y++) {
+        for (x = 0u; x < W; x++) {
+            const uint32_t sum = (uint32_t)g_rgb[y][x][0] + g_rgb[y][x][1] + g_rgb[y][x][2];
+            g_grey[y][x] = (uint8_t)((sum + 1u) / 3u);
+        }
+    }
+    g = v;
+    g.stride = W;
+    g.format = SBR_PIXEL_GRAY8;
+    g.data = &g_grey[0][0];
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
+    for (i = 0u; i < m.picto.classes; i++) {
+        shape[i] = (uint8_t)(((i == 12u) || (i == 14u)) ? SBR_PICTO_RIM_NONE : SBR_PICTO_RIM_DISC);
+        floor_[i] = 2.0f;
+    }
+    m.picto.rim_shape = shape;
+    m.picto.rim_floor = floor_;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&g, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(0u, st.rim_rejected);
+    TEST_ASSERT_TRUE(st.classified >= n);
+    for (i = 0u; i < n; i++) {
+        TEST_ASSERT_TRUE(g_dets[i].class_id < m.class_count);
+        TEST_ASSERT_TRUE((g_dets[i].score >= 0.0f) && (g_dets[i].score <= 1.0f));
+        TEST_ASSERT_TRUE(g_dets[i].box.x + g_dets[i].box.width <= W);
+        if ((g_dets[i].score >= m.picto.threshold) && (superclass_of(g_dets[i].class_id) == k_signs[0].superclass) &&
+            (iou(&g_dets[i].box, &k_signs[0]) >= 0.5f)) {
+            found = 1;
+        }
+    }
+    TEST_ASSERT_TRUE_MESSAGE(found, "the prohibitory sign was not found in the grey frame");
+}
+
 /* The class stage's gate: one that passes everything gives the detections without it,
    one that passes nothing leaves no detection and counts every candidate as gated,
    cfg.gate = 0 ignores it, and a corrupted gate is refused. */
@@ -315,5 +368,6 @@ int main(void)
     RUN_TEST(test_scene);
     RUN_TEST(test_scene_colour_check);
     RUN_TEST(test_scene_gate);
+    RUN_TEST(test_scene_grey);
     return UNITY_END();
 }
