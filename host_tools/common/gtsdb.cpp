@@ -197,43 +197,4 @@ sbr_image_t bgr_view(const cv::Mat &m) {
     return v;
 }
 
-const char *const kSuperclassNames[4] = {"prohibitory", "mandatory", "danger", "other"};
-
-uint8_t class_outline_of(int c) {
-    switch (c) {
-    case 12: case 14:  // priority road (a diamond), stop (an octagon)
-        return uint8_t(SBR_PICTO_RIM_NONE);
-    case 13:  // yield
-        return uint8_t(SBR_PICTO_RIM_TRIANGLE_DOWN);
-    default:
-        return superclass_of(c) == 2 ? uint8_t(SBR_PICTO_RIM_TRIANGLE) : uint8_t(SBR_PICTO_RIM_DISC);
-    }
-}
-
-int superclass_of(int c) {
-    switch (c) {
-    case 0: case 1: case 2: case 3: case 4: case 5: case 7: case 8: case 9: case 10: case 15: case 16:
-        return 0;
-    case 33: case 34: case 35: case 36: case 37: case 38: case 39: case 40:
-        return 1;
-    case 11: case 18: case 19: case 20: case 21: case 22: case 23: case 24: case 25: case 26: case 27:
-    case 28: case 29: case 30: case 31:
-        return 2;
-    default:
-        return 3;
-    }
-}
-
-const char *class_name(int c) {
-    static const char *names[43] = {
-        "20", "30", "50", "60", "70", "80", "end 80", "100", "120", "no overtaking",
-        "no overtaking trucks", "priority next", "priority road", "give way", "stop", "no traffic",
-        "no trucks", "no entry", "danger", "bend left", "bend right", "double bend", "uneven road",
-        "slippery", "road narrows", "road works", "signals", "pedestrians", "children", "bicycles",
-        "snow", "animals", "end limits", "turn right", "turn left", "ahead only", "ahead or right",
-        "ahead or left", "keep right", "keep left", "roundabout", "end no overtaking",
-        "end no overtaking trucks"};
-    return (c >= 0 && c < 43) ? names[c] : "?";
-}
-
 }  // namespace sbr_host

@@ -10,6 +10,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "classes.hpp"
 #include "geometry.hpp"
 
 extern "C" {
@@ -83,19 +84,5 @@ uint64_t fnv1a(uint64_t h, const void *p, size_t n);
 
 // A BGR888 view of an 8-bit, 3-channel OpenCV image (a GRAY8 view of a 1-channel one).
 sbr_image_t bgr_view(const cv::Mat &m);
-
-// GTSDB's sign classes (ids 0..42): the class count and each class's sign outline
-// (::sbr_picto_rim_t: discs for the prohibitory and mandatory signs and the round "other"
-// ones, upward triangles for the danger signs, the yield sign's downward triangle, none for
-// the priority-road diamond and the stop octagon) that the trainers put into the models
-// (sbr_model_t::class_count, class_outline; sbr_picto_model_t::classes).
-constexpr uint32_t kGtsdbClasses = 43;
-uint8_t class_outline_of(int class_id);
-
-// Superclass of a GTSDB class (0 prohibitory, 1 mandatory, 2 danger, 3 other; GTSDB's
-// ReadMe), the superclass names, and short class names.
-int superclass_of(int class_id);
-extern const char *const kSuperclassNames[4];
-const char *class_name(int class_id);
 
 }  // namespace sbr_host

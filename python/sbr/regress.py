@@ -1,0 +1,320 @@
+"""Regression over recorded images on Dask: python -m sbr.regress.
+
+    python -m sbr.regress --input DIR|LIST --out DIR [--scheduler ADDRESS | --workers N]
+                          [--baseline DIR] [--range A-B] [--chunk N] [--resume]
+                          [--model F.sbrm --picto F.sbrp] [--gt FILE] [--eval-tool PATH]
+
+The images (a folder's .jpg/.jpeg/.png/.ppm files sorted by name, a GTSDB folder with
+FullIJCNN2013/ inside, or a text file with one path per line) are cut into chunks of
+--chunk files (default 20); each chunk is one Dask task that runs sbr.Recognizer on its
+images (decoded with Pillow as RGB: the same pixels as sbr_detect's OpenCV on GTSDB) and
+writes its results to OUT/chunks/ at once (a file per chunk, written whole or not at all).
+Without --scheduler a LocalCluster of --workers processes (default 2, one thread each)
+runs them; with it, any Dask cluster (docs/usage/regress.md: Kubernetes, Slurm). Dask's
+progress bar shows the run when stdout is a terminal. An image that cannot be read is counted and listed; a chunk
+whose task fails (its worker died more often than Dask retries, or any error) is
+reported and the others go on; nothing computed is lost: --resume skips the chunks whose
+files are there and computes only the rest.
+
+Then OUT/ gets detections.txt and detections_all.txt in sbr_detect's format and order
+(score >= the operating point, and every detection down to 0.05), detections.parquet
+(one row per detection of either file: image, box, class id and name, score, share,
+parts, at_operating_point), failures.txt, and, when the images have GTSDB ground truth
+(gt.txt beside them, or --gt), evaluation.txt from sbr_eval (--baseline DIR: compared
+with the detections_all.txt of an earlier run, sbr_eval --baseline). Exit status 0, or 3
+when some images or chunks failed (listed), 2 for bad arguments.
+"""
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+IMAGE_EXT = (".jpg", ".jpeg", ".png", ".ppm")
+ALL_FLOOR = 0.05  # sbr_detect --all-detections
+
+
+def list_inputs(source, span=None):
+    """The image paths of a folder (or GTSDB folder) or of a list file, in order."""
+    if os.path.isdir(source):
+        d = os.path.join(source, "FullIJCNN2013") if os.path.isdir(os.path.join(source, "FullIJCNN2013")) else source
+        paths = sorted(os.path.join(d, f) for f in os.listdir(d) if f.lower().endswith(IMAGE_EXT))
+    elif os.path.isfile(source):
+        with open(source) as f:
+            paths = [ln.strip() for ln in f if ln.strip() and not ln.startswith("#")]
+    else:
+        raise SystemExit(f"sbr.regress: --input {source}: no such folder or list file")
+    if span is not None:
+        paths = [p for p in paths if (n := image_number(p)) is not None and span[0] <= n <= span[1]]
+    return paths
+
+
+def image_number(path):
+    stem = os.path.splitext(os.path.basename(path))[0]
+    return int(stem) if stem.isdigit() else None
+
+
+def out_name(path):
+    """The image's name in the detection files: NNNNN.jpg, as sbr_detect writes it."""
+    return os.path.splitext(os.path.basename(path))[0] + ".jpg"
+
+
+_RECOGNIZERS = {}
+
+
+def _recognizer(model, picto):
+    """One Recognizer per worker process and model pair (building one loads the models)."""
+    import sbr
+    key = (model, picto)
+    if key not in _RECOGNIZERS:
+        base = sbr.Recognizer(model=model, picto=picto)
+        _RECOGNIZERS[key] = sbr.Recognizer(model=model, picto=picto,
+                                           min_score=min(base.config["min_score"], ALL_FLOOR))
+    return _RECOGNIZERS[key]
+
+
+def _read_rgb(path):
+    """The image as an RGB array, or the reason it cannot be read whole."""
+    import numpy as np
+    from PIL import Image
+    try:
+        with Image.open(path) as im:
+            im.load()  # a truncated file raises here (Pillow does not pad by default)
+            return np.asarray(im.convert("RGB")), None
+    except Exception as e:  # noqa: BLE001 - every reason is reported
+        return None, f"{type(e).__name__}: {e}"
+
+
+def run_chunk(index, paths, out_dir, model, picto):
+    """A Dask task: the chunk's detections into OUT/chunks/chunk_NNNNNN.json."""
+    # tests only: the worker running chunk SBR_REGRESS_TEST_KILL dies (every time, or only
+    # the first time when SBR_REGRESS_TEST_KILL_ONCE names a marker file to leave)
+    hook = os.environ.get("SBR_REGRESS_TEST_KILL")
+    if hook is not None and int(hook) == index:
+        marker = os.environ.get("SBR_REGRESS_TEST_KILL_ONCE")
+        if not marker or not os.path.exists(marker):
+            if marker:
+                open(marker, "w").close()
+            os._exit(1)
+    rec = _recognizer(model, picto)
+    images = []
+    for p in paths:
+        img, err = _read_rgb(p)
+        entry = dict(path=p, name=out_name(p), error=err, dets=[])
+        if img is not None:
+            try:
+                for d in rec.detect(img, order="rgb"):
+                    entry["dets"].append([d.class_id, *d.box, round(d.score, 6), round(d.share, 6), d.parts,
+                                          d.gtsdb_line(entry["name"])])
+            except ValueError as e:
+                entry["error"] = f"refused by the recogniser: {e}"
+        images.append(entry)
+    record = dict(index=index, threshold=rec.threshold, images=images)
+    path = chunk_path(out_dir, index)
+    tmp = f"{path}.{os.getpid()}.tmp"
+    with open(tmp, "w") as f:
+        json.dump(record, f)
+    os.replace(tmp, path)  # whole or not at all
+    return index
+
+
+def chunk_path(out_dir, index):
+    return os.path.join(out_dir, "chunks", f"chunk_{index:06d}.json")
+
+
+def chunk_done(out_dir, index, paths):
+    """A chunk file that is there, readable, and holds exactly these images."""
+    try:
+        with open(chunk_path(out_dir, index)) as f:
+            rec = json.load(f)
+        return [im["path"] for im in rec["images"]] == list(paths)
+    except (OSError, ValueError, KeyError, TypeError):
+        return False
+
+
+def parse_args(argv):
+    ap = argparse.ArgumentParser(prog="python -m sbr.regress", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--input", required=True, help="folder of images (or GTSDB folder), or a file listing images")
+    ap.add_argument("--out", required=True, help="output folder")
+    where = ap.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler (tcp://host:8786)")
+    where.add_argument("--workers", type=int, default=2, help="LocalCluster processes without --scheduler (default 2)")
+    ap.add_argument("--chunk", type=int, default=20, help="images per task (default 20)")
+    ap.add_argument("--range", help="images numbered A-B only")
+    ap.add_argument("--resume", action="store_true", help="keep the chunks already in OUT/chunks, compute the rest")
+    ap.add_argument("--retries", type=int, default=3,
+                    help="workers that may die running one chunk before it counts as failed (Dask's "
+                         "allowed-failures; default 3)")
+    ap.add_argument("--model", help="prototype library file (sbr_train --out-model); default built-in")
+    ap.add_argument("--picto", help="class-stage file (sbr_train_picto --out); default built-in")
+    ap.add_argument("--gt", help="GTSDB ground truth (default: gt.txt beside the images, when there)")
+    ap.add_argument("--baseline", metavar="DIR", help="an earlier run's folder (its detections_all.txt)")
+    ap.add_argument("--eval-tool", help="sbr_eval binary (default: on PATH, or the checkout's build/native)")
+    ap.add_argument("--no-progress", action="store_true", help="no progress bar (there is none when stdout is not a terminal)")
+    a = ap.parse_args(argv)
+    if a.chunk < 1 or (a.scheduler is None and a.workers < 1) or a.retries < 0:
+        ap.error("--chunk and --workers must be at least 1, --retries at least 0")
+    a.span = None
+    if a.range:
+        m = re.fullmatch(r"(\d+)-(\d+)", a.range)
+        if not m or int(m.group(1)) > int(m.group(2)):
+            ap.error(f"--range {a.range}: A-B with A <= B is needed")
+        a.span = (int(m.group(1)), int(m.group(2)))
+    return a
+
+
+def compute(a, chunks):
+    """Runs the chunks not yet done on Dask; returns the indices of the chunks that failed."""
+    import dask
+    from dask.distributed import Client, LocalCluster, as_completed, progress
+    todo = [i for i, c in enumerate(chunks) if not (a.resume and chunk_done(a.out, i, c))]
+    skipped = len(chunks) - len(todo)
+    print(f"sbr.regress: {len(chunks)} chunks, {skipped} already done (--resume), {len(todo)} to compute", flush=True)
+    if not todo:
+        return []
+    cluster = None
+    dask.config.set({"distributed.scheduler.allowed-failures": a.retries})
+    if a.scheduler:
+        client = Client(a.scheduler)
+    else:
+        cluster = LocalCluster(n_workers=a.workers, threads_per_worker=1, processes=True, dashboard_address=":0")
+        client = Client(cluster)
+    try:
+        model = os.path.abspath(a.model) if a.model else None
+        picto = os.path.abspath(a.picto) if a.picto else None
+        t0 = time.time()
+        futures = [client.submit(run_chunk, i, chunks[i], os.path.abspath(a.out), model, picto,
+                                 key=f"sbr-chunk-{i}", pure=False) for i in todo]
+        if not a.no_progress and sys.stdout.isatty():
+            progress(futures, notebook=False)  # Dask's progress bar, until every task has settled
+            print(flush=True)
+        # each task's outcome when it first settles; then every future is let go, so a
+        # finished task whose worker dies later is not computed again (its file is written)
+        errors = {}
+        for f in as_completed(futures):
+            if f.status == "error":
+                errors[f.key] = f.exception()
+        client.cancel(futures)
+        took = time.time() - t0
+        n = sum(len(chunks[i]) for i in todo)
+        print(f"sbr.regress: computed {n} images in {took:.1f} s on the cluster ({n / took:.2f} images/s, "
+              f"from the first task submitted to the last settled)", flush=True)
+        failed = []
+        for i, f in zip(todo, futures):
+            if chunk_done(a.out, i, chunks[i]):
+                continue
+            err = errors.get(f.key)
+            why = f"{type(err).__name__}: {err}" if err is not None else "no result file"
+            print(f"sbr.regress: chunk {i} ({chunks[i][0]} ...) failed: {why}", file=sys.stderr)
+            failed.append(i)
+        return failed
+    finally:
+        # the results are on disk: a cluster slow to shut down (a worker still restarting
+        # after a death) is not waited for beyond the timeout
+        try:
+            client.close(timeout=20)
+            if cluster is not None:
+                cluster.close(timeout=20)
+        except Exception as e:  # noqa: BLE001
+            print(f"sbr.regress: the cluster did not shut down cleanly ({type(e).__name__}); results are kept",
+                  file=sys.stderr)
+
+
+def gather(a, chunks, failed_chunks):
+    """The chunk files into the detection files, the Parquet file and failures.txt."""
+    import pandas as pd
+    lines_op, lines_all, rows, failures = [], [], [], []
+    for i, c in enumerate(chunks):
+        if i in failed_chunks or not chunk_done(a.out, i, c):
+            failures += [f"{p}: its chunk {i} failed" for p in c]
+            continue
+        with open(chunk_path(a.out, i)) as f:
+            rec = json.load(f)
+        for im in rec["images"]:
+            if im["error"]:
+                failures.append(f"{im['path']}: {im['error']}")
+            for cls, x, y, w, h, score, share, parts, line in im["dets"]:
+                at_op = score >= rec["threshold"]
+                lines_all.append(line)
+                if at_op:
+                    lines_op.append(line)
+                rows.append(dict(image=im["name"], left=x, top=y, right=x + w - 1, bottom=y + h - 1, class_id=cls,
+                                 score=score, share=share, parts=parts, at_operating_point=at_op))
+    for name, lines in (("detections.txt", lines_op), ("detections_all.txt", lines_all)):
+        with open(os.path.join(a.out, name), "w") as f:
+            f.writelines(ln + "\n" for ln in lines)
+    import sbr
+    df = pd.DataFrame(rows, columns=["image", "left", "top", "right", "bottom", "class_id", "score", "share",
+                                     "parts", "at_operating_point"])
+    df.insert(6, "class_name", [sbr.class_name(c) for c in df["class_id"]])
+    df.to_parquet(os.path.join(a.out, "detections.parquet"), index=False)
+    with open(os.path.join(a.out, "failures.txt"), "w") as f:
+        f.writelines(x + "\n" for x in failures)
+    return len(lines_op), len(lines_all), failures
+
+
+def find_eval_tool(given):
+    if given:
+        return given
+    here = os.path.dirname(os.path.abspath(__file__))
+    for cand in (shutil.which("sbr_eval"),
+                 os.path.join(here, "..", "..", "build", "native", "host_tools", "sbr_eval")):
+        if cand and os.path.isfile(cand) and os.access(cand, os.X_OK):
+            return cand
+    return None
+
+
+def evaluate(a, paths, threshold):
+    gt = a.gt or os.path.join(os.path.dirname(paths[0]), "gt.txt")
+    if not os.path.isfile(gt):
+        return None
+    tool = find_eval_tool(a.eval_tool)
+    if tool is None:
+        print("sbr.regress: no sbr_eval (build the host tools, or --eval-tool): no evaluation.txt", file=sys.stderr)
+        return None
+    nums = [n for n in (image_number(p) for p in paths) if n is not None]
+    cmd = [tool, "--detections", os.path.join(a.out, "detections_all.txt"), "--gt", gt,
+           "--threshold", f"{threshold:g}", "--plot", os.path.join(a.out, "pr_curve.png")]
+    if a.span:
+        cmd += ["--range", f"{a.span[0]}-{a.span[1]}"]
+    elif nums and len(nums) == len(paths):
+        cmd += ["--range", f"{min(nums)}-{max(nums)}"]
+    if a.baseline:
+        cmd += ["--baseline", os.path.join(a.baseline, "detections_all.txt")]
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    with open(os.path.join(a.out, "evaluation.txt"), "w") as f:
+        f.write(out.stdout)
+    if out.returncode != 0:
+        print(f"sbr.regress: sbr_eval failed: {out.stderr.strip()}", file=sys.stderr)
+    return out.stdout
+
+
+def main(argv=None):
+    a = parse_args(argv)
+    paths = list_inputs(a.input, a.span)
+    if not paths:
+        print(f"sbr.regress: no images in {a.input}", file=sys.stderr)
+        return 2
+    os.makedirs(os.path.join(a.out, "chunks"), exist_ok=True)
+    chunks = [paths[i:i + a.chunk] for i in range(0, len(paths), a.chunk)]
+    t0 = time.time()
+    failed = compute(a, chunks)
+    n_op, n_all, failures = gather(a, chunks, failed)
+    import sbr
+    threshold = sbr.Recognizer(model=a.model, picto=a.picto).threshold
+    ev = evaluate(a, paths, threshold)
+    print(f"sbr.regress: {len(paths)} images in {len(chunks)} chunks, {time.time() - t0:.1f} s; "
+          f"{n_op} detections at the operating point (score >= {threshold:g}), {n_all} in all; "
+          f"{len(failures)} images failed, {len(failed)} chunks failed")
+    if ev:
+        print(ev, end="")
+    for x in failures[:10]:
+        print(f"  failed: {x}")
+    return 3 if failures or failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

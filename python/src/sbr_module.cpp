@@ -1,0 +1,289 @@
+// sbr._sbr: the recogniser for Python (nanobind). Thin: the core's configuration, models
+// and detections; statuses become exceptions (ValueError for bad input, MemoryError never:
+// the workspace is allocated here, RuntimeError for the rest), the GIL is released while
+// the core runs. The Python layer (sbr/__init__.py) adds the documentation and names.
+#include <nanobind/nanobind.h>
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+#include <nanobind/stl/map.h>
+#include <nanobind/stl/pair.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "classes.hpp"
+#include "model_io.hpp"
+
+extern "C" {
+#include "sbr/recognizer.h"
+#include "sbr/status.h"
+}
+
+namespace nb = nanobind;
+
+namespace {
+
+// A configuration field: how to read and write it in sbr_recog_config_t.
+struct Field {
+    bool is_float;
+    size_t offset;
+};
+
+#define SBR_F(name) {#name, {true, offsetof(sbr_recog_config_t, name)}}
+#define SBR_U(name) {#name, {false, offsetof(sbr_recog_config_t, name)}}
+const std::map<std::string, Field> &fields() {
+    static const std::map<std::string, Field> f = {
+        SBR_U(match_p), SBR_U(max_parts), SBR_U(max_votes), SBR_U(max_hypotheses), SBR_U(max_model_protos),
+        SBR_F(vote_error), SBR_F(verify_error), SBR_F(max_rotation), SBR_F(min_size), SBR_F(max_size),
+        SBR_F(centre_tol), SBR_F(size_tol), SBR_U(cascade_depth), SBR_U(min_parts), SBR_F(candidate_score),
+        SBR_U(max_candidates), SBR_U(refine_steps), SBR_F(refine_first_score), SBR_F(refine_score), SBR_U(views),
+        SBR_F(view_score), SBR_U(triangle_view), SBR_F(triangle_score), SBR_F(min_score), SBR_F(nms_iou),
+        SBR_F(candidate_iou), SBR_U(gate),
+        {"maps", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, maps)}},
+        {"subsample", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, subsample)}},
+        {"max_nodes", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, mser) +
+                                  offsetof(sbr_mser_config_t, max_nodes)}},
+    };
+    return f;
+}
+#undef SBR_F
+#undef SBR_U
+
+// Writes one field from a Python value; ValueError naming the field for a wrong type.
+void set_field(sbr_recog_config_t &cfg, const std::string &name, nb::handle value) {
+    const auto it = fields().find(name);
+    if (it == fields().end()) throw nb::value_error(("unknown configuration field: " + name).c_str());
+    unsigned char *base = reinterpret_cast<unsigned char *>(&cfg) + it->second.offset;
+    if (it->second.is_float) {
+        if (!nb::isinstance<nb::float_>(value) && !nb::isinstance<nb::int_>(value))
+            throw nb::value_error((name + ": a number is needed").c_str());
+        const float v = static_cast<float>(nb::cast<double>(value));
+        std::memcpy(base, &v, sizeof v);
+    } else {
+        if (!nb::isinstance<nb::int_>(value) || nb::isinstance<nb::bool_>(value))
+            throw nb::value_error((name + ": an integer is needed").c_str());
+        const long long v = nb::cast<long long>(value);
+        if (v < 0 || v > 0xFFFFFFFFll) throw nb::value_error((name + ": out of range (0 .. 2^32 - 1)").c_str());
+        const uint32_t u = static_cast<uint32_t>(v);
+        std::memcpy(base, &u, sizeof u);
+    }
+}
+
+nb::object get_field(const sbr_recog_config_t &cfg, const Field &f) {
+    const unsigned char *base = reinterpret_cast<const unsigned char *>(&cfg) + f.offset;
+    if (f.is_float) {
+        float v;
+        std::memcpy(&v, base, sizeof v);
+        return nb::float_(double(v));
+    }
+    uint32_t u;
+    std::memcpy(&u, base, sizeof u);
+    return nb::int_(u);
+}
+
+uint32_t host_clock(void *) {
+    return static_cast<uint32_t>(std::chrono::duration_cast<std::chrono::microseconds>(
+                                     std::chrono::steady_clock::now().time_since_epoch())
+                                     .count());
+}
+
+const char *kStageNames[SBR_RECOG_STAGES] = {"parts", "votes", "group", "verify", "nms", "class"};
+
+using Image = nb::ndarray<const uint8_t, nb::device::cpu>;
+
+// The core's view of a numpy image: H x W x 3 (RGB or BGR) or H x W / H x W x 1 (grey),
+// uint8, each row's pixels contiguous (any row stride). ValueError otherwise.
+sbr_image_t image_view(const Image &a, bool bgr) {
+    sbr_image_t v{};
+    if (a.ndim() != 2 && a.ndim() != 3) throw nb::value_error("image: an H x W or H x W x C uint8 array is needed");
+    const size_t h = a.shape(0), w = a.shape(1), c = a.ndim() == 3 ? a.shape(2) : 1;
+    if (c != 1 && c != 3) throw nb::value_error("image: 1 or 3 channels are needed");
+    if (h == 0 || w == 0) throw nb::value_error("image: an empty image");
+    if (h > SBR_IMAGE_MAX_DIM || w > SBR_IMAGE_MAX_DIM)
+        throw nb::value_error("image: larger than the core's largest side (16384)");
+    const int64_t s0 = a.stride(0), s1 = a.stride(1), s2 = (a.ndim() == 3 && c > 1) ? a.stride(2) : 1;
+    if (s1 != int64_t(c) || s2 != 1 || s0 < int64_t(w * c))
+        throw nb::value_error("image: each row's pixels must be contiguous (use numpy.ascontiguousarray)");
+    v.width = uint32_t(w);
+    v.height = uint32_t(h);
+    v.stride = uint32_t(s0);
+    v.format = c == 1 ? SBR_PIXEL_GRAY8 : (bgr ? SBR_PIXEL_BGR888 : SBR_PIXEL_RGB888);
+    v.data = a.data();
+    return v;
+}
+
+[[noreturn]] void raise_status(const char *what, sbr_status_t st) {
+    const std::string m = std::string(what) + ": " + sbr_status_str(st);
+    if (st == SBR_ERR_CORRUPT || st == SBR_ERR_STATE) throw std::runtime_error(m);
+    throw nb::value_error(m.c_str());
+}
+
+class Recognizer {
+public:
+    Recognizer(nb::dict config, const std::string &model_path, const std::string &picto_path, bool no_picto) {
+        sbr_model_gtsdb(&builtin_);
+        model_ = builtin_;
+        if (!model_path.empty()) {
+            const std::string e = sbr_host::load_model(model_path, loaded_);
+            if (!e.empty()) throw nb::value_error(("model: " + e).c_str());
+            model_ = loaded_.view;
+        }
+        if (!picto_path.empty()) {
+            const std::string e = sbr_host::load_picto(picto_path, picto_);
+            if (!e.empty()) throw nb::value_error(("picto: " + e).c_str());
+            model_.picto = picto_.view;
+        } else if (no_picto) {
+            model_.picto = sbr_picto_model_t{};
+        }
+        threshold_ = model_.picto.version != 0 ? model_.picto.threshold : model_.score_threshold;
+        sbr_recog_config_default(&cfg_);
+        cfg_.min_score = std::min(cfg_.min_score, threshold_);  // as sbr_detect
+        for (auto kv : config) set_field(cfg_, nb::cast<std::string>(kv.first), kv.second);
+        check_config(config);
+        cfg_.clock = host_clock;
+    }
+
+    // Every detection with score >= min_score: (class, x, y, w, h, score, share, parts).
+    std::vector<nb::tuple> detect(const Image &image, bool bgr, nb::object roi) {
+        const sbr_image_t v = image_view(image, bgr);
+        sbr_rect_t r{};
+        const bool use_roi = !roi.is_none();
+        if (use_roi) {
+            const auto t = nb::cast<std::vector<long long>>(roi);
+            if (t.size() != 4) throw nb::value_error("roi: (x, y, width, height)");
+            for (long long x : t)
+                if (x < 0 || x > 0xFFFFFFFFll) throw nb::value_error("roi: values out of range");
+            r = {uint32_t(t[0]), uint32_t(t[1]), uint32_t(t[2]), uint32_t(t[3])};
+        }
+        const size_t need = sbr_recog_workspace_size(&cfg_, use_roi ? r.width : v.width, use_roi ? r.height : v.height);
+        if (need == 0) throw nb::value_error("image: too small for the configuration's maps");
+        Workspace ws = acquire(need);
+        std::vector<sbr_detection_t> dets(256);
+        uint32_t n = 0;
+        sbr_recog_stats_t stats{};
+        sbr_status_t st;
+        {
+            nb::gil_scoped_release release;
+            st = sbr_recog_detect(&v, use_roi ? &r : nullptr, &cfg_, &model_, ws.data.get(), need, dets.data(),
+                                  uint32_t(dets.size()), &n, &stats);
+        }
+        release(std::move(ws));
+        if (st != SBR_OK && st != SBR_ERR_CAPACITY) raise_status("detect", st);
+        last_ = stats;
+        std::vector<nb::tuple> out;
+        for (uint32_t k = 0; k < n; ++k) {
+            const sbr_detection_t &d = dets[k];
+            out.push_back(nb::make_tuple(int(d.class_id), d.box.x, d.box.y, d.box.width, d.box.height,
+                                         double(d.score), double(d.class_share), int(d.parts)));
+        }
+        return out;
+    }
+
+    size_t workspace_size(uint32_t width, uint32_t height) const {
+        return sbr_recog_workspace_size(&cfg_, width, height);
+    }
+    float threshold() const { return threshold_; }
+    nb::dict config() const {
+        nb::dict d;
+        for (const auto &kv : fields()) d[kv.first.c_str()] = get_field(cfg_, kv.second);
+        return d;
+    }
+    // The last call's counters and per-stage times in milliseconds (the core's clock).
+    nb::dict stats() const {
+        nb::dict d, ms;
+        d["parts"] = last_.parts;
+        d["votes"] = last_.votes;
+        d["hypotheses"] = last_.hypotheses;
+        d["classified"] = last_.classified;
+        d["capacity_hit"] = last_.capacity_hit;
+        for (unsigned s = 0; s < SBR_RECOG_STAGES; ++s) ms[kStageNames[s]] = last_.stage_ticks[s] / 1000.0;
+        d["stage_ms"] = ms;
+        return d;
+    }
+    uint32_t classes() const { return model_.class_count; }
+
+private:
+    // Workspaces are kept for the next call (the core touches most of one: a fresh one
+    // per call would cost its page faults each time); each concurrent call has its own.
+    struct Workspace {
+        std::unique_ptr<uint64_t[]> data;
+        size_t bytes = 0;
+    };
+    Workspace acquire(size_t need) {
+        {
+            std::lock_guard<std::mutex> lock(pool_mutex_);
+            for (size_t i = 0; i < pool_.size(); ++i)
+                if (pool_[i].bytes >= need) {
+                    Workspace w = std::move(pool_[i]);
+                    pool_.erase(pool_.begin() + long(i));
+                    return w;
+                }
+        }
+        Workspace w;
+        w.data.reset(new uint64_t[need / 8 + 1]);
+        w.bytes = (need / 8 + 1) * 8;
+        return w;
+    }
+    void release(Workspace w) {
+        std::lock_guard<std::mutex> lock(pool_mutex_);
+        if (pool_.size() < 8) pool_.push_back(std::move(w));
+    }
+    std::mutex pool_mutex_;
+    std::vector<Workspace> pool_;
+
+    // The core's verdict on the whole configuration; the field to blame found by trying
+    // each given field alone on the defaults.
+    void check_config(nb::dict given) {
+        const sbr_status_t st = sbr_recog_config_check(&cfg_);
+        if (st == SBR_OK) return;
+        for (auto kv : given) {
+            sbr_recog_config_t one;
+            sbr_recog_config_default(&one);
+            const std::string name = nb::cast<std::string>(kv.first);
+            set_field(one, name, kv.second);
+            if (sbr_recog_config_check(&one) != SBR_OK)
+                throw nb::value_error((name + ": refused by the recogniser (" + sbr_status_str(st) +
+                                       "; include/sbr/recognizer.h gives its range)").c_str());
+        }
+        throw nb::value_error((std::string("configuration: refused by the recogniser (") + sbr_status_str(st) +
+                               "): these fields together")
+                                  .c_str());
+    }
+
+    sbr_model_t builtin_{}, model_{};
+    sbr_host::Model loaded_;
+    sbr_host::Picto picto_;
+    sbr_recog_config_t cfg_{};
+    sbr_recog_stats_t last_{};
+    float threshold_ = 0.5f;
+};
+
+}  // namespace
+
+NB_MODULE(_sbr, m) {
+    m.doc() = "sbr's C core (see the sbr package for the documented API)";
+    nb::class_<Recognizer>(m, "Recognizer")
+        .def(nb::init<nb::dict, const std::string &, const std::string &, bool>(), nb::arg("config"),
+             nb::arg("model"), nb::arg("picto"), nb::arg("no_picto"))
+        .def("detect", &Recognizer::detect, nb::arg("image").noconvert(), nb::arg("bgr"), nb::arg("roi").none())
+        .def("workspace_size", &Recognizer::workspace_size)
+        .def_prop_ro("threshold", &Recognizer::threshold)
+        .def_prop_ro("config", &Recognizer::config)
+        .def_prop_ro("stats", &Recognizer::stats)
+        .def_prop_ro("classes", &Recognizer::classes);
+    m.def("class_name", [](int c) { return std::string(sbr_host::class_name(c)); });
+    m.def("superclass", &sbr_host::superclass_of);
+    m.def("field_names", []() {
+        std::vector<std::string> n;
+        for (const auto &kv : fields()) n.push_back(kv.first);
+        return n;
+    });
+}

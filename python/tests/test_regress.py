@@ -1,0 +1,104 @@
+"""python -m sbr.regress on a 2-worker LocalCluster (ctest python_package).
+
+Environment: SBR_DETECT, SBR_EVAL (the host tools), SBR_DATA (the GTSDB folder).
+  - 40 GTSDB images in chunks of 10: detections.txt and detections_all.txt byte-identical
+    to sbr_detect's on the same images, detections.parquet holding the same detections,
+    evaluation.txt from sbr_eval;
+  - a worker killed once while running a chunk: Dask runs it again elsewhere, the files
+    are still identical;
+  - a worker killed on every attempt at one chunk (--retries 0): that chunk is reported
+    failed (exit status 3), the finished chunks' files are kept; --resume computes only
+    the missing chunks and ends with files identical to sbr_detect's (nothing lost,
+    nothing twice);
+  - an unreadable image among readable ones is counted and listed, the rest processed.
+"""
+import os
+import shutil
+import subprocess
+import sys
+
+import pytest
+
+DATA = os.environ.get("SBR_DATA", "")
+DETECT = os.environ.get("SBR_DETECT", "")
+EVAL = os.environ.get("SBR_EVAL", "")
+pytestmark = pytest.mark.skipif(not (DATA and os.path.isdir(DATA) and DETECT and EVAL),
+                                reason="SBR_DATA/SBR_DETECT/SBR_EVAL not set")
+RANGE = "400-439"
+
+
+def regress(*args, env=None):
+    e = dict(os.environ)
+    e.update(env or {})
+    return subprocess.run([sys.executable, "-X", "faulthandler", "-m", "sbr.regress", "--input", DATA, "--range", RANGE, "--workers", "2",
+                           "--eval-tool", EVAL, *args], capture_output=True, text=True, env=e, timeout=300)
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory):
+    d = tmp_path_factory.mktemp("sbr_detect")
+    subprocess.run([DETECT, "--input", DATA, "--range", RANGE, "--quiet", "--detections", str(d / "detections.txt"),
+                    "--all-detections", str(d / "detections_all.txt")], check=True, stdout=subprocess.DEVNULL)
+    return {n: (d / n).read_text() for n in ("detections.txt", "detections_all.txt")}
+
+
+def test_same_detections_as_sbr_detect(tmp_path, reference):
+    out = tmp_path / "run"
+    r = regress("--out", str(out), "--chunk", "10")
+    assert r.returncode == 0, r.stdout + r.stderr
+    for name, want in reference.items():
+        assert (out / name).read_text() == want, name
+    assert "4 chunks, 0 already done" in r.stdout
+    assert (out / "evaluation.txt").read_text().startswith("images 40, ground-truth boxes")
+    import pandas as pd
+    df = pd.read_parquet(out / "detections.parquet")
+    assert len(df) == reference["detections_all.txt"].count("\n")
+    assert int(df["at_operating_point"].sum()) == reference["detections.txt"].count("\n")
+    first = reference["detections_all.txt"].split("\n")[0].split(";")
+    assert (df.iloc[0]["image"], int(df.iloc[0]["left"]), int(df.iloc[0]["class_id"])) == \
+        (first[0], int(first[1]), int(first[5]))
+    assert df.iloc[0]["class_name"]
+
+
+def test_a_worker_dies_once_and_the_run_goes_on(tmp_path, reference):
+    out = tmp_path / "run"
+    marker = tmp_path / "killed"
+    r = regress("--out", str(out), "--chunk", "10",
+                env={"SBR_REGRESS_TEST_KILL": "1", "SBR_REGRESS_TEST_KILL_ONCE": str(marker)})
+    assert marker.exists(), "the worker running chunk 1 should have died"
+    assert r.returncode == 0, r.stdout + r.stderr  # Dask ran chunk 1 again on another worker
+    for name, want in reference.items():
+        assert (out / name).read_text() == want, name
+
+
+def test_resume_after_a_killed_worker(tmp_path, reference):
+    out = tmp_path / "run"
+    r = regress("--out", str(out), "--chunk", "10", "--retries", "0", env={"SBR_REGRESS_TEST_KILL": "1"})
+    assert r.returncode == 3, r.stdout + r.stderr
+    assert "chunk 1 " in r.stderr and "KilledWorker" in r.stderr
+    kept = sorted(os.listdir(out / "chunks"))
+    assert "chunk_000001.json" not in kept and len(kept) < 4, kept
+    stamps = {k: os.stat(out / "chunks" / k).st_mtime_ns for k in kept}
+    r = regress("--out", str(out), "--chunk", "10", "--resume")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert f"4 chunks, {len(kept)} already done (--resume), {4 - len(kept)} to compute" in r.stdout
+    assert {k: os.stat(out / "chunks" / k).st_mtime_ns for k in kept} == stamps  # not computed again
+    for name, want in reference.items():
+        assert (out / name).read_text() == want, name  # nothing lost, nothing twice
+    assert (out / "failures.txt").read_text() == ""
+
+
+def test_unreadable_image_is_counted(tmp_path):
+    src = os.path.join(DATA, "FullIJCNN2013") if os.path.isdir(os.path.join(DATA, "FullIJCNN2013")) else DATA
+    d = tmp_path / "in"
+    d.mkdir()
+    for n in (444, 445):
+        shutil.copy(os.path.join(src, f"{n:05d}.jpg"), d)
+    data = (d / "00445.jpg").read_bytes()
+    (d / "00445.jpg").write_bytes(data[: len(data) // 2])
+    r = subprocess.run([sys.executable, "-m", "sbr.regress", "--input", str(d), "--out", str(tmp_path / "o"),
+                        "--workers", "1", "--eval-tool", EVAL], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 3, r.stdout + r.stderr
+    failures = (tmp_path / "o" / "failures.txt").read_text()
+    assert "00445.jpg" in failures and "00444.jpg" not in failures
+    assert (tmp_path / "o" / "detections.txt").read_text().startswith("00444.jpg;")
