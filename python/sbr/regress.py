@@ -186,7 +186,10 @@ def compute(a, chunks):
         model = os.path.abspath(a.model) if a.model else None
         picto = os.path.abspath(a.picto) if a.picto else None
         t0 = time.time()
-        futures = [client.submit(run_chunk, i, chunks[i], os.path.abspath(a.out), model, picto,
+        # the task by reference to the importable module (under `python -m` this file is
+        # __main__, whose functions would travel by value with fresh globals each time)
+        from sbr import regress as task_module
+        futures = [client.submit(task_module.run_chunk, i, chunks[i], os.path.abspath(a.out), model, picto,
                                  key=f"sbr-chunk-{i}", pure=False) for i in todo]
         if not a.no_progress and sys.stdout.isatty():
             progress(futures, notebook=False)  # Dask's progress bar, until every task has settled
