@@ -233,7 +233,11 @@ class Monitor:
             st["timeouts"] += 1
             st["state"] = "timeout"
             limit_ms = self.timeout_factor * st["cycle_ms"]
-            self._event(self.now, fid, "timeout", f"no frame for more than {limit_ms:.0f} ms")
+            # the event at the moment the silence passed the limit, not when a tick noticed
+            # it: the same time whatever the replay speed or the ticks' timing
+            last = self.timeouts.last_rx[fid]
+            at = (last if last is not None else self.timeouts.start) + self.timeouts.limit[fid]
+            self._event(at, fid, "timeout", f"no frame for more than {limit_ms:.0f} ms")
             changed = True
         return changed
 
