@@ -171,7 +171,7 @@ class Monitor:
                       for fid, s in model.messages.items()}
         self.periods = {fid: PeriodMeter(s.cycle_ms) for fid, s in model.messages.items()}
         self.last_frame = {}  # fid -> (dlc, hex bytes) of the newest frame
-        self.signals = {}     # fid -> decoded signals of the newest valid frame
+        self.signals = {}     # fid -> (raw, physical) values of the newest valid frame
         self.trace = collections.deque(maxlen=TRACE_KEPT)
         self.objects_reported = 0  # tracked-object frames that named an object
         self.frames = 0
@@ -249,9 +249,10 @@ class Monitor:
         self.frames += 1
         spec = self.model.messages.get(fid)
         known = spec is not None and not odd
+        text = data.hex(" ").upper()
         if known:
             self.periods[fid].received(t)
-            self.last_frame[fid] = (len(data), data.hex(" ").upper())
+            self.last_frame[fid] = (len(data), text)
         check = self._check(t, fid, data, spec) if known else "unknown"
         if not known:
             self.unknown += 1
@@ -259,7 +260,7 @@ class Monitor:
                 self._event(t, None, "unknown", f"id 0x{fid:X} ({self.unknown} so far)")
         self.trace.append(dict(t=round(t - self.t0, 4), id=f"0x{fid:03X}",
                                name=spec.name if spec is not None else "", dlc=len(data),
-                               data=data.hex(" ").upper(), check=check))
+                               data=text, check=check))
 
     def _check(self, t, fid, data, spec):
         """The checks of one frame of a known message; the result for the trace."""
@@ -301,10 +302,7 @@ class Monitor:
             self._event(t, fid, "recovered", "frames arrive again")
         if result != "skipped":
             st["state"] = "ok"
-        self.signals[fid] = [dict(name=sig.name, value=phys[sig.name], raw=int(raw[sig.name]),
-                                  unit=sig.unit or "",
-                                  choice=self._name(spec, sig.name, int(raw[sig.name])) or "")
-                             for sig in msg.signals]
+        self.signals[fid] = (raw, phys)  # shown as a table in snapshots (_message_view)
         self._apply(t, spec, msg, raw, phys)
         return "ok" if result in ("ok", "first") else result
 
@@ -422,8 +420,13 @@ class Monitor:
     def _message_view(self, fid, st):
         period, jitter, per_cycle = self.periods[fid].figures()
         dlc, data = self.last_frame.get(fid, (None, ""))
+        spec = self.model.messages[fid]
+        raw, phys = self.signals.get(fid, ({}, {}))
+        signals = [dict(name=sig.name, value=phys[sig.name], raw=int(raw[sig.name]), unit=sig.unit or "",
+                        choice=self._name(spec, sig.name, int(raw[sig.name])) or "")
+                   for sig in spec.message.signals if sig.name in raw]
         return dict(id=f"0x{fid:03X}", period_ms=period, jitter_ms=jitter, frames_per_cycle=per_cycle,
-                    dlc=dlc, data=data, signals=self.signals.get(fid, []), **st)
+                    dlc=dlc, data=data, signals=signals, **st)
 
     def wait_change(self, version, timeout):
         """Block until the state version differs from `version` (or timeout)."""

@@ -61,12 +61,11 @@ void dashed_rect(cv::Mat &img, const cv::Rect &r) {
     int phase = 0;
     for (int e = 0; e < 4; ++e) {
         const cv::Point a = c[e], b = c[(e + 1) % 4];
+        const cv::Point step((b.x > a.x) - (b.x < a.x), (b.y > a.y) - (b.y < a.y));  // edges are axis-aligned
         const int len = std::max(std::abs(b.x - a.x), std::abs(b.y - a.y));
         for (int s = 0; s < len; s += kDash) {
             const int t = std::min(len, s + kDash);
-            const cv::Point p(a.x + (b.x - a.x) * s / std::max(len, 1), a.y + (b.y - a.y) * s / std::max(len, 1));
-            const cv::Point q(a.x + (b.x - a.x) * t / std::max(len, 1), a.y + (b.y - a.y) * t / std::max(len, 1));
-            cv::line(img, p, q, (phase++ % 2) == 0 ? kWhite : kBlack, 2);
+            cv::line(img, a + step * s, a + step * t, (phase++ % 2) == 0 ? kWhite : kBlack, 2);
         }
     }
 }

@@ -4,6 +4,8 @@ extern "C" {
 #include "sbr/pictogram.h"
 }
 
+#include <opencv2/imgcodecs.hpp>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -110,12 +112,14 @@ size_t ppm_expected_size(const std::vector<unsigned char> &b) {
     return pos + 1 + size_t(v[0]) * size_t(v[1]) * channels * bytes;
 }
 
-}  // namespace
-
-std::string image_file_problem(const std::string &path) {
+std::vector<unsigned char> file_bytes(const std::string &path, bool &ok) {
     std::ifstream f(path, std::ios::binary);
-    if (!f) return "cannot open the file";
-    const std::vector<unsigned char> b((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    ok = bool(f);
+    return std::vector<unsigned char>((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+// image_file_problem() of a file's bytes.
+std::string bytes_problem(const std::vector<unsigned char> &b) {
     if (b.empty()) return "empty file";
     const size_t n = b.size();
     if (n >= 2 && b[0] == 0xFF && b[1] == 0xD8) {
@@ -131,6 +135,26 @@ std::string image_file_problem(const std::string &path) {
         return n >= want ? "" : "truncated PPM (" + std::to_string(n) + " of " + std::to_string(want) + " bytes)";
     }
     return "";
+}
+
+}  // namespace
+
+std::string image_file_problem(const std::string &path) {
+    bool ok = false;
+    const std::vector<unsigned char> b = file_bytes(path, ok);
+    return ok ? bytes_problem(b) : "cannot open the file";
+}
+
+std::string read_image(const std::string &path, cv::Mat &img) {
+    bool ok = false;
+    const std::vector<unsigned char> b = file_bytes(path, ok);
+    if (!ok) return "cannot open the file";
+    std::string problem = bytes_problem(b);
+    if (problem.empty()) {
+        img = cv::imdecode(b, cv::IMREAD_COLOR);
+        if (img.empty()) problem = "cannot decode it";
+    }
+    return problem;
 }
 
 int image_number(const std::string &path) {

@@ -54,6 +54,9 @@ std::vector<std::string> list_images(const std::string &dir);
 // IEND chunk at the end, a PPM shorter than its header's size. OpenCV decodes a truncated
 // JPEG without an error (the missing rows grey), so readers check this first.
 std::string image_file_problem(const std::string &path);
+// The image (BGR) read once from its file: "" and img set, or the problem (the file's, as
+// image_file_problem() says, or "cannot decode it").
+std::string read_image(const std::string &path, cv::Mat &img);
 
 // Image number of a file name like "00123.jpg" (-1 if it has none).
 int image_number(const std::string &path);

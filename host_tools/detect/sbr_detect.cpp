@@ -450,11 +450,7 @@ bool run_image(const Options &o, const sbr_model_t *model, CallgrindClock &cg, c
     sbr_recog_stats_t stats{};
     float frame_ms = 0.0f;
     cv::Mat img;
-    std::string problem = image_file_problem(file);
-    if (problem.empty()) {
-        img = cv::imread(file, cv::IMREAD_COLOR);
-        if (img.empty()) problem = "cannot decode it";
-    }
+    const std::string problem = read_image(file, img);
     bool error = !problem.empty();
     if (error) image_failed(o, file, problem, t);
     else error = !detect_image(o, model, cg, file, img, out, t, kept, stats, frame_ms);

@@ -519,16 +519,16 @@ int main(int argc, char **argv) {
     const Eval e = evaluate(dets, gts, o.iou_thr);
     // any score, for the plot's tail and for what lies on a changed sign
     const double any = -std::numeric_limits<double>::infinity();
+    const std::vector<Box> dets_any = select(dets_all, image_set, any);
     const double ap_mean =
-        print_report(o, e, evaluate(select(dets_all, image_set, any), gts, o.iou_thr), image_set.size(), gts.size(),
-                     dets.size());
+        print_report(o, e, evaluate(dets_any, gts, o.iou_thr), image_set.size(), gts.size(), dets.size());
     double worst = 0.0;
     Eval base_eval;
     if (!o.base_path.empty()) {
         const std::vector<Box> base = select(base_all, image_set, o.score_thr);
         base_eval = evaluate(base, gts, o.iou_thr);
         worst = print_baseline(o.base_path, base_eval, e, base, dets, select(base_all, image_set, any),
-                               select(dets_all, image_set, any), gts, o.iou_thr, o.list_n);
+                               dets_any, gts, o.iou_thr, o.list_n);
         if (o.max_drop >= 0.0)
             std::printf("largest drop against the baseline %.4f (allowed %.4f): %s\n", worst, o.max_drop,
                         worst > o.max_drop ? "REGRESSION" : "ok");

@@ -6,11 +6,8 @@
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
-#include <nanobind/stl/map.h>
-#include <nanobind/stl/pair.h>
 
 #include <chrono>
-#include <cmath>
 #include <cstring>
 #include <map>
 #include <memory>
