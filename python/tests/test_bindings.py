@@ -153,7 +153,8 @@ def test_gil_released_and_threads_agree():
     t = threading.Thread(target=counter)
     t.start()
     before = len(ticks)
-    rec.detect(frames[0])  # the counter runs only if detect() let go of the GIL
+    for f in frames:  # the counter runs only if detect() lets go of the GIL
+        rec.detect(f)
     during = len(ticks) - before
     stop.set()
     t.join()
