@@ -7,6 +7,9 @@
     for d in dets:
         print(d.class_id, d.class_name, d.box, d.score)
 
+Also: sbr.Tracker (the channel-representation tracker), sbr.ellipse_fit, sbr.fd (Fourier
+descriptors and their matching), sbr.can (the DBC's messages with their E2E check).
+
 The core runs on a zero-copy view of the array (each row's pixels must be contiguous; any
 row stride, e.g. a crop `image[y0:y1, x0:x1]`, is accepted); the GIL is released while it
 runs, so threads scale. Every bad input raises ValueError (TypeError for a non-array)
@@ -17,9 +20,11 @@ from typing import List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from . import _sbr
+from . import _sbr, can, fd
+from ._points import as_points
 
-__all__ = ["Recognizer", "Detection", "class_name", "superclass", "SUPERCLASSES", "CONFIG_FIELDS"]
+__all__ = ["Recognizer", "Detection", "Tracker", "Target", "Ellipse", "ellipse_fit", "class_name", "superclass",
+           "SUPERCLASSES", "CONFIG_FIELDS", "TRACKER_FIELDS", "fd", "can"]
 
 #: GTSDB's superclasses, by superclass()'s index.
 SUPERCLASSES = ("prohibitory", "mandatory", "danger", "other")
@@ -130,3 +135,133 @@ class Recognizer:
         img = _check_image(image)
         out = self._core.detect(img, order == "bgr", None if roi is None else tuple(int(v) for v in roi))
         return [Detection(c, (x, y, w, h), s, sh, p) for c, x, y, w, h, s, sh, p in out]
+
+
+#: The tracker's configuration fields (include/sbr/tracker.h documents each).
+TRACKER_FIELDS = ("max_targets", "window", "meas_sigma", "gate", "confirm_hits", "max_misses")
+
+
+@dataclass(frozen=True)
+class Target:
+    """One tracked target after a step: id (stable for its life, from 1), position x, y
+    (pixels), velocity vx, vy (pixels per model period), certainty (0..1), hits, misses
+    (consecutive), age (steps), detection (index of this step's detection used, or None),
+    and whether it is confirmed, was updated or was born in this step."""
+    id: int
+    x: float
+    y: float
+    vx: float
+    vy: float
+    certainty: float
+    hits: int
+    misses: int
+    age: int
+    detection: Optional[int]
+    confirmed: bool
+    updated: bool
+    born: bool
+
+
+class Tracker:
+    """The channel-representation tracker (the thesis's paper E; include/sbr/tracker.h).
+
+    model: "kitti" (learned from KITTI car and cyclist tracks: 1242 x 375 images at 10 frames
+    per second, window 25 unless given) or "cv" (constant velocity over a width x height
+    frame, `period` seconds per frame, vel_count velocity channels vel_spacing pixels per
+    period apart, the velocity changing by accel_sigma pixels per period, a new target's
+    velocity prior birth_sigma). Configuration fields (TRACKER_FIELDS) as keyword arguments;
+    a refused one raises ValueError naming it.
+    """
+
+    def __init__(self, model: str = "kitti", width: Optional[float] = None, height: Optional[float] = None,
+                 period: float = 0.1, vel_count: int = 41, vel_spacing: float = 4.0, accel_sigma: float = 4.0,
+                 birth_sigma: float = 20.0, **fields):
+        if model == "cv" and (width is None or height is None):
+            raise ValueError("a constant-velocity model needs width and height")
+        unknown = sorted(set(fields) - set(TRACKER_FIELDS))
+        if unknown:
+            raise ValueError(f"unknown tracker field: {unknown[0]} (fields: {', '.join(TRACKER_FIELDS)})")
+        for k, v in fields.items():
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                raise ValueError(f"{k}: a number is needed, not {v!r}")
+        self._core = _sbr.Tracker(str(model), float(width or 0.0), float(height or 0.0), float(period),
+                                  int(vel_count), float(vel_spacing), float(accel_sigma), float(birth_sigma),
+                                  dict(fields))
+
+    @property
+    def config(self) -> dict:
+        """The configuration fields in effect."""
+        return self._core.config
+
+    @property
+    def workspace_size(self) -> int:
+        """Bytes of the core's workspace (all target densities)."""
+        return self._core.workspace_size
+
+    @property
+    def period(self) -> float:
+        """Seconds between the frames the motion model describes."""
+        return self._core.period
+
+    @property
+    def extent(self) -> Tuple[float, float]:
+        """The model's image width and height: detections must lie inside."""
+        return self._core.extent
+
+    @property
+    def capacity_hit(self) -> bool:
+        """The last step could not start a target for some detection (max_targets live)."""
+        return self._core.capacity_hit
+
+    def reset(self) -> None:
+        """Drop every target; ids start again at 1."""
+        self._core.reset()
+
+    def step(self, detections, dt: Optional[float] = None) -> List[Target]:
+        """One frame: `dt` seconds after the previous one (default: the model's period).
+
+        detections: an N x 2 (x, y; certainty 1) or N x 3 (x, y, certainty in (0, 1]) array,
+        or a list of Detection (box centres, certainty = score). Returns every live target,
+        confirmed ones first.
+        """
+        if isinstance(detections, (list, tuple)) and detections and isinstance(detections[0], Detection):
+            rows = [(d.box[0] + d.box[2] / 2.0, d.box[1] + d.box[3] / 2.0, min(1.0, max(1e-3, d.score)))
+                    for d in detections]
+            arr = np.asarray(rows, dtype=np.float32)
+        else:
+            arr = np.asarray(detections, dtype=np.float32) if len(detections) else np.zeros((0, 3), np.float32)
+        if arr.ndim != 2 or arr.shape[1] not in (2, 3):
+            raise ValueError(f"detections: an N x 2 or N x 3 array is needed, not shape {arr.shape}")
+        if arr.shape[1] == 2:
+            arr = np.concatenate([arr, np.ones((arr.shape[0], 1), np.float32)], axis=1)
+        dt_s = self.period if dt is None else float(dt)
+        if not (dt_s > 0.0 and dt_s * 1e6 < 2.0 ** 32):
+            raise ValueError(f"dt: seconds > 0 are needed, not {dt!r}")
+        out = self._core.step(np.ascontiguousarray(arr), max(1, int(round(dt_s * 1e6))))
+        return [Target(i, x, y, vx, vy, c, h, m, a, None if det < 0 else det, bool(f & _sbr.TRACK_CONFIRMED),
+                       bool(f & _sbr.TRACK_UPDATED), bool(f & _sbr.TRACK_BORN))
+                for i, x, y, vx, vy, c, h, m, a, det, f in out]
+
+
+@dataclass(frozen=True)
+class Ellipse:
+    """An ellipse: centre (cx, cy), semi-axes (semi_major >= semi_minor), angle of the major
+    axis (radians, (-pi/2, pi/2], from +x towards +y); conic (a, b, c, d, e, f) of
+    a x^2 + 2b xy + c y^2 + 2d x + 2e y + f = 0; rms and max_residual: the points' Sampson
+    distances to it (pixels)."""
+    cx: float
+    cy: float
+    semi_major: float
+    semi_minor: float
+    angle: float
+    conic: Tuple[float, float, float, float, float, float]
+    rms: float
+    max_residual: float
+
+
+def ellipse_fit(points) -> Ellipse:
+    """Direct least-squares ellipse fit (Fitzgibbon, Halir-Flusser) of N >= 5 points (N x 2,
+    or OpenCV's N x 1 x 2). ValueError when the points determine no ellipse (collinear,
+    too few distinct, a hyperbola's) or hold non-finite values."""
+    conic, (cx, cy, a, b, ang), rms, mx = _sbr.ellipse_fit(as_points(points))
+    return Ellipse(cx, cy, a, b, ang, tuple(conic), rms, mx)

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bind_common.hpp"
 #include "classes.hpp"
 #include "model_io.hpp"
 
@@ -25,6 +26,7 @@ extern "C" {
 }
 
 namespace nb = nanobind;
+using sbr_py::raise_status;
 
 namespace {
 
@@ -115,12 +117,6 @@ sbr_image_t image_view(const Image &a, bool bgr) {
     v.format = c == 1 ? SBR_PIXEL_GRAY8 : (bgr ? SBR_PIXEL_BGR888 : SBR_PIXEL_RGB888);
     v.data = a.data();
     return v;
-}
-
-[[noreturn]] void raise_status(const char *what, sbr_status_t st) {
-    const std::string m = std::string(what) + ": " + sbr_status_str(st);
-    if (st == SBR_ERR_CORRUPT || st == SBR_ERR_STATE) throw std::runtime_error(m);
-    throw nb::value_error(m.c_str());
 }
 
 class Recognizer {
@@ -278,6 +274,9 @@ NB_MODULE(_sbr, m) {
         .def_prop_ro("classes", &Recognizer::classes);
     m.def("class_name", [](int c) { return std::string(sbr_host::class_name(c)); });
     m.def("superclass", &sbr_host::superclass_of);
+    sbr_py::bind_tracker(m);
+    sbr_py::bind_shapes(m);
+    sbr_py::bind_can(m);
     m.def("field_names", []() {
         std::vector<std::string> n;
         for (const auto &kv : fields()) n.push_back(kv.first);

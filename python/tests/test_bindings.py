@@ -1,4 +1,4 @@
-"""The sbr package against the C tools and hostile input (ctest python_bindings).
+"""The sbr package against the C tools and hostile input (ctest python_package).
 
 Environment: SBR_DETECT (the sbr_detect binary), SBR_DATA (the GTSDB folder); the tests
 that need them are skipped without.
