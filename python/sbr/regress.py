@@ -1,6 +1,6 @@
 """Regression over recorded images on Dask: python -m sbr.regress.
 
-    python -m sbr.regress --input DIR|LIST --out DIR [--scheduler ADDRESS | --workers N]
+    python -m sbr.regress --input DIR|LIST --out DIR [--scheduler ADDRESS | --workers N [--threads T]]
                           [--baseline DIR] [--range A-B] [--chunk N] [--resume]
                           [--model F.sbrm --picto F.sbrp] [--gt FILE] [--eval-tool PATH]
 
@@ -9,9 +9,13 @@ FullIJCNN2013/ inside, or a text file with one path per line) are cut into chunk
 --chunk files (default 20); each chunk is one Dask task that runs sbr.Recognizer on its
 images (decoded with Pillow as RGB: the same pixels as sbr_detect's OpenCV on GTSDB) and
 writes its results to OUT/chunks/ at once (a file per chunk, written whole or not at all).
-Without --scheduler a LocalCluster of --workers processes (default 2, one thread each)
-runs them; with it, any Dask cluster (docs/usage/regress.md: Kubernetes, Slurm). Dask's
-progress bar shows the run when stdout is a terminal. An image that cannot be read is counted and listed; a chunk
+Without --scheduler a LocalCluster of --workers processes (default 1) with --threads
+threads each (default: the machine's cores over the workers) runs them: the core releases
+the GIL, so a process's threads run in parallel, and one process per machine is the
+cheapest (each process has its own event loop, heartbeats and memory; a process that
+dies is restarted by its nanny and its chunk retried either way). With --scheduler, any
+Dask cluster (docs/usage/regress.md: Kubernetes, Slurm). Every worker loads the models
+before the first chunk starts. Dask's progress bar shows the run when stdout is a terminal. An image that cannot be read is counted and listed; a chunk
 whose task fails (its worker died more often than Dask retries, or any error) is
 reported and the others go on; nothing computed is lost: --resume skips the chunks whose
 files are there and computes only the rest.
@@ -31,6 +35,7 @@ import re
 import shutil
 import subprocess
 import sys
+import threading
 import time
 
 IMAGE_EXT = (".jpg", ".jpeg", ".png", ".ppm")
@@ -63,17 +68,29 @@ def out_name(path):
 
 
 _RECOGNIZERS = {}
+_RECOGNIZERS_LOCK = threading.Lock()
 
 
 def _recognizer(model, picto):
-    """One Recognizer per worker process and model pair (building one loads the models)."""
+    """One Recognizer per worker process and model pair (building one loads the models),
+    shared by the process's threads (detect() is thread-safe: a workspace per call)."""
     import sbr
     key = (model, picto)
-    if key not in _RECOGNIZERS:
-        base = sbr.Recognizer(model=model, picto=picto)
-        _RECOGNIZERS[key] = sbr.Recognizer(model=model, picto=picto,
-                                           min_score=min(base.config["min_score"], ALL_FLOOR))
-    return _RECOGNIZERS[key]
+    with _RECOGNIZERS_LOCK:
+        if key not in _RECOGNIZERS:
+            base = sbr.Recognizer(model=model, picto=picto)
+            _RECOGNIZERS[key] = sbr.Recognizer(model=model, picto=picto,
+                                               min_score=min(base.config["min_score"], ALL_FLOOR))
+        return _RECOGNIZERS[key]
+
+
+def warm_up(model, picto):
+    """Run on every worker before the chunks: imports and the models, so that the timed
+    span is the images' (returns the process id)."""
+    _recognizer(model, picto)
+    import numpy  # noqa: F401 - the chunks' imports
+    from PIL import Image  # noqa: F401
+    return os.getpid()
 
 
 def _read_rgb(path):
@@ -141,7 +158,9 @@ def parse_args(argv):
     ap.add_argument("--out", required=True, help="output folder")
     where = ap.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler (tcp://host:8786)")
-    where.add_argument("--workers", type=int, default=2, help="LocalCluster processes without --scheduler (default 2)")
+    where.add_argument("--workers", type=int, default=1, help="LocalCluster processes without --scheduler (default 1)")
+    ap.add_argument("--threads", type=int,
+                    help="threads per LocalCluster process (default: the machine's cores over --workers)")
     ap.add_argument("--chunk", type=int, default=20, help="images per task (default 20)")
     ap.add_argument("--range", help="images numbered A-B only")
     ap.add_argument("--resume", action="store_true", help="keep the chunks already in OUT/chunks, compute the rest")
@@ -155,8 +174,13 @@ def parse_args(argv):
     ap.add_argument("--eval-tool", help="sbr_eval binary (default: on PATH, or the checkout's build/native)")
     ap.add_argument("--no-progress", action="store_true", help="no progress bar (there is none when stdout is not a terminal)")
     a = ap.parse_args(argv)
-    if a.chunk < 1 or (a.scheduler is None and a.workers < 1) or a.retries < 0:
-        ap.error("--chunk and --workers must be at least 1, --retries at least 0")
+    if a.chunk < 1 or (a.scheduler is None and a.workers < 1) or a.retries < 0 or (a.threads is not None
+                                                                                  and a.threads < 1):
+        ap.error("--chunk, --workers and --threads must be at least 1, --retries at least 0")
+    if a.scheduler and a.threads is not None:
+        ap.error("--threads is for the LocalCluster: a cluster's workers have their own")
+    if a.threads is None:
+        a.threads = max(1, (os.cpu_count() or 1) // a.workers)
     a.span = None
     if a.range:
         m = re.fullmatch(r"(\d+)-(\d+)", a.range)
@@ -180,15 +204,30 @@ def compute(a, chunks):
     if a.scheduler:
         client = Client(a.scheduler)
     else:
-        cluster = LocalCluster(n_workers=a.workers, threads_per_worker=1, processes=True, dashboard_address=":0")
+        # the control plane shares the machine's cores with the chunks: the workers'
+        # sampling profiler (a thread walking every stack every 10 ms, for the dashboard)
+        # is off, and the event loops' 20 ms tick (blocked-loop warnings), the nannies'
+        # 100 ms memory polls and the 0.5 s system monitor run less often; on a 2-core
+        # machine this gave the chunks about 4 % more (docs/results/python.md)
+        dask.config.set({"distributed.worker.profile.enabled": False,
+                         "distributed.admin.tick.interval": "1s",
+                         "distributed.worker.memory.monitor-interval": "1s",
+                         "distributed.admin.system-monitor.interval": "2s"})
+        cluster = LocalCluster(n_workers=a.workers, threads_per_worker=a.threads, processes=True,
+                               dashboard_address=":0")
         client = Client(cluster)
     try:
         model = os.path.abspath(a.model) if a.model else None
         picto = os.path.abspath(a.picto) if a.picto else None
+        from sbr import regress as task_module
+        t_warm = time.time()
+        ready = client.run(task_module.warm_up, model, picto)
+        threads = sum(client.nthreads().values())
+        print(f"sbr.regress: {len(ready)} worker processes, {threads} threads, ready in {time.time() - t_warm:.1f} s",
+              flush=True)
         t0 = time.time()
         # the task by reference to the importable module (under `python -m` this file is
         # __main__, whose functions would travel by value with fresh globals each time)
-        from sbr import regress as task_module
         futures = [client.submit(task_module.run_chunk, i, chunks[i], os.path.abspath(a.out), model, picto,
                                  key=f"sbr-chunk-{i}", pure=False) for i in todo]
         if not a.no_progress and sys.stdout.isatty():

@@ -3,7 +3,8 @@
 Environment: SBR_DETECT, SBR_EVAL (the host tools), SBR_DATA (the GTSDB folder).
   - 40 GTSDB images in chunks of 10: detections.txt and detections_all.txt byte-identical
     to sbr_detect's on the same images, detections.parquet holding the same detections,
-    evaluation.txt from sbr_eval;
+    evaluation.txt from sbr_eval; the same from one worker process of 3 threads sharing
+    its recogniser (chunks of 5);
   - a worker killed once while running a chunk: Dask runs it again elsewhere, the files
     are still identical;
   - a worker killed on every attempt at one chunk (--retries 0): that chunk is reported
@@ -27,11 +28,11 @@ pytestmark = pytest.mark.skipif(not (DATA and os.path.isdir(DATA) and DETECT and
 RANGE = "400-439"
 
 
-def regress(*args, env=None):
+def regress(*args, env=None, workers=("--workers", "2")):
     e = dict(os.environ)
     e.update(env or {})
-    return subprocess.run([sys.executable, "-X", "faulthandler", "-m", "sbr.regress", "--input", DATA, "--range", RANGE, "--workers", "2",
-                           "--eval-tool", EVAL, *args], capture_output=True, text=True, env=e, timeout=300)
+    return subprocess.run([sys.executable, "-X", "faulthandler", "-m", "sbr.regress", "--input", DATA, "--range", RANGE,
+                           *workers, "--eval-tool", EVAL, *args], capture_output=True, text=True, env=e, timeout=300)
 
 
 @pytest.fixture(scope="module")
@@ -58,6 +59,15 @@ def test_same_detections_as_sbr_detect(tmp_path, reference):
     assert (df.iloc[0]["image"], int(df.iloc[0]["left"]), int(df.iloc[0]["class_id"])) == \
         (first[0], int(first[1]), int(first[5]))
     assert df.iloc[0]["class_name"]
+
+
+def test_threads_of_one_worker_share_its_recogniser(tmp_path, reference):
+    out = tmp_path / "run"
+    r = regress("--out", str(out), "--chunk", "5", workers=("--workers", "1", "--threads", "3"))
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "1 worker processes, 3 threads" in r.stdout
+    for name, want in reference.items():
+        assert (out / name).read_text() == want, name
 
 
 def test_a_worker_dies_once_and_the_run_goes_on(tmp_path, reference):
