@@ -20,6 +20,7 @@
 #include "sbr/bicycle.h"
 #include "sbr/conic.h"
 #include "sbr/tracker.h"
+#include "sbr/servo.h"
 
 /** Library version. */
 #define SBR_VERSION_MAJOR 0
