@@ -493,7 +493,6 @@ public:
         if (f) {
             const X t = truth_now();
             if (std::hypot(x[0] - t[0], x[1] - t[1]) <= 2.0) ++recognised_;
-            if (getenv("SV_DEBUG") && looks_ % 50 == 0) std::fprintf(stderr, "look %ld: x %.1f %.1f %.3f truth %.1f %.1f %.3f\n", looks_, x[0], x[1], x[2], t[0], t[1], t[2]);
         }
         return f;
     }
@@ -528,7 +527,7 @@ sbr_servo_config_t learner_config() {
     sbr_servo_config_default(&cfg, kJ, kF);
     cfg.max_fields = 256;
     cfg.angle_mask = 4u;  // theta
-    const float width[kJ] = {0.45f, 0.35f, 0.35f, 0.45f, 2.5f};
+    const float width[kJ] = {0.32f, 0.25f, 0.25f, 0.32f, 2.5f};  // roll barely changes J
     for (int j = 0; j < kJ; ++j) {
         cfg.width[j] = width[j];
         cfg.max_step[j] = float(kMaxStep);
@@ -650,7 +649,6 @@ Result servo_run(World &w, Method m, sbr_servo_t *s, const X &xw, const X &xw_tr
     r.err_px = std::hypot(t[0] - xw_true[0], t[1] - xw_true[1]);
     r.err_deg = std::fabs(wrap(t[2] - xw_true[2])) * 180 / kPi;
     r.success = !r.lost && r.err_px <= 1.0 && r.err_deg <= 2.0 && r.iters <= kMaxIter;
-    if (getenv("SV_DEBUG") && !r.success) std::fprintf(stderr, "fail %s: lost %d iters %d err %.2f px %.2f deg\n", kNames[m], int(r.lost), r.iters, r.err_px, r.err_deg);
     return r;
 }
 
@@ -705,6 +703,26 @@ void save_frame(World &w, const Target &t, const std::vector<cv::Point2d> &path,
     cv::imwrite(file, img);
 }
 
+// The learned method's success against the number of motions learned (fresh worlds of
+// the same seed).
+void print_curve(const Options &o, const sbr_servo_config_t &cfg, size_t ws_bytes) {
+    for (int n : {250, 500, 1000, 2000}) {
+        World wc(o.seed);
+        learn_gripper(wc);
+        std::vector<uint32_t> wsc(ws_bytes / 4 + 1);
+        sbr_servo_t lc;
+        sbr_servo_init(&lc, &cfg, wsc.data(), ws_bytes);
+        Timing tc;
+        babble(wc, lc, n, tc);
+        const std::vector<Target> tg = make_targets(wc, o.trials);
+        std::vector<Result> rc;
+        for (const auto &t : tg) rc.push_back(servo_run(wc, kLearned, &lc, t.x, t.truth, tc, nullptr));
+        const Summary sc = summarise(rc);
+        std::printf("curve: N=%d success=%.3f median_err_px=%.3f median_iters=%.1f\n", n, sc.success,
+                    sc.median_err, sc.median_iters);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -724,26 +742,6 @@ int main(int argc, char **argv) {
     if (!learn_gripper(w)) {
         std::fprintf(stderr, "sbr_servo: no moving blob seen: the gripper could not be learned\n");
         return 1;
-    }
-    if (getenv("SV_PROBE")) {
-        for (int k = 0; k < 12; ++k) {
-            const Q q = w.random_config();
-            double sb = 0, sb2 = 0, su = 0;
-            X t{};
-            for (int r = 0; r < 10; ++r) {
-                X x;
-                cv::Mat f = w.move(q, true);
-                w.look(f, x);
-                t = w.truth_now();
-                const double b = wrap(x[2] - t[2]) * 180 / kPi;
-                sb += b, sb2 += b * b, su += std::hypot(x[0] - t[0], x[1] - t[1]);
-            }
-            std::vector<Vec3> jn; Vec3 axis, jaw;
-            w.truth().pose(w.truth().angles(q), jn, axis, jaw);
-            std::printf("probe q0 %.2f q4 %.2f tilt %.1f: theta bias %.2f deg (sd %.2f), pos err %.2f px, true theta %.1f\n", q[0], q[4],
-                        std::acos(-axis.z) * 180 / kPi, sb / 10, std::sqrt(std::max(0.0, sb2 / 10 - sb * sb / 100)), su / 10, t[2] * 180 / kPi);
-        }
-        return 0;
     }
     const sbr_servo_config_t cfg = learner_config();
     const size_t ws_bytes = sbr_servo_workspace_size(&cfg);
@@ -781,26 +779,16 @@ int main(int argc, char **argv) {
     std::printf("time per call: sbr_servo_learn %.2f us, sbr_servo_step %.2f us (this machine, mean)\n",
                 tm.learn_n ? 1e6 * tm.learn_s / double(tm.learn_n) : 0.0,
                 tm.step_n ? 1e6 * tm.step_s / double(tm.step_n) : 0.0);
-    if (o.curve) {
-        for (int n : {250, 500, 1000, 2000}) {
-            World wc(o.seed);
-            learn_gripper(wc);
-            std::vector<uint32_t> wsc(ws_bytes / 4 + 1);
-            sbr_servo_t lc;
-            sbr_servo_init(&lc, &cfg, wsc.data(), ws_bytes);
-            Timing tc;
-            babble(wc, lc, n, tc);
-            const std::vector<Target> tg = make_targets(wc, o.trials);
-            std::vector<Result> rc;
-            for (const auto &t : tg) rc.push_back(servo_run(wc, kLearned, &lc, t.x, t.truth, tc, nullptr));
-            const Summary sc = summarise(rc);
-            std::printf("curve: N=%d success=%.3f median_err_px=%.3f median_iters=%.1f\n", n, sc.success,
-                        sc.median_err, sc.median_iters);
-        }
-    }
+    if (o.curve) print_curve(o, cfg, ws_bytes);
     const bool met = sm[0].success >= 0.95 && sm[0].median_err <= 0.5 && sm[0].median_iters <= 10 &&
                      sm[0].success > sm[2].success && sm[0].success > sm[3].success &&
                      sm[0].success >= sm[1].success - 0.05 && ws_bytes <= 65536;
+    // the ctest's guard on a small seeded run (40 trials: one trial is 2.5 %)
+    const bool small = sm[0].success >= 0.9 && sm[0].median_err <= 0.5 && sm[0].median_iters <= 10 &&
+                       sm[0].success >= sm[3].success + 0.2 && w.recognition_rate() >= 0.99 && ws_bytes <= 65536;
+    std::printf("servo_checks=%s (learned: success >= 0.9, median error <= 0.5 px, median iterations <= 10, "
+                "0.2 above Broyden; recognition >= 0.99; workspace <= 64 kB)\n",
+                small ? "met" : "missed");
     std::printf("servo_targets=%s (learned: success >= 0.95, median error <= 0.5 px, median iterations <= 10, "
                 "better than miscalibrated and Broyden, within 0.05 of the oracle; workspace <= 64 kB)\n",
                 met ? "met" : "missed");
