@@ -127,23 +127,35 @@ std::vector<cv::Point2d> plate_image(const Arm &arm, const Q &angles) {
     return out;
 }
 
-// The truth the trials are judged by: the projected plate's area centroid and the image
-// angle of its jaw direction.
+// A closed polygon's twice signed area and area centroid (shoelace sums); points with
+// members x and y.
+template <typename P>
+double shoelace(const P *pts, size_t n, double &cx, double &cy) {
+    double a = 0;
+    cx = cy = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const P &p = pts[i], &q = pts[(i + 1) % n];
+        const double c = double(p.x) * double(q.y) - double(q.x) * double(p.y);
+        a += c;
+        cx += (double(p.x) + double(q.x)) * c;
+        cy += (double(p.y) + double(q.y)) * c;
+    }
+    cx /= 3 * a;
+    cy /= 3 * a;
+    return a;
+}
+
+// The plate's image pose from the model: the projected plate's area centroid and the image
+// angle of its jaw direction (the trials judge the angle by World::truth_now()).
 X true_features(const Arm &arm, const Q &angles) {
     const auto poly = plate_image(arm, angles);
-    double a = 0, cx = 0, cy = 0;
-    for (size_t i = 0; i < poly.size(); ++i) {
-        const auto &p = poly[i], &q = poly[(i + 1) % poly.size()];
-        const double c = p.x * q.y - q.x * p.y;
-        a += c;
-        cx += (p.x + q.x) * c;
-        cy += (p.y + q.y) * c;
-    }
+    double cx, cy;
+    shoelace(poly.data(), poly.size(), cx, cy);
     std::vector<Vec3> j;
     Vec3 axis, jaw;
     arm.pose(angles, j, axis, jaw);
     const cv::Point2d t0 = project(j.back()), t1 = project(j.back() + 0.03 * jaw);
-    return {cx / (3 * a), cy / (3 * a), std::atan2(t1.y - t0.y, t1.x - t0.x)};
+    return {cx, cy, std::atan2(t1.y - t0.y, t1.x - t0.x)};
 }
 
 // Servos with backlash: each joint's effective command follows the given one only beyond
@@ -251,18 +263,8 @@ public:
             const sbr_contour_t &c = cont_[k];
             if (c.length < 30) continue;
             Blob b{};
-            double a = 0, cx = 0, cy = 0;
-            for (uint32_t i = 0; i < c.length; ++i) {
-                const sbr_point_t &p = pts_[c.first + i], &q = pts_[c.first + (i + 1) % c.length];
-                const double cr = double(p.x) * q.y - double(q.x) * p.y;
-                a += cr;
-                cx += (p.x + q.x) * cr;
-                cy += (p.y + q.y) * cr;
-            }
-            b.area = std::fabs(a) / 2;
+            b.area = std::fabs(shoelace(&pts_[c.first], c.length, b.cx, b.cy)) / 2;
             if (b.area < 150 || b.area > 20000) continue;
-            b.cx = cx / (3 * a);
-            b.cy = cy / (3 * a);
             if (sbr_fd_from_points(&fft_n_, &pts_[c.first], c.length, 12, work.data(), 128, &b.fd) == SBR_OK)
                 out.push_back(b);
         }
@@ -299,10 +301,8 @@ public:
     // its descriptor against the prototype, the same measure as find()'s without pixels,
     // noise or the opening. NaN when it cannot be computed.
     double outline_rotation(std::vector<cv::Point2d> poly) {
-        double a = 0;
-        for (size_t i = 0; i < poly.size(); ++i)
-            a += poly[i].x * poly[(i + 1) % poly.size()].y - poly[(i + 1) % poly.size()].x * poly[i].y;
-        if (a > 0) std::reverse(poly.begin(), poly.end());  // traced contours run this way
+        double cx, cy;
+        if (shoelace(poly.data(), poly.size(), cx, cy) > 0) std::reverse(poly.begin(), poly.end());  // traced contours run this way
         std::vector<sbr_pointf_t> dense;
         for (size_t i = 0; i < poly.size(); ++i)
             for (int k = 0; k < 64; ++k) {
@@ -599,11 +599,8 @@ Result servo_run(World &w, Method m, sbr_servo_t *s, const X &xw, const X &xw_tr
     broyden[2][4] = 1;
     sbr_servo_run_t run;
     sbr_servo_run_start(&run);
-    for (;;) {
-        if (!w.look(frame, x)) {
-            r.lost = true;
-            break;
-        }
+    r.lost = !w.look(frame, x);
+    while (!r.lost) {
         if (path) path->emplace_back(x[0], x[1]);
         const bool conv = std::fabs(x[0] - xw[0]) <= kTolPx && std::fabs(x[1] - xw[1]) <= kTolPx &&
                           std::fabs(wrap(x[2] - xw[2])) <= kTolRad;
@@ -644,6 +641,7 @@ Result servo_run(World &w, Method m, sbr_servo_t *s, const X &xw, const X &xw_tr
                 for (int j = 0; j < kJ; ++j) broyden[i][j] += (dx[i] - pred) * dy[j] / dd;
             }
         y = yn;
+        x = xn;  // the next step starts from what this frame showed
     }
     const X t = w.truth_now();
     r.err_px = std::hypot(t[0] - xw_true[0], t[1] - xw_true[1]);
