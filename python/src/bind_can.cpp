@@ -89,11 +89,9 @@ template <typename T>
 T fill(const Message &m, nb::dict values) {
     T s{};
     unsigned char *base = reinterpret_cast<unsigned char *>(&s);
-    size_t used = 0;
     for (const Field &f : m.fields) {
         if (!values.contains(f.name)) throw nb::value_error((std::string(m.name) + ": " + f.name + " is missing").c_str());
         nb::handle v = values[f.name];
-        ++used;
         if (f.is_float) {
             if (!nb::isinstance<nb::float_>(v) && !nb::isinstance<nb::int_>(v))
                 throw nb::value_error((std::string(f.name) + ": a number is needed").c_str());
@@ -109,7 +107,7 @@ T fill(const Message &m, nb::dict values) {
             std::memcpy(base + f.offset, &u, sizeof u);
         }
     }
-    if (used != values.size())
+    if (values.size() != m.fields.size())  // every field is there: the rest are unknown
         for (auto kv : values) {
             const std::string k = nb::cast<std::string>(kv.first);
             bool known = false;

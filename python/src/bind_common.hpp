@@ -23,6 +23,27 @@ inline void check(const char *what, sbr_status_t st) {
     if (st != SBR_OK) raise_status(what, st);
 }
 
+// A configuration the core refused with `st`: ValueError naming the first given field
+// that the core also refuses alone on the defaults (`defaults(cfg)` fills them,
+// `set(cfg, name, value)` writes one field, `check(cfg)` is the core's check), or naming
+// the combination when each alone is accepted. `who`: "the recogniser"; `header`: where
+// the ranges are documented.
+template <typename Cfg, typename Defaults, typename Set, typename Check>
+[[noreturn]] void refuse_config(nanobind::dict given, sbr_status_t st, const std::string &who,
+                                const std::string &header, Defaults defaults, Set set, Check check) {
+    for (auto kv : given) {
+        Cfg one;
+        defaults(one);
+        const std::string name = nanobind::cast<std::string>(kv.first);
+        set(one, name, kv.second);
+        if (check(one) != SBR_OK)
+            throw nanobind::value_error(
+                (name + ": refused by " + who + " (" + sbr_status_str(st) + "; " + header + " gives its range)").c_str());
+    }
+    throw nanobind::value_error(
+        ("configuration: refused by " + who + " (" + sbr_status_str(st) + "): these fields together").c_str());
+}
+
 void bind_tracker(nanobind::module_ &m);
 void bind_shapes(nanobind::module_ &m);
 void bind_can(nanobind::module_ &m);

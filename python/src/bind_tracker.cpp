@@ -78,26 +78,21 @@ public:
         } else {
             throw nb::value_error(("model: 'kitti' or 'cv', not '" + model + "'").c_str());
         }
-        sbr_track_config_default(&cfg_);
-        if (model == "kitti") cfg_.window = 25;  // the window the KITTI model was learned for
-        cfg_.model = &model_;
-        for (auto kv : fields) set_track_field(cfg_, nb::cast<std::string>(kv.first), nb::cast<double>(kv.second));
+        const bool kitti = model == "kitti";
+        auto defaults = [this, kitti](sbr_track_config_t &c) {
+            sbr_track_config_default(&c);
+            if (kitti) c.window = 25;  // the window the KITTI model was learned for
+            c.model = &model_;
+        };
+        auto set = [](sbr_track_config_t &c, const std::string &name, nb::handle v) {
+            set_track_field(c, name, nb::cast<double>(v));
+        };
+        defaults(cfg_);
+        for (auto kv : fields) set(cfg_, nb::cast<std::string>(kv.first), kv.second);
         const sbr_status_t st = sbr_track_config_check(&cfg_);
-        if (st != SBR_OK) {
-            for (auto kv : fields) {  // the field to blame: each given one alone on the defaults
-                sbr_track_config_t one;
-                sbr_track_config_default(&one);
-                if (model == "kitti") one.window = 25;
-                one.model = &model_;
-                const std::string name = nb::cast<std::string>(kv.first);
-                set_track_field(one, name, nb::cast<double>(kv.second));
-                if (sbr_track_config_check(&one) != SBR_OK)
-                    throw nb::value_error((name + ": refused by the tracker (" + sbr_status_str(st) +
-                                           "; include/sbr/tracker.h gives its range)")
-                                              .c_str());
-            }
-            raise_status("tracker configuration (these fields together)", st);
-        }
+        if (st != SBR_OK)
+            refuse_config<sbr_track_config_t>(fields, st, "the tracker", "include/sbr/tracker.h", defaults, set,
+                                              [](const sbr_track_config_t &c) { return sbr_track_config_check(&c); });
         bytes_ = sbr_track_workspace_size(&cfg_);
         ws_.reset(new uint64_t[bytes_ / 8 + 1]);
         check("tracker", sbr_track_init(&trk_, &cfg_, ws_.get(), bytes_));

@@ -232,23 +232,14 @@ private:
     std::mutex pool_mutex_;
     std::vector<Workspace> pool_;
 
-    // The core's verdict on the whole configuration; the field to blame found by trying
-    // each given field alone on the defaults.
+    // The core's verdict on the whole configuration (the field to blame: bind_common.hpp).
     void check_config(nb::dict given) {
         const sbr_status_t st = sbr_recog_config_check(&cfg_);
-        if (st == SBR_OK) return;
-        for (auto kv : given) {
-            sbr_recog_config_t one;
-            sbr_recog_config_default(&one);
-            const std::string name = nb::cast<std::string>(kv.first);
-            set_field(one, name, kv.second);
-            if (sbr_recog_config_check(&one) != SBR_OK)
-                throw nb::value_error((name + ": refused by the recogniser (" + sbr_status_str(st) +
-                                       "; include/sbr/recognizer.h gives its range)").c_str());
-        }
-        throw nb::value_error((std::string("configuration: refused by the recogniser (") + sbr_status_str(st) +
-                               "): these fields together")
-                                  .c_str());
+        if (st != SBR_OK)
+            sbr_py::refuse_config<sbr_recog_config_t>(
+                given, st, "the recogniser", "include/sbr/recognizer.h",
+                [](sbr_recog_config_t &c) { sbr_recog_config_default(&c); }, set_field,
+                [](const sbr_recog_config_t &c) { return sbr_recog_config_check(&c); });
     }
 
     sbr_model_t builtin_{}, model_{};
