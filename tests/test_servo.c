@@ -23,6 +23,49 @@ static void init_or_fail(sbr_servo_t *s, const sbr_servo_config_t *cfg)
     TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_init(s, cfg, g_ws, sizeof g_ws));
 }
 
+/* `samples` random motions dy (m values, uniform in +-0.1) at y = 0 of the linear plant
+   dx = A dy (A: n x m, row-major), each learned. */
+static void learn_linear(sbr_servo_t *s, const float *a, uint32_t m, uint32_t n, int samples, uint32_t seed)
+{
+    tsup_rng_t r;
+    const float y[SBR_SERVO_MAX_JOINTS] = {0.0f};
+    int i;
+    uint32_t k;
+    uint32_t c;
+    r.s = seed;
+    for (i = 0; i < samples; i++) {
+        float dy[SBR_SERVO_MAX_JOINTS];
+        float dx[SBR_SERVO_MAX_FEATURES];
+        for (k = 0u; k < m; k++) {
+            dy[k] = tsup_uniform(&r, -0.1f, 0.1f);
+        }
+        for (k = 0u; k < n; k++) {
+            dx[k] = 0.0f;
+            for (c = 0u; c < m; c++) {
+                dx[k] += a[k * m + c] * dy[c];
+            }
+        }
+        TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_learn(s, y, dy, dx));
+    }
+}
+
+/* A J = I (n x n) within tol, for A n x m and J m x n. */
+static void assert_right_inverse(const float *a, const float *jac, uint32_t m, uint32_t n, float tol)
+{
+    uint32_t k;
+    uint32_t c;
+    uint32_t i;
+    for (k = 0u; k < n; k++) {
+        for (c = 0u; c < n; c++) {
+            float v = 0.0f;
+            for (i = 0u; i < m; i++) {
+                v += a[k * m + i] * jac[i * n + c];
+            }
+            TEST_ASSERT_FLOAT_WITHIN(tol, (k == c) ? 1.0f : 0.0f, v);
+        }
+    }
+}
+
 /* A linear plant dx = A dy (3 x 3, invertible): with one field (wide), the learned J is
    A^-1 (A J = I). */
 void test_linear_plant_gives_the_inverse(void)
@@ -30,39 +73,21 @@ void test_linear_plant_gives_the_inverse(void)
     const float a[9] = {40.0f, 5.0f, 0.0f, -3.0f, 30.0f, 2.0f, 0.0f, 1.0f, 2.0f};
     sbr_servo_config_t cfg;
     sbr_servo_t s;
-    tsup_rng_t r = {7u};
     float y[3] = {0.0f, 0.0f, 0.0f};
     float jac[9];
     float act = 0.0f;
     uint32_t fields = 0u;
     uint32_t n = 0u;
-    int i;
-    int k;
     sbr_servo_config_default(&cfg, 3u, 3u);
     cfg.width[0] = cfg.width[1] = cfg.width[2] = 100.0f;
     cfg.forgetting = 1.0f;
     cfg.prior = 1.0e5f; /* little shrinkage towards 0 after 60 samples */
     init_or_fail(&s, &cfg);
     TEST_ASSERT_EQUAL(SBR_ERR_DEGENERATE, sbr_servo_jacobian(&s, y, jac, NULL));
-    for (i = 0; i < 60; i++) {
-        float dy[3];
-        float dx[3];
-        for (k = 0; k < 3; k++) {
-            dy[k] = tsup_uniform(&r, -0.1f, 0.1f);
-        }
-        for (k = 0; k < 3; k++) {
-            dx[k] = a[k * 3] * dy[0] + a[k * 3 + 1] * dy[1] + a[k * 3 + 2] * dy[2];
-        }
-        TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_learn(&s, y, dy, dx));
-    }
+    learn_linear(&s, a, 3u, 3u, 60, 7u);
     TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_jacobian(&s, y, jac, &act));
     TEST_ASSERT_FLOAT_WITHIN(1e-4f, 1.0f, act);
-    for (k = 0; k < 3; k++) { /* A J = I */
-        for (i = 0; i < 3; i++) {
-            const float v = a[k * 3] * jac[i] + a[k * 3 + 1] * jac[3 + i] + a[k * 3 + 2] * jac[6 + i];
-            TEST_ASSERT_FLOAT_WITHIN(1e-3f, (k == i) ? 1.0f : 0.0f, v);
-        }
-    }
+    assert_right_inverse(a, jac, 3u, 3u, 1e-3f);
     TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_stats(&s, &fields, &n));
     TEST_ASSERT_EQUAL_UINT32(1u, fields);
     TEST_ASSERT_EQUAL_UINT32(60u, n);
@@ -76,42 +101,18 @@ void test_redundant_plant_gives_a_right_inverse(void)
                          0.0f, 0.0f, 1.0f, 1.0f, 1.0f};
     sbr_servo_config_t cfg;
     sbr_servo_t s;
-    tsup_rng_t r = {11u};
     float y[5] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
     float jac[15];
-    int i;
     int k;
-    int c;
     sbr_servo_config_default(&cfg, 5u, 3u);
     for (k = 0; k < 5; k++) {
         cfg.width[k] = 100.0f;
     }
     cfg.forgetting = 1.0f;
     init_or_fail(&s, &cfg);
-    for (i = 0; i < 3000; i++) {
-        float dy[5];
-        float dx[3];
-        for (k = 0; k < 5; k++) {
-            dy[k] = tsup_uniform(&r, -0.1f, 0.1f);
-        }
-        for (k = 0; k < 3; k++) {
-            dx[k] = 0.0f;
-            for (c = 0; c < 5; c++) {
-                dx[k] += a[k * 5 + c] * dy[c];
-            }
-        }
-        TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_learn(&s, y, dy, dx));
-    }
+    learn_linear(&s, a, 5u, 3u, 3000, 11u);
     TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_jacobian(&s, y, jac, NULL));
-    for (k = 0; k < 3; k++) {
-        for (c = 0; c < 3; c++) {
-            float v = 0.0f;
-            for (i = 0; i < 5; i++) {
-                v += a[k * 5 + i] * jac[i * 3 + c];
-            }
-            TEST_ASSERT_FLOAT_WITHIN(0.05f, (k == c) ? 1.0f : 0.0f, v);
-        }
-    }
+    assert_right_inverse(a, jac, 5u, 3u, 0.05f);
 }
 
 /* A planar two-link arm seen from above: x = (u, v) pixels of its tip. */

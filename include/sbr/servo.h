@@ -19,8 +19,9 @@
  * dy = B_k dx (m x n) fitted by weighted recursive least squares (exponential forgetting
  * `forgetting`, the inverse covariance of its inputs P_k, n x n, started at
  * `prior` * I). Every field with w_k >= ::SBR_SERVO_MIN_ACTIVATION is updated with weight
- * w_k; when no field has w_k >= `new_field_activation`, a new field is placed at y
- * (its model started from the prediction there, or 0), up to `max_fields`. Angles among
+ * w_k; then, when no field had w_k >= `new_field_activation`, a new field is placed at y
+ * (its model started from the prediction there after those updates, or 0) and learns the
+ * sample with weight 1, up to `max_fields`. Angles among
  * the features (`angle_mask`) have their differences wrapped to (-pi, pi].
  *
  * **Prediction** (sbr_servo_jacobian()): J(y) = sum_k w_k B_k / sum_k w_k over the fields

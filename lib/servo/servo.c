@@ -355,22 +355,21 @@ sbr_status_t sbr_servo_learn(sbr_servo_t *servo, const float *y, const float *dy
         uint32_t k;
         (void)memcpy(d, dx, (size_t)c->features * sizeof(float));
         wrap_features(c, d);
-        for (k = 0u; k < servo->count; k++) {
-            const float w = act_of(c, &servo->fields[(size_t)k * field_floats(c)], y);
+        for (k = 0u; k < servo->count; k++) { /* one pass: activation, best, update */
+            float *f = &servo->fields[(size_t)k * field_floats(c)];
+            const float w = act_of(c, f, y);
             best = (w > best) ? w : best;
+            if (w >= SBR_SERVO_MIN_ACTIVATION) {
+                rls_update(c, f, w, d, dy);
+            }
         }
         if (best < c->new_field_activation) {
             if (servo->count < c->max_fields) {
-                new_field(servo, y);
+                new_field(servo, y); /* from the prediction the updates above give */
+                rls_update(c, &servo->fields[(size_t)(servo->count - 1u) * field_floats(c)], 1.0f,
+                           d, dy); /* activation 1 at its own centre */
             } else {
                 st = SBR_ERR_CAPACITY;
-            }
-        }
-        for (k = 0u; k < servo->count; k++) {
-            float *f = &servo->fields[(size_t)k * field_floats(c)];
-            const float w = act_of(c, f, y);
-            if (w >= SBR_SERVO_MIN_ACTIVATION) {
-                rls_update(c, f, w, d, dy);
             }
         }
         servo->samples++;
