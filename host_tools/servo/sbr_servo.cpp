@@ -14,7 +14,11 @@
 //    each frame, what differs from it and survives an opening by a 7 px disc (the thin
 //    links do not) is a moving blob; the blobs' Fourier descriptors (sbr_fd) are clustered by
 //    rotation-invariant match error, and the largest cluster's medoid becomes the
-//    gripper's prototype. Later frames find the gripper by sbr_fd_match_table against it:
+//    gripper's prototype; the median colour of the cluster's interiors is the plate's.
+//    From then on each blob is measured to sub-pixel accuracy: each pixel's coverage by
+//    the plate (from frame, background and plate colour) gives the centroid and, traced at
+//    coverage 0.5, the outline whose descriptor is matched (the prototype is re-learned from
+//    the refined cluster). Later frames find the gripper by sbr_fd_match against it:
 //    the features are its centroid (u, v) and the match's rotation (theta).
 // 2. Learning: N random motions (random walks from random configurations), each pair
 //    (command, command change, feature change seen through recognition) into
@@ -212,10 +216,13 @@ struct Scene {
     }
 };
 
-// A blob: its descriptor, area and area centroid (of its traced boundary polygon).
+// A blob: its descriptor, area and area centroid (of its traced boundary polygon, or after
+// GripperFinder::refine() of its coverage), and the frame around it with its filled outline.
 struct Blob {
     sbr_fd_t fd;
     double area, cx, cy;
+    cv::Rect roi;
+    cv::Mat crop, mask;
 };
 
 // The recogniser of the gripper: background model, blob extraction, prototype.
@@ -265,35 +272,99 @@ public:
             Blob b{};
             b.area = std::fabs(shoelace(&pts_[c.first], c.length, b.cx, b.cy)) / 2;
             if (b.area < 150 || b.area > 20000) continue;
-            if (sbr_fd_from_points(&fft_n_, &pts_[c.first], c.length, 12, work.data(), 128, &b.fd) == SBR_OK)
-                out.push_back(b);
+            if (sbr_fd_from_points(&fft_n_, &pts_[c.first], c.length, 12, work.data(), 128, &b.fd) != SBR_OK) continue;
+            std::vector<cv::Point> poly;
+            for (uint32_t i = 0; i < c.length; ++i) poly.emplace_back(pts_[c.first + i].x, pts_[c.first + i].y);
+            b.roi = (cv::boundingRect(poly) + cv::Size(2 * kMargin, 2 * kMargin) - cv::Point(kMargin, kMargin)) &
+                    cv::Rect(0, 0, kW, kH);
+            b.crop = frame(b.roi).clone();
+            b.mask = cv::Mat::zeros(b.roi.size(), CV_8U);
+            for (auto &p : poly) p -= b.roi.tl();
+            cv::fillPoly(b.mask, std::vector<std::vector<cv::Point>>{poly}, cv::Scalar(255));
+            out.push_back(b);
         }
         return out;
     }
-    // The prototype: the medoid of the largest cluster of blobs by invariant match error.
-    bool learn_prototype(const std::vector<Blob> &all) {
-        if (all.empty()) return false;
-        sbr_fd_match_config_t cfg;
-        sbr_fd_match_config_default(&cfg);
-        cfg.mode = SBR_FD_ROTATION_INVARIANT;
-        std::vector<sbr_fd_t> table;
-        for (const auto &b : all) table.push_back(b.fd);
-        std::vector<sbr_fd_match_t> res(table.size());
-        std::vector<sbr_complex_t> work(SBR_FD_TABLE_WORK_LEN(64));
-        size_t best = 0, best_n = 0;
-        double best_sum = 1e30;
-        for (size_t i = 0; i < all.size(); ++i) {
-            uint32_t bi = 0;
-            sbr_fd_match_table(&fft_p_, &cfg, &table[i], table.data(), uint32_t(table.size()), work.data(),
-                               uint32_t(work.size()), res.data(), &bi);
-            size_t n = 0;
-            double sum = 0;
-            for (const auto &r : res)
-                if (r.error < 0.1f) ++n, sum += r.error;
-            if (n > best_n || (n == best_n && sum < best_sum)) best = i, best_n = n, best_sum = sum;
+    // Sub-pixel measurement of a blob once the plate's colour is known: each pixel's
+    // coverage by the plate, alpha = (F - B) . (P - B) / |P - B|^2 clamped to [0, 1] (F the
+    // frame, B the background, P the plate's colour), within 3 px of the blob's opened
+    // outline (the opening cut its corners; the links' dark grey gets alpha 0). The
+    // centroid is the coverage-weighted mean, the descriptor that of the alpha = 0.5
+    // boundary traced on the coverage upsampled 4 x (bilinear). False when it fails.
+    bool refine(Blob &b) {
+        if (!have_colour_) return true;
+        cv::Mat region, alpha(b.roi.size(), CV_32F, cv::Scalar(0));
+        cv::dilate(b.mask, region, cv::getStructuringElement(cv::MORPH_ELLIPSE, {7, 7}));
+        double s = 0, sx = 0, sy = 0;
+        for (int y = 0; y < b.roi.height; ++y)
+            for (int x = 0; x < b.roi.width; ++x) {
+                if (!region.at<uint8_t>(y, x)) continue;
+                const cv::Vec3b f = b.crop.at<cv::Vec3b>(y, x), g = bg_.at<cv::Vec3b>(b.roi.y + y, b.roi.x + x);
+                double dot = 0, nn = 0;
+                for (int c = 0; c < 3; ++c) {
+                    const double d = plate_[c] - g[c];
+                    dot += (f[c] - g[c]) * d;
+                    nn += d * d;
+                }
+                // where the table has the plate's colour, coverage is the opened mask's
+                const double a = nn < 400 ? (b.mask.at<uint8_t>(y, x) ? 1.0 : 0.0) : std::clamp(dot / nn, 0.0, 1.0);
+                alpha.at<float>(y, x) = float(a);
+                s += a;
+                sx += a * (b.roi.x + x);
+                sy += a * (b.roi.y + y);
+            }
+        if (s < 100) return false;
+        cv::Mat up, bin;
+        cv::resize(alpha, up, b.roi.size() * kUp, 0, 0, cv::INTER_LINEAR);
+        cv::compare(up, 0.5, bin, cv::CMP_GT);
+        sub_ws_.resize(sbr_contour_workspace_size(uint32_t(bin.cols), uint32_t(bin.rows)));
+        sbr_image_t v{uint32_t(bin.cols), uint32_t(bin.rows), uint32_t(bin.step[0]), SBR_PIXEL_GRAY8, bin.data};
+        uint32_t n = 0;
+        const sbr_status_t st = sbr_contour_find_external(&v, sub_ws_.data(), sub_ws_.size(), pts_.data(),
+                                                          uint32_t(pts_.size()), cont_.data(), uint32_t(cont_.size()), &n);
+        if ((st != SBR_OK && st != SBR_ERR_CAPACITY) || n == 0) return false;
+        const sbr_contour_t *longest = &cont_[0];
+        for (uint32_t k = 1; k < n; ++k)
+            if (cont_[k].length > longest->length) longest = &cont_[k];
+        std::vector<sbr_pointf_t> fp;  // back to frame pixels (the resize's pixel-centre mapping)
+        for (uint32_t i = 0; i < longest->length; ++i) {
+            const sbr_point_t &p = pts_[longest->first + i];
+            fp.push_back({float(b.roi.x + (p.x + 0.5) / kUp - 0.5), float(b.roi.y + (p.y + 0.5) / kUp - 0.5)});
         }
-        proto_ = all[best].fd;
-        cluster_ = best_n;
+        std::vector<sbr_complex_t> work(128);
+        if (sbr_fd_from_pointsf(&fft_n_, fp.data(), uint32_t(fp.size()), 12, work.data(), 128, &b.fd) != SBR_OK)
+            return false;
+        b.area = s;
+        b.cx = sx / s;
+        b.cy = sy / s;
+        return true;
+    }
+    // The prototype: the medoid of the largest cluster of blobs by invariant match error;
+    // the plate's colour: the per-channel median of the cluster's interiors (2 px inside
+    // their outlines); then the cluster refined with it and its medoid again.
+    bool learn_prototype(std::vector<Blob> all) {
+        if (all.empty()) return false;
+        std::vector<size_t> members;
+        proto_ = all[medoid(all, members)].fd;
+        cluster_ = members.size();
+        std::vector<double> ch[3];
+        for (size_t i : members) {
+            cv::Mat inner;
+            cv::erode(all[i].mask, inner, cv::getStructuringElement(cv::MORPH_ELLIPSE, {5, 5}));
+            if (cv::countNonZero(inner) == 0) continue;
+            const cv::Scalar m = cv::mean(all[i].crop, inner);
+            for (int c = 0; c < 3; ++c) ch[c].push_back(m[c]);
+        }
+        if (ch[0].empty()) return true;  // the opened outlines then
+        for (int c = 0; c < 3; ++c) {
+            std::nth_element(ch[c].begin(), ch[c].begin() + long(ch[c].size() / 2), ch[c].end());
+            plate_[c] = ch[c][ch[c].size() / 2];
+        }
+        have_colour_ = true;
+        std::vector<Blob> refined;
+        for (size_t i : members)
+            if (refine(all[i])) refined.push_back(all[i]);
+        if (!refined.empty()) proto_ = refined[medoid(refined, members)].fd;
         return true;
     }
     size_t cluster_size() const { return cluster_; }
@@ -330,7 +401,8 @@ public:
         std::vector<sbr_complex_t> work(64);
         double best = 0.35;
         bool found = false;
-        for (const auto &b : bl) {
+        for (auto b : bl) {
+            if (!refine(b)) continue;
             sbr_fd_match_t r;
             if (sbr_fd_match(&fft_p_, &cfg, &b.fd, &proto_, work.data(), 64, &r) != SBR_OK) continue;
             if (r.error < best) {
@@ -343,6 +415,38 @@ public:
     }
 
 private:
+    static constexpr int kMargin = 6, kUp = 4;
+    // The blob with the most others within invariant match error 0.1 (ties: the smaller
+    // sum of errors); `members` gets those others.
+    size_t medoid(const std::vector<Blob> &all, std::vector<size_t> &members) {
+        sbr_fd_match_config_t cfg;
+        sbr_fd_match_config_default(&cfg);
+        cfg.mode = SBR_FD_ROTATION_INVARIANT;
+        std::vector<sbr_fd_t> table;
+        for (const auto &b : all) table.push_back(b.fd);
+        std::vector<sbr_fd_match_t> res(table.size());
+        std::vector<sbr_complex_t> work(SBR_FD_TABLE_WORK_LEN(64));
+        size_t best = 0, best_n = 0;
+        double best_sum = 1e30;
+        for (size_t i = 0; i < all.size(); ++i) {
+            uint32_t bi = 0;
+            sbr_fd_match_table(&fft_p_, &cfg, &table[i], table.data(), uint32_t(table.size()), work.data(),
+                               uint32_t(work.size()), res.data(), &bi);
+            size_t n = 0;
+            double sum = 0;
+            for (const auto &r : res)
+                if (r.error < 0.1f) ++n, sum += r.error;
+            if (n > best_n || (n == best_n && sum < best_sum)) best = i, best_n = n, best_sum = sum;
+        }
+        uint32_t bi0 = 0;
+        sbr_fd_match_table(&fft_p_, &cfg, &table[best], table.data(), uint32_t(table.size()), work.data(),
+                           uint32_t(work.size()), res.data(), &bi0);
+        members.clear();
+        for (size_t i = 0; i < res.size(); ++i)
+            if (res[i].error < 0.1f) members.push_back(i);
+        return best;
+    }
+
     sbr_fft_t fft_n_{}, fft_p_{};
     std::vector<uint8_t> ws_;
     std::vector<sbr_point_t> pts_;
@@ -350,6 +454,9 @@ private:
     cv::Mat bg_;
     sbr_fd_t proto_{};
     size_t cluster_ = 0;
+    double plate_[3] = {0, 0, 0};
+    bool have_colour_ = false;
+    std::vector<uint8_t> sub_ws_;
 };
 
 using Mat35 = std::array<std::array<double, kJ>, kF>;  // an image Jacobian (3 x 5)
