@@ -287,6 +287,66 @@ void test_trust_bound_limits_and_stopping(void)
     TEST_ASSERT_EQUAL_FLOAT(0.02f, y[0]);
 }
 
+/* A given inverse Jacobian (sbr_servo_step_with): without a limit in the way the step is
+   -gain J d; a joint the step would take beyond its limit is held there and the other
+   joints make up the wanted change (plant x = A y, A = [[1 0 1] [0 1 1]]). */
+void test_step_with_holds_joints_at_limits(void)
+{
+    /* J = A^T (A A^T)^-1, the minimum-norm inverse of A */
+    const float jac[6] = {2.0f / 3.0f, -1.0f / 3.0f, -1.0f / 3.0f, 2.0f / 3.0f, 1.0f / 3.0f, 1.0f / 3.0f};
+    sbr_servo_config_t cfg;
+    sbr_servo_run_t run;
+    sbr_servo_result_t res;
+    float y[3] = {0.0f, 0.0f, 0.0f};
+    const float x[2] = {0.0f, 0.0f};
+    const float xw[2] = {0.3f, 0.3f};
+    float yn[3];
+    sbr_servo_config_default(&cfg, 3u, 2u);
+    cfg.gain = 1.0f;
+    cfg.tolerance[0] = cfg.tolerance[1] = 1e-3f;
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_run_start(&run));
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_step_with(&cfg, &run, jac, y, x, xw, yn, &res));
+    TEST_ASSERT_EQUAL(SBR_SERVO_STEP, res);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.1f, yn[0]); /* J (0.3, 0.3) = (0.1, 0.1, 0.2) */
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.1f, yn[1]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.2f, yn[2]);
+    cfg.max_step[0] = cfg.max_step[1] = cfg.max_step[2] = 1.0f;
+    cfg.joint_max[2] = 0.05f; /* joint 2 may move 0.05 only: joints 0 and 1 do the rest */
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_step_with(&cfg, &run, jac, y, x, xw, yn, &res));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.05f, yn[2]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 0.3f, yn[0] + yn[2]); /* A yn = the wanted (0.3, 0.3) */
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 0.3f, yn[1] + yn[2]);
+    y[2] = 0.05f; /* already at the limit: held, the others take the whole step */
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_step_with(&cfg, &run, jac, y, x, xw, yn, &res));
+    TEST_ASSERT_EQUAL_FLOAT(0.05f, yn[2]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 0.3f, yn[0]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-3f, 0.3f, yn[1]);
+    cfg.max_step[0] = cfg.max_step[1] = 0.1f; /* the re-solved step keeps the trust bound */
+    TEST_ASSERT_EQUAL(SBR_OK, sbr_servo_step_with(&cfg, &run, jac, y, x, xw, yn, &res));
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.1f, yn[0]);
+    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.1f, yn[1]);
+    TEST_ASSERT_EQUAL_UINT32(4u, run.iterations);
+    /* statuses */
+    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_servo_step_with(&cfg, &run, NULL, y, x, xw, yn, &res));
+    TEST_ASSERT_EQUAL(SBR_ERR_NULL, sbr_servo_step_with(NULL, &run, jac, y, x, xw, yn, &res));
+    {
+        float bad[6];
+        sbr_servo_run_t fresh;
+        sbr_servo_config_t c2 = cfg;
+        (void)memcpy(bad, jac, sizeof bad);
+        bad[3] = NAN;
+        TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_servo_step_with(&cfg, &run, bad, y, x, xw, yn, &res));
+        y[2] = 0.06f; /* outside its limit */
+        TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_servo_step_with(&cfg, &run, jac, y, x, xw, yn, &res));
+        y[2] = 0.05f;
+        c2.gain = 0.0f;
+        TEST_ASSERT_EQUAL(SBR_ERR_RANGE, sbr_servo_step_with(&c2, &run, jac, y, x, xw, yn, &res));
+        (void)memset(&fresh, 0, sizeof fresh); /* never started */
+        TEST_ASSERT_EQUAL(SBR_ERR_STATE, sbr_servo_step_with(&cfg, &fresh, jac, y, x, xw, yn, &res));
+        TEST_ASSERT_EQUAL_UINT32(4u, run.iterations); /* refused calls take no step */
+    }
+}
+
 /* Fields are created where the samples are, up to max_fields; then CAPACITY. */
 void test_fields_and_capacity(void)
 {
@@ -431,6 +491,7 @@ int main(void)
     RUN_TEST(test_two_link_arm_learned_and_servoed);
     RUN_TEST(test_angle_feature_wraps);
     RUN_TEST(test_trust_bound_limits_and_stopping);
+    RUN_TEST(test_step_with_holds_joints_at_limits);
     RUN_TEST(test_fields_and_capacity);
     RUN_TEST(test_servo_h_statuses);
     return UNITY_END();

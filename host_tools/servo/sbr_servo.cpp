@@ -504,20 +504,6 @@ Mat35 model_jacobian(const Arm &arm, const Q &c) {
     return a;
 }
 
-// The step rule every method shares: dy = -gain J d, scaled to the trust bound, clamped.
-Q step_with(const Mat53 &jinv, const Q &y, const X &x, const X &xw, double gain, double max_step) {
-    const X d = {x[0] - xw[0], x[1] - xw[1], wrap(x[2] - xw[2])};
-    Q dy{};
-    double scale = 1.0;
-    for (int j = 0; j < kJ; ++j) {
-        for (int i = 0; i < kF; ++i) dy[j] -= gain * jinv[j][i] * d[i];
-        if (std::fabs(dy[j]) * scale > max_step) scale = max_step / std::fabs(dy[j]);
-    }
-    Q out;
-    for (int j = 0; j < kJ; ++j) out[j] = std::clamp(y[j] + scale * dy[j], kMin[j], kMax[j]);
-    return out;
-}
-
 struct Options {
     int learn = 2000, trials = 200;
     uint32_t seed = 1;
@@ -697,6 +683,7 @@ void babble(World &w, sbr_servo_t &s, int n, Timing &tm) {
 Result servo_run(World &w, Method m, sbr_servo_t *s, const X &xw, const X &xw_true, Timing &tm,
                  std::vector<cv::Point2d> *path) {
     Result r;
+    const sbr_servo_config_t cfg = learner_config();
     Q y = kHome;
     cv::Mat frame = w.move(y, true);
     X x{};
@@ -709,26 +696,29 @@ Result servo_run(World &w, Method m, sbr_servo_t *s, const X &xw, const X &xw_tr
     r.lost = !w.look(frame, x);
     while (!r.lost) {
         if (path) path->emplace_back(x[0], x[1]);
-        const bool conv = std::fabs(x[0] - xw[0]) <= kTolPx && std::fabs(x[1] - xw[1]) <= kTolPx &&
-                          std::fabs(wrap(x[2] - xw[2])) <= kTolRad;
-        if (conv || r.iters >= kMaxIter) break;
-        Q yn;
+        // every method steps by the core's rule (trust bound, joint limits, stopping rule)
+        float fy[kJ], fx[kF], fw[kF], fn[kJ];
+        for (int j = 0; j < kJ; ++j) fy[j] = float(y[j]);
+        for (int i = 0; i < kF; ++i) fx[i] = float(x[i]), fw[i] = float(xw[i]);
+        sbr_servo_result_t res;
+        sbr_status_t st;
         if (m == kLearned) {
-            float fy[kJ], fx[kF], fw[kF], fn[kJ];
-            for (int j = 0; j < kJ; ++j) fy[j] = float(y[j]);
-            for (int i = 0; i < kF; ++i) fx[i] = float(x[i]), fw[i] = float(xw[i]);
-            sbr_servo_result_t res;
             const auto t0 = std::chrono::steady_clock::now();
-            const sbr_status_t st = sbr_servo_step(s, &run, fy, fx, fw, fn, &res);
+            st = sbr_servo_step(s, &run, fy, fx, fw, fn, &res);
             tm.step_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             ++tm.step_n;
-            if (st != SBR_OK || res != SBR_SERVO_STEP) break;
-            for (int j = 0; j < kJ; ++j) yn[j] = fn[j];
         } else {
-            const Mat35 a = m == kOracle ? model_jacobian(w.truth(), y)
-                                         : m == kMiscal ? model_jacobian(w.miscalibrated(), y) : broyden;
-            yn = step_with(pinv(a), y, x, xw, kGain, kMaxStep);
+            const Mat53 jinv = pinv(m == kOracle   ? model_jacobian(w.truth(), y)
+                                    : m == kMiscal ? model_jacobian(w.miscalibrated(), y)
+                                                   : broyden);
+            float fj[kJ * kF];
+            for (int j = 0; j < kJ; ++j)
+                for (int i = 0; i < kF; ++i) fj[j * kF + i] = float(jinv[size_t(j)][size_t(i)]);
+            st = sbr_servo_step_with(&cfg, &run, fj, fy, fx, fw, fn, &res);
         }
+        if (st != SBR_OK || res != SBR_SERVO_STEP) break;
+        Q yn;
+        for (int j = 0; j < kJ; ++j) yn[j] = fn[j];
         frame = w.move(yn);
         ++r.iters;
         X xn{};

@@ -32,8 +32,14 @@
  * **Servo step** (sbr_servo_step(), eq. 4.4): with the deviation d = x - x_w (current
  * minus wanted, angles wrapped), the new command is y_new = y - gain * J(y) d, i.e. the
  * step is the learned dy for the wanted change x_w - x. The step is then scaled down
- * as a whole so that no joint moves more than its `max_step` (the trust bound), and
- * y_new is clamped to [`joint_min`, `joint_max`]. Stopping rule, checked before a step:
+ * as a whole so that no joint moves more than its `max_step` (the trust bound).
+ * Joint limits: a joint the step would take beyond [`joint_min`, `joint_max`] is held at
+ * that limit and the other joints' step re-solved for the rest of the wanted change, as
+ * the minimum-norm step under the image Jacobian that J is a right inverse of
+ * (A = (J^T J)^-1 J^T; rows scaled to unit length, damping 1e-4), itself scaled to the
+ * trust bound; repeated while another joint reaches a limit, at most m times (a step
+ * that no limit stops is exactly -gain J d, scaled). y_new is then clamped to the
+ * limits. Stopping rule, checked before a step:
  * converged when |d_i| <= `tolerance`_i for every feature (no step); otherwise, when the
  * run has taken `max_iterations` steps, the iteration bound (no step). Learning the
  * executed steps during the run (sbr_servo_learn() with the step taken and the feature
@@ -210,6 +216,29 @@ sbr_status_t sbr_servo_run_start(sbr_servo_run_t *run);
 sbr_status_t sbr_servo_step(const sbr_servo_t *servo, sbr_servo_run_t *run, const float *y,
                             const float *x, const float *x_wanted, float *y_new,
                             sbr_servo_result_t *result);
+
+/**
+ * @brief One servo step as sbr_servo_step(), with a given inverse image Jacobian instead
+ *        of the learned one (a calibrated kinematic model's, another estimator's): the
+ *        same stopping rule, trust bound and joint-limit handling, from `cfg`.
+ * @param[in] cfg the configuration (joints, features, gain, max_step, limits, tolerance,
+ *        max_iterations and angle_mask are used)
+ * @param[in,out] run the run's state (its step count grows by one when a step is taken)
+ * @param[in] jacobian the inverse image Jacobian at `y`, m x n values, row-major (row j:
+ *        joint j)
+ * @param[in] y the current command (m values)
+ * @param[in] x the current features (n values)
+ * @param[in] x_wanted the target features (n values)
+ * @param[out] y_new the next command (m values); may be the same array as `y`
+ * @param[out] result what was decided
+ * @return ::SBR_OK; ::SBR_ERR_NULL; configuration errors (sbr_servo_config_check());
+ *         ::SBR_ERR_STATE (run not started); ::SBR_ERR_RANGE (a value not finite or
+ *         |value| > 1e6, y outside the joint limits). Outputs are written on ::SBR_OK only.
+ */
+sbr_status_t sbr_servo_step_with(const sbr_servo_config_t *cfg, sbr_servo_run_t *run,
+                                 const float *jacobian, const float *y, const float *x,
+                                 const float *x_wanted, float *y_new,
+                                 sbr_servo_result_t *result);
 
 /**
  * @brief Fields in use and pairs learned.

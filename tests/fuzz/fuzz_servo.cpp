@@ -1,4 +1,4 @@
-// Fuzz harness: the servo learner and step with hostile configurations, commands and
+// Fuzz harness: the servo learner and steps (learned J and a given J) with hostile configurations, commands and
 // features (NaN, infinities, huge values, angles far off the seam), learning sequences
 // that run the field bound full, and a corrupted instance. On SBR_OK: every Jacobian
 // entry finite; a step's command finite, within the joint limits and at most max_step
@@ -97,8 +97,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             vec(in, xw, n, -500.0f, 500.0f);
             sbr_servo_result_t res;
             const uint32_t before = run.iterations;
-            const sbr_status_t ss = sbr_servo_step(&s, &run, y, x, xw, yn, &res);
-            FZ_STATUS(ss, SBR_OK, SBR_ERR_RANGE, SBR_ERR_DEGENERATE);
+            sbr_status_t ss;
+            if (op < 215u) {
+                ss = sbr_servo_step(&s, &run, y, x, xw, yn, &res);
+                FZ_STATUS(ss, SBR_OK, SBR_ERR_RANGE, SBR_ERR_DEGENERATE);
+            } else {
+                // a Jacobian from elsewhere (an oracle, Broyden's update): any values,
+                // rank-deficient ones included; the same step rule and invariants
+                vec(in, jac, m * n, -20.0f, 20.0f);
+                ss = sbr_servo_step_with(&cfg, &run, jac, y, x, xw, yn, &res);
+                FZ_STATUS(ss, SBR_OK, SBR_ERR_RANGE);
+            }
             FZ_CHECK(run.iterations <= cfg.max_iterations);
             if (ss == SBR_OK) {
                 for (uint32_t j = 0; j < m; ++j) {
