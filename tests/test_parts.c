@@ -286,6 +286,58 @@ static void test_map_subsample_per_kind(void)
     }
 }
 
+/* map_polarity selects one map's polarities only: the red map's bright regions alone are
+   exactly the bright red parts of a two-polarity extraction, no dark red part is left,
+   the intensity map keeps both; a value above SBR_MSER_BOTH is refused. */
+static void test_map_polarity_per_kind(void)
+{
+    static sbr_part_t both[64];
+    static sbr_part_t one[64];
+    const sbr_image_t v = view();
+    sbr_parts_config_t c;
+    uint32_t nb = 0u;
+    uint32_t no = 0u;
+    uint32_t bright = 0u;
+    uint32_t dark_int = 0u;
+    uint32_t i;
+    uint32_t k = 0u;
+    draw_ring_sign(48.0f, 32.0f);
+    g_cfg.mser.min_area = 20u;
+    g_cfg.min_side = 4u;
+    g_cfg.max_side = 40u;
+    g_cfg.maps = (1u << SBR_MAP_INTENSITY) | (1u << SBR_MAP_RED);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, both, 64u,
+                                                    &nb, NULL));
+    c = g_cfg;
+    c.map_polarity[SBR_MAP_RED] = (uint32_t)SBR_MSER_BRIGHT;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &c, &g_fft, g_ws, sizeof g_ws, one, 64u,
+                                                    &no, NULL));
+    for (i = 0u; i < nb; i++) {
+        const sbr_part_t *p = &both[i];
+        if ((p->map == (uint8_t)SBR_MAP_RED) && (p->polarity == (uint8_t)SBR_MSER_DARK)) {
+            continue; /* dropped by the selection */
+        }
+        bright += (p->map == (uint8_t)SBR_MAP_RED) ? 1u : 0u;
+        dark_int += ((p->map == (uint8_t)SBR_MAP_INTENSITY) && (p->polarity == (uint8_t)SBR_MSER_DARK)) ? 1u : 0u;
+        TEST_ASSERT_TRUE(k < no);
+        TEST_ASSERT_EQUAL_UINT8(p->map, one[k].map);
+        TEST_ASSERT_EQUAL_UINT8(p->polarity, one[k].polarity);
+        TEST_ASSERT_EQUAL_UINT32(p->area, one[k].area);
+        TEST_ASSERT_EQUAL_UINT32(p->bbox.x, one[k].bbox.x);
+        TEST_ASSERT_EQUAL_FLOAT(p->fd.cx, one[k].fd.cx);
+        k++;
+    }
+    TEST_ASSERT_EQUAL_UINT32(k, no);
+    TEST_ASSERT_TRUE(bright >= 1u);   /* the red ring is bright in the red map */
+    TEST_ASSERT_TRUE(dark_int >= 1u); /* the intensity map still gives its dark regions */
+    TEST_ASSERT_TRUE(no < nb);        /* and the red map's dark ones are gone */
+    c.map_polarity[SBR_MAP_BLUE] = (uint32_t)SBR_MSER_BOTH + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_config_check(&c));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_parts_extract(&v, &c, &g_fft, g_ws, sizeof g_ws, one, 64u,
+                                                           &no, NULL));
+}
+
 /* SBR_PARTS_WORKSPACE_SIZE is sbr_parts_workspace_size() as a constant expression: the
    defaults at full and at a quarter of the resolution (where the node bound exceeds the
    worst case), and a configuration with other bounds. */
@@ -499,6 +551,7 @@ int main(void)
     RUN_TEST(test_subsample_keeps_input_coordinates);
     RUN_TEST(test_map_subsample_per_kind);
     RUN_TEST(test_map_min_area_per_kind);
+    RUN_TEST(test_map_polarity_per_kind);
     RUN_TEST(test_workspace_follows_finest_map);
     RUN_TEST(test_workspace_macro_equals_function);
     RUN_TEST(test_parts_capacity_and_bad_input);

@@ -65,6 +65,13 @@ void add_front_end_options(CLI::App &app, FrontEnd &fe, const std::string &group
         ->check(CLI::Range(0u, 100000000u))
         ->type_name("I[,R[,B[,Y]]]")
         ->group(group);
+    app.add_option("--map-polarity", fe.polarity,
+                   "parts.map_polarity per kind (0: parts.mser's, 1 dark, 2 bright, 3 both), same order")
+        ->delimiter(',')
+        ->expected(1, int(SBR_MAP_KINDS))
+        ->check(CLI::Range(0u, 3u))
+        ->type_name("I[,R[,B[,Y]]]")
+        ->group(group);
 }
 
 void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg) { apply_front_end(r.front_end, cfg.parts); }

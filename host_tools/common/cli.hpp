@@ -24,10 +24,10 @@ CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string
 // `cfg` (which holds the defaults, shown by --help), in an option group "Recogniser".
 struct RecogCli {
     CLI::Option *min_score = nullptr;  // given explicitly? (tools lower the floor otherwise)
-    FrontEnd front_end;                // --map-subsample, --map-min-area
+    FrontEnd front_end;                // --map-subsample, --map-min-area, --map-polarity
 };
 void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r);
-// --map-subsample and --map-min-area (per map kind) into fe, in option group `group`.
+// --map-subsample, --map-min-area and --map-polarity (per map kind) into fe, in option group `group`.
 void add_front_end_options(CLI::App &app, FrontEnd &fe, const std::string &group = "");
 // What add_recog_options() cannot bind directly (the per-map lists).
 void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg);

@@ -460,12 +460,14 @@ void parts_at_full_resolution(sbr_parts_config_t &parts) {
     for (uint32_t k = 0; k < SBR_MAP_KINDS; ++k) {
         parts.map_subsample[k] = 1;
         parts.map_min_area[k] = 0;
+        parts.map_polarity[k] = 0;
     }
 }
 
 void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts) {
     for (size_t k = 0; k < fe.sub.size(); ++k) parts.map_subsample[k] = fe.sub[k];
     for (size_t k = 0; k < fe.area.size(); ++k) parts.map_min_area[k] = fe.area[k];
+    for (size_t k = 0; k < fe.polarity.size(); ++k) parts.map_polarity[k] = fe.polarity[k];
 }
 
 }  // namespace sbr_host

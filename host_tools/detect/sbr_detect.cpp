@@ -42,9 +42,10 @@
 //   override the recogniser's options of those names
 //   (include/sbr/recognizer.h), for tuning and regression; --maps sets parts.maps (bit k =
 //   map kind k of include/sbr/map.h; 0x1 intensity only), --map-subsample
-//   parts.map_subsample and --map-min-area parts.map_min_area (per kind, in the order
-//   intensity, red, blue, yellow; kinds not given keep their defaults; an area of 0 means
-//   the MSER default), --max-nodes parts.mser.max_nodes (MSER tree nodes, most of
+//   parts.map_subsample, --map-min-area parts.map_min_area and --map-polarity
+//   parts.map_polarity (per kind, in the order intensity, red, blue, yellow; kinds not
+//   given keep their defaults; an area or a polarity of 0 means the MSER default;
+//   polarity 1 dark, 2 bright, 3 both), --max-nodes parts.mser.max_nodes (MSER tree nodes, most of
 //   the workspace; 0 = the worst case), --max-candidates the class stage's candidate
 //   bound and --max-parts, --max-votes, --max-hypotheses the recogniser's bounds of those
 //   names (smaller: less workspace); --gate 0 turns the class stage's gate off (it is used

@@ -65,6 +65,10 @@ typedef struct sbr_parts_config_s {
         bound keeps its small ones (more regions to describe). Otherwise in
         [1, mser.max_area]. Default 0 for every kind. */
     uint32_t map_min_area[SBR_MAP_KINDS];
+    /** Polarities of one map kind's regions (index ::sbr_map_kind_t): 0 = mser.polarity,
+        otherwise an ::sbr_mser_polarity_t mask. A map whose signs all have one polarity
+        there needs one flood instead of two. Default 0 for every kind. */
+    uint32_t map_polarity[SBR_MAP_KINDS];
     /** Region extraction. Defaults: delta 5, area 60..14400, variation 0.25, diversity 0.2,
         both polarities, max_nodes 68000 (a sixteenth of a 1360 x 800 map, measured
         sufficient on GTSDB scenes; stats.capacity_hit says when a frame needed more). */

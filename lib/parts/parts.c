@@ -19,6 +19,7 @@ void sbr_parts_config_default(sbr_parts_config_t *cfg)
         for (k = 0u; k < SBR_MAP_KINDS; k++) {
             cfg->map_subsample[k] = 1u;
             cfg->map_min_area[k] = 0u;
+            cfg->map_polarity[k] = 0u;
         }
         sbr_mser_config_default(&cfg->mser);
         cfg->mser.max_nodes = SBR_PARTS_DEFAULT_MAX_NODES;
@@ -56,7 +57,8 @@ sbr_status_t sbr_parts_config_check(const sbr_parts_config_t *cfg)
         /* the product stays within the map's range (no overflow: both are checked first) */
         if ((cfg->map_subsample[k] == 0u) || (cfg->map_subsample[k] > SBR_MAP_MAX_SUBSAMPLE) ||
             ((cfg->subsample * cfg->map_subsample[k]) > SBR_MAP_MAX_SUBSAMPLE) ||
-            (cfg->map_min_area[k] > cfg->mser.max_area)) {
+            (cfg->map_min_area[k] > cfg->mser.max_area) ||
+            (cfg->map_polarity[k] > (uint32_t)SBR_MSER_BOTH)) {
             return SBR_ERR_RANGE;
         }
     }
@@ -279,6 +281,9 @@ static sbr_status_t parts_of_map(const sbr_image_t *img, const sbr_parts_config_
     sbr_status_t st;
     if (cfg->map_min_area[kind] != 0u) {
         mc.min_area = cfg->map_min_area[kind];
+    }
+    if (cfg->map_polarity[kind] != 0u) {
+        mc.polarity = cfg->map_polarity[kind];
     }
     st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, b->map, img->width / sub, map_size, &map);
     if (st != SBR_OK) {

@@ -133,6 +133,9 @@ void fuzz_parts(FuzzedDataProvider &in)
             FZ_CHECK(p.fd.m == cfg.fd_m);
             FZ_CHECK((uint64_t)p.bbox.x + p.bbox.width <= img.width && (uint64_t)p.bbox.y + p.bbox.height <= img.height);
             FZ_CHECK(p.map < SBR_MAP_KINDS && (cfg.maps & (1u << p.map)) != 0u);
+            // a part's polarity is one its map selects (map_polarity, else mser.polarity)
+            const uint32_t sel = cfg.map_polarity[p.map] != 0u ? cfg.map_polarity[p.map] : cfg.mser.polarity;
+            FZ_CHECK((sel & p.polarity) != 0u);
         }
     }
 }
