@@ -427,12 +427,14 @@ static int within_limits(const sbr_servo_config_t *c, const float *y)
     return ok;
 }
 
-/* Solves the n x n system m z = r in place (r becomes z; Gauss-Jordan with partial
-   pivoting, n <= SBR_SERVO_MAX_FEATURES); 0 when a pivot is not above `tiny`. */
-static int solve_small(float *m, float *r, uint32_t n, float tiny)
+/* Solves the n x n system m Z = R in place for `cols` right-hand sides (R n x cols,
+   row-major, becomes Z; Gauss-Jordan with partial pivoting, n <= SBR_SERVO_MAX_FEATURES);
+   0 when a pivot is not above `tiny`. */
+static int solve_small(float *m, float *r, uint32_t n, uint32_t cols, float tiny)
 {
     int ok = 1;
     uint32_t col;
+    uint32_t k;
     for (col = 0u; (col < n) && (ok != 0); col++) {
         uint32_t piv = col;
         uint32_t row;
@@ -444,14 +446,15 @@ static int solve_small(float *m, float *r, uint32_t n, float tiny)
         if (!(fabsf(m[(piv * n) + col]) > tiny)) {
             ok = 0;
         } else {
-            const float t = r[piv];
-            uint32_t k;
-            r[piv] = r[col];
-            r[col] = t;
             for (k = 0u; k < n; k++) {
                 const float u = m[(piv * n) + k];
                 m[(piv * n) + k] = m[(col * n) + k];
                 m[(col * n) + k] = u;
+            }
+            for (k = 0u; k < cols; k++) {
+                const float t = r[(piv * cols) + k];
+                r[(piv * cols) + k] = r[(col * cols) + k];
+                r[(col * cols) + k] = t;
             }
             for (row = 0u; row < n; row++) {
                 if (row != col) {
@@ -459,52 +462,85 @@ static int solve_small(float *m, float *r, uint32_t n, float tiny)
                     for (k = col; k < n; k++) {
                         m[(row * n) + k] -= f * m[(col * n) + k];
                     }
-                    r[row] -= f * r[col];
+                    for (k = 0u; k < cols; k++) {
+                        r[(row * cols) + k] -= f * r[(col * cols) + k];
+                    }
                 }
             }
         }
     }
     for (col = 0u; (col < n) && (ok != 0); col++) {
-        r[col] /= m[(col * n) + col];
+        for (k = 0u; k < cols; k++) {
+            r[(col * cols) + k] /= m[(col * n) + col];
+        }
     }
     return ok;
 }
 
-/* The image Jacobian that J is a right inverse of, A = (J^T J)^-1 J^T (n x m, row-major),
-   column by column from the normal equations scaled to a unit diagonal; 0 when J^T J is
-   singular. */
-static int forward_of(const sbr_servo_config_t *c, const float *jac, float *a)
+/* g = X X^T (n x n) over the joints not in `skip`, for the n x m matrix X(i, j) =
+   x[i * si + j * sj] (J^T with si 1, sj n; A with si m, sj 1); then each entry scaled by
+   s_i s_k for the given row scales s. */
+static void scaled_gram(const float *x, uint32_t n, uint32_t m, uint32_t si, uint32_t sj,
+                        uint32_t skip, const float *s, float *g)
 {
-    const uint32_t n = c->features;
-    float jtj[SBR_SERVO_MAX_FEATURES * SBR_SERVO_MAX_FEATURES];
-    float sc[SBR_SERVO_MAX_FEATURES];
-    int ok = 1;
     uint32_t i;
     uint32_t k;
     uint32_t j;
     for (i = 0u; i < n; i++) {
         for (k = 0u; k < n; k++) {
             float v = 0.0f;
-            for (j = 0u; j < c->joints; j++) {
-                v += jac[(j * n) + i] * jac[(j * n) + k];
+            for (j = 0u; j < m; j++) {
+                const float p = x[(i * si) + (j * sj)] * x[(k * si) + (j * sj)];
+                v += (((skip >> j) & 1u) == 0u) ? p : 0.0f;
             }
-            jtj[(i * n) + k] = v;
+            g[(i * n) + k] = s[i] * v * s[k];
         }
-        sc[i] = (jtj[(i * n) + i] > 0.0f) ? (1.0f / sqrtf(jtj[(i * n) + i])) : 0.0f;
+    }
+}
+
+/* 1 / the length of each of the n rows of X(i, j) = x[i * si + j * sj] over all m
+   joints (0 for a zero row). */
+static void row_scales(const float *x, uint32_t n, uint32_t m, uint32_t si, uint32_t sj, float *s)
+{
+    uint32_t i;
+    uint32_t j;
+    for (i = 0u; i < n; i++) {
+        float q = 0.0f;
+        for (j = 0u; j < m; j++) {
+            q += x[(i * si) + (j * sj)] * x[(i * si) + (j * sj)];
+        }
+        s[i] = (q > 0.0f) ? (1.0f / sqrtf(q)) : 0.0f;
+    }
+}
+
+/* The image Jacobian that J is a right inverse of, A = (J^T J)^-1 J^T (n x m, row-major),
+   from the normal equations scaled to a unit diagonal, solved once for the m joints' right-
+   hand sides; 0 when J^T J is singular. */
+static int forward_of(const sbr_servo_config_t *c, const float *jac, float *a)
+{
+    const uint32_t n = c->features;
+    const uint32_t m = c->joints;
+    float sc[SBR_SERVO_MAX_FEATURES];
+    int ok = 1;
+    uint32_t i;
+    row_scales(jac, n, m, 1u, n, sc);
+    for (i = 0u; i < n; i++) {
         ok = (sc[i] > 0.0f) ? ok : 0;
     }
-    for (j = 0u; (j < c->joints) && (ok != 0); j++) {
-        float m[SBR_SERVO_MAX_FEATURES * SBR_SERVO_MAX_FEATURES];
-        float r[SBR_SERVO_MAX_FEATURES];
+    if (ok != 0) {
+        float g[SBR_SERVO_MAX_FEATURES * SBR_SERVO_MAX_FEATURES];
+        uint32_t j;
+        scaled_gram(jac, n, m, 1u, n, 0u, sc, g);
         for (i = 0u; i < n; i++) {
-            for (k = 0u; k < n; k++) {
-                m[(i * n) + k] = sc[i] * jtj[(i * n) + k] * sc[k];
+            for (j = 0u; j < m; j++) {
+                a[(i * m) + j] = sc[i] * jac[(j * n) + i];
             }
-            r[i] = sc[i] * jac[(j * n) + i];
         }
-        ok = solve_small(m, r, n, 1.0e-6f);
+        ok = solve_small(g, a, n, m, 1.0e-6f);
         for (i = 0u; (i < n) && (ok != 0); i++) {
-            a[(i * c->joints) + j] = sc[i] * r[i];
+            for (j = 0u; j < m; j++) {
+                a[(i * m) + j] *= sc[i];
+            }
         }
     }
     return ok;
@@ -518,38 +554,25 @@ static int free_step(const sbr_servo_config_t *c, const float *a, const float *r
                      float *dy)
 {
     const uint32_t n = c->features;
-    float m[SBR_SERVO_MAX_FEATURES * SBR_SERVO_MAX_FEATURES];
+    const uint32_t m = c->joints;
+    float g[SBR_SERVO_MAX_FEATURES * SBR_SERVO_MAX_FEATURES];
     float z[SBR_SERVO_MAX_FEATURES];
     float rs[SBR_SERVO_MAX_FEATURES];
-    int ok = 1;
+    int ok;
     uint32_t i;
-    uint32_t k;
     uint32_t j;
+    row_scales(a, n, m, m, 1u, rs);
+    scaled_gram(a, n, m, m, 1u, locked, rs, g);
     for (i = 0u; i < n; i++) {
-        float q = 0.0f;
-        for (j = 0u; j < c->joints; j++) {
-            q += a[(i * c->joints) + j] * a[(i * c->joints) + j];
-        }
-        rs[i] = (q > 0.0f) ? (1.0f / sqrtf(q)) : 0.0f;
+        g[(i * n) + i] += 1.0e-4f;
         z[i] = rs[i] * r[i];
     }
-    for (i = 0u; i < n; i++) {
-        for (k = 0u; k < n; k++) {
-            float v = (i == k) ? 1.0e-4f : 0.0f;
-            for (j = 0u; j < c->joints; j++) {
-                if (((locked >> j) & 1u) == 0u) {
-                    v += rs[i] * a[(i * c->joints) + j] * rs[k] * a[(k * c->joints) + j];
-                }
-            }
-            m[(i * n) + k] = v;
-        }
-    }
-    ok = solve_small(m, z, n, 1.0e-9f);
-    for (j = 0u; (j < c->joints) && (ok != 0); j++) {
+    ok = solve_small(g, z, n, 1u, 1.0e-9f);
+    for (j = 0u; (j < m) && (ok != 0); j++) {
         if (((locked >> j) & 1u) == 0u) {
             float v = 0.0f;
             for (i = 0u; i < n; i++) {
-                v += rs[i] * a[(i * c->joints) + j] * z[i];
+                v += rs[i] * a[(i * m) + j] * z[i];
             }
             dy[j] = v;
         }
