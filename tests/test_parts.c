@@ -205,6 +205,16 @@ static uint32_t parts_of_map(const sbr_part_t *all, uint32_t n, uint8_t kind, sb
     return k;
 }
 
+/* The ring sign on the intensity and red maps, regions from 20 pixels, boxes 4..40. */
+static void ring_on_intensity_and_red(void)
+{
+    draw_ring_sign(48.0f, 32.0f);
+    g_cfg.mser.min_area = 20u;
+    g_cfg.min_side = 4u;
+    g_cfg.max_side = 40u;
+    g_cfg.maps = (1u << SBR_MAP_INTENSITY) | (1u << SBR_MAP_RED);
+}
+
 /* map_subsample coarsens one map only: the red map at 2 gives exactly the parts of a
    whole extraction at subsample 2, the intensity map those at full resolution. */
 static void test_map_subsample_per_kind(void)
@@ -219,11 +229,7 @@ static void test_map_subsample_per_kind(void)
     uint32_t nr;
     uint32_t ng;
     uint32_t i;
-    draw_ring_sign(48.0f, 32.0f);
-    g_cfg.mser.min_area = 20u;
-    g_cfg.min_side = 4u;
-    g_cfg.max_side = 40u;
-    g_cfg.maps = (1u << SBR_MAP_INTENSITY) | (1u << SBR_MAP_RED);
+    ring_on_intensity_and_red();
     c = g_cfg;
     c.map_subsample[SBR_MAP_RED] = 2u;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &c, &g_fft, g_ws, sizeof g_ws, mixed, 64u,
@@ -301,11 +307,7 @@ static void test_map_polarity_per_kind(void)
     uint32_t dark_int = 0u;
     uint32_t i;
     uint32_t k = 0u;
-    draw_ring_sign(48.0f, 32.0f);
-    g_cfg.mser.min_area = 20u;
-    g_cfg.min_side = 4u;
-    g_cfg.max_side = 40u;
-    g_cfg.maps = (1u << SBR_MAP_INTENSITY) | (1u << SBR_MAP_RED);
+    ring_on_intensity_and_red();
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_extract(&v, &g_cfg, &g_fft, g_ws, sizeof g_ws, both, 64u,
                                                     &nb, NULL));
     c = g_cfg;
