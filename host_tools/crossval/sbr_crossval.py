@@ -215,6 +215,23 @@ def report(a, folds, pooled, spans, elapsed):
     return "\n".join(out) + "\n"
 
 
+TOOL_ARGS = ("--train-args", "--picto-args", "--detect-args")
+
+
+def join_tool_args(argv):
+    """`--picto-args --mirror` as `--picto-args=--mirror`: argparse would take a lone value
+    that starts with '-' for an option of its own and refuse the command line."""
+    out, i = [], 0
+    while i < len(argv):
+        if argv[i] in TOOL_ARGS and i + 1 < len(argv):
+            out.append(f"{argv[i]}={argv[i + 1]}")
+            i += 2
+        else:
+            out.append(argv[i])
+            i += 1
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--tools", required=True, help="folder of sbr_train, sbr_train_picto, sbr_detect, sbr_eval")
@@ -232,7 +249,7 @@ def main():
     ap.add_argument("--train-args", default="")
     ap.add_argument("--picto-args", default="")
     ap.add_argument("--detect-args", default="")
-    a = ap.parse_args()
+    a = ap.parse_args(join_tool_args(sys.argv[1:]))
     a.out = os.path.abspath(a.out)
     for g in ("gt.txt", "FullIJCNN2013/gt.txt"):
         if os.path.isfile(os.path.join(a.data, g)):

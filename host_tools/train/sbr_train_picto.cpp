@@ -69,10 +69,9 @@
 //    but not the recogniser's F1 (0.835 against 0.848 without), so it is off by default;
 //    with --mirror, every fourth copy of a sign whose mirror image is a GTSDB class
 //    (symmetric signs, and pairs such as keep right / keep left) is taken from the
-//    mirrored neighbourhood with that class. It did not help either: class-level F1
-//    0.836 against 0.848 with seed 1, 0.825 against 0.831 with seed 2 (danger recall
-//    +3 signs with seed 1, none with seed 2), so it is off by default (with --bg-swap
-//    round as well: F1 0.861 and 0.858 against 0.882 and 0.867, danger +1 sign each);
+//    mirrored neighbourhood with that class. On the cross-validation it finds the mirrored
+//    classes (keep left, ahead or left, bend left) that some folds hardly train on:
+//    docs/results/crossval.md; off until the shipped class stage is retrained with it;
 //    with --bg-swap round (the default), every fourth copy of a round sign (a disc
 //    outline, sign_shape()) is seen in front of another background: the neighbourhood
 //    outside the sign's outline (grown by 5 %) is replaced by an equally large piece of

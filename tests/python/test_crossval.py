@@ -12,12 +12,14 @@ of the script's own sums:
   - the printed table has the summed signs line with those counts;
   - a second run with --models (the first run's, no training) and --baseline (the first
     run) gives byte-identical detections, 0 signs gained and 0 lost;
-  - folds that do not split the images evenly are refused.
+  - folds that do not split the images evenly are refused;
+  - a tool option without a value of its own is passed on (`--picto-args --mirror`).
 
 usage: test_crossval.py --script sbr_crossval.py --tools DIR --data DIR --work DIR
 (exit 77 without the data)
 """
 import argparse
+import importlib.util
 import json
 import os
 import shutil
@@ -103,6 +105,14 @@ def main():
                          text=True)
     print(f"--folds 5 of 12 images: exit {bad.returncode}, {bad.stderr.strip()}")
     ok &= bad.returncode != 0 and "equal folds" in bad.stderr
+
+    spec = importlib.util.spec_from_file_location("sbr_crossval", a.script)
+    cvmod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(cvmod)
+    joined = cvmod.join_tool_args(["--picto-args", "--mirror", "--out", "x", "--detect-args", "--views 1"])
+    want = ["--picto-args=--mirror", "--out", "x", "--detect-args=--views 1"]
+    print(f"tool options joined: {joined}")
+    ok &= joined == want
     return 0 if ok else 1
 
 
