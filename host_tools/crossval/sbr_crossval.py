@@ -219,7 +219,7 @@ TOOL_ARGS = ("--train-args", "--picto-args", "--detect-args")
 
 
 def join_tool_args(argv):
-    """`--picto-args --mirror` as `--picto-args=--mirror`: argparse would take a lone value
+    """`--picto-args --no-mirror` as `--picto-args=--no-mirror`: argparse would take a lone value
     that starts with '-' for an option of its own and refuse the command line."""
     out, i = [], 0
     while i < len(argv):

@@ -3,7 +3,7 @@
 //
 //   sbr_train_picto [--data DIR] [--range A-B] [--model FILE.sbrm] [--candidates FILE]
 //                   [--hidden H] [--epochs E] [--jitter J] [--lr L] [--seed S] [--threshold T]
-//                   [--bg-fraction F] [--dropout D] [--decay W] [--balance B] [--exposure] [--mirror]
+//                   [--bg-fraction F] [--dropout D] [--decay W] [--balance B] [--exposure] [--mirror | --no-mirror]
 //                   [--rotate | --no-rotate]
 //                   [--bg-swap off|round|triangle|all] [--bg-fill off|round|triangle|all]
 //                   [--no-triangle-view] [--no-box]
@@ -19,7 +19,7 @@
 // --bg-fraction 0.3 (share of the background samples each epoch sees, a fresh draw each
 // epoch), --dropout 0.5 (share of the hidden units left out of each training sample's
 // forward and backward pass, a fresh deterministic draw per sample and epoch; 0 = none),
-// --decay 1e-4 (L2 weight decay), --balance 0, --exposure off, --mirror off, --rotate on, --bg-swap
+// --decay 1e-4 (L2 weight decay), --balance 0, --exposure off, --mirror on, --rotate on, --bg-swap
 // round, --bg-fill off, the triangle view on, box regression on (--no-box: a classifier
 // without it).
 // Triangle view (recognizer.h triangle_view, on unless --no-triangle-view): the recogniser
@@ -67,11 +67,11 @@
 //    look; with --exposure, every fourth copy is seen under another exposure (the
 //    neighbourhood through a random gamma 0.5-2 and contrast 0.5-1). It raised --eval-range accuracy from 91 % to 94 %
 //    but not the recogniser's F1 (0.835 against 0.848 without), so it is off by default;
-//    with --mirror, every fourth copy of a sign whose mirror image is a GTSDB class
-//    (symmetric signs, and pairs such as keep right / keep left) is taken from the
-//    mirrored neighbourhood with that class. On the cross-validation it finds the mirrored
-//    classes (keep left, ahead or left, bend left) that some folds hardly train on:
-//    docs/results/crossval.md; off until the shipped class stage is retrained with it;
+//    with --mirror (the default; --no-mirror: none), every fourth copy of a sign whose
+//    mirror image is a GTSDB class (symmetric signs, and pairs such as keep right / keep
+//    left) is taken from the mirrored neighbourhood with that class. On the
+//    cross-validation it finds the mirrored classes (keep left, ahead or left, bend left)
+//    that some folds hardly train on: docs/results/crossval.md;
 //    with --bg-swap round (the default), every fourth copy of a round sign (a disc
 //    outline, sign_shape()) is seen in front of another background: the neighbourhood
 //    outside the sign's outline (grown by 5 %) is replaced by an equally large piece of
@@ -873,7 +873,7 @@ struct Options {
     bool gate = false;             // --gate: learn the class stage's gate (with --from-picto)
     float gate_recall = 0.995f;    // --gate-recall: share of positive candidates it passes
     int gate_hidden = 32;          // --gate-hidden: its rectified units (0: linear)
-    bool box = true, exposure = false, mirror = false, rotate = true, tview = true;
+    bool box = true, exposure = false, mirror = true, rotate = true, tview = true;
     BgSwap bg_swap = BgSwap::round, bg_fill = BgSwap::off;
     unsigned seed = 1;
 };
@@ -906,7 +906,7 @@ int parse_options(int argc, char **argv, Options &o) {
         ->transform(CLI::CheckedTransformer(swaps));
     app.add_option("--bg-fill", o.bg_fill, "background fill of the copies: off, round, triangle, all")
         ->transform(CLI::CheckedTransformer(swaps));
-    app.add_flag("--mirror", o.mirror, "mirror the mirror-symmetric classes");
+    app.add_flag("--mirror,!--no-mirror", o.mirror, "mirrored copies of the mirror-symmetric classes (default on)");
     app.add_flag("--rotate,!--no-rotate", o.rotate, "small rotations in the copies (default on)");
     app.add_flag("--triangle-view,!--no-triangle-view", o.tview, "train on triangle views too (default on)");
     app.add_option("--balance", o.balance, "class-balanced sampling exponent")->check(f(0.0, 2.0))->capture_default_str();
@@ -1390,7 +1390,7 @@ std::string c_header(const Options &o, const Counts &n) {
                   "%zu boxes for the box regression only.",
                   o.range.str().c_str(), o.hidden, o.epochs, o.jitter, double(o.bg_fraction), double(o.dropout),
                   double(o.decay), o.box ? "" : " --no-box", o.exposure ? " --exposure" : "", swap_flag.c_str(),
-                  o.mirror ? (o.rotate ? " --mirror" : " --mirror --no-rotate") : (o.rotate ? "" : " --no-rotate"),
+                  o.mirror ? (o.rotate ? "" : " --no-rotate") : (o.rotate ? " --no-mirror" : " --no-mirror --no-rotate"),
                   bal, o.rounds, o.seed, o.range.str(true).c_str(), n.fg, n.bg, n.reg);
     return head;
 }

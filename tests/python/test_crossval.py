@@ -13,7 +13,7 @@ of the script's own sums:
   - a second run with --models (the first run's, no training) and --baseline (the first
     run) gives byte-identical detections, 0 signs gained and 0 lost;
   - folds that do not split the images evenly are refused;
-  - a tool option without a value of its own is passed on (`--picto-args --mirror`).
+  - a tool option without a value of its own is passed on (`--picto-args --no-mirror`).
 
 usage: test_crossval.py --script sbr_crossval.py --tools DIR --data DIR --work DIR
 (exit 77 without the data)
@@ -109,8 +109,8 @@ def main():
     spec = importlib.util.spec_from_file_location("sbr_crossval", a.script)
     cvmod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(cvmod)
-    joined = cvmod.join_tool_args(["--picto-args", "--mirror", "--out", "x", "--detect-args", "--views 1"])
-    want = ["--picto-args=--mirror", "--out", "x", "--detect-args=--views 1"]
+    joined = cvmod.join_tool_args(["--picto-args", "--no-mirror", "--out", "x", "--detect-args", "--views 1"])
+    want = ["--picto-args=--no-mirror", "--out", "x", "--detect-args=--views 1"]
     print(f"tool options joined: {joined}")
     ok &= joined == want
     return 0 if ok else 1
