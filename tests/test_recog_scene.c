@@ -262,8 +262,14 @@ static void test_scene_colour_check(void)
 /* The scene as a GRAY8 frame (each pixel the mean of its channels), as a monochrome
    camera gives it: the whole recogniser with the built-in models runs on it, its
    detections are well-formed, the drawn prohibitory sign (a dark ring in grey) is still
-   found with its superclass and box; the colour check, which would drop every candidate
-   of a checked class in colour with the highest floor, is skipped. */
+   found with its superclass and box, with a score of at least GREY_SCORE and above that
+   of every detection that matches no drawn sign (IoU < 0.5); the colour check, which
+   would drop every candidate of a checked class in colour with the highest floor, is
+   skipped. GREY_SCORE is below the operating point: the built-in class stage is trained
+   on colour only, so grey frames lie outside what it was trained on (what grey costs on
+   real frames: docs/results/recognition.md, grey frames); the class stage trained with
+   mirrored copies scores this drawn sign 0.41 in grey (0.99 in colour, test_scene). */
+#define GREY_SCORE 0.25f
 static void test_scene_grey(void)
 {
     static uint8_t shape[SBR_PICTO_MAX_CLASSES];
@@ -278,6 +284,8 @@ static void test_scene_grey(void)
     uint32_t x;
     uint32_t y;
     int found = 0;
+    float found_score = 0.0f;
+    float clutter = 0.0f; /* the best score of a detection that matches no drawn sign */
     scene_setup(&v, &c);
     for (y = 0u; y < H; y++) {
         for (x = 0u; x < W; x++) {
@@ -303,12 +311,18 @@ static void test_scene_grey(void)
         TEST_ASSERT_TRUE(g_dets[i].class_id < m.class_count);
         TEST_ASSERT_TRUE((g_dets[i].score >= 0.0f) && (g_dets[i].score <= 1.0f));
         TEST_ASSERT_TRUE(g_dets[i].box.x + g_dets[i].box.width <= W);
-        if ((g_dets[i].score >= m.picto.threshold) && (superclass_of(g_dets[i].class_id) == k_signs[0].superclass) &&
+        if ((g_dets[i].score >= GREY_SCORE) && (superclass_of(g_dets[i].class_id) == k_signs[0].superclass) &&
             (iou(&g_dets[i].box, &k_signs[0]) >= 0.5f)) {
             found = 1;
+            found_score = (g_dets[i].score > found_score) ? g_dets[i].score : found_score;
+        }
+        if ((iou(&g_dets[i].box, &k_signs[0]) < 0.5f) && (iou(&g_dets[i].box, &k_signs[1]) < 0.5f) &&
+            (iou(&g_dets[i].box, &k_signs[2]) < 0.5f) && (g_dets[i].score > clutter)) {
+            clutter = g_dets[i].score;
         }
     }
     TEST_ASSERT_TRUE_MESSAGE(found, "the prohibitory sign was not found in the grey frame");
+    TEST_ASSERT_TRUE_MESSAGE(found_score > clutter, "clutter scored above the prohibitory sign in the grey frame");
 }
 
 /* The class stage's gate: one that passes everything gives the detections without it,
