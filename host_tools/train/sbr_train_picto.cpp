@@ -43,7 +43,8 @@
 // --balance B weighs class c's sign samples by (n_c / mean n)^-B (the signs together keep
 // their weight), so rare classes (most danger signs) count more. B = 0.5 did not help:
 // class-level F1 on 00400-00599 0.843 against 0.847 with seed 1, 0.821 against 0.831 with
-// seed 2 (the same seed's figures without it), so it is off.
+// seed 2 (the same seed's figures without it), so it is off; on the cross-validation it
+// gained with seed 2 and lost with seed 1 (docs/results/crossval.md).
 // Training noise: the seed alone moves the recogniser's class-level F1 on 00400-00599 by
 // about 0.015 (seed 1: 0.847, seed 2: 0.831, both with the defaults), so a variant is only
 // compared seed for seed. --epochs 30 gave 0.843 and 0.835 (no gain). Seed 3 gives 0.826;
