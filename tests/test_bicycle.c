@@ -473,11 +473,62 @@ static void test_bicycle_h_statuses(void)
     status_table_check(&t);
 }
 
+/* Issue 55, items 1 and 2: a sub-step that turns by more than 2 pi keeps the heading in
+   (-pi, pi] and equal to the turn's angle modulo 2 pi; the state's ranges are those of
+   bicycle.h (heading (-pi, pi], |x|, |z| < 1e4, speed 0 .. 100, wheelbase < 100). */
+static void test_heading_stays_wrapped_and_ranges_match_the_header(void)
+{
+    sbr_bike_model_t m;
+    sbr_bike_state_t s = {0.0f, 10.0f, 0.0f, 29.2706f, 1.52471f, 0.0f};
+    sbr_bike_state_t out;
+    sbr_ellipse_t rear;
+    sbr_camera_t cam = {800.0f, 640.0f, 360.0f, 1.2f};
+    sbr_bike_model_default(&m);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 10000000u, &out));
+    TEST_ASSERT_TRUE(out.heading > -3.14159265f && out.heading <= 3.14159274f);
+    s.speed = 30.0f;
+    s.steer = 1.53852f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 90000u, &out));
+    TEST_ASSERT_TRUE(out.heading > -3.14159265f && out.heading <= 3.14159274f);
+    {
+        /* the turn in 90 ms (sub-steps of 18 ms): yaw rate v tan(steer) / L */
+        const float turn = 30.0f * tanf(1.53852f) / m.wheelbase * 0.09f;
+        const float want = turn - 6.2831853f * floorf((turn + 3.14159265f) / 6.2831853f);
+        TEST_ASSERT_FLOAT_WITHIN(2e-3f * turn / 6.2831853f + 1e-4f, want, out.heading);
+    }
+    /* heading 3.3 is outside (-pi, pi]: refused by both calls */
+    s.heading = 3.3f;
+    s.speed = 2.0f;
+    s.steer = 0.1f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 1000u, &out));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_project(&cam, &m, &s, &rear, NULL));
+    s.heading = 3.14159274f; /* pi as a float: in range */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 1000u, &out));
+    s.heading = -3.14159274f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 1000u, &out));
+    s.heading = 0.0f;
+    s.x = 9999.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 1000u, &out));
+    s.x = 1e4f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 1000u, &out));
+    s.x = 0.0f;
+    s.speed = 100.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 1000u, &out));
+    s.speed = 100.5f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 1000u, &out));
+    s.speed = 2.0f;
+    m.wheelbase = 99.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 1000u, &out));
+    m.wheelbase = 100.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 1000u, &out));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_projection_matches_projected_circle_points);
     RUN_TEST(test_model_turns_and_leans);
+    RUN_TEST(test_heading_stays_wrapped_and_ranges_match_the_header);
     RUN_TEST(test_pairing_groups_tyre_edges_and_rejects_misfits);
     RUN_TEST(test_filter_keeps_a_crossing_bicycle);
     RUN_TEST(test_filter_reset_repeats_a_fresh_filter);

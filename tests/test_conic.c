@@ -481,10 +481,140 @@ static void test_detect_ellipse_in_an_image(void)
     TEST_ASSERT_TRUE(n <= 8u);
 }
 
+/* Issue 55, items 3-6: inputs on which float32 arithmetic decided below its own rounding
+   error, each with the header's promise (exact figures from a rational computation). */
+static void test_classify_scaled_and_thin_conics(void)
+{
+    sbr_conic_class_t cls = SBR_CONIC_HYPERBOLA;
+    /* the unit circle at (1, 1) scaled by 1e20: det(C22) overflowed float32 */
+    const sbr_conic_t big = mk(1e20f, 0.0f, 1e20f, -1e20f, -1e20f, 1e20f);
+    /* a real ellipse of semi-axes 127.0 and 0.694 at (92.5, 26.3): (a + c) det(C) =
+       -8.5e-21 exactly, f0 = 3.4e-5 of its terms (above the default tolerance) */
+    const sbr_conic_t thin = mk(0.000141399403f, -4.52365712e-05f, 1.44772312e-05f, -0.0118915727f,
+                                0.00380422338f, 1.0f);
+    /* det(C22) = -0.104 of the quadratic part's scale: a hyperbola-like conic whose f0 is
+       5.6e-9 of its terms, zero at tol 3.14e-4 by the rule conic.h states */
+    const sbr_conic_t lines = mk(-0.930203319f, -0.692327857f, -0.418600738f, -28.5931358f,
+                                 -14.5052252f, -404.020691f);
+    sbr_ellipse_t el = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&big, SBR_CONIC_ZERO_TOL, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_CONIC_REAL_ELLIPSE, cls);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_to_ellipse(&big, &el));
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, el.cx);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, el.cy);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, el.semi_major);
+    TEST_ASSERT_FLOAT_WITHIN(1e-5f, 1.0f, el.semi_minor);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&thin, SBR_CONIC_ZERO_TOL, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_CONIC_REAL_ELLIPSE, cls);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&thin, 0.0f, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_CONIC_REAL_ELLIPSE, cls);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_to_ellipse(&thin, &el));
+    TEST_ASSERT_FLOAT_WITHIN(0.01f, 92.5162f, el.cx);
+    TEST_ASSERT_FLOAT_WITHIN(0.01f, 26.3099f, el.cy);
+    TEST_ASSERT_FLOAT_WITHIN(0.01f * 127.0018f, 127.0018f, el.semi_major);
+    TEST_ASSERT_FLOAT_WITHIN(0.01f * 0.69351f, 0.69351f, el.semi_minor);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&lines, 3.14137e-4f, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_CONIC_INTERSECTING_LINES, cls);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&lines, 0.0f, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_CONIC_HYPERBOLA, cls);
+}
+
+/* sbr_ellipse_to_conic() refuses (SBR_ERR_RANGE) an ellipse whose float32 conic is not
+   that ellipse; sbr_conic_to_ellipse() never returns geometry other than the conic's. */
+static void test_ellipse_conic_far_and_thin(void)
+{
+    const sbr_ellipse_t far = {0.0f, -195300.234f, 35.6862755f, 12.8247557f, -0.572548985f};
+    const sbr_ellipse_t thin = {1000.0f, 1000.0f, 89.3431015f, 0.279240102f, -2.0f};
+    const sbr_ellipse_t fine = {1000.0f, 1000.0f, 89.3431015f, 12.0f, -1.0f};
+    /* exact: centre (-0.0087, -195.31), semi-axes 17.17 and 0.280, f0 2.7e-6 of its
+       terms: a point ellipse at the default tolerance */
+    const sbr_conic_t cancel = mk(8.02870846f, -6.20392179f, 4.79931164f, -1211.62732f, 937.306702f,
+                                  183055.219f);
+    const sbr_conic_t guard = mk(7.0f, 7.0f, 7.0f, 7.0f, 7.0f, 7.0f);
+    sbr_conic_t q = guard;
+    sbr_ellipse_t el = {7.0f, 7.0f, 7.0f, 7.0f, 7.0f};
+    sbr_conic_class_t cls = SBR_CONIC_HYPERBOLA;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_to_conic(&far, &q));
+    TEST_ASSERT_EQUAL_MEMORY(&guard, &q, sizeof q);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_ellipse_to_conic(&thin, &q));
+    TEST_ASSERT_EQUAL_MEMORY(&guard, &q, sizeof q);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_to_conic(&fine, &q));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_to_ellipse(&q, &el));
+    TEST_ASSERT_FLOAT_WITHIN(0.1f, 1000.0f, el.cx);
+    TEST_ASSERT_FLOAT_WITHIN(0.1f, 1000.0f, el.cy);
+    TEST_ASSERT_FLOAT_WITHIN(0.09f, 89.3431015f, el.semi_major);
+    TEST_ASSERT_FLOAT_WITHIN(0.012f, 12.0f, el.semi_minor);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&cancel, SBR_CONIC_ZERO_TOL, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_CONIC_POINT_ELLIPSE, cls);
+    el.cx = 7.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, sbr_conic_to_ellipse(&cancel, &el));
+    TEST_ASSERT_EQUAL_FLOAT(7.0f, el.cx);
+    /* in exact arithmetic (tol 0) it is the real ellipse it is */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&cancel, 0.0f, &cls));
+    TEST_ASSERT_EQUAL_INT(SBR_CONIC_REAL_ELLIPSE, cls);
+}
+
+/* sbr_ellipse_fit() of nearly coincident points far from the origin: the conic it returns
+   must be a real ellipse (or SBR_ERR_DEGENERATE). */
+static void test_fit_returns_a_real_ellipse(void)
+{
+    sbr_pointf_t p[244];
+    sbr_conic_t q = mk(7.0f, 7.0f, 7.0f, 7.0f, 7.0f, 7.0f);
+    sbr_ellipse_t el = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    sbr_ellipse_t back = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
+    sbr_conic_class_t cls = SBR_CONIC_HYPERBOLA;
+    sbr_status_t st;
+    uint32_t i;
+    p[0].x = 129.048584f;
+    p[0].y = 60.824955f;
+    p[1].x = 129.126495f;
+    p[1].y = 60.8251991f;
+    p[2].x = 129.078201f;
+    p[2].y = 60.8445282f;
+    p[3].x = 128.88533f;
+    p[3].y = 60.8647957f;
+    for (i = 4u; i < 244u; ++i) {
+        p[i].x = 129.048676f;
+        p[i].y = 60.8246994f;
+    }
+    st = sbr_ellipse_fit(p, 244u, &q, &el);
+    if (st == SBR_OK) {
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&q, 0.0f, &cls));
+        TEST_ASSERT_EQUAL_INT(SBR_CONIC_REAL_ELLIPSE, cls);
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_to_ellipse(&q, &back));
+    } else {
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_DEGENERATE, st);
+        TEST_ASSERT_EQUAL_FLOAT(7.0f, q.a);
+    }
+}
+
+/* Issue 55, item 9: the workspace macro equals the function also when max_nodes is above
+   the image's worst case (a 7 x 7 image, max_nodes 191) or 0. */
+static void test_detect_workspace_macro_equals_function(void)
+{
+    sbr_ellipse_detect_config_t cfg;
+    const uint32_t nodes[3] = {191u, 0u, 20u};
+    uint32_t i;
+    sbr_ellipse_detect_config_default(&cfg);
+    cfg.max_regions = 1u; /* small bounds, so the MSER part decides the size */
+    cfg.max_contour_points = 5u;
+    for (i = 0u; i < 3u; i++) {
+        cfg.mser.max_nodes = nodes[i];
+        TEST_ASSERT_EQUAL_UINT32((uint32_t)sbr_ellipse_detect_workspace_size(&cfg, 7u, 7u),
+                                 (uint32_t)SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(7u, 7u, cfg.mser.delta, nodes[i],
+                                                                             cfg.max_regions,
+                                                                             cfg.max_contour_points));
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_classify_every_case);
+    RUN_TEST(test_detect_workspace_macro_equals_function);
+    RUN_TEST(test_classify_scaled_and_thin_conics);
+    RUN_TEST(test_ellipse_conic_far_and_thin);
+    RUN_TEST(test_fit_returns_a_real_ellipse);
     RUN_TEST(test_ellipse_conic_round_trip);
     RUN_TEST(test_fit_exact_points);
     RUN_TEST(test_fit_degenerate_sets);

@@ -703,9 +703,75 @@ static void test_smooth_refuses_non_finite_result(void)
     TEST_ASSERT_FLOAT_WITHIN(1e-4f, 1.0f, e);
 }
 
+/* Issue 55, item 7: a prototype with a non-finite centre stops sbr_fd_match_table() on
+   the four-lane path (work_len >= SBR_FD_TABLE_WORK_LEN) as on the single path. */
+static void test_table_lanes_refuse_non_finite_centre(void)
+{
+    sbr_fd_t q;
+    sbr_fd_t protos[6];
+    sbr_fd_match_t res[6];
+    uint32_t best = 99u;
+    uint32_t i;
+    transform(0.0f, 1.0f, 0.0f, 0.0f, 0u);
+    q = fd_of(g_tmp, NPTS);
+    for (i = 0u; i < 6u; i++) {
+        protos[i] = q;
+    }
+    protos[4].cx = NAN;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, &g_cov, &q, protos, 6u, g_work,
+                                                            256u, res, &best));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, &g_cov, &q, protos, 6u, g_wide,
+                                                            SBR_FD_TABLE_WORK_LEN(64), res, &best));
+    protos[4].cx = q.cx;
+    protos[1].cy = INFINITY;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_match_table(&g_fft_p, &g_cov, &q, protos, 6u, g_wide,
+                                                            SBR_FD_TABLE_WORK_LEN(64), res, &best));
+    TEST_ASSERT_EQUAL_UINT32(99u, best);
+}
+
+/* Issue 55, item 8: with max_rotation 0, a query of tiny coefficients (|r|^2 underflows)
+   is accepted only at rotation 0; otherwise the error is 4. */
+static void test_rotation_bound_holds_for_tiny_coefficients(void)
+{
+    sbr_fd_t q;
+    sbr_fd_t p;
+    sbr_fd_match_config_t cfg = g_cov;
+    sbr_fd_match_t r;
+    uint32_t k;
+    uint32_t pass;
+    transform(0.0f, 1.0f, 0.0f, 0.0f, 0u);
+    p = fd_of(g_tmp, NPTS);
+    q = p;
+    for (k = 0u; k <= 2u * q.m; k++) {
+        q.c[k].re = 1e-30f;
+        q.c[k].im = 1e-30f;
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_check(&q, NULL));
+    {
+        /* fd.h: a finite coefficient whose energy overflows float32 is refused */
+        sbr_fd_t big = p;
+        big.c[0].re = 1e20f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_fd_check(&big, NULL));
+    }
+    cfg.max_rotation = 0.0f;
+    for (pass = 0u; pass < 2u; pass++) {
+        cfg.refine = (int)pass;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match(&g_fft_p, &cfg, &q, &p, g_work, 256u, &r));
+        TEST_ASSERT_TRUE((r.error == 4.0f) || (fabsf(r.rotation) <= cfg.max_rotation));
+        {
+            uint32_t best = 0u;
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_match_table(&g_fft_p, &cfg, &q, &p, 1u, g_wide,
+                                                             SBR_FD_TABLE_WORK_LEN(64), &r, &best));
+            TEST_ASSERT_TRUE((r.error == 4.0f) || (fabsf(r.rotation) <= cfg.max_rotation));
+        }
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
+    RUN_TEST(test_table_lanes_refuse_non_finite_centre);
+    RUN_TEST(test_rotation_bound_holds_for_tiny_coefficients);
     RUN_TEST(test_self_match_is_perfect);
     RUN_TEST(test_check_refuses_non_finite_centroid);
     RUN_TEST(test_smooth_refuses_non_finite_result);

@@ -417,6 +417,11 @@ static void test_mser_bad_input(void)
     c.max_area = c.min_area - 1u;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
     sbr_mser_config_default(&c);
+    c.max_variation = 1e30f; /* mser.h: > 0 and at most 1e30 */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_config_check(&c));
+    c.max_variation = 1e31f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
+    sbr_mser_config_default(&c);
     c.max_variation = NAN;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&c));
     c.max_variation = 0.0f;

@@ -50,18 +50,18 @@ typedef struct sbr_camera_s {
 typedef struct sbr_bike_model_s {
     float wheel_radius; /**< metres, tyre mid-line, 1e-3 .. 10. Default 0.34 (28-inch
                              wheel). */
-    float wheelbase;    /**< metres between the contact points, > 2 x wheel_radius.
-                             Default 1.05. */
+    float wheelbase;    /**< metres between the contact points, > 2 x wheel_radius and
+                             < 100. Default 1.05. */
     float roll_tau;     /**< seconds, 1e-3 .. 1e3: how fast the roll follows the balance
                              lean. Default 0.3. */
 } sbr_bike_model_t;
 
 /** Bicycle state (see the file comment for the conventions). */
 typedef struct sbr_bike_state_s {
-    float x;       /**< rear contact point, metres, camera X */
-    float z;       /**< rear contact point, metres, camera Z */
-    float heading; /**< radians, (-pi, pi] */
-    float speed;   /**< metres per second, >= 0 */
+    float x;       /**< rear contact point, metres, camera X, |x| < 1e4 */
+    float z;       /**< rear contact point, metres, camera Z, |z| < 1e4 */
+    float heading; /**< radians, (-pi, pi] (pi as the float nearest to it) */
+    float speed;   /**< metres per second, 0 .. 100 */
     float steer;   /**< radians, |steer| < pi/2 */
     float roll;    /**< radians, |roll| < pi/2 */
 } sbr_bike_state_t;

@@ -62,18 +62,34 @@ typedef enum sbr_conic_class_e {
 /** Smallest semi-axis (pixels) of an ellipse given to sbr_ellipse_to_conic(). */
 #define SBR_CONIC_MIN_AXIS 1e-3f
 
-/** Default relative tolerance of sbr_conic_classify(): a determinant counts as zero
-    when |det| <= tol * |C|^n (n = 2 for det(C22), 3 for det(C); |C| the largest
-    absolute entry). */
+/** Default relative tolerance of sbr_conic_classify(). */
 #define SBR_CONIC_ZERO_TOL 1e-5f
 
 /**
  * @brief Classify a conic.
+ *
+ * The zero rule (what "= 0" means in ::sbr_conic_class_t), each determinant relative to
+ * the entries it is made of, so that it does not depend on the conic's scale:
+ * - det(C22) = ac - b^2 counts as zero when |ac - b^2| <= tol q^2, q = max(|a|, |b|, |c|);
+ * - where det(C22) != 0 the conic has a centre (xc, yc), and det(C) = det(C22) f0 with f0
+ *   = d xc + e yc + f its value there; det(C) counts as zero when
+ *   |f0| <= tol (|d xc| + |e yc| + |f|), the terms f0 is summed from (so a small ellipse
+ *   far from the origin, whose f0 is small against those terms, is a point ellipse unless
+ *   tol is smaller);
+ * - where det(C22) = 0, det(C) counts as zero when |det(C)| <= tol |r0| |r1| |r2| (the
+ *   product of the row norms of C scaled to a largest entry of 1), and the rank is 1 when
+ *   every 2 x 2 minor of that C is at most tol.
+ * Determinants and f0 are computed exactly enough (float-float products) that their sign
+ * is right whenever they are above 2^-40 of their terms, so tol = 0 classifies exactly
+ * constructed conics exactly.
+ *
+ * @param[in] conic the conic
  * @param[in] tol relative zero tolerance, >= 0 and < 1 (::SBR_CONIC_ZERO_TOL suits float32
  *            data; 0 for exact arithmetic on constructed matrices).
- * @param[in] conic the conic
  * @param[out] cls the class.
- * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a non-finite entry or tol;
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a non-finite entry or tol, or a
+ *         conic with a centre whose linear or constant terms exceed 2^50 and 2^100 times
+ *         its quadratic part (a centre about 10^15 away: float32 cannot place it);
  *         ::SBR_ERR_DEGENERATE for the zero matrix (no conic).
  */
 sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_class_t *cls);
@@ -85,9 +101,11 @@ sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_c
  *                     sbr_ellipse_to_conic() takes (the two round-trip).
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (a non-finite entry, or an ellipse
  *         outside what sbr_ellipse_to_conic() takes: centre or semi-major beyond
- *         ::SBR_CONIC_MAX_COORD, semi-minor below ::SBR_CONIC_MIN_AXIS);
- *         ::SBR_ERR_DEGENERATE when the conic is not a real ellipse (at
- *         ::SBR_CONIC_ZERO_TOL).
+ *         ::SBR_CONIC_MAX_COORD, semi-minor below ::SBR_CONIC_MIN_AXIS, or one whose
+ *         float32 conic is more than 1 % another ellipse);
+ *         ::SBR_ERR_DEGENERATE when the conic is not a real ellipse (sbr_conic_classify()
+ *         at ::SBR_CONIC_ZERO_TOL: a thin ellipse far from the origin may be a point
+ *         ellipse there).
  */
 sbr_status_t sbr_conic_to_ellipse(const sbr_conic_t *conic, sbr_ellipse_t *ellipse);
 
@@ -95,13 +113,16 @@ sbr_status_t sbr_conic_to_ellipse(const sbr_conic_t *conic, sbr_ellipse_t *ellip
  * @brief The conic of an ellipse, scaled so that f = -1 at the centre's origin shift
  *        (a, c of order 1 / axis^2).
  * @param[in]  ellipse the ellipse.
- * @param[out] conic   its conic, written on ::SBR_OK only: finite, with an ellipse's
- *                     centre and axes (sbr_conic_classify()'s relative tolerance may still
- *                     call a small ellipse far from the origin a point ellipse).
+ * @param[out] conic   its conic, written on ::SBR_OK only: finite, and in exact arithmetic
+ *                     a real ellipse whose centre and semi-axes are this ellipse's within
+ *                     1 % of each semi-axis (of the semi-major for the centre)
+ *                     (sbr_conic_classify()'s relative tolerance may still call a small
+ *                     ellipse far from the origin a point ellipse).
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (non-finite values; |cx|, |cy| or
  *         semi_major above ::SBR_CONIC_MAX_COORD; semi_minor below ::SBR_CONIC_MIN_AXIS
- *         or above semi_major; or an ellipse so thin for its distance from the origin
- *         that its float32 conic is no ellipse any more).
+ *         or above semi_major; or an ellipse so small or thin for its distance from the
+ *         origin that its float32 conic, whose constant term carries the rounding error of
+ *         cx^2 / axis^2, is no ellipse or another one by more than those 1 %).
  */
 sbr_status_t sbr_ellipse_to_conic(const sbr_ellipse_t *ellipse, sbr_conic_t *conic);
 
@@ -120,7 +141,8 @@ sbr_status_t sbr_ellipse_to_conic(const sbr_ellipse_t *ellipse, sbr_conic_t *con
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n < 5); ::SBR_ERR_RANGE (non-finite or
  *         |coordinate| > 1e6); ::SBR_ERR_DEGENERATE when the points do not determine an
  *         ellipse (collinear, fewer than 5 distinct points, or the best conic is not a
- *         real ellipse, e.g. points of a hyperbola).
+ *         real ellipse, e.g. points of a hyperbola), or when the returned float32 conic
+ *         would not be that ellipse (within 1 %, as sbr_ellipse_to_conic()).
  */
 sbr_status_t sbr_ellipse_fit(const sbr_pointf_t *points, uint32_t n, sbr_conic_t *conic,
                              sbr_ellipse_t *ellipse);
@@ -233,7 +255,8 @@ typedef struct sbr_ellipse_det_s {
 /**
  * @brief Workspace bytes of sbr_ellipse_detect() for a width x height image, as a constant
  *        expression: `delta` and `nodes` as for ::SBR_MSER_WORKSPACE_SIZE (nodes = the
- *        configuration's mser.max_nodes, or SBR_MSER_WORST_NODES(width, height) for 0),
+ *        configuration's mser.max_nodes; 0 or a bound above the image's worst case
+ *        reserve that worst case),
  *        `max_regions` and `max_points` as in the configuration. Equal to
  *        sbr_ellipse_detect_workspace_size() for that configuration.
  */

@@ -87,7 +87,9 @@ sbr_status_t sbr_fd_from_pointsf(const sbr_fft_t *fft, const sbr_pointf_t *point
 
 /**
  * @brief Check a descriptor as the matcher and the other descriptor functions do: M in
- *        1..::SBR_FD_MAX_M, finite positive scale, finite centroid, finite coefficients.
+ *        1..::SBR_FD_MAX_M, finite positive scale, finite centroid, finite coefficients
+ *        whose energy (the sum of |C(n)|^2) is finite in float32 too (so no |C(n)| above
+ *        about 1.8e19).
  * @param[out] energy (may be NULL) sum of |C(n)|^2 over the 2M + 1 coefficients (1 for a
  *                    descriptor sbr computed), written on success.
  * @param[in] fd the descriptor

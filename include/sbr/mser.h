@@ -89,8 +89,8 @@ typedef struct sbr_mser_config_s {
     uint32_t min_area;
     /** Largest region area in pixels, >= min_area. Default 14400. */
     uint32_t max_area;
-    /** Largest accepted variation, > 0 and finite. Larger: more, less stable regions.
-        Default 0.25. */
+    /** Largest accepted variation, > 0 and at most 1e30 (no bound in practice).
+        Larger: more, less stable regions. Default 0.25. */
     float max_variation;
     /** Nested regions whose areas differ by less than this fraction of the larger one are
         reported once (the more stable one), in [0, 1); 0 keeps both. Default 0.2. */
@@ -126,14 +126,16 @@ typedef struct sbr_mser_region_s {
          : (size_t)(max_nodes))
 
 /**
- * @brief Workspace bytes for a width x height map (>= 3 x 3), a delta and a node bound
- *        (nodes > 0; for config.max_nodes = 0 pass SBR_MSER_WORST_NODES(width, height)).
+ * @brief Workspace bytes for a width x height map (>= 3 x 3), a delta and a node bound:
+ *        `nodes` is config.max_nodes (0 or more than the worst case: the worst case,
+ *        ::SBR_MSER_NODES), so the value equals sbr_mser_workspace_size() of that
+ *        configuration.
  */
 #define SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes)                               \
     ((size_t)SBR_MSER_HEAP_HEADER_BYTES +                                                   \
      ((size_t)SBR_MSER_STACK *                                                              \
       (SBR_MSER_COMP_BYTES + ((((size_t)(delta)) + 1u) * SBR_MSER_HISTORY_BYTES))) +        \
-     (((size_t)(nodes)) * SBR_MSER_NODE_BYTES) +                                            \
+     (SBR_MSER_NODES(width, height, nodes) * SBR_MSER_NODE_BYTES) +                         \
      ((((size_t)(width)) * ((size_t)(height))) * SBR_MSER_PIXEL_BYTES) +                    \
      SBR_MSER_REACHED_BYTES(((size_t)(width)) * ((size_t)(height))) + SBR_MSER_TAIL_BYTES)
 

@@ -45,7 +45,8 @@ static int state_ok(const sbr_bike_state_t *s)
 {
     return (isfinite(s->x) != 0) && (isfinite(s->z) != 0) && (isfinite(s->heading) != 0) &&
            (isfinite(s->speed) != 0) && (isfinite(s->steer) != 0) && (isfinite(s->roll) != 0) &&
-           (fabsf(s->x) < 1e4f) && (fabsf(s->z) < 1e4f) && (fabsf(s->heading) <= 4.0f) &&
+           (fabsf(s->x) < 1e4f) && (fabsf(s->z) < 1e4f) && (s->heading > -BIKE_PI) &&
+           (s->heading <= BIKE_PI) &&
            (s->speed >= 0.0f) && (s->speed <= 100.0f) && (fabsf(s->steer) < (0.5f * BIKE_PI)) &&
            (fabsf(s->roll) < (0.5f * BIKE_PI));
 }
@@ -70,15 +71,24 @@ static int ellipses_ok(const sbr_ellipse_t *e, uint32_t n)
     return ok;
 }
 
+/* a in (-pi, pi], whatever the number of turns (a sub-step of a fast, sharply steered
+   bicycle turns by more than 2 pi); a finite a. fmodf is exact, and within one period
+   the result equals a -+ 2 pi as before. */
 static float wrap_angle(float a)
 {
     float r = a;
-    if (r > BIKE_PI) {
-        r -= 2.0f * BIKE_PI;
-    } else if (r <= -BIKE_PI) {
-        r += 2.0f * BIKE_PI;
-    } else {
-        /* in range */
+    if ((r > BIKE_PI) || (r <= -BIKE_PI)) {
+        r = fmodf(r, 2.0f * BIKE_PI); /* (-2 pi, 2 pi), exact */
+        if (r > BIKE_PI) {
+            r -= 2.0f * BIKE_PI;
+        } else if (r <= -BIKE_PI) {
+            r += 2.0f * BIKE_PI;
+        } else {
+            /* in range */
+        }
+        if (r <= -BIKE_PI) {
+            r = BIKE_PI; /* -pi rounded: the same direction */
+        }
     }
     return r;
 }

@@ -108,7 +108,181 @@ int sbr_conic_priv_solve(float *a, float *b, uint32_t n, float tiny)
     return ok;
 }
 
+/* ---------------------------------------------------------------- exact products */
+
+/* A float-float value hi + lo (|lo| <= ulp(hi) / 2): determinants of a conic whose terms
+   cancel (a thin ellipse far from the origin) to about 2^-44 of their terms, with float32
+   operations only (Dekker's product, Knuth's sum; C99 without contraction keeps them exact). */
+typedef struct conic_ff_s {
+    float hi;
+    float lo;
+} conic_ff_t;
+
+static conic_ff_t ff_sum(float a, float b)
+{
+    conic_ff_t r;
+    const float s = a + b;
+    const float bb = s - a;
+    r.hi = s;
+    r.lo = (a - (s - bb)) + (b - bb);
+    return r;
+}
+
+static void ff_split(float a, float *hi, float *lo)
+{
+    const float c = 4097.0f * a; /* 2^12 + 1 */
+    *hi = c - (c - a);
+    *lo = a - *hi;
+}
+
+/* a * b exactly (for |a|, |b| <= 2^100: no overflow in the split) */
+static conic_ff_t ff_prod(float a, float b)
+{
+    conic_ff_t r;
+    float ah;
+    float al;
+    float bh;
+    float bl;
+    ff_split(a, &ah, &al);
+    ff_split(b, &bh, &bl);
+    r.hi = a * b;
+    r.lo = (((ah * bh) - r.hi) + (ah * bl) + (al * bh)) + (al * bl);
+    return r;
+}
+
+static conic_ff_t ff_add(conic_ff_t x, conic_ff_t y)
+{
+    const conic_ff_t s = ff_sum(x.hi, y.hi);
+    return ff_sum(s.hi, s.lo + x.lo + y.lo);
+}
+
+static conic_ff_t ff_neg(conic_ff_t x)
+{
+    conic_ff_t r;
+    r.hi = -x.hi;
+    r.lo = -x.lo;
+    return r;
+}
+
+/* x * b for a float-float x */
+static conic_ff_t ff_scale(conic_ff_t x, float b)
+{
+    const conic_ff_t p = ff_prod(x.hi, b);
+    return ff_sum(p.hi, p.lo + (x.lo * b));
+}
+
+/* a * b - c * d, correctly rounded but for the last bit */
+static float ff_det2(float a, float b, float c, float d)
+{
+    const conic_ff_t r = ff_add(ff_prod(a, b), ff_neg(ff_prod(c, d)));
+    return r.hi + r.lo;
+}
+
+/* What the conic's centre gives: the conic scaled by a power of two (exact) so that its
+   quadratic part's largest entry is in [0.5, 1) and a + c >= 0; det(C22); the centre; the
+   value f0 at the centre (det(C) / det(C22), both computed in float-float, so f0 is
+   accurate to a few ulp even where d xc + e yc + f cancels); and the terms f0 is summed
+   from (|d xc| + |e yc| + |f|). */
+typedef struct conic_centre_s {
+    sbr_conic_t q;
+    float d22;
+    float xc;
+    float yc;
+    float f0;
+    float terms;
+} conic_centre_t;
+
+/* Largest |d|, |e| and |f| of the scaled conic that the float-float determinant takes
+   without overflow (a centre about 10^15 from the origin in units of the quadratic part). */
+#define CONIC_MAX_LINEAR 1.1259e15f /* 2^50 */
+#define CONIC_MAX_CONST 1.2676e30f  /* 2^100 */
+
+/* The scaled conic and det(C22) of a finite conic with a non-zero quadratic part. */
+static void conic_scaled(const sbr_conic_t *q0, conic_centre_t *cc)
+{
+    const float qa = fmaxf(fabsf(q0->a), fmaxf(fabsf(q0->b), fabsf(q0->c)));
+    int ex = 0;
+    float k;
+    (void)frexpf(qa, &ex);
+    k = ldexpf(1.0f, -ex);
+    if ((q0->a + q0->c) < 0.0f) {
+        k = -k;
+    }
+    cc->q.a = q0->a * k;
+    cc->q.b = q0->b * k;
+    cc->q.c = q0->c * k;
+    cc->q.d = q0->d * k;
+    cc->q.e = q0->e * k;
+    cc->q.f = q0->f * k;
+    cc->d22 = ff_det2(cc->q.a, cc->q.c, cc->q.b, cc->q.b);
+}
+
+/* Centre and f0 of the scaled conic (det(C22) != 0); 0 when its linear or constant terms
+   are beyond what float32 can place a centre for. */
+static int conic_centre(conic_centre_t *cc)
+{
+    const sbr_conic_t *q = &cc->q;
+    int ok = 0;
+    if ((fabsf(q->d) <= CONIC_MAX_LINEAR) && (fabsf(q->e) <= CONIC_MAX_LINEAR) &&
+        (fabsf(q->f) <= CONIC_MAX_CONST)) {
+        /* det(C) = a (c f - e^2) - b (b f - d e) + d (b e - c d) */
+        const conic_ff_t m1 = ff_add(ff_prod(q->c, q->f), ff_neg(ff_prod(q->e, q->e)));
+        const conic_ff_t m2 = ff_add(ff_prod(q->b, q->f), ff_neg(ff_prod(q->d, q->e)));
+        const conic_ff_t m3 = ff_add(ff_prod(q->b, q->e), ff_neg(ff_prod(q->c, q->d)));
+        const conic_ff_t det =
+            ff_add(ff_add(ff_scale(m1, q->a), ff_neg(ff_scale(m2, q->b))), ff_scale(m3, q->d));
+        cc->xc = (m3.hi + m3.lo) / cc->d22;
+        cc->yc = ff_det2(q->b, q->d, q->a, q->e) / cc->d22;
+        cc->f0 = (det.hi + det.lo) / cc->d22;
+        cc->terms = fabsf(q->d * cc->xc) + fabsf(q->e * cc->yc) + fabsf(q->f);
+        ok = ((isfinite(cc->xc) != 0) && (isfinite(cc->yc) != 0) && (isfinite(cc->f0) != 0) &&
+              (isfinite(cc->terms) != 0))
+                 ? 1
+                 : 0;
+    }
+    return ok;
+}
+
 /* ---------------------------------------------------------------- classification */
+
+/* No centre (det(C22) counts as zero): parabola or a pair of lines, from the conic scaled
+   to a largest entry of 1. */
+static sbr_conic_class_t classify_no_centre(const sbr_conic_t *conic, float tol)
+{
+    sbr_conic_class_t cls;
+    float c[9];
+    float n0;
+    float n1;
+    float n2;
+    float d33;
+    conic_matrix(conic, 1.0f / sbr_conic_priv_max_abs(conic), c);
+    /* det(C) relative to the product of the row norms (Hadamard) */
+    n0 = sqrtf((c[0] * c[0]) + (c[1] * c[1]) + (c[2] * c[2]));
+    n1 = sqrtf((c[3] * c[3]) + (c[4] * c[4]) + (c[5] * c[5]));
+    n2 = sqrtf((c[6] * c[6]) + (c[7] * c[7]) + (c[8] * c[8]));
+    d33 = sbr_conic_priv_det3(c);
+    if (fabsf(d33) > (tol * n0 * n1 * n2)) {
+        cls = SBR_CONIC_PARABOLA;
+    } else {
+        /* rank 1 when every 2 x 2 minor vanishes */
+        const float minors[6] = {(c[0] * c[4]) - (c[1] * c[3]), (c[0] * c[5]) - (c[2] * c[3]),
+                                 (c[0] * c[8]) - (c[2] * c[6]), (c[4] * c[8]) - (c[5] * c[7]),
+                                 (c[1] * c[5]) - (c[2] * c[4]), (c[3] * c[7]) - (c[4] * c[6])};
+        float mm = 0.0f;
+        uint32_t i;
+        for (i = 0u; i < 6u; ++i) {
+            mm = fmaxf(mm, fabsf(minors[i]));
+        }
+        if (mm <= tol) {
+            cls = SBR_CONIC_DOUBLE_LINE;
+        } else {
+            /* cofactor sum < 0: two real parallel lines, > 0: imaginary */
+            const float cof = ((c[4] * c[8]) - (c[5] * c[5])) + ((c[0] * c[8]) - (c[2] * c[2]));
+            cls = (cof < 0.0f) ? SBR_CONIC_PARALLEL_LINES : SBR_CONIC_IMAGINARY_PARALLEL_LINES;
+        }
+    }
+    return cls;
+}
 
 sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_class_t *cls)
 {
@@ -121,70 +295,38 @@ sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_c
     } else if (sbr_conic_priv_max_abs(conic) <= 0.0f) {
         st = SBR_ERR_DEGENERATE;
     } else {
-        const float m = sbr_conic_priv_max_abs(conic);
+        conic_centre_t cc;
+        float qa2 = 0.0f;
         const float qa = fmaxf(fabsf(conic->a), fmaxf(fabsf(conic->b), fabsf(conic->c)));
-        float c[9];
-        float d22 = 0.0f;
-        conic_matrix(conic, 1.0f / m, c);
+        cc.d22 = 0.0f;
         if (qa > 0.0f) {
+            float qs;
+            conic_scaled(conic, &cc);
+            qs = fmaxf(fabsf(cc.q.a), fmaxf(fabsf(cc.q.b), fabsf(cc.q.c)));
+            qa2 = qs * qs;
             /* det(C22) relative to the quadratic part's own scale */
-            const float a = conic->a / qa;
-            const float b = conic->b / qa;
-            const float cc = conic->c / qa;
-            d22 = (a * cc) - (b * b);
-            if (fabsf(d22) <= tol) {
-                d22 = 0.0f;
+            if (fabsf(cc.d22) <= (tol * qa2)) {
+                cc.d22 = 0.0f;
             }
         }
-        if (d22 != 0.0f) {
-            /* a centre exists: det(C) = det(C22) * f0 with f0 the value at the centre;
-               f0 counts as zero relative to the terms it is summed from */
-            const float det = (conic->a * conic->c) - (conic->b * conic->b);
-            const float xc = ((conic->b * conic->e) - (conic->c * conic->d)) / det;
-            const float yc = ((conic->b * conic->d) - (conic->a * conic->e)) / det;
-            const float f0 = (conic->d * xc) + (conic->e * yc) + conic->f;
-            const float terms = fabsf(conic->d * xc) + fabsf(conic->e * yc) + fabsf(conic->f);
-            int zero = 0;
-            if ((fabsf(f0) <= (tol * terms)) || (terms <= 0.0f)) {
-                zero = 1;
-            }
-            if (d22 > 0.0f) {
+        if (cc.d22 == 0.0f) {
+            *cls = classify_no_centre(conic, tol);
+        } else if (conic_centre(&cc) == 0) {
+            st = SBR_ERR_RANGE; /* a centre beyond float32's reach */
+        } else {
+            /* det(C) = det(C22) * f0: f0 counts as zero relative to the terms it is
+               summed from; a + c > 0 in the scaled conic */
+            const int zero = ((fabsf(cc.f0) <= (tol * cc.terms)) || (cc.terms <= 0.0f)) ? 1 : 0;
+            if (cc.d22 > 0.0f) {
                 if (zero != 0) {
                     *cls = SBR_CONIC_POINT_ELLIPSE;
-                } else if (((conic->a + conic->c) * f0) < 0.0f) {
+                } else if (cc.f0 < 0.0f) {
                     *cls = SBR_CONIC_REAL_ELLIPSE;
                 } else {
                     *cls = SBR_CONIC_IMAGINARY_ELLIPSE;
                 }
             } else {
                 *cls = (zero != 0) ? SBR_CONIC_INTERSECTING_LINES : SBR_CONIC_HYPERBOLA;
-            }
-        } else {
-            /* no centre: det(C) relative to the product of the row norms (Hadamard) */
-            const float n0 = sqrtf((c[0] * c[0]) + (c[1] * c[1]) + (c[2] * c[2]));
-            const float n1 = sqrtf((c[3] * c[3]) + (c[4] * c[4]) + (c[5] * c[5]));
-            const float n2 = sqrtf((c[6] * c[6]) + (c[7] * c[7]) + (c[8] * c[8]));
-            const float d33 = sbr_conic_priv_det3(c);
-            if (fabsf(d33) > (tol * n0 * n1 * n2)) {
-                *cls = SBR_CONIC_PARABOLA;
-            } else {
-                /* rank 1 when every 2 x 2 minor vanishes */
-                const float minors[6] = {(c[0] * c[4]) - (c[1] * c[3]), (c[0] * c[5]) - (c[2] * c[3]),
-                                         (c[0] * c[8]) - (c[2] * c[6]), (c[4] * c[8]) - (c[5] * c[7]),
-                                         (c[1] * c[5]) - (c[2] * c[4]), (c[3] * c[7]) - (c[4] * c[6])};
-                float mm = 0.0f;
-                uint32_t i;
-                for (i = 0u; i < 6u; ++i) {
-                    mm = fmaxf(mm, fabsf(minors[i]));
-                }
-                if (mm <= tol) {
-                    *cls = SBR_CONIC_DOUBLE_LINE;
-                } else {
-                    /* cofactor sum < 0: two real parallel lines, > 0: imaginary */
-                    const float cof = ((c[4] * c[8]) - (c[5] * c[5])) + ((c[0] * c[8]) - (c[2] * c[2]));
-                    *cls = (cof < 0.0f) ? SBR_CONIC_PARALLEL_LINES
-                                        : SBR_CONIC_IMAGINARY_PARALLEL_LINES;
-                }
             }
         }
     }
@@ -198,56 +340,54 @@ int sbr_conic_priv_ellipse_of(const sbr_conic_t *q0, sbr_ellipse_t *el)
 {
     const float m = fmaxf(fabsf(q0->a), fmaxf(fabsf(q0->b), fabsf(q0->c)));
     int ok = 0;
+    conic_centre_t cc;
+    float qs = 0.0f;
     if (m > 0.0f) {
-        /* quadratic part at unit scale, a + c > 0 */
-        const float k = ((q0->a + q0->c) < 0.0f) ? -m : m;
-        const sbr_conic_t q = sbr_conic_priv_div(q0, k);
-        const float d22 = (q.a * q.c) - (q.b * q.b);
-        if (d22 > (SBR_CONIC_ZERO_TOL * 1e-2f)) {
-            const float xc = ((q.b * q.e) - (q.c * q.d)) / d22;
-            const float yc = ((q.b * q.d) - (q.a * q.e)) / d22;
-            const float f0 = (q.d * xc) + (q.e * yc) + q.f;
-            const float h = 0.5f * (q.a - q.c);
-            const float r = sqrtf((h * h) + (q.b * q.b));
-            const float lmin = (0.5f * (q.a + q.c)) - r; /* major axis */
-            const float lmax = (0.5f * (q.a + q.c)) + r;
-            if ((f0 < 0.0f) && (lmin > 0.0f) && (isfinite(xc) != 0) && (isfinite(yc) != 0)) {
-                float vx;
-                float vy;
-                float ang;
-                /* eigenvector of lmin: (b, lmin - a) or (lmin - c, b), the longer one */
-                const float ax = q.b;
-                const float ay = lmin - q.a;
-                const float bx = lmin - q.c;
-                const float by = q.b;
-                if (((ax * ax) + (ay * ay)) >= ((bx * bx) + (by * by))) {
-                    vx = ax;
-                    vy = ay;
-                } else {
-                    vx = bx;
-                    vy = by;
-                }
-                if (((vx * vx) + (vy * vy)) <= 0.0f) {
-                    vx = 1.0f; /* a circle */
-                    vy = 0.0f;
-                }
-                ang = atan2f(vy, vx);
-                if (ang <= (-0.5f * CONIC_PI)) {
-                    ang += CONIC_PI;
-                } else if (ang > (0.5f * CONIC_PI)) {
-                    ang -= CONIC_PI;
-                } else {
-                    /* in range */
-                }
-                el->cx = xc;
-                el->cy = yc;
-                el->semi_major = sqrtf(-f0 / lmin);
-                el->semi_minor = sqrtf(-f0 / lmax);
-                el->angle = ang;
-                if (isfinite(el->semi_major) != 0) {
-                    ok = 1;
-                }
-            }
+        conic_scaled(q0, &cc);
+        qs = fmaxf(fabsf(cc.q.a), fmaxf(fabsf(cc.q.b), fabsf(cc.q.c)));
+    }
+    /* quadratic part scaled to [0.5, 1), a + c > 0 */
+    if ((m > 0.0f) && (cc.d22 > (SBR_CONIC_ZERO_TOL * 1e-2f * qs * qs)) && (conic_centre(&cc) != 0) &&
+        (cc.f0 < 0.0f)) {
+        const sbr_conic_t *q = &cc.q;
+        const float h = 0.5f * (q->a - q->c);
+        const float r = sqrtf((h * h) + (q->b * q->b));
+        const float lmax = (0.5f * (q->a + q->c)) + r;
+        const float lmin = cc.d22 / lmax; /* the major axis's; no cancellation */
+        float vx;
+        float vy;
+        float ang;
+        /* eigenvector of lmin: (b, lmin - a) or (lmin - c, b), the longer one */
+        const float ax = q->b;
+        const float ay = lmin - q->a;
+        const float bx = lmin - q->c;
+        const float by = q->b;
+        if (((ax * ax) + (ay * ay)) >= ((bx * bx) + (by * by))) {
+            vx = ax;
+            vy = ay;
+        } else {
+            vx = bx;
+            vy = by;
+        }
+        if (((vx * vx) + (vy * vy)) <= 0.0f) {
+            vx = 1.0f; /* a circle */
+            vy = 0.0f;
+        }
+        ang = atan2f(vy, vx);
+        if (ang <= (-0.5f * CONIC_PI)) {
+            ang += CONIC_PI;
+        } else if (ang > (0.5f * CONIC_PI)) {
+            ang -= CONIC_PI;
+        } else {
+            /* in range */
+        }
+        el->cx = cc.xc;
+        el->cy = cc.yc;
+        el->semi_major = sqrtf(-cc.f0 / lmin);
+        el->semi_minor = sqrtf(-cc.f0 / lmax);
+        el->angle = ang;
+        if ((lmin > 0.0f) && (isfinite(el->semi_major) != 0) && (el->semi_minor > 0.0f)) {
+            ok = 1;
         }
     }
     return ok;
@@ -275,8 +415,27 @@ sbr_conic_t sbr_conic_priv_of_ellipse(const sbr_ellipse_t *el)
     return q;
 }
 
-/* An ellipse in the documented domain whose conic is finite and still has an ellipse's
-   geometry (centre, axes): SBR_OK and the conic, else SBR_ERR_RANGE. */
+/* Largest relative change of a semi-axis, and of the centre in units of the semi-major
+   axis, between an ellipse and the exact geometry of its float32 conic. */
+#define CONIC_GEOMETRY_TOL 1e-2f
+
+/* 1 when the finite conic q is, computed exactly (float-float f0), a real ellipse with
+   el's centre and semi-axes within CONIC_GEOMETRY_TOL. */
+int sbr_conic_priv_is_ellipse(const sbr_conic_t *q, const sbr_ellipse_t *el)
+{
+    sbr_ellipse_t back;
+    return ((sbr_conic_priv_ellipse_of(q, &back) != 0) &&
+            (fabsf(back.semi_major - el->semi_major) <= (CONIC_GEOMETRY_TOL * el->semi_major)) &&
+            (fabsf(back.semi_minor - el->semi_minor) <= (CONIC_GEOMETRY_TOL * el->semi_minor)) &&
+            (fabsf(back.cx - el->cx) <= (CONIC_GEOMETRY_TOL * el->semi_major)) &&
+            (fabsf(back.cy - el->cy) <= (CONIC_GEOMETRY_TOL * el->semi_major)))
+               ? 1
+               : 0;
+}
+
+/* An ellipse in the documented domain whose float32 conic is finite and has, computed
+   exactly (float-float f0), this ellipse's centre and semi-axes within
+   CONIC_GEOMETRY_TOL: SBR_OK and the conic, else SBR_ERR_RANGE. */
 sbr_status_t sbr_conic_priv_ellipse_checked(const sbr_ellipse_t *el, sbr_conic_t *out)
 {
     sbr_status_t st = SBR_OK;
@@ -288,11 +447,10 @@ sbr_status_t sbr_conic_priv_ellipse_checked(const sbr_ellipse_t *el, sbr_conic_t
         st = SBR_ERR_RANGE;
     } else {
         const sbr_conic_t q = sbr_conic_priv_of_ellipse(el);
-        sbr_ellipse_t back;
-        /* float32 cannot hold every such conic (a very thin ellipse far from the origin
-           loses its centre term): refuse one that is not finite or has no ellipse's
-           geometry any more */
-        if ((sbr_conic_priv_finite(&q) == 0) || (sbr_conic_priv_ellipse_of(&q, &back) == 0)) {
+        /* float32 cannot hold every such conic (a thin ellipse far from the origin loses
+           its constant term): refuse one that is not finite, is no real ellipse, or is
+           another ellipse */
+        if ((sbr_conic_priv_finite(&q) == 0) || (sbr_conic_priv_is_ellipse(&q, el) == 0)) {
             st = SBR_ERR_RANGE;
         } else {
             *out = q;

@@ -347,9 +347,16 @@ static sbr_status_t fit_denormalise(const sbr_conic_t *qn, const sbr_ellipse_t *
         (sbr_conic_priv_ellipse_checked(&el, &back) != SBR_OK)) {
         st = SBR_ERR_DEGENERATE;
     } else {
-        *conic = sbr_conic_priv_div(&q, m);
-        if (ellipse != NULL) {
-            *ellipse = el;
+        const sbr_conic_t qm = sbr_conic_priv_div(&q, m);
+        /* the returned conic itself must be that ellipse: moved back from the centroid,
+           the constant term of points far from the origin can cancel until it is not */
+        if (sbr_conic_priv_is_ellipse(&qm, &el) == 0) {
+            st = SBR_ERR_DEGENERATE;
+        } else {
+            *conic = qm;
+            if (ellipse != NULL) {
+                *ellipse = el;
+            }
         }
     }
     return st;

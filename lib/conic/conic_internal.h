@@ -29,11 +29,15 @@ int sbr_conic_priv_solve(float *a, float *b, uint32_t n, float tiny);
 /* Geometry of a conic known to be finite; 0 if it is not a real ellipse. */
 int sbr_conic_priv_ellipse_of(const sbr_conic_t *q0, sbr_ellipse_t *el);
 
+/* 1 when the finite conic q is, computed exactly, a real ellipse with el's centre and
+   semi-axes (within 1 % of the semi-axis; of the semi-major for the centre). */
+int sbr_conic_priv_is_ellipse(const sbr_conic_t *q, const sbr_ellipse_t *el);
+
 /* The conic of an ellipse, unchecked. */
 sbr_conic_t sbr_conic_priv_of_ellipse(const sbr_ellipse_t *el);
 
-/* An ellipse in the documented domain whose conic is finite and still has an ellipse's
-   geometry (centre, axes): SBR_OK and the conic, else SBR_ERR_RANGE. */
+/* An ellipse in the documented domain whose float32 conic is finite and still this
+   ellipse (sbr_conic_priv_is_ellipse()): SBR_OK and the conic, else SBR_ERR_RANGE. */
 sbr_status_t sbr_conic_priv_ellipse_checked(const sbr_ellipse_t *el, sbr_conic_t *out);
 
 /* Sampson distance of (x, y) to the conic. */

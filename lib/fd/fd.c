@@ -390,13 +390,14 @@ static sbr_status_t check_match_args(const sbr_fft_t *fft, const sbr_fd_match_co
     return SBR_OK;
 }
 
-/* The header of a prototype: sbr_fd_check()'s M and scale conditions, and the query's M.
+/* The header of a prototype: sbr_fd_check()'s M, scale and centre conditions, and the
+   query's M.
    (Its coefficients are checked by sbr_fd_check() in check_proto(), or by the lane path
    through the finiteness of the correlation they produce.) */
 static sbr_status_t check_proto_header(const sbr_fd_t *query, const sbr_fd_t *proto)
 {
     if ((proto->m == 0u) || (proto->m > SBR_FD_MAX_M) || (isfinite(proto->scale) == 0) ||
-        (proto->scale <= 0.0f)) {
+        (proto->scale <= 0.0f) || (isfinite(proto->cx) == 0) || (isfinite(proto->cy) == 0)) {
         return SBR_ERR_RANGE;
     }
     if (proto->m != query->m) {
@@ -450,6 +451,9 @@ static void write_products(const sbr_fd_t *query, const sbr_fd_t *proto, const u
 /* Objective value used by the peak search: |r|^2 (invariant), Re r (covariant), or
    FD_OUTSIDE for a covariant value whose rotation exceeds the bound. */
 #define FD_OUTSIDE (-8.0f)
+/* Below this |r|^2, the rotation test scales r first: its square would lose the direction
+   to underflow. */
+#define FD_TINY_SQ 1e-30f
 
 static float peak_value(int invariant, float cos_bound, float re, float im)
 {
@@ -457,8 +461,24 @@ static float peak_value(int invariant, float cos_bound, float re, float im)
     if (invariant != 0) {
         v = (re * re) + (im * im);
     } else {
+        const float r2 = (re * re) + (im * im);
         v = re;
-        if (re < (cos_bound * sqrtf((re * re) + (im * im)))) {
+        if (r2 < FD_TINY_SQ) {
+            /* |r|^2 underflows (a query or prototype of tiny energy): the direction from
+               the pair scaled to a largest part of 1; none for r = 0 */
+            const float m = fmaxf(fabsf(re), fabsf(im));
+            if (m <= 0.0f) {
+                if (cos_bound > -1.0f) {
+                    v = FD_OUTSIDE;
+                }
+            } else {
+                const float sr = re / m;
+                const float si = im / m;
+                if (sr < (cos_bound * sqrtf((sr * sr) + (si * si)))) {
+                    v = FD_OUTSIDE;
+                }
+            }
+        } else if (re < (cos_bound * sqrtf(r2))) {
             v = FD_OUTSIDE;
         }
     }
