@@ -81,15 +81,18 @@ typedef enum sbr_conic_class_e {
  *   every 2 x 2 minor of that C is at most tol.
  * Determinants and f0 are computed exactly enough (float-float products) that their sign
  * is right whenever they are above 2^-40 of their terms, so tol = 0 classifies exactly
- * constructed conics exactly.
+ * constructed conics exactly. Where the conic has a quadratic part, it is first scaled by
+ * a power of two (exactly) to a largest quadratic entry in [0.5, 1); entries then below
+ * 2^-33 count as zero (e.g. an ellipse whose axes differ by a factor above 2^16.5 has a
+ * zero det(C22)).
  *
  * @param[in] conic the conic
  * @param[in] tol relative zero tolerance, >= 0 and < 1 (::SBR_CONIC_ZERO_TOL suits float32
  *            data; 0 for exact arithmetic on constructed matrices).
  * @param[out] cls the class.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a non-finite entry or tol, or a
- *         conic with a centre whose linear or constant terms exceed 2^50 and 2^100 times
- *         its quadratic part (a centre about 10^15 away: float32 cannot place it);
+ *         conic with det(C22) != 0 whose linear or constant terms exceed 2^50 and 2^100
+ *         times the largest entry of its quadratic part (rounded up to a power of two);
  *         ::SBR_ERR_DEGENERATE for the zero matrix (no conic).
  */
 sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_class_t *cls);

@@ -30,7 +30,7 @@ static int model_ok(const sbr_bike_model_t *m)
     return (isfinite(m->wheel_radius) != 0) && (isfinite(m->wheelbase) != 0) &&
            (isfinite(m->roll_tau) != 0) && (m->wheel_radius >= 1e-3f) &&
            (m->wheelbase > (2.0f * m->wheel_radius)) && (m->roll_tau >= 1e-3f) &&
-           (m->roll_tau <= 1e3f) && (m->wheel_radius < 10.0f) && (m->wheelbase < 100.0f);
+           (m->roll_tau <= 1e3f) && (m->wheel_radius <= 10.0f) && (m->wheelbase < 100.0f);
 }
 
 static int camera_ok(const sbr_camera_t *c)
@@ -38,7 +38,7 @@ static int camera_ok(const sbr_camera_t *c)
     return (isfinite(c->focal) != 0) && (isfinite(c->cx) != 0) && (isfinite(c->cy) != 0) &&
            (isfinite(c->height) != 0) && (c->focal >= 1.0f) && (c->height >= 1e-3f) &&
            (c->height <= 1e3f) && (fabsf(c->cx) < 1e6f) && (fabsf(c->cy) < 1e6f) &&
-           (c->focal < 1e6f);
+           (c->focal <= 1e6f);
 }
 
 static int state_ok(const sbr_bike_state_t *s)

@@ -179,17 +179,19 @@ static float ff_det2(float a, float b, float c, float d)
 }
 
 /* What the conic's centre gives: the conic scaled by a power of two (exact) so that its
-   quadratic part's largest entry is in [0.5, 1) and a + c >= 0; det(C22); the centre; the
-   value f0 at the centre (det(C) / det(C22), both computed in float-float, so f0 is
-   accurate to a few ulp even where d xc + e yc + f cancels); and the terms f0 is summed
-   from (|d xc| + |e yc| + |f|). */
+   quadratic part's largest entry is in [0.5, 1) and a + c >= 0; det(C22); det(C) in
+   float-float (so its sign is right even where its terms cancel, a thin ellipse far from
+   the origin); and det(C22) times the terms the value at the centre is summed from,
+   |d xnum| + |e ynum| + |f det(C22)| (xnum, ynum the centre's numerators): the zero rule
+   |f0| <= tol (|d xc| + |e yc| + |f|) without dividing, so a centre beyond float32's
+   range does not matter to the class. */
 typedef struct conic_centre_s {
     sbr_conic_t q;
     float d22;
-    float xc;
-    float yc;
-    float f0;
-    float terms;
+    float xnum;
+    float ynum;
+    float det;
+    float terms22;
 } conic_centre_t;
 
 /* Largest |d|, |e| and |f| of the scaled conic that the float-float determinant takes
@@ -197,28 +199,36 @@ typedef struct conic_centre_s {
 #define CONIC_MAX_LINEAR 1.1259e15f /* 2^50 */
 #define CONIC_MAX_CONST 1.2676e30f  /* 2^100 */
 
+/* Entries below 2^-33 of the scaled quadratic part count as zero (conic.h): the
+   float-float products of three entries then stay normal floats (>= 2^-99, their low
+   parts >= 2^-123), so det(C) keeps its 2^-40 relative accuracy. */
+#define CONIC_FLUSH 1.16415322e-10f /* 2^-33 */
+
+static float conic_flush(float v)
+{
+    return (fabsf(v) < CONIC_FLUSH) ? 0.0f : v;
+}
+
 /* The scaled conic and det(C22) of a finite conic with a non-zero quadratic part. */
 static void conic_scaled(const sbr_conic_t *q0, conic_centre_t *cc)
 {
     const float qa = fmaxf(fabsf(q0->a), fmaxf(fabsf(q0->b), fabsf(q0->c)));
+    const float sg = ((q0->a + q0->c) < 0.0f) ? -1.0f : 1.0f;
     int ex = 0;
-    float k;
     (void)frexpf(qa, &ex);
-    k = ldexpf(1.0f, -ex);
-    if ((q0->a + q0->c) < 0.0f) {
-        k = -k;
-    }
-    cc->q.a = q0->a * k;
-    cc->q.b = q0->b * k;
-    cc->q.c = q0->c * k;
-    cc->q.d = q0->d * k;
-    cc->q.e = q0->e * k;
-    cc->q.f = q0->f * k;
+    /* each entry times 2^-ex (ldexpf: exact, also where 2^-ex itself is beyond float32,
+       as for a subnormal quadratic part) */
+    cc->q.a = conic_flush(sg * ldexpf(q0->a, -ex));
+    cc->q.b = conic_flush(sg * ldexpf(q0->b, -ex));
+    cc->q.c = conic_flush(sg * ldexpf(q0->c, -ex));
+    cc->q.d = conic_flush(sg * ldexpf(q0->d, -ex));
+    cc->q.e = conic_flush(sg * ldexpf(q0->e, -ex));
+    cc->q.f = conic_flush(sg * ldexpf(q0->f, -ex));
     cc->d22 = ff_det2(cc->q.a, cc->q.c, cc->q.b, cc->q.b);
 }
 
-/* Centre and f0 of the scaled conic (det(C22) != 0); 0 when its linear or constant terms
-   are beyond what float32 can place a centre for. */
+/* det(C), the centre's numerators and the zero rule's terms of the scaled conic; 0 when
+   its linear or constant terms are beyond what the float-float products take. */
 static int conic_centre(conic_centre_t *cc)
 {
     const sbr_conic_t *q = &cc->q;
@@ -231,14 +241,11 @@ static int conic_centre(conic_centre_t *cc)
         const conic_ff_t m3 = ff_add(ff_prod(q->b, q->e), ff_neg(ff_prod(q->c, q->d)));
         const conic_ff_t det =
             ff_add(ff_add(ff_scale(m1, q->a), ff_neg(ff_scale(m2, q->b))), ff_scale(m3, q->d));
-        cc->xc = (m3.hi + m3.lo) / cc->d22;
-        cc->yc = ff_det2(q->b, q->d, q->a, q->e) / cc->d22;
-        cc->f0 = (det.hi + det.lo) / cc->d22;
-        cc->terms = fabsf(q->d * cc->xc) + fabsf(q->e * cc->yc) + fabsf(q->f);
-        ok = ((isfinite(cc->xc) != 0) && (isfinite(cc->yc) != 0) && (isfinite(cc->f0) != 0) &&
-              (isfinite(cc->terms) != 0))
-                 ? 1
-                 : 0;
+        cc->xnum = m3.hi + m3.lo;
+        cc->ynum = ff_det2(q->b, q->d, q->a, q->e);
+        cc->det = det.hi + det.lo;
+        cc->terms22 = fabsf(q->d * cc->xnum) + fabsf(q->e * cc->ynum) + fabsf(q->f * cc->d22);
+        ok = ((isfinite(cc->det) != 0) && (isfinite(cc->terms22) != 0)) ? 1 : 0;
     }
     return ok;
 }
@@ -312,15 +319,17 @@ sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_c
         if (cc.d22 == 0.0f) {
             *cls = classify_no_centre(conic, tol);
         } else if (conic_centre(&cc) == 0) {
-            st = SBR_ERR_RANGE; /* a centre beyond float32's reach */
+            st = SBR_ERR_RANGE; /* linear or constant terms beyond the products' reach */
         } else {
-            /* det(C) = det(C22) * f0: f0 counts as zero relative to the terms it is
-               summed from; a + c > 0 in the scaled conic */
-            const int zero = ((fabsf(cc.f0) <= (tol * cc.terms)) || (cc.terms <= 0.0f)) ? 1 : 0;
+            /* det(C) = det(C22) f0: f0 counts as zero relative to the terms it is summed
+               from (both sides times |det(C22)|); a + c > 0 in the scaled conic, so a
+               real ellipse has f0 < 0, i.e. det(C) < 0 */
+            const int zero =
+                ((fabsf(cc.det) <= (tol * cc.terms22)) || (cc.terms22 <= 0.0f)) ? 1 : 0;
             if (cc.d22 > 0.0f) {
                 if (zero != 0) {
                     *cls = SBR_CONIC_POINT_ELLIPSE;
-                } else if (cc.f0 < 0.0f) {
+                } else if (cc.det < 0.0f) {
                     *cls = SBR_CONIC_REAL_ELLIPSE;
                 } else {
                     *cls = SBR_CONIC_IMAGINARY_ELLIPSE;
@@ -348,8 +357,9 @@ int sbr_conic_priv_ellipse_of(const sbr_conic_t *q0, sbr_ellipse_t *el)
     }
     /* quadratic part scaled to [0.5, 1), a + c > 0 */
     if ((m > 0.0f) && (cc.d22 > (SBR_CONIC_ZERO_TOL * 1e-2f * qs * qs)) && (conic_centre(&cc) != 0) &&
-        (cc.f0 < 0.0f)) {
+        (cc.det < 0.0f)) {
         const sbr_conic_t *q = &cc.q;
+        const float f0 = cc.det / cc.d22; /* the value at the centre, accurate */
         const float h = 0.5f * (q->a - q->c);
         const float r = sqrtf((h * h) + (q->b * q->b));
         const float lmax = (0.5f * (q->a + q->c)) + r;
@@ -381,12 +391,13 @@ int sbr_conic_priv_ellipse_of(const sbr_conic_t *q0, sbr_ellipse_t *el)
         } else {
             /* in range */
         }
-        el->cx = cc.xc;
-        el->cy = cc.yc;
-        el->semi_major = sqrtf(-cc.f0 / lmin);
-        el->semi_minor = sqrtf(-cc.f0 / lmax);
+        el->cx = cc.xnum / cc.d22;
+        el->cy = cc.ynum / cc.d22;
+        el->semi_major = sqrtf(-f0 / lmin);
+        el->semi_minor = sqrtf(-f0 / lmax);
         el->angle = ang;
-        if ((lmin > 0.0f) && (isfinite(el->semi_major) != 0) && (el->semi_minor > 0.0f)) {
+        if ((lmin > 0.0f) && (isfinite(el->semi_major) != 0) && (el->semi_minor > 0.0f) &&
+            (isfinite(el->cx) != 0) && (isfinite(el->cy) != 0)) {
             ok = 1;
         }
     }
@@ -468,8 +479,12 @@ sbr_status_t sbr_conic_to_ellipse(const sbr_conic_t *conic, sbr_ellipse_t *ellip
     } else {
         sbr_ellipse_t el = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
         st = sbr_conic_classify(conic, SBR_CONIC_ZERO_TOL, &cls);
-        if ((st == SBR_OK) && ((cls != SBR_CONIC_REAL_ELLIPSE) || (sbr_conic_priv_ellipse_of(conic, &el) == 0))) {
+        if ((st == SBR_OK) && (cls != SBR_CONIC_REAL_ELLIPSE)) {
             st = SBR_ERR_DEGENERATE;
+        } else if ((st == SBR_OK) && (sbr_conic_priv_ellipse_of(conic, &el) == 0)) {
+            st = SBR_ERR_RANGE; /* a real ellipse whose centre or axes float32 cannot hold */
+        } else {
+            /* st as classified */
         }
         if (st == SBR_OK) {
             sbr_conic_t back;

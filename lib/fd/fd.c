@@ -391,9 +391,7 @@ static sbr_status_t check_match_args(const sbr_fft_t *fft, const sbr_fd_match_co
 }
 
 /* The header of a prototype: sbr_fd_check()'s M, scale and centre conditions, and the
-   query's M.
-   (Its coefficients are checked by sbr_fd_check() in check_proto(), or by the lane path
-   through the finiteness of the correlation they produce.) */
+   query's M (check_proto() adds the coefficients). */
 static sbr_status_t check_proto_header(const sbr_fd_t *query, const sbr_fd_t *proto)
 {
     if ((proto->m == 0u) || (proto->m > SBR_FD_MAX_M) || (isfinite(proto->scale) == 0) ||
@@ -948,7 +946,7 @@ static void lanes_gather(const sbr_fd_t *query, const sbr_fd_t *protos, uint32_t
 {
     bt->valid = 0u;
     while ((bt->valid < FD_LANES) && (*i < count) && (*header == SBR_OK)) {
-        *header = check_proto_header(query, &protos[*i]);
+        *header = check_proto(query, &protos[*i]);
         if (*header == SBR_OK) {
             if ((level > 0.0f) && (screened_out(qmag, &protos[*i], level) != 0)) {
                 no_match(query, &protos[*i], &results[*i]);
@@ -1047,9 +1045,10 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
         query_magnitudes(query, qmag);
     }
     while ((i < count) && (header == SBR_OK)) {
-        /* a bad header's status is returned after the coefficients of the prototypes
-           gathered before it are checked, so the first bad prototype in table order
-           decides the status */
+        /* each prototype is checked as sbr_fd_check() does when it is gathered; a bad
+           one's status is returned after the batch gathered before it is transformed
+           (whose correlations are checked for overflow), so the first bad prototype in
+           table order decides the status */
         lane_batch_t bt;
         lanes_gather(query, protos, count, qmag, level, &i, &bt, results, &header);
         if (bt.valid > 0u) {

@@ -1,7 +1,9 @@
 // Fuzz harness: the bicycle model (predict, project, wheel pairing) and its particle
-// filter. On SBR_OK: states and ellipses finite; pairs within capacity with scores >= 0;
-// filter results with finite means and deviations and an effective sample size within
-// [0, particles].
+// filter. Statuses: SBR_ERR_RANGE exactly when bicycle.h's ranges of the model, camera and
+// state are broken (header and code say the same). On SBR_OK: states finite with the
+// heading in (-pi, pi], the speed and steering kept; ellipses finite; pairs within capacity
+// with scores >= 0; filter results with finite means and deviations and an effective
+// sample size within [0, particles].
 #include "fuzz_common.hpp"
 
 #include <cstddef>
@@ -29,6 +31,25 @@ bool state_ok(const sbr_bike_state_t &s)
            fz_finite(s.roll);
 }
 
+// bicycle.h's ranges, written out from the header (not from the code)
+constexpr float kPi = 3.14159265358979f;
+bool header_model(const sbr_bike_model_t &m)
+{
+    return fz_finite(m.wheel_radius) && fz_finite(m.wheelbase) && fz_finite(m.roll_tau) && m.wheel_radius >= 1e-3f &&
+           m.wheel_radius <= 10.0f && m.wheelbase > 2.0f * m.wheel_radius && m.wheelbase < 100.0f &&
+           m.roll_tau >= 1e-3f && m.roll_tau <= 1e3f;
+}
+bool header_state(const sbr_bike_state_t &s)
+{
+    return state_ok(s) && std::fabs(s.x) < 1e4f && std::fabs(s.z) < 1e4f && s.heading > -kPi && s.heading <= kPi &&
+           s.speed >= 0.0f && s.speed <= 100.0f && std::fabs(s.steer) < 0.5f * kPi && std::fabs(s.roll) < 0.5f * kPi;
+}
+bool header_camera(const sbr_camera_t &c)
+{
+    return fz_finite(c.focal) && fz_finite(c.cx) && fz_finite(c.cy) && fz_finite(c.height) && c.focal >= 1.0f &&
+           c.focal <= 1e6f && std::fabs(c.cx) < 1e6f && std::fabs(c.cy) < 1e6f && c.height >= 1e-3f && c.height <= 1e3f;
+}
+
 bool ellipse_ok(const sbr_ellipse_t &e)
 {
     return fz_finite(e.cx) && fz_finite(e.cy) && fz_finite(e.semi_major) && fz_finite(e.semi_minor) &&
@@ -51,14 +72,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     s.x = fz_float(in, -10.0f, 10.0f);
     s.z = fz_float(in, 0.0f, 50.0f);
     s.heading = fz_float(in, -3.2f, 3.2f);
-    s.speed = fz_float(in, 0.0f, 20.0f);
+    s.speed = fz_float(in, 0.0f, in.ConsumeBool() ? 20.0f : 100.0f);
     s.steer = fz_float(in, -1.6f, 1.6f);
     s.roll = fz_float(in, -1.6f, 1.6f);
     sbr_bike_state_t next;
-    const sbr_status_t ps = sbr_bike_predict_state(&model, &s, in.ConsumeIntegralInRange<uint32_t>(0u, 1000000u), &next);
+    const uint32_t dt = in.ConsumeBool() ? in.ConsumeIntegralInRange<uint32_t>(0u, 1000000u)
+                                         : in.ConsumeIntegralInRange<uint32_t>(0u, 10000001u);
+    const sbr_status_t ps = sbr_bike_predict_state(&model, &s, dt, &next);
     FZ_STATUS(ps, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE);
+    FZ_CHECK((ps == SBR_OK) == (header_model(model) && header_state(s) && dt <= 10000000u));
     if (ps == SBR_OK) {
         FZ_CHECK(state_ok(next));
+        FZ_CHECK(next.heading > -kPi && next.heading <= kPi);
+        FZ_CHECK(next.speed == s.speed && next.steer == s.steer);
     }
     sbr_bike_pf_config_t cfg;
     sbr_bike_pf_config_default(&cfg);
@@ -70,6 +96,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     sbr_ellipse_t front;
     const sbr_status_t js = sbr_bike_project(&cfg.camera, &model, &s, &rear, &front);
     FZ_STATUS(js, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE, SBR_ERR_DEGENERATE);
+    FZ_CHECK((js == SBR_ERR_RANGE) == !(header_camera(cfg.camera) && header_model(model) && header_state(s)));
     if (js == SBR_OK) {
         FZ_CHECK(ellipse_ok(rear) && ellipse_ok(front));
     }

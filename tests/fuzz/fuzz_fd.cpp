@@ -2,10 +2,14 @@
 // match and table match. On SBR_OK: the FFT's inverse undoes the forward within float
 // rounding; descriptors pass sbr_fd_check() with unit energy; a descriptor matches
 // itself with error ~0; every match has error in [0, 4], rotation in [-pi, pi], shift in
-// [0, 1), a finite positive scale ratio; the table's best is its smallest error.
+// [0, 1), a finite positive scale ratio, and a rotation within max_rotation wherever a peak
+// was found under a bound; the table's best is its smallest error; the table's four-lane
+// and single paths agree on the status; sbr_fd_check() accepts exactly what fd.h lists
+// (the energy summed in long double).
 #include "fuzz_common.hpp"
 
 #include <algorithm>
+#include <cfloat>
 
 extern "C" {
 #include "sbr/fd.h"
@@ -14,12 +18,37 @@ extern "C" {
 
 namespace {
 
-void check_match(const sbr_fd_match_t &r)
+void check_match(const sbr_fd_match_t &r, const sbr_fd_match_config_t *cfg = nullptr)
 {
     FZ_CHECK(fz_finite(r.error) && r.error >= 0.0f && r.error <= 4.0f + 1e-4f);
     FZ_CHECK(fz_finite(r.rotation) && std::fabs(r.rotation) <= 3.1416f);
     FZ_CHECK(fz_finite(r.shift) && r.shift >= 0.0f && r.shift < 1.0f + 1e-6f);
     FZ_CHECK(fz_finite(r.scale_ratio) && r.scale_ratio > 0.0f);
+    // fd.h: under a rotation bound only peaks within it qualify; none: error 4
+    if (cfg != nullptr && cfg->mode == SBR_FD_ROTATION_COVARIANT && cfg->max_rotation < 3.14159265f && r.error < 4.0f) {
+        FZ_CHECK(std::fabs(r.rotation) <= cfg->max_rotation + 1e-3f);
+    }
+}
+
+// fd.h's conditions of a valid descriptor, from the header (energy in long double; near
+// float32's limit either answer is right)
+int header_valid(const sbr_fd_t &d)
+{
+    if (d.m == 0u || d.m > SBR_FD_MAX_M || !fz_finite(d.scale) || d.scale <= 0.0f || !fz_finite(d.cx) ||
+        !fz_finite(d.cy)) {
+        return 0;
+    }
+    long double e = 0.0L;
+    for (uint32_t k = 0u; k <= 2u * d.m; k++) {
+        if (!fz_finite(d.c[k].re) || !fz_finite(d.c[k].im)) {
+            return 0;
+        }
+        e += (long double)d.c[k].re * d.c[k].re + (long double)d.c[k].im * d.c[k].im;
+    }
+    if (e > 2.0L * FLT_MAX) {
+        return 0;
+    }
+    return e < 0.5L * FLT_MAX ? 1 : -1;
 }
 
 void fuzz_fft(FuzzedDataProvider &in)
@@ -114,7 +143,19 @@ void fuzz_descriptors(FuzzedDataProvider &in)
         FZ_CHECK(a.m == m && std::fabs(e - 1.0f) < 1e-3f);
         FZ_CHECK(fz_finite(a.cx) && fz_finite(a.cy) && fz_finite(a.scale) && a.scale > 0.0f);
     }
+    if (st == SBR_OK && in.ConsumeIntegral<uint8_t>() < 40u) {
+        // a valid descriptor of another energy (tiny: correlations whose square underflows)
+        const float k = fz_float(in, 0.0f, 1.0f);
+        for (uint32_t i = 0u; i <= 2u * a.m; i++) {
+            a.c[i].re *= k;
+            a.c[i].im *= k;
+        }
+    }
     const bool valid = sbr_fd_check(&a, nullptr) == SBR_OK;
+    {
+        const int hv = header_valid(a);
+        FZ_CHECK(hv < 0 || valid == (hv == 1));
+    }
     const sbr_status_t ms = sbr_fd_mirror(&a, &b);
     FZ_STATUS(ms, SBR_OK, SBR_ERR_RANGE, SBR_ERR_NULL);
     FZ_CHECK((ms == SBR_OK) == valid);
@@ -141,7 +182,7 @@ void fuzz_descriptors(FuzzedDataProvider &in)
     const sbr_status_t xs = sbr_fd_match(&fft_p, &cfg, &a, &a, mw.data(), 64u, &r);
     FZ_CHECK(fz_known(xs));
     if (xs == SBR_OK) {
-        check_match(r);
+        check_match(r, &cfg);
         if (st == SBR_OK && cfg.max_error == 0.0f && cfg.max_rotation >= 3.1415f) {
             FZ_CHECK(r.error < 1e-3f); // a descriptor matches itself
         }
@@ -151,22 +192,39 @@ void fuzz_descriptors(FuzzedDataProvider &in)
     const uint32_t nt = in.ConsumeIntegralInRange<uint32_t>(0u, 6u);
     for (uint32_t i = 0u; i < nt; i++) {
         table[i] = a;
-        if (in.ConsumeIntegral<uint8_t>() > 200u) {
+        const uint8_t damage = in.ConsumeIntegral<uint8_t>();
+        if (damage > 200u) {
             table[i].c[in.ConsumeIntegralInRange<uint32_t>(0u, 2u * SBR_FD_MAX_M)].re = fz_float(in, -2.0f, 2.0f);
+        } else if (damage > 190u) {
+            table[i].cx = fz_float(in, -100.0f, 100.0f);
+        } else if (damage > 180u) {
+            table[i].cy = fz_float(in, -100.0f, 100.0f);
+        } else if (damage > 170u) {
+            table[i].scale = fz_float(in, 0.0f, 100.0f);
         }
     }
     sbr_fd_match_t res[6];
     uint32_t best = 99u;
-    const uint32_t wl = in.ConsumeBool() ? SBR_FD_TABLE_WORK_LEN(64u) : 64u;
-    const sbr_status_t ts = sbr_fd_match_table(&fft_p, &cfg, &a, table, nt, mw.data(), wl, res, &best);
-    FZ_CHECK(fz_known(ts));
-    if (ts == SBR_OK) {
-        FZ_CHECK(best < nt);
-        for (uint32_t i = 0u; i < nt; i++) {
-            check_match(res[i]);
-            FZ_CHECK(res[best].error <= res[i].error);
+    // both paths: the four-lane one (work_len >= SBR_FD_TABLE_WORK_LEN) and one pair at a
+    // time must refuse and accept the same tables
+    sbr_status_t both[2];
+    for (uint32_t path = 0u; path < 2u; path++) {
+        const uint32_t wl = path == 0u ? SBR_FD_TABLE_WORK_LEN(64u) : 64u;
+        best = 99u;
+        const sbr_status_t ts = sbr_fd_match_table(&fft_p, &cfg, &a, table, nt, mw.data(), wl, res, &best);
+        FZ_CHECK(fz_known(ts));
+        both[path] = ts;
+        if (ts == SBR_OK) {
+            FZ_CHECK(best < nt);
+            for (uint32_t i = 0u; i < nt; i++) {
+                check_match(res[i], &cfg);
+                FZ_CHECK(res[best].error <= res[i].error);
+            }
+        } else {
+            FZ_CHECK(best == 99u);
         }
     }
+    FZ_CHECK(both[0] == both[1] || (both[0] != SBR_OK && both[1] != SBR_OK));
 }
 
 } // namespace
