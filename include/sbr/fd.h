@@ -184,8 +184,11 @@ sbr_status_t sbr_fd_match_config_check(const sbr_fd_match_config_t *cfg);
  * @param[in]  work_len its length.
  * @param[out] result   the match.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_STATE (bad FFT instance); ::SBR_ERR_SIZE for
- *         different M, P < 2M+1 or short `work`; ::SBR_ERR_RANGE for a bad config or an
- *         invalid descriptor (M out of range, non-finite or non-positive scale).
+ *         different M, P < 2M+1 or short `work`; ::SBR_ERR_RANGE for a bad config, an
+ *         invalid descriptor (the conditions of sbr_fd_check()), a scale ratio that
+ *         float32 cannot hold (zero or infinite), or a correlation that overflows float32
+ *         (descriptors of far more than the unit energy sbr gives them); `result` is
+ *         written on ::SBR_OK only.
  */
 sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                           const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
@@ -212,8 +215,9 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
  * @return as sbr_fd_match(); ::SBR_ERR_SIZE for count 0. An invalid prototype (the
  *         conditions of sbr_fd_check(), or another M) stops the call with the status of
  *         the first invalid one in table order; results before it may have been written.
- *         (The four-lane path checks coefficients through the correlation they produce: a
- *         non-finite coefficient makes it non-finite at every lag.)
+ *         Both paths refuse the same prototypes; a correlation that overflows float32 is
+ *         found by each where it overflows (so at that edge the paths may differ in which
+ *         call they refuse).
  */
 sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                 const sbr_fd_t *query, const sbr_fd_t *protos, uint32_t count,

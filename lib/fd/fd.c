@@ -401,6 +401,13 @@ static sbr_status_t check_proto_header(const sbr_fd_t *query, const sbr_fd_t *pr
     if (proto->m != query->m) {
         return SBR_ERR_SIZE;
     }
+    {
+        /* the result's scale ratio must be a float32 value (fd.h) */
+        const float ratio = query->scale / proto->scale;
+        if ((isfinite(ratio) == 0) || (ratio <= 0.0f)) {
+            return SBR_ERR_RANGE;
+        }
+    }
     return SBR_OK;
 }
 
@@ -632,10 +639,12 @@ static void no_match(const sbr_fd_t *query, const sbr_fd_t *proto, sbr_fd_match_
     result->shift = 0.0f;
 }
 
-/* One match through the FFT instance, on checked arguments (prototype included). */
-static void match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
-                       const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
-                       sbr_fd_match_t *result)
+/* One match through the FFT instance, on checked arguments (prototype included):
+   SBR_OK, or SBR_ERR_RANGE (result untouched) when the correlation overflows float32 as
+   the four-lane path finds it (descriptors of far more than unit energy). */
+static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                               const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
+                               sbr_fd_match_t *result)
 {
     const uint32_t size = fft->n;
     uint32_t k;
@@ -660,15 +669,29 @@ static void match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
         const float cb = rotation_cos_bound(cfg);
         const float scale = (float)size;
         float best_val = FD_OUTSIDE;
+        float check = inv != 0 ? FD_OUTSIDE : 0.0f;
         uint32_t best = 0u;
         uint32_t l;
         sbr_complex_t around[3];
         for (l = 0u; l < size; l++) {
             const float v = peak_value(inv, cb, work[l].re, work[l].im);
+            const float rr = work[l].re * scale;
+            const float ri = work[l].im * scale;
             if (v > best_val) {
                 best_val = v;
                 best = l;
             }
+            /* the four-lane path's overflow check, in r = P * work: the largest |r|^2
+               (rotation invariant) or their sum */
+            if (inv != 0) {
+                const float v2 = (rr * rr) + (ri * ri);
+                check = (v2 > check) ? v2 : check;
+            } else {
+                check += (rr * rr) + (ri * ri);
+            }
+        }
+        if ((isfinite(check) == 0) || (check < 0.0f)) {
+            return SBR_ERR_RANGE;
         }
         around[0] = work[(best + size - 1u) % size];
         around[1] = work[best];
@@ -680,15 +703,17 @@ static void match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
         finish_match(size, cfg, query, proto, (best_val > FD_OUTSIDE) ? 1 : 0, best, around,
                      result);
     }
+    return SBR_OK;
 }
 
 /* match_core() after the screening (checked arguments). */
-static void match_screened(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
-                           const sbr_fd_t *query, const sbr_fd_t *proto, sbr_complex_t *work,
-                           sbr_fd_match_t *result)
+static sbr_status_t match_screened(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                                   const sbr_fd_t *query, const sbr_fd_t *proto,
+                                   sbr_complex_t *work, sbr_fd_match_t *result)
 {
     const float level = screen_level(cfg);
     int skip = 0;
+    sbr_status_t st = SBR_OK;
     if (level > 0.0f) {
         float qmag[(2u * SBR_FD_MAX_M) + 1u];
         query_magnitudes(query, qmag);
@@ -697,8 +722,9 @@ static void match_screened(const sbr_fft_t *fft, const sbr_fd_match_config_t *cf
     if (skip != 0) {
         no_match(query, proto, result);
     } else {
-        match_core(fft, cfg, query, proto, work, result);
+        st = match_core(fft, cfg, query, proto, work, result);
     }
+    return st;
 }
 
 /* ---- table matching, FD_LANES prototypes at a time ----------------------------------
@@ -1077,7 +1103,7 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
         st = check_proto(query, proto);
     }
     if (st == SBR_OK) {
-        match_screened(fft, cfg, query, proto, work, result);
+        st = match_screened(fft, cfg, query, proto, work, result);
     }
     return st;
 }
@@ -1111,7 +1137,10 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
             if (st != SBR_OK) {
                 return st;
             }
-            match_screened(fft, cfg, query, &protos[i], work, &results[i]);
+            st = match_screened(fft, cfg, query, &protos[i], work, &results[i]);
+            if (st != SBR_OK) {
+                return st;
+            }
         }
     }
     for (i = 1u; i < count; i++) {
