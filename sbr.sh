@@ -60,6 +60,26 @@ PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip python3-
 
 log() { printf '\n== %s\n' "$*"; }
 
+# The usage text: this file's head comment without its '#' marks.
+usage() { sed -n '2,/^set -euo/{/^set -euo/!p}' "$0" | sed -E 's/^# ?//'; }
+
+# need_file OPTION PATH: a file option's file must be there before anything runs.
+need_file() {
+  if [ ! -f "$2" ]; then
+    echo "sbr.sh: $1 $2: no such file (nothing was run)" >&2
+    exit 2
+  fi
+}
+
+# need_value OPTION COUNT: an option that takes a value must have one (COUNT: the
+# arguments left, the option included).
+need_value() {
+  if [ "$2" -lt 2 ]; then
+    echo "sbr.sh: $1 needs a value (./sbr.sh --help)" >&2
+    exit 2
+  fi
+}
+
 # The images of GTSDB that the built-in models (lib/models) are trained on.
 SHIPPED_TRAINING="0-599"
 
@@ -138,7 +158,7 @@ make_fuzz_seeds() {
 
 cmd_test() {
   case "${1:-}" in
-    -h|--help) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0"; return 0 ;;
+    -h|--help) usage; return 0 ;;
     "") ;;
     *) echo "unknown option $1 (./sbr.sh test takes none)" >&2; return 2 ;;
   esac
@@ -221,9 +241,9 @@ cmd_fuzz() {
   local minutes=5 targets=""
   while [ $# -gt 0 ]; do
     case "$1" in
-      --minutes) minutes="$2"; shift 2 ;;
-      --target) targets="$2"; shift 2 ;;
-      -h|--help) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0"; return 0 ;;
+      --minutes) need_value "$1" "$#"; minutes="$2"; shift 2 ;;
+      --target) need_value "$1" "$#"; targets="$2"; shift 2 ;;
+      -h|--help) usage; return 0 ;;
       *) echo "unknown option $1" >&2; return 2 ;;
     esac
   done
@@ -249,12 +269,14 @@ cmd_detect() {
   local input="" out="$ROOT/out" range="" baseline="" models=() note="" extra=()
   while [ $# -gt 0 ]; do
     case "$1" in
-      --input) input="$2"; shift 2 ;;
-      --model|--picto) models+=("$1" "$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"); shift 2 ;;
-      --out) out="$2"; shift 2 ;;
-      --range) range="$2"; shift 2 ;;
-      --baseline) baseline="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"; shift 2 ;;
-      -h|--help) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0"; return 0 ;;
+      --input) need_value "$1" "$#"; input="$2"; shift 2 ;;
+      --model|--picto) need_value "$1" "$#"; need_file "$1" "$2"
+        models+=("$1" "$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"); shift 2 ;;
+      --out) need_value "$1" "$#"; out="$2"; shift 2 ;;
+      --range) need_value "$1" "$#"; range="$2"; shift 2 ;;
+      --baseline) need_value "$1" "$#"; need_file "$1" "$2"
+        baseline="$(cd "$(dirname "$2")" && pwd)/$(basename "$2")"; shift 2 ;;
+      -h|--help) usage; return 0 ;;
       # the recogniser's options (and their values) go to sbr_detect, which checks them
       *) extra+=("$1"); shift ;;
     esac
@@ -317,8 +339,8 @@ cmd_train() {
   local range="$SHIPPED_TRAINING" out="" args=()
   while [ $# -gt 0 ]; do
     case "$1" in
-      --range) range="$2"; shift 2 ;;
-      --out) out="$2"; shift 2 ;;
+      --range) need_value "$1" "$#"; range="$2"; shift 2 ;;
+      --out) need_value "$1" "$#"; out="$2"; shift 2 ;;
       *) args+=("$1"); shift ;;
     esac
   done
@@ -357,7 +379,7 @@ cmd_crossval() {
   local out="$ROOT/out/crossval" args=()
   while [ $# -gt 0 ]; do
     case "$1" in
-      --out) out="$2"; shift 2 ;;
+      --out) need_value "$1" "$#"; out="$2"; shift 2 ;;
       *) args+=("$1"); shift ;;
     esac
   done
@@ -375,7 +397,7 @@ cmd_cost() {
   local out="$ROOT/out/cost" args=()
   while [ $# -gt 0 ]; do
     case "$1" in
-      --out) out="$2"; shift 2 ;;
+      --out) need_value "$1" "$#"; out="$2"; shift 2 ;;
       *) args+=("$1"); shift ;;
     esac
   done
@@ -438,6 +460,7 @@ case "${1:-}" in
   learn-tracker) shift; cmd_learn_tracker "$@" ;;
   track) shift; cmd_track "$@" ;;
   setup) setup ;;
-  -h|--help|help) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0" ;;
-  *) sed -n '2,/^set -euo/{/^set -euo/!p}' "$0"; exit 2 ;;
+  -h|--help|help) usage ;;
+  "") usage; exit 2 ;;
+  *) echo "sbr.sh: unknown command '$1' (the commands: detect, dashboard, train, crossval, cost, track, learn-tracker, test, fuzz, setup; ./sbr.sh --help)" >&2; exit 2 ;;
 esac

@@ -34,8 +34,9 @@ CASES = {
     "sbr_train_track": (["--labels", "l"], [("--em", "-1"), ("--vel-count", "3"), ("--tail", "nan")]),
     "sbr_train": ([], [("--vote-error", "0"), ("--max-protos", "70000"), ("--range", "1-")]),
     "sbr_train_picto": ([], [("--hidden", "abc"), ("--bg-swap", "sideways"), ("--eval-range", "2-1"),
-                             ("--gate-recall", "0")]),
+                             ("--gate-recall", "0"), ("--gtsrb-cap", "0")]),
     "sbr_to_ppm": (["--out", "o", __file__], []),
+    "sbr_gtsrb_eval": ([], [("--threads", "0"), ("--split", "test")]),
 }
 
 
@@ -64,6 +65,20 @@ def main():
             print(f"sbr.sh detect --input MISSING: exit {r.returncode}, output folder "
                   f"{'created' if os.path.exists(out) else 'not created'}")
             failures += not good
+            # an option without its value, a missing --baseline or --model file, an
+            # unknown command: named, exit 2, nothing run or written
+            for args, says in ((["detect", "--input"], "--input needs a value"),
+                               (["detect", "--baseline", missing, "--out", out], f"--baseline {missing}: no such file"),
+                               (["detect", "--model", missing, "--out", out], f"--model {missing}: no such file"),
+                               (["bogus"], "unknown command 'bogus'")):
+                r = run(["bash", a.sbr_sh] + args)
+                good = r.returncode == 2 and says in r.stderr and not os.path.exists(out) and not re.search(r"line [0-9]+:", r.stderr)
+                print(f"sbr.sh {' '.join(args[:2])}: exit {r.returncode}, {r.stderr.strip()[:90]!r}")
+                failures += not good
+        r = run(["bash", a.sbr_sh, "--help"])
+        good = r.returncode == 0 and "./sbr.sh detect" in r.stdout and not re.search(r"^#", r.stdout, re.M)
+        print(f"sbr.sh --help: exit {r.returncode}{'' if good else ' (comment marks or usage missing)'}")
+        failures += not good
     for tool, (required, bad) in CASES.items():
         exe = os.path.join(a.tools, tool)
         h = run([exe, "--help"])
