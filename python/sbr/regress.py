@@ -334,8 +334,25 @@ def evaluate(a, paths, threshold):
     return out.stdout
 
 
+# What sbr.regress imports beyond the package's own dependencies: the 'regress' extra.
+EXTRA_MODULES = {"dask": "dask", "distributed": "distributed", "pandas": "pandas", "pyarrow": "pyarrow",
+                 "PIL": "pillow"}
+
+
+def missing_extra():
+    """The distributions of the 'regress' extra that are not installed (by import name)."""
+    import importlib.util
+    return [dist for mod, dist in EXTRA_MODULES.items() if importlib.util.find_spec(mod) is None]
+
+
 def main(argv=None):
     a = parse_args(argv)
+    missing = missing_extra()
+    if missing:
+        # before anything is read or written
+        print(f"sbr.regress: needs the 'regress' extra: pip install 'sbr[regress]' (missing: {', '.join(missing)})",
+              file=sys.stderr)
+        return 2
     paths = list_inputs(a.input, a.span)
     if not paths:
         print(f"sbr.regress: no images in {a.input}", file=sys.stderr)

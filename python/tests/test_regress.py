@@ -11,7 +11,8 @@ Environment: SBR_DETECT, SBR_EVAL (the host tools), SBR_DATA (the GTSDB folder).
     failed (exit status 3), the finished chunks' files are kept; --resume computes only
     the missing chunks and ends with files identical to sbr_detect's (nothing lost,
     nothing twice);
-  - an unreadable image among readable ones is counted and listed, the rest processed.
+  - an unreadable image among readable ones is counted and listed, the rest processed;
+  - without the 'regress' extra's modules: one line naming the extra, exit 2, nothing written.
 """
 import os
 import shutil
@@ -112,3 +113,18 @@ def test_unreadable_image_is_counted(tmp_path):
     failures = (tmp_path / "o" / "failures.txt").read_text()
     assert "00445.jpg" in failures and "00444.jpg" not in failures
     assert (tmp_path / "o" / "detections.txt").read_text().startswith("00444.jpg;")
+
+
+def test_a_missing_extra_is_named_before_anything_is_written(tmp_path):
+    # the 'regress' extra's import names made unfindable: one line naming the extra, exit 2,
+    # no output folder
+    code = ("import importlib.util, sys; real = importlib.util.find_spec; "
+            "importlib.util.find_spec = lambda n, *a: None if n in ('dask', 'PIL') else real(n, *a); "
+            "from sbr import regress; sys.exit(regress.main(sys.argv[1:]))")
+    out = tmp_path / "o"
+    r = subprocess.run([sys.executable, "-c", code, "--input", DATA, "--out", str(out)], capture_output=True,
+                       text=True, timeout=120)
+    assert r.returncode == 2, r.stdout + r.stderr
+    assert "pip install 'sbr[regress]'" in r.stderr and "dask" in r.stderr and "pillow" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1
+    assert not out.exists()
