@@ -51,6 +51,8 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 cd "$ROOT"
 BUILD="${SBR_BUILD_ROOT:-$ROOT/build}"
+# The read-only data sets (GTSDB, GTSRB, MPEG-7, KITTI tracking), beside the project.
+DATA="${SBR_DATA_ROOT:-$ROOT/../shared/data}"
 JOBS="$(nproc 2>/dev/null || echo 2)"
 
 PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip python3-venv can-utils
@@ -147,7 +149,7 @@ build_fuzz() {
 # Seed corpora from real data (GTSDB crops, MPEG-7 contours, the models, the DBC's
 # frames) in build/fuzz-seeds; needs the native build (sbr_fuzz_seeds) and the venv.
 make_fuzz_seeds() {
-  local seeds="$BUILD/fuzz-seeds" data="$ROOT/../shared/data"
+  local seeds="$BUILD/fuzz-seeds" data="$DATA"
   local args=(--out "$seeds")
   [ -d "$data/gtsdb" ] && args+=(--gtsdb "$data/gtsdb")
   [ -d "$data/mpeg7" ] && args+=(--mpeg7 "$data/mpeg7")
@@ -286,8 +288,8 @@ cmd_detect() {
     return 2
   fi
   if [ -z "$input" ]; then
-    if [ -d "$ROOT/../shared/data/gtsdb" ]; then
-      input="$ROOT/../shared/data/gtsdb"
+    if [ -d "$DATA/gtsdb" ]; then
+      input="$DATA/gtsdb"
       # the development split by default (a fixed, quick set of 200 images)
       [ -n "$range" ] || range="400-599"
       if [ "${#models[@]}" -eq 0 ]; then
@@ -346,7 +348,7 @@ cmd_train() {
   done
   setup
   build_native
-  local tools="$BUILD/native/host_tools" data="$ROOT/../shared/data/gtsdb" c_model=() c_picto=()
+  local tools="$BUILD/native/host_tools" data="$DATA/gtsdb" c_model=() c_picto=()
   if [ "$range" = "$SHIPPED_TRAINING" ] && [ -z "$out" ]; then
     # the shipped models: the generated tables in lib/models and their files in build/
     out="$BUILD"
@@ -383,9 +385,14 @@ cmd_crossval() {
       *) args+=("$1"); shift ;;
     esac
   done
+  # each fold's class stage is also scored on GTSRB's validation tracks, when GTSRB is there
+  local gtsrb=()
+  if [ -d "$DATA/gtsrb" ] && ! printf '%s\n' ${args[@]+"${args[@]}"} | grep -qx -- '--gtsrb'; then
+    gtsrb=(--gtsrb "$DATA/gtsrb")
+  fi
   log "cross-validation on GTSDB 00000-00599 -> $out"
   python3 "$ROOT/host_tools/crossval/sbr_crossval.py" --tools "$BUILD/native/host_tools" \
-      --data "$ROOT/../shared/data/gtsdb" --out "$out" ${args[@]+"${args[@]}"}
+      --data "$DATA/gtsdb" --out "$out" ${gtsrb[@]+"${gtsrb[@]}"} ${args[@]+"${args[@]}"}
 }
 
 cmd_cost() {
@@ -403,7 +410,7 @@ cmd_cost() {
   done
   log "cost benchmark -> $out"
   python3 "$ROOT/host_tools/bench_cost/sbr_cost.py" --bin "$BUILD/native/host_tools" \
-      --m4-elf "$BUILD/cortex-m4/ports/cortex_m/sbr_cost_m4.elf" --gtsdb "$ROOT/../shared/data/gtsdb" \
+      --m4-elf "$BUILD/cortex-m4/ports/cortex_m/sbr_cost_m4.elf" --gtsdb "$DATA/gtsdb" \
       --out "$out" ${args[@]+"${args[@]}"}
 }
 
@@ -411,7 +418,7 @@ cmd_learn_tracker() {
   setup
   build_native
   log "sbr_train_track on KITTI tracking 0000-0005 -> lib/models/sbr_track_model_kitti.c, $BUILD/sbr_track_kitti.stm"
-  "$BUILD/native/host_tools/sbr_train_track" --labels "$ROOT/../shared/data/kitti_tracking/label_02" \
+  "$BUILD/native/host_tools/sbr_train_track" --labels "$DATA/kitti_tracking/label_02" \
       --seqs 0000-0005 --noise 0 --miss 0 --clutter 0 \
       --c-out "$ROOT/lib/models/sbr_track_model_kitti.c" --model-out "$BUILD/sbr_track_kitti.stm" "$@"
 }
@@ -419,7 +426,7 @@ cmd_learn_tracker() {
 cmd_track() {
   setup
   build_native
-  "$BUILD/native/host_tools/sbr_track" --labels "$ROOT/../shared/data/kitti_tracking/label_02" "$@"
+  "$BUILD/native/host_tools/sbr_track" --labels "$DATA/kitti_tracking/label_02" "$@"
 }
 
 cmd_dashboard() {

@@ -107,6 +107,15 @@ def one_fold(a, k, test, train):
         times["sbr_train_picto"] = run([os.path.join(a.tools, "sbr_train_picto"), "--data", a.data,
                                         "--range", ranges(train), "--model", model, "--seed", str(a.seed),
                                         "--out", picto] + shlex.split(a.picto_args), log)
+    gtsrb = None
+    if a.gtsrb:
+        # the fold's class stage on GTSRB's validation tracks (never trained on)
+        gj = os.path.join(d, "gtsrb.json")
+        with open(os.path.join(d, "gtsrb.txt"), "w") as f:
+            subprocess.run([os.path.join(a.tools, "sbr_gtsrb_eval"), "--gtsrb", a.gtsrb, "--picto", picto,
+                            "--threads", "1", "--json", gj], stdout=f, check=True)
+        with open(gj) as f:
+            gtsrb = json.load(f)
     dets = os.path.join(d, "detections_all.txt")
     summary = os.path.join(d, "summary.txt")
     times["sbr_detect"] = run([os.path.join(a.tools, "sbr_detect"), "--input", a.data, "--range", ranges([test]),
@@ -121,7 +130,7 @@ def one_fold(a, k, test, train):
     with open(os.path.join(d, "eval.json")) as f:
         ev = json.load(f)
     return {"fold": k + 1, "test": list(test), "train": [list(s) for s in train], "threshold": thr,
-            "times": times, "eval": ev}
+            "times": times, "eval": ev, "gtsrb": gtsrb}
 
 
 def mean_sd(v):
@@ -205,6 +214,9 @@ def report(a, folds, pooled, spans, elapsed):
             p(f"  signs {what} (image;left;top;right;bottom;class): {len(lst)}" + (": " if lst else ""))
             for i in range(0, len(lst), 4):
                 p("    " + "  ".join(lst[i:i + 4]))
+    if all(f.get("gtsrb") for f in folds):
+        p("")
+        p(gtsrb_report(folds))
     p("")
     steps = {}
     for f in folds:
@@ -213,6 +225,43 @@ def report(a, folds, pooled, spans, elapsed):
     p(f"time: {elapsed / 60:.1f} min in all with {a.jobs} folds at a time; per fold "
       + ", ".join(f"{n} {min(v) / 60:.1f}-{max(v) / 60:.1f} min" for n, v in steps.items()))
     return "\n".join(out) + "\n"
+
+
+DANGER = [11, 18, 19, 20, 21, 22, 23, 24, 25, 26, 27, 28, 29, 30, 31]
+
+
+def gtsrb_report(folds):
+    """Each fold's class stage on GTSRB's validation tracks: accuracy at the annotated box
+    (the true class the most probable output, "no sign" included), per superclass, how often
+    "no sign" wins, and the danger classes' confusions summed over the folds."""
+    out = ["GTSRB validation tracks (sbr_gtsrb_eval; every fifth track of each class, never trained on), "
+           "class stage of each fold at the annotated box:"]
+    head = f"{'':24s}" + "".join(f"{'fold ' + str(f['fold']):>16s}" for f in folds) + f"{'mean':>10s}"
+    out.append(head)
+
+    def row(name, get):
+        vals = [get(f["gtsrb"]) for f in folds]
+        out.append(f"{name:24s}" + "".join(f"{v:>15.2f}%" for v in vals) + f"{sum(vals) / len(vals):>9.2f}%")
+
+    pct = lambda a, b: 100.0 * a / b if b else 0.0
+    row("accuracy", lambda g: pct(g["right"], g["crops"]))
+    for s in SUPER:
+        row(f"{s}", lambda g, s=s: pct(g["superclasses"][s]["right"], g["superclasses"][s]["crops"]))
+    row("no sign most probable", lambda g: pct(g["no_sign"], g["crops"]))
+    out.append("danger classes, summed over the folds (right / crops; most frequent other answers):")
+    for c in DANGER:
+        key = str(c)
+        n = sum(f["gtsrb"]["classes"].get(key, {}).get("crops", 0) for f in folds)
+        r = sum(f["gtsrb"]["classes"].get(key, {}).get("right", 0) for f in folds)
+        bg = sum(f["gtsrb"]["classes"].get(key, {}).get("no_sign", 0) for f in folds)
+        taken = {}
+        for f in folds:
+            for t, m in f["gtsrb"]["classes"].get(key, {}).get("taken_for", {}).items():
+                taken[t] = taken.get(t, 0) + m
+        worst = sorted(taken.items(), key=lambda x: -x[1])[:3]
+        out.append(f"  {c:2d}: {pct(r, n):6.2f} % ({r}/{n}), no sign {bg}"
+                   + "".join(f"; as {t}: {m}" for t, m in worst))
+    return "\n".join(out)
 
 
 TOOL_ARGS = ("--train-args", "--picto-args", "--detect-args")
@@ -246,6 +295,7 @@ def main():
     g.add_argument("--models")
     g.add_argument("--parts")
     ap.add_argument("--baseline")
+    ap.add_argument("--gtsrb", help="GTSRB folder: each fold's class stage is also scored on its validation tracks")
     ap.add_argument("--train-args", default="")
     ap.add_argument("--picto-args", default="")
     ap.add_argument("--detect-args", default="")
@@ -257,6 +307,8 @@ def main():
             break
     else:
         raise SystemExit(f"sbr_crossval: no gt.txt in {a.data}")
+    if a.gtsrb and not os.path.isdir(a.gtsrb):
+        raise SystemExit(f"sbr_crossval: --gtsrb {a.gtsrb}: no such folder")
     if a.baseline and not os.path.isfile(os.path.join(a.baseline, "detections_all.txt")):
         raise SystemExit(f"sbr_crossval: --baseline {a.baseline} holds no cross-validation run")
     spans = fold_spans(a.first, a.last, a.folds)

@@ -167,6 +167,7 @@
 
 #include "cli.hpp"
 #include "gtsdb.hpp"
+#include "gtsrb.hpp"
 #include "model_io.hpp"
 #include "parallel.hpp"
 
@@ -877,6 +878,9 @@ struct Options {
     bool box = true, exposure = false, mirror = true, rotate = true, tview = true;
     BgSwap bg_swap = BgSwap::round, bg_fill = BgSwap::off;
     unsigned seed = 1;
+    std::string gtsrb;      // --gtsrb: GTSRB folder whose training tracks add sign samples
+    int gtsrb_cap = 400;    // --gtsrb-cap: crops a class at most, spread over its tracks
+    int gtsrb_copies = 2;   // --gtsrb-copies: jittered copies of each crop besides itself
 };
 
 // -1: go on; otherwise the exit status.
@@ -925,6 +929,15 @@ int parse_options(int argc, char **argv, Options &o) {
     app.add_option("--seed", o.seed, "random seed")->capture_default_str();
     app.add_option("--out-c", o.out_c, "write the class stage as a C table (lib/models/sbr_picto_gtsdb.c)");
     app.add_option("--out", o.out_file, "write the class stage as a model file (.sbrp)");
+    app.add_option("--gtsrb", o.gtsrb,
+                   "GTSRB folder: its training tracks' crops are sign samples too (the validation tracks, "
+                   "gtsrb.hpp, never)");
+    app.add_option("--gtsrb-cap", o.gtsrb_cap, "GTSRB crops of a class at most")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str();
+    app.add_option("--gtsrb-copies", o.gtsrb_copies, "jittered copies of each GTSRB crop")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
     add_front_end_options(app, g_front_end);
     const int parsed = parse_cli(app, argc, argv);
     if (parsed >= 0) return parsed;
@@ -1103,6 +1116,24 @@ public:
             if (gt.count(image_number(f)))
                 for (const auto &g : gt.at(image_number(f))) ++per_class_[g.class_id];
     }
+    // --gtsrb: the training tracks' crops, at most --gtsrb-cap a class, evenly spread over
+    // the class's crops (its tracks in order); false with the reason printed
+    bool add_gtsrb(const std::string &dir) {
+        std::string err;
+        const std::vector<GtsrbCrop> all = read_gtsrb(dir, err);
+        if (all.empty()) { std::fprintf(stderr, "sbr_train_picto: --gtsrb %s\n", err.c_str()); return false; }
+        std::map<int, std::vector<const GtsrbCrop *>> by_class;
+        for (const auto &c : all)
+            if (!c.validation) by_class[c.cls].push_back(&c);
+        for (const auto &[cls, v] : by_class) {
+            const size_t take = std::min(v.size(), size_t(o_.gtsrb_cap));
+            for (size_t i = 0; i < take; ++i) gtsrb_.push_back(*v[i * v.size() / take]);
+        }
+        std::fprintf(stderr, "sbr_train_picto: %zu GTSRB crops of %zu training ones (--gtsrb-cap %d)\n", gtsrb_.size(),
+                     size_t(std::count_if(all.begin(), all.end(), [](const GtsrbCrop &c) { return !c.validation; })),
+                     o_.gtsrb_cap);
+        return true;
+    }
     // Every image on 4 threads; the samples in a deterministic order.
     std::vector<Sample> collect(const sbr_picto_model_t *mine) const {
         std::vector<Sample> samples;
@@ -1117,6 +1148,14 @@ public:
             std::lock_guard<std::mutex> lk(mu);
             for (auto &x : local) samples.push_back(std::move(x));
         });
+        // the GTSRB crops are signs only (no scene, no candidates): the first round's
+        if (mine == nullptr)
+            parallel_for<Worker>(gtsrb_.size(), 4u, [&](size_t i, Worker &wk) {
+                std::vector<Sample> local;
+                gtsrb_crop(i, wk.rng, local);
+                std::lock_guard<std::mutex> lk(mu);
+                for (auto &x : local) samples.push_back(std::move(x));
+            });
         sort_samples(samples);
         return samples;
     }
@@ -1131,7 +1170,8 @@ private:
     }
     void image(size_t i, const sbr_picto_model_t *mine, std::vector<uint64_t> &ws, std::mt19937 &rng,
                std::vector<Sample> &local) const;
-    void sign_copies(const Site &site, std::mt19937 &rng, std::vector<Sample> &local) const;
+    void sign_copies(const Site &site, int copies, std::mt19937 &rng, std::vector<Sample> &local) const;
+    void gtsrb_crop(size_t i, std::mt19937 &rng, std::vector<Sample> &local) const;
     void rare_copies(const Site &site, int num, size_t g, std::vector<Sample> &local) const;
     void box_jitter_copies(const Site &site, int num, size_t g, std::vector<Sample> &local) const;
     void candidates(const sbr_image_t &v, const std::vector<Box> &cands, const std::vector<Box> &gts,
@@ -1143,13 +1183,14 @@ private:
     const sbr_model_t &pm_;
     std::map<int, std::vector<Box>> cand_file_;
     std::map<int, int> per_class_;
+    std::vector<GtsrbCrop> gtsrb_;
 };
 
 // The jittered, shrunk, re-exposed, re-backgrounded, turned or mirrored copies of a sign
 // (make_copy()), each with its box target and every fourth also as the triangle view.
-void SampleCollector::sign_copies(const Site &site, std::mt19937 &rng, std::vector<Sample> &local) const {
+void SampleCollector::sign_copies(const Site &site, int copies, std::mt19937 &rng, std::vector<Sample> &local) const {
     std::vector<float> f;
-    for (int j = 0; j <= o_.jitter; ++j) {
+    for (int j = 0; j <= copies; ++j) {
         const Copy c = make_copy(o_, site, j, rng);
         const sbr_image_t sv = c.seen.empty() ? *site.view : bgr_view(c.seen);
         if (!features(sv, c.qs, f)) continue;
@@ -1250,7 +1291,7 @@ void SampleCollector::image(size_t i, const sbr_picto_model_t *mine, std::vector
         for (const auto &g : gt_.at(num)) { gts.push_back(gt_pixbox(g)); cls.push_back(g.class_id); }
     for (size_t g = 0; g < gts.size() && mine == nullptr; ++g) {
         const Site site = make_site(img, v, gts, g, cls[g]);
-        sign_copies(site, rng, local);
+        sign_copies(site, o_.jitter, rng, local);
         rare_copies(site, num, g, local);
         box_jitter_copies(site, num, g, local);
     }
@@ -1258,6 +1299,19 @@ void SampleCollector::image(size_t i, const sbr_picto_model_t *mine, std::vector
     const std::vector<Box> cands = from_recogniser ? recog_candidates(v, pm_, mine, o_.tview, ws)
                                                    : (cand_file_.count(num) ? cand_file_.at(num) : std::vector<Box>{});
     candidates(v, cands, gts, cls, mine != nullptr, local);
+}
+
+// --gtsrb: GTSRB crop i as a sign of its class, and --gtsrb-copies copies of it made as
+// the GTSDB signs' (make_copy(): jittered, shrunk, turned, mirrored; the crop is the whole
+// neighbourhood, so no background swap), from a random stream of its own.
+void SampleCollector::gtsrb_crop(size_t i, std::mt19937 &rng, std::vector<Sample> &local) const {
+    const GtsrbCrop &c = gtsrb_[i];
+    cv::Mat img = cv::imread(c.path, cv::IMREAD_COLOR);
+    if (img.empty()) return;
+    const sbr_image_t v = bgr_view(img);
+    const std::vector<Box> gts{c.box};
+    rng.seed(o_.seed * 100003u + 7919u * unsigned(i) + 1000003u);
+    sign_copies(make_site(img, v, gts, 0, c.cls), o_.gtsrb_copies, rng, local);
 }
 
 // Samples by kind: signs, background, boxes for the box regression only.
@@ -1381,18 +1435,22 @@ std::string c_header(const Options &o, const Counts &n) {
     std::string swap_flag = std::string(" --bg-swap ") + mode_name(o.bg_swap);
     if (o.bg_fill != BgSwap::off) swap_flag += std::string(" --bg-fill ") + mode_name(o.bg_fill);
     if (!o.tview) swap_flag += " --no-triangle-view";
-    char head[768];
+    if (!o.gtsrb.empty())
+        swap_flag += " --gtsrb GTSRB --gtsrb-cap " + std::to_string(o.gtsrb_cap) + " --gtsrb-copies " +
+                     std::to_string(o.gtsrb_copies);
+    char head[896];
     std::snprintf(head, sizeof head,
                   "Class stage (pictogram classifier) of sbr's recogniser. GENERATED by sbr_train_picto - do not edit.\n"
                   "Regenerate: ./sbr.sh train   (runs sbr_train_picto --range %s --hidden %d --epochs %d --jitter %d\n"
                   "            --bg-fraction %g --dropout %g --decay %g%s%s%s%s%s --rounds %d --seed %u\n"
                   "            --out-c lib/models/sbr_picto_gtsdb.c on GTSDB)\n"
-                  "Training: GTSDB images %s, %zu sign samples, %zu background samples,\n"
+                  "Training: GTSDB images %s%s, %zu sign samples, %zu background samples,\n"
                   "%zu boxes for the box regression only.",
                   o.range.str().c_str(), o.hidden, o.epochs, o.jitter, double(o.bg_fraction), double(o.dropout),
                   double(o.decay), o.box ? "" : " --no-box", o.exposure ? " --exposure" : "", swap_flag.c_str(),
                   o.mirror ? (o.rotate ? "" : " --no-rotate") : (o.rotate ? " --no-mirror" : " --no-mirror --no-rotate"),
-                  bal, o.rounds, o.seed, o.range.str(true).c_str(), n.fg, n.bg, n.reg);
+                  bal, o.rounds, o.seed, o.range.str(true).c_str(),
+                  o.gtsrb.empty() ? "" : " and GTSRB's training tracks (gtsrb.hpp)", n.fg, n.bg, n.reg);
     return head;
 }
 
@@ -1496,7 +1554,8 @@ int main(int argc, char **argv) {
     const std::vector<std::string> files = list_images(dir, o.range);
     if (!o.from_picto.empty()) return add_to_picto(o, files, gt, *pm);
 
-    const SampleCollector sc(o, files, gt, *pm);
+    SampleCollector sc(o, files, gt, *pm);
+    if (!o.gtsrb.empty() && !sc.add_gtsrb(o.gtsrb)) return 2;
     std::vector<Sample> samples = sc.collect(nullptr);
     Counts n = count_samples(samples, files.size(), secs());
     if (n.fg == 0 || n.bg == 0) { std::fprintf(stderr, "sbr_train_picto: nothing to learn from\n"); return 1; }
