@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <initializer_list>
 
 #include <vector>
@@ -20,9 +21,51 @@ extern "C" {
 #include "sbr/status.h"
 }
 
+// A failed invariant aborts, so libFuzzer keeps the input. With SBR_FUZZ_KEEP_GOING set
+// (a survey of which checks an old build breaks, docs/usage/fuzz.md), each failing check
+// is reported once, with the executions and seconds until it first failed, and the run
+// goes on.
+inline bool fz_keep_going(const char *cond, const char *file, int line)
+{
+    static const bool keep = std::getenv("SBR_FUZZ_KEEP_GOING") != nullptr;
+    static std::vector<int> seen;
+    static unsigned long runs = 0; // calls that failed a check, a rough clock
+    static const std::time_t t0 = std::time(nullptr);
+    if (!keep) {
+        return false;
+    }
+    ++runs;
+    for (int l : seen) {
+        if (l == line) {
+            return true;
+        }
+    }
+    seen.push_back(line);
+    std::fprintf(stderr, "sbr fuzz: first failure of %s (%s:%d) after %ld s\n", cond, file, line,
+                 (long)(std::time(nullptr) - t0));
+    return true;
+}
+
+// Diagnostics printed before a check fails: always when failures abort, once per place
+// in the survey mode.
+inline bool fz_first(int line)
+{
+    static std::vector<int> seen;
+    if (std::getenv("SBR_FUZZ_KEEP_GOING") == nullptr) {
+        return true;
+    }
+    for (int l : seen) {
+        if (l == line) {
+            return false;
+        }
+    }
+    seen.push_back(line);
+    return true;
+}
+
 #define FZ_CHECK(cond)                                                                     \
     do {                                                                                   \
-        if (!(cond)) {                                                                     \
+        if (!(cond) && !fz_keep_going(#cond, __FILE__, __LINE__)) {                       \
             std::fprintf(stderr, "sbr fuzz: invariant failed: %s (%s:%d)\n", #cond,        \
                          __FILE__, __LINE__);                                              \
             std::abort();                                                                  \

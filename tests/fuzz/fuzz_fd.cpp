@@ -242,7 +242,7 @@ void fuzz_descriptors(FuzzedDataProvider &in)
         }
     }
     const bool may_overflow = !(emax < 1e34L);
-    if (!(both[0] == both[1] || (both[0] != SBR_OK && both[1] != SBR_OK) || may_overflow)) {
+    if (!(both[0] == both[1] || (both[0] != SBR_OK && both[1] != SBR_OK) || may_overflow) && fz_first(__LINE__)) {
         std::fprintf(stderr, "table of %u: four-lane path %d, single path %d\n", nt, (int)both[0], (int)both[1]);
         for (uint32_t i = 0u; i < nt; i++) {
             float e = -1.0f;

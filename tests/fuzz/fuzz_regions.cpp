@@ -35,7 +35,17 @@ void fuzz_map_mser_contour(FuzzedDataProvider &in)
     sbr_mser_config_default(&cfg);
     fz_edit_fields(in, &cfg, sizeof cfg, 3u);
     const sbr_status_t cs = sbr_mser_config_check(&cfg);
+    // mser.h's ranges, written out from the header: the check accepts exactly those
+    const bool header_ok = cfg.delta >= 1u && cfg.delta <= SBR_MSER_MAX_DELTA && cfg.min_area >= 1u &&
+                           cfg.max_area >= cfg.min_area && cfg.max_variation > 0.0f && cfg.max_variation <= 1e30f &&
+                           cfg.min_diversity >= 0.0f && cfg.min_diversity < 1.0f && cfg.polarity >= 1u &&
+                           cfg.polarity <= 3u;
+    FZ_CHECK((cs == SBR_OK) == header_ok);
     const size_t need = sbr_mser_workspace_size(&cfg, view.width, view.height);
+    if (need > 0u) {
+        // the macro equals the function for the configuration's max_nodes
+        FZ_CHECK(need == SBR_MSER_WORKSPACE_SIZE(view.width, view.height, cfg.delta, cfg.max_nodes));
+    }
     if (!fz_workspace_fits(cs, need, 64u)) {
         return;
     }
