@@ -144,10 +144,12 @@ void fuzz_descriptors(FuzzedDataProvider &in)
         FZ_CHECK(fz_finite(a.cx) && fz_finite(a.cy) && fz_finite(a.scale) && a.scale > 0.0f);
     }
     bool unit = st == SBR_OK;
-    if (st == SBR_OK && in.ConsumeIntegral<uint8_t>() < 40u) {
+    if (st == SBR_OK && in.ConsumeIntegral<uint8_t>() < 64u) {
         unit = false;
-        // a valid descriptor of another energy (tiny: correlations whose square underflows)
-        const float k = fz_float(in, 0.0f, 1.0f);
+        // a valid descriptor of another energy (tiny: correlations whose square underflows),
+        // the factor log-uniform down to 1e-40 or any float
+        const float k = in.ConsumeBool() ? std::pow(10.0f, -in.ConsumeFloatingPointInRange<float>(0.0f, 40.0f))
+                                         : fz_float(in, 0.0f, 1.0f);
         for (uint32_t i = 0u; i <= 2u * a.m; i++) {
             a.c[i].re *= k;
             a.c[i].im *= k;
