@@ -176,6 +176,7 @@ class Monitor:
         self.objects_reported = 0  # tracked-object frames that named an object
         self.frames = 0
         self.unknown = 0
+        self.skipped_lines = 0  # log lines that held no frame (comments and blanks not counted)
         self.events = collections.deque(maxlen=40)
         self.t0 = None
         self.now = None
@@ -195,10 +196,25 @@ class Monitor:
         self._status_times = collections.deque()
 
     # -- input ---------------------------------------------------------------------------
-    def feed(self, t, frame_id, data, is_extended=False, is_error=False, is_remote=False):
-        """One received frame at source time t (seconds)."""
+    def feed(self, t, frame_id, data, is_extended=False, is_error=False, is_remote=False, is_fd=False):
+        """One received frame at source time t (seconds). Extended, error, remote and CAN FD
+        frames are valid on a bus but none of the DBC's messages: counted as unknown,
+        named in the problems list by kind."""
+        kind = ("error frame" if is_error else "remote frame" if is_remote else "CAN FD frame" if is_fd
+                else "extended frame" if is_extended else "")
         with self.lock:
-            self._feed(t, frame_id, bytes(data), is_extended or is_error or is_remote)
+            self._feed(t, frame_id, bytes(data), kind)
+            self.version += 1
+            self.lock.notify_all()
+
+    def skipped(self, line, reason):
+        """A line of a log that held no frame (truncated, malformed): counted and listed with
+        its line number; the replay goes on."""
+        with self.lock:
+            self.skipped_lines += 1
+            if self.skipped_lines <= 20 or self.skipped_lines % 100 == 0:
+                self._event(self.now or 0.0, None, "log",
+                            f"line {line} skipped: {reason} ({self.skipped_lines} so far)")
             self.version += 1
             self.lock.notify_all()
 
@@ -241,14 +257,14 @@ class Monitor:
             changed = True
         return changed
 
-    def _feed(self, t, fid, data, odd):
+    def _feed(self, t, fid, data, odd_kind):
         if self.t0 is None:
             self.t0 = t
             self.timeouts.start = t
         self._tick(t)
         self.frames += 1
         spec = self.model.messages.get(fid)
-        known = spec is not None and not odd
+        known = spec is not None and not odd_kind
         text = data.hex(" ").upper()
         if known:
             self.periods[fid].received(t)
@@ -257,7 +273,8 @@ class Monitor:
         if not known:
             self.unknown += 1
             if self.unknown <= 5 or self.unknown % 100 == 0:
-                self._event(t, None, "unknown", f"id 0x{fid:X} ({self.unknown} so far)")
+                what = f"{odd_kind} " if odd_kind else ""
+                self._event(t, None, "unknown", f"{what}id 0x{fid:X} ({self.unknown} so far)")
         self.trace.append(dict(t=round(t - self.t0, 4), id=f"0x{fid:03X}",
                                name=spec.name if spec is not None else "", dlc=len(data),
                                data=text, check=check))
@@ -401,7 +418,7 @@ class Monitor:
         return dict(
             version=self.version, source=self.source, source_ended=self.source_ended,
             source_time=0.0 if self.t0 is None else round((self.now or self.t0) - self.t0, 3),
-            frames=self.frames, unknown=self.unknown, totals=totals,
+            frames=self.frames, unknown=self.unknown, skipped_lines=self.skipped_lines, totals=totals,
             timeout_factor=self.timeout_factor,
             messages=[self._message_view(fid, st) for fid, st in sorted(self.stats.items())],
             events=list(self.events),

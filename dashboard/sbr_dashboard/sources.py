@@ -6,6 +6,8 @@ import time
 
 import can
 
+from .candump import Frame, open_log, read_log
+
 
 class SourceError(Exception):
     pass
@@ -48,22 +50,32 @@ class Source:
     def _feed(self, msg, t=None):
         self.monitor.feed(msg.timestamp if t is None else t, msg.arbitration_id, msg.data,
                           is_extended=msg.is_extended_id, is_error=msg.is_error_frame,
-                          is_remote=msg.is_remote_frame)
+                          is_remote=msg.is_remote_frame, is_fd=getattr(msg, "is_fd", False))
 
 
 class LogPacer:
-    """The frames of a candump log (python-can's reader), each released at `rate` times the
-    recorded speed (0: at once). `t0`/`wall0` tie log time to the monotonic clock; `next_t`
-    is the timestamp of the frame being released."""
+    """The frames of a candump log (candump.read_log: comments, blank, truncated and malformed
+    lines go to `on_skip(line, reason)` and the reading goes on), each released at `rate`
+    times the recorded speed (0: at once). `t0`/`wall0` tie log time to the monotonic
+    clock; `next_t` is the timestamp of the frame being released."""
 
-    def __init__(self, path, rate, stop_event):
+    def __init__(self, path, rate, stop_event, on_skip=None):
         self.path, self.rate, self.stop_event = path, rate, stop_event
+        self.on_skip = on_skip
         self.t0 = self.wall0 = self.next_t = None
 
     def __iter__(self):
-        for msg in can.CanutilsLogReader(self.path):
+        with open_log(self.path) as f:
+            yield from self._frames(f)
+
+    def _frames(self, f):
+        for msg in read_log(f):
             if self.stop_event.is_set():
                 return
+            if not isinstance(msg, Frame):
+                if not msg.harmless and self.on_skip is not None:
+                    self.on_skip(msg.line, msg.reason)
+                continue
             self.next_t = msg.timestamp
             if self.t0 is None:
                 self.t0, self.wall0 = msg.timestamp, time.monotonic()
@@ -90,7 +102,7 @@ class LogSource(Source):
         self.path, self.rate = path, rate
         self.name = f"log {path}" + (" (as fast as possible)" if rate == 0 else
                                      f" ({rate:g}x recorded speed)")
-        self.pacer = LogPacer(path, rate, self.stop_event)
+        self.pacer = LogPacer(path, rate, self.stop_event, on_skip=monitor.skipped)
         try:
             with open(path, "rb"):
                 pass
@@ -106,7 +118,8 @@ class LogSource(Source):
         for msg in self.pacer:
             self._feed(msg, msg.timestamp)
         if not self.stop_event.is_set():
-            self.monitor.end_of_source("end of log")
+            n = self.monitor.skipped_lines
+            self.monitor.end_of_source("end of log" + (f" ({n} lines skipped)" if n else ""))
 
 
 class MonitorListener(can.Listener):
@@ -156,6 +169,7 @@ def feed_log_to_bus(path, interface, channel, rate=1.0, stop_event=None):
     try:
         for msg in LogPacer(path, rate, stop_event or threading.Event()):
             bus.send(can.Message(arbitration_id=msg.arbitration_id, data=msg.data,
-                                 is_extended_id=msg.is_extended_id, timestamp=time.time()))
+                                 is_extended_id=msg.is_extended_id, is_remote_frame=msg.is_remote_frame,
+                                 is_error_frame=msg.is_error_frame, is_fd=msg.is_fd, timestamp=time.time()))
     finally:
         bus.shutdown()

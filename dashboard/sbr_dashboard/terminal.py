@@ -89,7 +89,7 @@ def render(s, width=78):
     out += items("ECU", ecu, width)
     fc = h["flag_counts"]
     out += items("flags", [f"overload {fc['overload']}", f"error {fc['error']}", f"capacity {fc['capacity']}",
-                           f"frames {s['frames']}", f"unknown {s['unknown']}",
+                           f"frames {s['frames']}", f"unknown {s['unknown']}", f"lines skipped {s['skipped_lines']}",
                            f"source time {s['source_time']:.1f} s"], width)
     out.append("-" * width)
     msgs = s["messages"]

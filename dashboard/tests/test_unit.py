@@ -275,6 +275,48 @@ def test_log_source_replays_as_fast_as_possible(tmp_path):
     assert snap["source_time"] == pytest.approx(1.9)
 
 
+def test_a_real_bus_log_is_replayed_to_its_end(tmp_path):
+    # what candump logs of real buses hold besides sbr's frames: comments, blank lines, CAN
+    # FD, remote, error and extended frames, bad hex, an odd digit count, a line without a
+    # frame, and a truncated last line. Every valid sbr frame is used; the others are
+    # counted and named; the bad lines are listed with their numbers; the replay goes on.
+    s = Sender(M)
+    lines = ["# candump -l can0, recorded on a test drive", ""]
+    good = 0
+    for k in range(10):
+        for fid, data in s.cycle(k):
+            lines.append(f"(1700000000.{k * 100000:06d}) can0 {fid:03X}#{data.hex().upper()}")
+            good += 1
+        if k == 3:
+            lines += ["(1700000000.350000) can0 7DF##1020C0000000000",  # CAN FD
+                      "(1700000000.350100) can0 7DF#R",                # remote
+                      "(1700000000.350200) can0 20000004#0000000000000000",  # error frame
+                      "(1700000000.350300) can0 18DAF110#0210030000000000",  # extended
+                      "(1700000000.350400) can0 123#GG",                # bad hex
+                      "(1700000000.350500) can0 123#ABC",               # odd digits
+                      "garbage without a frame"]
+    lines.append("(1700000001.000000) can0 12")  # truncated last line
+    log = tmp_path / "real.log"
+    log.write_text("\n".join(lines))
+    mon = Monitor(M)
+    src = LogSource(mon, str(log), rate=0.0)
+    src.start()
+    src.thread.join(10)
+    snap = mon.snapshot()
+    assert snap["source_ended"] and src.error is None
+    assert snap["totals"]["valid"] == good and snap["frames"] == good + 4
+    assert snap["unknown"] == 4 and snap["skipped_lines"] == 4
+    text = "\n".join(e["detail"] for e in snap["events"])
+    for what in ("CAN FD frame id 0x7DF", "remote frame id 0x7DF", "error frame id 0x4",
+                 "extended frame id 0x18DAF110"):
+        assert what in text, what
+    bad = [i + 1 for i, l in enumerate(lines) if l.startswith("(1700000000.3504") or l.startswith("(1700000000.3505")
+           or l.startswith("garbage") or l.endswith("can0 12")]
+    for n in bad:
+        assert f"line {n} skipped" in text, n
+    assert "end of log (4 lines skipped)" in text
+
+
 def test_virtual_bus_source():
     mon = Monitor(M)
     src = BusSource(mon, "virtual", "sbr-test")

@@ -146,6 +146,7 @@ function render(s) {
   setCount("h-capacity", h.flag_counts.capacity);
   $("h-frames").textContent = s.frames;
   setCount("h-unknown", s.unknown);
+  setCount("h-skipped", s.skipped_lines);
   setCount("t-e2e", s.totals.e2e_errors);
   setCount("t-timeouts", s.totals.timeouts);
   setCount("t-range", s.totals.out_of_range);
