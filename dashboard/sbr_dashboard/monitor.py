@@ -297,7 +297,9 @@ class Monitor:
         msg = spec.message
         try:
             raw = msg.decode(data, decode_choices=False, scaling=False)
-            phys = msg.decode(data, decode_choices=False, scaling=True)
+            # scaled from the raw values by each signal's own conversion (what cantools'
+            # scaling=True does, without decoding the bits a second time)
+            phys = {sig.name: sig.conversion.raw_to_scaled(raw[sig.name], False) for sig in msg.signals}
         except Exception as e:  # never expected for a frame of the right length
             st["out_of_range"] += 1
             self._event(t, fid, "range", f"cannot decode: {e}")
