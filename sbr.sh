@@ -366,7 +366,14 @@ cmd_train() {
   # the class stage learns from the new library's candidates (its file, so no rebuild)
   log "sbr_train_picto on GTSDB $range -> $out/sbr_picto_gtsdb.sbrp${c_picto:+, lib/models/sbr_picto_gtsdb.c}"
   # seed 2: see docs/results/recognition.md (training noise; the shipped figures are this seed's)
-  "$tools/sbr_train_picto" --data "$data" --range "$range" --seed 2 --model "$out/sbr_gtsdb.sbrm" \
+  # GTSRB's training tracks are sign samples too (docs/usage/gtsrb.md): the built-in class
+  # stage is trained with them
+  local gtsrb=(--gtsrb "$DATA/gtsrb")
+  if [ ! -d "$DATA/gtsrb" ]; then
+    echo "sbr.sh train: note: no GTSRB in $DATA/gtsrb: the class stage learns from GTSDB alone (not the built-in one's recipe)" >&2
+    gtsrb=(--no-gtsrb)
+  fi
+  "$tools/sbr_train_picto" --data "$data" "${gtsrb[@]}" --range "$range" --seed 2 --model "$out/sbr_gtsdb.sbrm" \
       "${c_picto[@]}" --out "$out/sbr_picto_gtsdb.sbrp"
   if [ "${#c_model[@]}" -gt 0 ]; then
     cmake --build "$BUILD/native" -j "$JOBS"

@@ -104,9 +104,14 @@ def one_fold(a, k, test, train):
         else:
             times["sbr_train"] = run([os.path.join(a.tools, "sbr_train"), "--data", a.data, "--range",
                                       ranges(train), "--out-model", model] + shlex.split(a.train_args), log)
+        # the class stage learns from --gtsrb's training tracks too, unless the picto
+        # arguments say otherwise
+        extra = shlex.split(a.picto_args)
+        if a.gtsrb and not any(x.split("=")[0] in ("--gtsrb", "--no-gtsrb") for x in extra):
+            extra = ["--gtsrb", a.gtsrb] + extra
         times["sbr_train_picto"] = run([os.path.join(a.tools, "sbr_train_picto"), "--data", a.data,
                                         "--range", ranges(train), "--model", model, "--seed", str(a.seed),
-                                        "--out", picto] + shlex.split(a.picto_args), log)
+                                        "--out", picto] + extra, log)
     gtsrb = None
     if a.gtsrb:
         # the fold's class stage on GTSRB's validation tracks (never trained on)
@@ -295,7 +300,8 @@ def main():
     g.add_argument("--models")
     g.add_argument("--parts")
     ap.add_argument("--baseline")
-    ap.add_argument("--gtsrb", help="GTSRB folder: each fold's class stage is also scored on its validation tracks")
+    ap.add_argument("--gtsrb", help="GTSRB folder: each fold's class stage learns from its training tracks "
+                                    "(unless --picto-args has --no-gtsrb) and is scored on its validation tracks")
     ap.add_argument("--train-args", default="")
     ap.add_argument("--picto-args", default="")
     ap.add_argument("--detect-args", default="")

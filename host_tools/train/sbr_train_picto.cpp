@@ -12,10 +12,12 @@
 //                   [--gate [--gate-hidden H] [--gate-recall R]]
 //                   [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y]
 //
-// Defaults: --data ../shared/data/gtsdb, --range 0-399 (the training split; the
-// development split 400-599 is never read for training), --hidden 128, --epochs 20,
-// --jitter 20 (copies per annotated sign), --lr 0.01, --seed 1, --threshold 0.5 (the
-// operating point stored with it: the class more probable than everything else together),
+// Defaults: --data ../shared/data/gtsdb, --gtsrb ../shared/data/gtsrb (its training tracks'
+// crops as more sign samples, docs/usage/gtsrb.md; --no-gtsrb: none), --range 0-399 (the
+// training split; the development split 400-599 is never read for training), --hidden 128,
+// --epochs 20, --jitter 20 (copies per annotated sign), --lr 0.01, --seed 1, --threshold 0.7
+// (the operating point stored with it, chosen on the cross-validation with GTSRB:
+// docs/results/crossval.md),
 // --bg-fraction 0.3 (share of the background samples each epoch sees, a fresh draw each
 // epoch), --dropout 0.5 (share of the hidden units left out of each training sample's
 // forward and backward pass, a fresh deterministic draw per sample and epoch; 0 = none),
@@ -157,6 +159,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -868,7 +871,7 @@ struct Options {
     std::string data = "../shared/data/gtsdb", cand_path, out_c, out_file, model_path;
     int hidden = 128, epochs = 20, jitter = 20, box_jitter = 0;
     ImageRanges range{{{0, 399}}}, eval_range;
-    float lr = 0.01f, threshold = 0.5f, bg_fraction = 0.3f, dropout = 0.5f, decay = 1e-4f, balance = 0.0f;
+    float lr = 0.01f, threshold = 0.7f, bg_fraction = 0.3f, dropout = 0.5f, decay = 1e-4f, balance = 0.0f;
     int rounds = 2, rare = 0;
     std::vector<int> rim_classes{13};  // --rim-check: classes that get a colour check
     std::string from_picto;        // --from-picto: only the colour check, added to this file
@@ -878,7 +881,8 @@ struct Options {
     bool box = true, exposure = false, mirror = true, rotate = true, tview = true;
     BgSwap bg_swap = BgSwap::round, bg_fill = BgSwap::off;
     unsigned seed = 1;
-    std::string gtsrb;      // --gtsrb: GTSRB folder whose training tracks add sign samples
+    std::string gtsrb = "../shared/data/gtsrb";  // --gtsrb: GTSRB folder whose training tracks add sign samples
+    bool gtsrb_given = false;  // --gtsrb on the command line (a missing default folder is only a note)
     int gtsrb_cap = 400;    // --gtsrb-cap: crops a class at most, spread over its tracks
     int gtsrb_copies = 2;   // --gtsrb-copies: jittered copies of each crop besides itself
 };
@@ -929,9 +933,12 @@ int parse_options(int argc, char **argv, Options &o) {
     app.add_option("--seed", o.seed, "random seed")->capture_default_str();
     app.add_option("--out-c", o.out_c, "write the class stage as a C table (lib/models/sbr_picto_gtsdb.c)");
     app.add_option("--out", o.out_file, "write the class stage as a model file (.sbrp)");
-    app.add_option("--gtsrb", o.gtsrb,
-                   "GTSRB folder: its training tracks' crops are sign samples too (the validation tracks, "
-                   "gtsrb.hpp, never)");
+    CLI::Option *gtsrb_opt = app.add_option("--gtsrb", o.gtsrb,
+                                            "GTSRB folder: its training tracks' crops are sign samples too (the "
+                                            "validation tracks, gtsrb.hpp, never)")
+                                 ->capture_default_str();
+    bool no_gtsrb = false;
+    app.add_flag("--no-gtsrb", no_gtsrb, "train on GTSDB only");
     app.add_option("--gtsrb-cap", o.gtsrb_cap, "GTSRB crops of a class at most")
         ->check(CLI::Range(1, 100000))
         ->capture_default_str();
@@ -941,6 +948,14 @@ int parse_options(int argc, char **argv, Options &o) {
     add_front_end_options(app, g_front_end);
     const int parsed = parse_cli(app, argc, argv);
     if (parsed >= 0) return parsed;
+    o.gtsrb_given = gtsrb_opt->count() > 0;
+    if (no_gtsrb) {
+        if (o.gtsrb_given) {
+            std::fprintf(stderr, "sbr_train_picto: --gtsrb and --no-gtsrb contradict each other\n");
+            return 2;
+        }
+        o.gtsrb.clear();
+    }
     if (!rim_list.empty()) {
         std::stringstream ss(rim_list == "none" ? "" : rim_list);
         o.rim_classes.clear();
@@ -1438,6 +1453,13 @@ std::string c_header(const Options &o, const Counts &n) {
     if (!o.gtsrb.empty())
         swap_flag += " --gtsrb GTSRB --gtsrb-cap " + std::to_string(o.gtsrb_cap) + " --gtsrb-copies " +
                      std::to_string(o.gtsrb_copies);
+    else
+        swap_flag += " --no-gtsrb";
+    {
+        char thr[48];
+        std::snprintf(thr, sizeof thr, " --threshold %g", double(o.threshold));
+        swap_flag += thr;
+    }
     char head[896];
     std::snprintf(head, sizeof head,
                   "Class stage (pictogram classifier) of sbr's recogniser. GENERATED by sbr_train_picto - do not edit.\n"
@@ -1555,6 +1577,11 @@ int main(int argc, char **argv) {
     if (!o.from_picto.empty()) return add_to_picto(o, files, gt, *pm);
 
     SampleCollector sc(o, files, gt, *pm);
+    if (!o.gtsrb.empty() && !o.gtsrb_given && !std::filesystem::is_directory(o.gtsrb)) {
+        std::fprintf(stderr, "sbr_train_picto: note: no GTSRB in %s: training on GTSDB only (--gtsrb DIR, or --no-gtsrb)\n",
+                     o.gtsrb.c_str());
+        o.gtsrb.clear();
+    }
     if (!o.gtsrb.empty() && !sc.add_gtsrb(o.gtsrb)) return 2;
     std::vector<Sample> samples = sc.collect(nullptr);
     Counts n = count_samples(samples, files.size(), secs());
