@@ -139,11 +139,17 @@ typedef struct sbr_model_s {
     sbr_picto_model_t picto;
 } sbr_model_t;
 
+/** Range of a model descriptor's scale (sbr_fd_t::scale, pixels of the training region),
+    so that a region's scale over it stays a float32 value. */
+#define SBR_MODEL_MIN_SCALE 1e-10f
+#define SBR_MODEL_MAX_SCALE 1e10f
+
 /**
  * @brief Check a model: version, sizes, group and cascade indices, finite positive
  *        geometry, weights in (0, 1], class count in 1 .. ::SBR_RECOG_MAX_CLASSES and
- *        class ids below it, outlines in range, finite descriptors; a class stage with
- *        the same class count.
+ *        class ids below it, outlines in range, valid descriptors of unit energy with
+ *        scales in ::SBR_MODEL_MIN_SCALE .. ::SBR_MODEL_MAX_SCALE; a class stage with the
+ *        same class count.
  * @param[in] model the model
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_CORRUPT for any inconsistency.
  */

@@ -1,4 +1,5 @@
 #include "sbr/fd.h"
+#include "fd_internal.h"
 
 #include <math.h>
 
@@ -421,6 +422,13 @@ static sbr_status_t check_proto(const sbr_fd_t *query, const sbr_fd_t *proto)
     return check_proto_header(query, proto);
 }
 
+/* A prototype of a trusted table (fd_internal.h: checked by its owner, its scale ratio to
+   any query of the owner's finite): only its M against the query's. */
+static sbr_status_t check_trusted(const sbr_fd_t *query, const sbr_fd_t *proto)
+{
+    return (proto->m == query->m) ? SBR_OK : SBR_ERR_SIZE;
+}
+
 /* Where conj(Q(n)) C(n), n = -M..M (k = n + M), goes: element `scale * place(n mod P)` of
    the re/im arrays, place = bit reversal (lane buffers) or identity (bitrev NULL). */
 static void product_positions(uint32_t m, uint32_t size, const uint16_t *bitrev,
@@ -457,8 +465,35 @@ static void write_products(const sbr_fd_t *query, const sbr_fd_t *proto, const u
    FD_OUTSIDE for a covariant value whose rotation exceeds the bound. */
 #define FD_OUTSIDE (-8.0f)
 /* Below this |r|^2, the rotation test scales r first: its square would lose the direction
-   to underflow. */
+   to underflow. A covariant peak search is redone with that test only where a lag the
+   fast one misjudged can matter (rescan()). */
 #define FD_TINY_SQ 1e-30f
+#define FD_TINY_VALUE 1e-15f
+
+/* The covariant objective as the hot loops test it: one square root a lag, exact unless
+   |r|^2 underflows, which only a lag of |Re r| < FD_TINY_VALUE can suffer. */
+static float peak_value_fast(float cos_bound, float re, float im)
+{
+    float v = re;
+    if (re < (cos_bound * sqrtf((re * re) + (im * im)))) {
+        v = FD_OUTSIDE;
+    }
+    return v;
+}
+
+/* Whether a covariant peak search must be redone with the careful test: the fast one can
+   admit a tiny lag whose direction it cannot see (then the best is below FD_TINY_VALUE),
+   or reject one for a bound beyond pi / 2 (cos < 0), which matters only if no lag
+   qualified. Without a bound (cos <= -1) it misjudges nothing. */
+static int rescan(float best_val, float cos_bound)
+{
+    int again = 0;
+    if ((cos_bound > -1.0f) && (((best_val > FD_OUTSIDE) && (best_val < FD_TINY_VALUE)) ||
+                                ((best_val <= FD_OUTSIDE) && (cos_bound < 0.0f)))) {
+        again = 1;
+    }
+    return again;
+}
 
 static float peak_value(int invariant, float cos_bound, float re, float im)
 {
@@ -674,7 +709,8 @@ static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t
         uint32_t l;
         sbr_complex_t around[3];
         for (l = 0u; l < size; l++) {
-            const float v = peak_value(inv, cb, work[l].re, work[l].im);
+            const float v = (inv != 0) ? peak_value(1, cb, work[l].re, work[l].im)
+                                       : peak_value_fast(cb, work[l].re, work[l].im);
             const float rr = work[l].re * scale;
             const float ri = work[l].im * scale;
             if (v > best_val) {
@@ -692,6 +728,18 @@ static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t
         }
         if ((isfinite(check) == 0) || (check < 0.0f)) {
             return SBR_ERR_RANGE;
+        }
+        if ((inv == 0) && (rescan((best_val > FD_OUTSIDE) ? (best_val * scale) : best_val, cb) != 0)) {
+            /* rare: the careful test, on r = P * work */
+            best_val = FD_OUTSIDE;
+            best = 0u;
+            for (l = 0u; l < size; l++) {
+                const float v = peak_value(0, cb, work[l].re * scale, work[l].im * scale);
+                if (v > best_val) {
+                    best_val = v;
+                    best = l;
+                }
+            }
         }
         around[0] = work[(best + size - 1u) % size];
         around[1] = work[best];
@@ -902,12 +950,25 @@ static void lanes_peaks(uint32_t size, int inv, float cb, const float *re, const
             for (b = 0u; b < FD_LANES; b++) {
                 const float xr = re[(l * FD_LANES) + b];
                 const float xi = im[(l * FD_LANES) + b];
-                const float v = peak_value(0, cb, xr, xi);
+                const float v = peak_value_fast(cb, xr, xi);
                 if (v > bv[b]) {
                     bv[b] = v;
                     bl[b] = fl;
                 }
                 check[b] += (xr * xr) + (xi * xi);
+            }
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            if (rescan(bv[b], cb) != 0) {
+                /* rare: the careful test */
+                bv[b] = FD_OUTSIDE;
+                for (l = 0u; l < size; l++) {
+                    const float v = peak_value(0, cb, re[(l * FD_LANES) + b], im[(l * FD_LANES) + b]);
+                    if (v > bv[b]) {
+                        bv[b] = v;
+                        bl[b] = (float)l;
+                    }
+                }
             }
         }
     }
@@ -950,7 +1011,15 @@ static void lanes_products(const sbr_fd_t *query, const sbr_fd_t *const protos[F
 static int found_any(int inv, float cb, sbr_complex_t at_best)
 {
     int f = 0;
-    if (peak_value(inv, cb, at_best.re, at_best.im) > FD_OUTSIDE) {
+    float v;
+    if (inv != 0) {
+        v = peak_value(1, cb, at_best.re, at_best.im);
+    } else if (fabsf(at_best.re) < FD_TINY_VALUE) {
+        v = peak_value(0, cb, at_best.re, at_best.im); /* as the rescan judged it */
+    } else {
+        v = peak_value_fast(cb, at_best.re, at_best.im);
+    }
+    if (v > FD_OUTSIDE) {
         f = 1;
     }
     return f;
@@ -967,12 +1036,14 @@ typedef struct lane_batch_s {
    in table order (the screened ones get their no-match result); the walk stops at the
    first bad header, whose status goes to *header. */
 static void lanes_gather(const sbr_fd_t *query, const sbr_fd_t *protos, uint32_t count,
-                         const float *qmag, float level, uint32_t *i, lane_batch_t *bt,
-                         sbr_fd_match_t *results, sbr_status_t *header)
+                         const float *qmag, float level, int trusted, uint32_t *i,
+                         lane_batch_t *bt, sbr_fd_match_t *results, sbr_status_t *header)
 {
     bt->valid = 0u;
     while ((bt->valid < FD_LANES) && (*i < count) && (*header == SBR_OK)) {
-        *header = check_proto(query, &protos[*i]);
+        /* a trusted table (checked by its owner, fd_internal.h) gets the per-pair checks
+           only: its M and the scale ratio */
+        *header = (trusted != 0) ? check_trusted(query, &protos[*i]) : check_proto(query, &protos[*i]);
         if (*header == SBR_OK) {
             if ((level > 0.0f) && (screened_out(qmag, &protos[*i], level) != 0)) {
                 no_match(query, &protos[*i], &results[*i]);
@@ -1041,7 +1112,7 @@ static void lanes_finish(uint32_t size, const sbr_fd_match_config_t *cfg, const 
 
 static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                       const sbr_fd_t *query, const sbr_fd_t *protos,
-                                      uint32_t count, sbr_complex_t *work,
+                                      uint32_t count, int trusted, sbr_complex_t *work,
                                       sbr_fd_match_t *results)
 {
     const uint32_t size = fft->n;
@@ -1076,7 +1147,7 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
            (whose correlations are checked for overflow), so the first bad prototype in
            table order decides the status */
         lane_batch_t bt;
-        lanes_gather(query, protos, count, qmag, level, &i, &bt, results, &header);
+        lanes_gather(query, protos, count, qmag, level, trusted, &i, &bt, results, &header);
         if (bt.valid > 0u) {
             uint32_t b;
             lanes_fill(fft, query, &bt, pos, re, im);
@@ -1108,10 +1179,12 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
     return st;
 }
 
-sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+/* sbr_fd_match_table(); trusted: the prototypes were checked by sbr_fd_check() before
+   (fd_internal.h), so only the per-pair conditions are checked here. */
+static sbr_status_t match_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                 const sbr_fd_t *query, const sbr_fd_t *protos, uint32_t count,
-                                sbr_complex_t *work, uint32_t work_len, sbr_fd_match_t *results,
-                                uint32_t *best)
+                                int trusted, sbr_complex_t *work, uint32_t work_len,
+                                sbr_fd_match_t *results, uint32_t *best)
 {
     sbr_status_t st = check_match_args(fft, cfg, query, work, work_len, results);
     uint32_t i;
@@ -1127,13 +1200,13 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
         return SBR_ERR_SIZE;
     }
     if (work_len >= SBR_FD_TABLE_WORK_LEN(fft->n)) {
-        st = match_table_lanes(fft, cfg, query, protos, count, work, results);
+        st = match_table_lanes(fft, cfg, query, protos, count, trusted, work, results);
         if (st != SBR_OK) {
             return st;
         }
     } else {
         for (i = 0u; i < count; i++) {
-            st = check_proto(query, &protos[i]);
+            st = (trusted != 0) ? check_trusted(query, &protos[i]) : check_proto(query, &protos[i]);
             if (st != SBR_OK) {
                 return st;
             }
@@ -1150,4 +1223,21 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
     }
     *best = b;
     return SBR_OK;
+}
+
+sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                                const sbr_fd_t *query, const sbr_fd_t *protos, uint32_t count,
+                                sbr_complex_t *work, uint32_t work_len, sbr_fd_match_t *results,
+                                uint32_t *best)
+{
+    return match_table(fft, cfg, query, protos, count, 0, work, work_len, results, best);
+}
+
+sbr_status_t sbr_fd_priv_match_checked_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                                             const sbr_fd_t *query, const sbr_fd_t *protos,
+                                             uint32_t count, sbr_complex_t *work,
+                                             uint32_t work_len, sbr_fd_match_t *results,
+                                             uint32_t *best)
+{
+    return match_table(fft, cfg, query, protos, count, 1, work, work_len, results, best);
 }

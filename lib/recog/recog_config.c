@@ -191,7 +191,8 @@ sbr_status_t sbr_model_check(const sbr_model_t *model)
             float e = 0.0f;
             /* sbr's descriptors have unit energy: anything else is a damaged table */
             if ((proto_ok(&model->protos[i], g, model->class_count) == 0) || (model->fds[i].m != model->fd_m) ||
-                (sbr_fd_check(&model->fds[i], &e) != SBR_OK) || (in_range(e, 0.99f, 1.01f) == 0)) {
+                (sbr_fd_check(&model->fds[i], &e) != SBR_OK) || (in_range(e, 0.99f, 1.01f) == 0) ||
+                (in_range(model->fds[i].scale, SBR_MODEL_MIN_SCALE, SBR_MODEL_MAX_SCALE) == 0)) {
                 return SBR_ERR_CORRUPT;
             }
         }

@@ -3,6 +3,7 @@
  * and cascade verification. See include/sbr/recognizer.h.
  */
 #include "recog_internal.h"
+#include "../fd/fd_internal.h"
 
 #include <math.h>
 #include <string.h>
@@ -51,8 +52,9 @@ sbr_status_t sbr_recog_priv_cast_votes(recog_ctx_t *c, uint32_t pi)
     if (n == 0u) {
         return SBR_OK;
     }
-    st = sbr_fd_match_table(&c->fft_p, &c->mcfg, &p->fd, &m->fds[first], n, c->work,
-                            c->work_len, c->results, &best);
+    /* the model's prototypes were checked by sbr_model_check() this call */
+    st = sbr_fd_priv_match_checked_table(&c->fft_p, &c->mcfg, &p->fd, &m->fds[first], n, c->work,
+                                         c->work_len, c->results, &best);
     if (st != SBR_OK) {
         return st;
     }
