@@ -507,20 +507,21 @@ static void test_heading_stays_wrapped_and_ranges_match_the_header(void)
     s.heading = -3.14159274f;
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 1000u, &out));
     s.heading = 0.0f;
-    s.x = 9999.0f;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 1000u, &out));
-    s.x = 1e4f;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 1000u, &out));
-    s.x = 0.0f;
-    s.speed = 100.0f;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 1000u, &out));
-    s.speed = 100.5f;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 1000u, &out));
-    s.speed = 2.0f;
-    m.wheelbase = 99.0f;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &s, 1000u, &out));
-    m.wheelbase = 100.0f;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 1000u, &out));
+    {
+        /* each bound of bicycle.h: the last value inside, the first outside */
+        static const float inside[3] = {9999.0f, 100.0f, 99.0f};
+        static const float outside[3] = {1e4f, 100.5f, 100.0f};
+        uint32_t k;
+        for (k = 0u; k < 3u; k++) {
+            sbr_bike_state_t t = s;
+            sbr_bike_model_t mm = m;
+            float *field[3] = {&t.x, &t.speed, &mm.wheelbase};
+            *field[k] = inside[k];
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&mm, &t, 1000u, &out));
+            *field[k] = outside[k];
+            TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&mm, &t, 1000u, &out));
+        }
+    }
 }
 
 int main(void)

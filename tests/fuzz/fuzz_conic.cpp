@@ -40,6 +40,18 @@ sbr_conic_t rounded_conic(FuzzedDataProvider &in)
     return q;
 }
 
+// An ellipse as a caller gives one: centre within +-reach, axes to 500 px, any angle.
+sbr_ellipse_t ellipse_from(FuzzedDataProvider &in, float reach)
+{
+    sbr_ellipse_t e;
+    e.cx = fz_float(in, -reach, reach);
+    e.cy = fz_float(in, -reach, reach);
+    e.semi_major = fz_float(in, 0.0f, 500.0f);
+    e.semi_minor = fz_float(in, 0.0f, 500.0f);
+    e.angle = fz_float(in, -4.0f, 4.0f);
+    return e;
+}
+
 sbr_conic_t conic_from(FuzzedDataProvider &in)
 {
     sbr_conic_t q;
@@ -48,12 +60,7 @@ sbr_conic_t conic_from(FuzzedDataProvider &in)
         return rounded_conic(in);
     }
     if (kind < 160u) { // near an ellipse of the image plane
-        sbr_ellipse_t e;
-        e.cx = fz_float(in, -2000.0f, 2000.0f);
-        e.cy = fz_float(in, -2000.0f, 2000.0f);
-        e.semi_major = fz_float(in, 0.0f, 500.0f);
-        e.semi_minor = fz_float(in, 0.0f, 500.0f);
-        e.angle = fz_float(in, -4.0f, 4.0f);
+        const sbr_ellipse_t e = ellipse_from(in, 2000.0f);
         if (sbr_ellipse_to_conic(&e, &q) == SBR_OK) {
             return q;
         }
@@ -160,12 +167,7 @@ void fuzz_geometry(FuzzedDataProvider &in)
     {
         // an ellipse given directly: its conic is that ellipse, or the call is refused
         // and the output untouched
-        sbr_ellipse_t g;
-        g.cx = fz_float(in, -2e5f, 2e5f);
-        g.cy = fz_float(in, -2e5f, 2e5f);
-        g.semi_major = fz_float(in, 0.0f, 500.0f);
-        g.semi_minor = fz_float(in, 0.0f, 500.0f);
-        g.angle = fz_float(in, -4.0f, 4.0f);
+        const sbr_ellipse_t g = ellipse_from(in, 2e5f);
         const sbr_conic_t guard = {7.0f, 7.0f, 7.0f, 7.0f, 7.0f, 7.0f};
         sbr_conic_t gq = guard;
         const sbr_status_t gs = sbr_ellipse_to_conic(&g, &gq);
