@@ -4,6 +4,7 @@
 #include "conic_internal.h"
 
 #include <math.h>
+#include <string.h>
 
 #define COVERAGE_SECTORS 64u
 
@@ -245,7 +246,9 @@ static int conic_centre(conic_centre_t *cc)
         cc->ynum = ff_det2(q->b, q->d, q->a, q->e);
         cc->det = det.hi + det.lo;
         cc->terms22 = fabsf(q->d * cc->xnum) + fabsf(q->e * cc->ynum) + fabsf(q->f * cc->d22);
-        ok = ((isfinite(cc->det) != 0) && (isfinite(cc->terms22) != 0)) ? 1 : 0;
+        if ((isfinite(cc->det) != 0) && (isfinite(cc->terms22) != 0)) {
+            ok = 1;
+        }
     }
     return ok;
 }
@@ -303,16 +306,14 @@ sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_c
         st = SBR_ERR_DEGENERATE;
     } else {
         conic_centre_t cc;
-        float qa2 = 0.0f;
         const float qa = fmaxf(fabsf(conic->a), fmaxf(fabsf(conic->b), fabsf(conic->c)));
-        cc.d22 = 0.0f;
+        (void)memset(&cc, 0, sizeof cc);
         if (qa > 0.0f) {
             float qs;
             conic_scaled(conic, &cc);
             qs = fmaxf(fabsf(cc.q.a), fmaxf(fabsf(cc.q.b), fabsf(cc.q.c)));
-            qa2 = qs * qs;
             /* det(C22) relative to the quadratic part's own scale */
-            if (fabsf(cc.d22) <= (tol * qa2)) {
+            if (fabsf(cc.d22) <= (tol * qs * qs)) {
                 cc.d22 = 0.0f;
             }
         }
@@ -324,8 +325,10 @@ sbr_status_t sbr_conic_classify(const sbr_conic_t *conic, float tol, sbr_conic_c
             /* det(C) = det(C22) f0: f0 counts as zero relative to the terms it is summed
                from (both sides times |det(C22)|); a + c > 0 in the scaled conic, so a
                real ellipse has f0 < 0, i.e. det(C) < 0 */
-            const int zero =
-                ((fabsf(cc.det) <= (tol * cc.terms22)) || (cc.terms22 <= 0.0f)) ? 1 : 0;
+            int zero = 0;
+            if ((fabsf(cc.det) <= (tol * cc.terms22)) || (cc.terms22 <= 0.0f)) {
+                zero = 1;
+            }
             if (cc.d22 > 0.0f) {
                 if (zero != 0) {
                     *cls = SBR_CONIC_POINT_ELLIPSE;
@@ -351,6 +354,7 @@ int sbr_conic_priv_ellipse_of(const sbr_conic_t *q0, sbr_ellipse_t *el)
     int ok = 0;
     conic_centre_t cc;
     float qs = 0.0f;
+    (void)memset(&cc, 0, sizeof cc);
     if (m > 0.0f) {
         conic_scaled(q0, &cc);
         qs = fmaxf(fabsf(cc.q.a), fmaxf(fabsf(cc.q.b), fabsf(cc.q.c)));

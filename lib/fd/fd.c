@@ -520,6 +520,8 @@ static float peak_value(int invariant, float cos_bound, float re, float im)
             }
         } else if (re < (cos_bound * sqrtf(r2))) {
             v = FD_OUTSIDE;
+        } else {
+            /* within the bound */
         }
     }
     return v;
@@ -704,7 +706,7 @@ static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t
         const float cb = rotation_cos_bound(cfg);
         const float scale = (float)size;
         float best_val = FD_OUTSIDE;
-        float check = inv != 0 ? FD_OUTSIDE : 0.0f;
+        float check = (inv != 0) ? FD_OUTSIDE : 0.0f;
         uint32_t best = 0u;
         uint32_t l;
         sbr_complex_t around[3];
@@ -729,7 +731,11 @@ static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t
         if ((isfinite(check) == 0) || (check < 0.0f)) {
             return SBR_ERR_RANGE;
         }
-        if ((inv == 0) && (rescan((best_val > FD_OUTSIDE) ? (best_val * scale) : best_val, cb) != 0)) {
+        float best_r = best_val; /* in r = P * work */
+        if (best_val > FD_OUTSIDE) {
+            best_r = best_val * scale;
+        }
+        if ((inv == 0) && (rescan(best_r, cb) != 0)) {
             /* rare: the careful test, on r = P * work */
             best_val = FD_OUTSIDE;
             best = 0u;
