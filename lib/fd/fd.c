@@ -500,25 +500,18 @@ static float peak_value(int invariant, float cos_bound, float re, float im)
     float v;
     if (invariant != 0) {
         v = (re * re) + (im * im);
+    } else if (((re * re) + (im * im)) >= FD_TINY_SQ) {
+        v = peak_value_fast(cos_bound, re, im);
     } else {
-        const float r2 = (re * re) + (im * im);
+        /* |r|^2 underflows (a query or prototype of tiny energy): the direction of r
+           scaled to a largest part of 1; r = 0 has none */
+        const float m = fmaxf(fabsf(re), fabsf(im));
         v = re;
-        if (r2 < FD_TINY_SQ) {
-            /* |r|^2 underflows (a query or prototype of tiny energy): the direction from
-               the pair scaled to a largest part of 1; none for r = 0 */
-            const float m = fmaxf(fabsf(re), fabsf(im));
-            if (m <= 0.0f) {
-                if (cos_bound > -1.0f) {
-                    v = FD_OUTSIDE;
-                }
-            } else {
-                const float sr = re / m;
-                const float si = im / m;
-                if (sr < (cos_bound * sqrtf((sr * sr) + (si * si)))) {
-                    v = FD_OUTSIDE;
-                }
+        if (m <= 0.0f) {
+            if (cos_bound > -1.0f) {
+                v = FD_OUTSIDE;
             }
-        } else if (re < (cos_bound * sqrtf(r2))) {
+        } else if (peak_value_fast(cos_bound, re / m, im / m) <= FD_OUTSIDE) {
             v = FD_OUTSIDE;
         } else {
             /* within the bound */
