@@ -908,6 +908,89 @@ static void test_gate_score_and_bad_input(void)
                                                   (uint8_t *)g_ws + 1, SBR_PICTO_GATE_WORKSPACE_SIZE));
 }
 
+/* Looks (sbr_picto_look*()): the same probabilities, refined box and gate score as the
+   separate calls, bit for bit; the regression refers to the last successful look; bad
+   input and a workspace without a look get their statuses. */
+static void test_look(void)
+{
+    static uint64_t look_ws[SBR_PICTO_LOOK_WORKSPACE_SIZE / 8u + 1u];
+    sbr_picto_model_t m;
+    const float box[4] = {20.0f, 10.0f, 68.0f, 58.0f};
+    const float other[4] = {10.0f, 5.0f, 80.0f, 70.0f};
+    const float tiny[4] = {20.0f, 10.0f, 21.0f, 58.0f};
+    const sbr_image_t v = view(g_rgb, SBR_PIXEL_RGB888);
+    float p_ref[SBR_PICTO_MAX_OUTPUTS];
+    float p[SBR_PICTO_MAX_OUTPUTS];
+    float r_ref[4];
+    float r[4];
+    float s_ref = 0.0f;
+    float s = 0.0f;
+    uint32_t i;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gtsdb(&m));
+    TEST_ASSERT_NOT_NULL(m.w3);
+    step_edge(20u, 10u, 48u);
+    /* without a look there is nothing to refine */
+    (void)memset(look_ws, 0, sizeof look_ws);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_picto_look_refine(&m, r, look_ws, sizeof look_ws));
+    for (i = 0u; i < 2u; i++) { /* the whole box, then the triangle inside it */
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_features_outline(&v, box, i, g_f, F, g_ws, sizeof g_ws));
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_classify(&m, g_f, F, p_ref, OUTPUTS, g_ws, sizeof g_ws));
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_refine(&m, g_f, F, box, r_ref, g_ws, sizeof g_ws));
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_look(&m, &v, box, i, p, OUTPUTS, look_ws, sizeof look_ws));
+        TEST_ASSERT_EQUAL_MEMORY(p_ref, p, OUTPUTS * sizeof(float));
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_look_refine(&m, r, look_ws, sizeof look_ws));
+        TEST_ASSERT_EQUAL_MEMORY(r_ref, r, sizeof r);
+    }
+    /* a failed look leaves none: its probabilities untouched, nothing to refine */
+    p[0] = -1.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_look(&m, &v, tiny, 0u, p, OUTPUTS, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_FLOAT(-1.0f, p[0]);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_picto_look_refine(&m, r, look_ws, sizeof look_ws));
+    /* the regression is of the last look's box */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_features(&v, other, g_f, F, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_refine(&m, g_f, F, other, r_ref, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_look(&m, &v, box, 0u, p, OUTPUTS, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_look(&m, &v, other, 0u, p, OUTPUTS, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_look_refine(&m, r, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_MEMORY(r_ref, r, sizeof r);
+    /* the gate: the same score; the look is gone afterwards */
+    for (i = 0u; i <= SBR_PICTO_GATE_FEATURES; i++) {
+        g_gate[i] = 0.01f * (float)((int)(i % 5u) - 2);
+    }
+    m.gate = g_gate;
+    m.gate_hidden = 0u;
+    m.gate_threshold = 0.0f;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gate_features(&v, box, g_gf, SBR_PICTO_GATE_FEATURES, g_ws,
+                                                          SBR_PICTO_GATE_WORKSPACE_SIZE));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gate(&m, g_gf, SBR_PICTO_GATE_FEATURES, &s_ref));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_look_gate(&m, &v, box, &s, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_MEMORY(&s_ref, &s, sizeof s);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_picto_look_refine(&m, r, look_ws, sizeof look_ws));
+    /* bad input */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_look(NULL, &v, box, 0u, p, OUTPUTS, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_look(&m, NULL, box, 0u, p, OUTPUTS, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_look(&m, &v, NULL, 0u, p, OUTPUTS, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_look(&m, &v, box, 0u, NULL, OUTPUTS, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_picto_look(&m, &v, box, 0u, p, K, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_look(&m, &v, box, 2u, p, OUTPUTS, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_picto_look(&m, &v, box, 0u, p, OUTPUTS, NULL, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
+                          sbr_picto_look(&m, &v, box, 0u, p, OUTPUTS, look_ws, SBR_PICTO_LOOK_WORKSPACE_SIZE - 1u));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE,
+                          sbr_picto_look(&m, &v, box, 0u, p, OUTPUTS, (uint8_t *)look_ws + 4, sizeof look_ws - 8u));
+    m.version = 99u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_look(&m, &v, box, 0u, p, OUTPUTS, look_ws, sizeof look_ws));
+    m.version = SBR_PICTO_VERSION;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_look_refine(NULL, r, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_look_refine(&m, NULL, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_picto_look_refine(&m, r, look_ws, 8u));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_look_gate(&m, &v, box, NULL, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_look_gate(&m, &v, tiny, &s, look_ws, sizeof look_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_picto_look_gate(&m, &v, box, &s, look_ws, 8u));
+    m.gate = NULL;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_look_gate(&m, &v, box, &s, look_ws, sizeof look_ws));
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -925,5 +1008,6 @@ int main(void)
     RUN_TEST(test_rim_tables_checked);
     RUN_TEST(test_gate_features);
     RUN_TEST(test_gate_score_and_bad_input);
+    RUN_TEST(test_look);
     return UNITY_END();
 }

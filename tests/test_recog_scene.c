@@ -11,6 +11,7 @@
    requires the same detections (the tolerance is documented there). */
 #include "unity.h"
 #include "sbr/recognizer.h"
+#include "recog_run.h"
 
 #include <math.h>
 #include <string.h>
@@ -192,6 +193,7 @@ static void scene_setup(sbr_image_t *v, sbr_recog_config_t *c)
 static void test_scene(void)
 {
     sbr_model_t m;
+    sbr_picto_model_t p;
     sbr_recog_config_t c;
     sbr_recog_stats_t st;
     sbr_image_t v;
@@ -199,7 +201,8 @@ static void test_scene(void)
     uint32_t i;
     scene_setup(&v, &c);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gtsdb(&p));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
     TEST_ASSERT_TRUE(n >= 1u); /* something to compare */
     TEST_ASSERT_TRUE(st.classified >= n);
     for (i = 0u; i < n; i++) {
@@ -245,6 +248,7 @@ static void test_scene_colour_check(void)
     static uint8_t shape[SBR_PICTO_MAX_CLASSES];
     static float floor_[SBR_PICTO_MAX_CLASSES];
     sbr_model_t m;
+    sbr_picto_model_t p;
     sbr_recog_config_t c;
     sbr_recog_stats_t st;
     sbr_image_t v;
@@ -254,36 +258,37 @@ static void test_scene_colour_check(void)
     uint32_t k;
     scene_setup(&v, &c);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gtsdb(&p));
     /* the built-in class stage checks the yield sign's rim */
-    TEST_ASSERT_NOT_NULL(m.picto.rim_shape);
-    TEST_ASSERT_EQUAL_UINT8(SBR_PICTO_RIM_TRIANGLE_DOWN, m.picto.rim_shape[13]);
-    m.picto.rim_shape = NULL;
-    m.picto.rim_floor = NULL;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, plain, CAP, &n0, &st));
+    TEST_ASSERT_NOT_NULL(p.rim_shape);
+    TEST_ASSERT_EQUAL_UINT8(SBR_PICTO_RIM_TRIANGLE_DOWN, p.rim_shape[13]);
+    p.rim_shape = NULL;
+    p.rim_floor = NULL;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, plain, CAP, &n0, &st));
     TEST_ASSERT_EQUAL_UINT32(0u, st.rim_rejected);
-    for (k = 0u; k < m.picto.classes; k++) {
+    for (k = 0u; k < p.classes; k++) {
         shape[k] = (uint8_t)(((k == 12u) || (k == 14u)) ? SBR_PICTO_RIM_NONE
                              : ((superclass_of(k) == 2u) ? SBR_PICTO_RIM_TRIANGLE
                                                                     : SBR_PICTO_RIM_DISC));
         floor_[k] = -2.0f;
     }
     shape[13] = (uint8_t)SBR_PICTO_RIM_TRIANGLE_DOWN;
-    m.picto.rim_shape = shape;
-    m.picto.rim_floor = floor_;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    p.rim_shape = shape;
+    p.rim_floor = floor_;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
     TEST_ASSERT_EQUAL_UINT32(n0, n);
     TEST_ASSERT_EQUAL_UINT32(0u, st.rim_rejected);
     TEST_ASSERT_EQUAL_MEMORY(plain, g_dets, n * sizeof g_dets[0]);
-    for (k = 0u; k < m.picto.classes; k++) {
+    for (k = 0u; k < p.classes; k++) {
         floor_[k] = 2.0f;
     }
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
     TEST_ASSERT_TRUE(st.rim_rejected >= 1u);
     for (i = 0u; i < n; i++) {
         TEST_ASSERT_EQUAL_UINT8(SBR_PICTO_RIM_NONE, shape[g_dets[i].class_id]);
     }
     floor_[0] = NAN; /* a corrupted table: the model check refuses the whole call */
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
 }
 
 /* The scene as a GRAY8 frame (each pixel the mean of its channels), as a monochrome
@@ -303,6 +308,7 @@ static void test_scene_grey(void)
     static uint8_t shape[SBR_PICTO_MAX_CLASSES];
     static float floor_[SBR_PICTO_MAX_CLASSES];
     sbr_model_t m;
+    sbr_picto_model_t p;
     sbr_recog_config_t c;
     sbr_recog_stats_t st;
     sbr_image_t v;
@@ -325,13 +331,14 @@ static void test_scene_grey(void)
     g.format = SBR_PIXEL_GRAY8;
     g.data = &g_grey[0][0];
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
-    for (i = 0u; i < m.picto.classes; i++) {
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gtsdb(&p));
+    for (i = 0u; i < p.classes; i++) {
         shape[i] = (uint8_t)(((i == 12u) || (i == 14u)) ? SBR_PICTO_RIM_NONE : SBR_PICTO_RIM_DISC);
         floor_[i] = 2.0f;
     }
-    m.picto.rim_shape = shape;
-    m.picto.rim_floor = floor_;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&g, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    p.rim_shape = shape;
+    p.rim_floor = floor_;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&g, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
     TEST_ASSERT_EQUAL_UINT32(0u, st.rim_rejected);
     TEST_ASSERT_TRUE(st.classified >= n);
     for (i = 0u; i < n; i++) {
@@ -358,6 +365,7 @@ static void test_scene_gate(void)
     static sbr_detection_t plain[CAP];
     static float gate[SBR_PICTO_GATE_WEIGHTS(2u)];
     sbr_model_t m;
+    sbr_picto_model_t p;
     sbr_recog_config_t c;
     sbr_recog_stats_t st;
     sbr_recog_stats_t st0;
@@ -367,38 +375,39 @@ static void test_scene_gate(void)
     uint32_t i;
     scene_setup(&v, &c);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
-    TEST_ASSERT_NULL(m.picto.gate); /* the built-in class stage has none */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, plain, CAP, &n0, &st0));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gtsdb(&p));
+    TEST_ASSERT_NULL(p.gate); /* the built-in class stage has none */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, plain, CAP, &n0, &st0));
     TEST_ASSERT_TRUE(n0 >= 1u);
     TEST_ASSERT_EQUAL_UINT32(0u, st0.gated);
     for (i = 0u; i < SBR_PICTO_GATE_WEIGHTS(2u); i++) {
         gate[i] = 0.01f * (float)((int)(i % 5u) - 2);
     }
-    m.picto.gate = gate;
-    m.picto.gate_hidden = 2u;
-    m.picto.gate_threshold = -1.0e30f; /* every candidate passes */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    p.gate = gate;
+    p.gate_hidden = 2u;
+    p.gate_threshold = -1.0e30f; /* every candidate passes */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
     TEST_ASSERT_EQUAL_UINT32(n0, n);
     TEST_ASSERT_EQUAL_UINT32(0u, st.gated);
     TEST_ASSERT_EQUAL_UINT32(st0.classified, st.classified);
     TEST_ASSERT_EQUAL_MEMORY(plain, g_dets, n * sizeof g_dets[0]);
-    m.picto.gate_threshold = 1.0e30f; /* none does */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    p.gate_threshold = 1.0e30f; /* none does */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
     TEST_ASSERT_EQUAL_UINT32(0u, n);
     TEST_ASSERT_EQUAL_UINT32(st0.classified, st.gated);
     TEST_ASSERT_EQUAL_UINT32(0u, st.refined);
     c.gate = 0u; /* off: the detections without a gate */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
     TEST_ASSERT_EQUAL_UINT32(n0, n);
     TEST_ASSERT_EQUAL_MEMORY(plain, g_dets, n * sizeof g_dets[0]);
     c.gate = 2u;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
     c.gate = 1u;
-    m.picto.gate_hidden = SBR_PICTO_GATE_HIDDEN_MAX + 1u;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
-    m.picto.gate_hidden = 2u;
+    p.gate_hidden = SBR_PICTO_GATE_HIDDEN_MAX + 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    p.gate_hidden = 2u;
     gate[3] = INFINITY;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_recog_detect(&v, NULL, &c, &m, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
 }
 
 int main(void)

@@ -191,6 +191,8 @@ def cortex_m4(args, work):
                 fr["stages"][int(k)] = int(float(v))
             elif line.startswith("total: "):
                 fr["total"] = int(float(line.split()[1]))
+            elif line.startswith("init: "):
+                fr["init"] = int(float(line.split()[1]))
             elif line.startswith("view: "):
                 fr["view"] = line[6:]
             elif line.startswith("workspace: "):
@@ -275,6 +277,11 @@ def main():
                      " detections the same as the host's (1 px, 1e-3) on %d of %d frames"
                      % (statistics.median(tot) / 1e9, next(iter(m4.values())).get("workspace"), same, len(m4)))
         report["cortex_m4_median"] = statistics.median(tot)
+        inits = [m4[n]["init"] for n in m4 if "init" in m4[n]]
+        if inits:
+            lines.append("sbr_recog_init (once, not per frame: the configuration and models checked): "
+                         "%.2f x 10^6 instructions" % (statistics.median(inits) / 1e6))
+            report["cortex_m4_init"] = statistics.median(inits)
 
     if not args.no_wall:
         w = wall_clock(args, extra, args.out)

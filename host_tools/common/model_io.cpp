@@ -150,12 +150,7 @@ void Model::bind() {
     view.protos = protos.data();
     view.cascade = cascade.data();
     view.proto_count = static_cast<uint32_t>(protos.size());
-    if (has_picto) {
-        picto.bind();
-        view.picto = picto.view;
-    } else {
-        view.picto = sbr_picto_model_t{};
-    }
+    if (has_picto) picto.bind();
 }
 
 Picto picto_from_view(const sbr_picto_model_t &v) {
@@ -179,13 +174,13 @@ Picto picto_from_view(const sbr_picto_model_t &v) {
     return p;
 }
 
-Model model_from_view(const sbr_model_t &v) {
+Model model_from_view(const sbr_model_t &v, const sbr_picto_model_t *picto) {
     Model m;
     m.fds.assign(v.fds, v.fds + v.proto_count);
     m.protos.assign(v.protos, v.protos + v.proto_count);
     m.cascade.assign(v.cascade, v.cascade + v.class_first[v.class_count]);
-    m.has_picto = v.picto.version != 0;
-    if (m.has_picto) m.picto = picto_from_view(v.picto);
+    m.has_picto = picto != nullptr && picto->version != 0;
+    if (m.has_picto) m.picto = picto_from_view(*picto);
     m.view = v;
     m.bind();
     return m;
@@ -281,7 +276,9 @@ std::string parse_model(const std::string &s, const std::string &path, Model &m)
     const sbr_status_t st = sbr_model_check(&m.view);
     if (st != SBR_OK) return path + ": values: sbr_model_check: " + sbr_status_str(st);
     if (m.has_picto) {
-        const sbr_status_t ps = sbr_picto_check(&m.view.picto);
+        const sbr_status_t ps = sbr_picto_check(&m.picto.view);
+        if (ps == SBR_OK && m.picto.view.classes != m.view.class_count)
+            return path + ": values: the class stage's class count is not the library's";
         if (ps != SBR_OK) return path + ": values: sbr_picto_check: " + sbr_status_str(ps);
     }
     return "";
@@ -334,7 +331,7 @@ std::string write_model_c(const Model &m, const std::string &path, const std::st
       << "    for (i = 0u; i < " << nc << "u; i++) {\n        out->class_outline[i] = model_class_outline[i];\n    }\n"
       << "    out->cascade = model_cascade;\n    out->vote_error = " << flit(v.vote_error)
       << ";\n    out->score_threshold = " << flit(v.score_threshold) << ";\n"
-      << "    return sbr_picto_gtsdb(&out->picto); /* the class stage trained with it */\n}\n";
+      << "    return SBR_OK;\n}\n";
     std::ofstream f(path);
     if (!f) return "cannot write " + path;
     f << o.str();

@@ -56,10 +56,13 @@ struct Model {
     Picto picto;  // the class stage, when has_picto
     sbr_model_t view{};  // pointers refreshed by bind()
     void bind();
+    // The class stage for sbr_recog_init(): nullptr without one.
+    const sbr_picto_model_t *picto_view() const { return has_picto ? &picto.view : nullptr; }
 };
 
 // Copies of a model held elsewhere (e.g. the built-in tables), owning their arrays.
-Model model_from_view(const sbr_model_t &v);
+// `picto` (nullptr or version 0: none) becomes the model's class stage.
+Model model_from_view(const sbr_model_t &v, const sbr_picto_model_t *picto);
 Picto picto_from_view(const sbr_picto_model_t &v);
 
 // CRC-32/IEEE (the file forms' checksum).

@@ -220,35 +220,37 @@ struct Models {
     Model loaded;
     Picto picto;
     sbr_model_t builtin{};
-    sbr_model_t with_picto{};
+    sbr_picto_model_t builtin_picto{};
     const sbr_model_t *model = nullptr;
+    const sbr_picto_model_t *class_stage = nullptr;  // nullptr: none
 };
 
 bool load_models(const Options &o, Models &m) {
     sbr_model_gtsdb(&m.builtin);
+    sbr_picto_gtsdb(&m.builtin_picto);
     m.model = &m.builtin;
+    m.class_stage = &m.builtin_picto;
     if (!o.model_path.empty()) {
         const std::string e = load_model(o.model_path, m.loaded);
         if (!e.empty()) { std::fprintf(stderr, "sbr_detect: %s\n", e.c_str()); return false; }
         m.model = &m.loaded.view;
+        m.class_stage = m.loaded.picto_view();
     }
-    m.with_picto = *m.model;
     if (!o.picto_path.empty()) {
         const std::string e = load_picto(o.picto_path, m.picto);
         if (!e.empty()) { std::fprintf(stderr, "sbr_detect: %s\n", e.c_str()); return false; }
-        m.with_picto.picto = m.picto.view;
-        m.model = &m.with_picto;
+        m.class_stage = &m.picto.view;
     } else if (o.no_picto) {
-        m.with_picto.picto = sbr_picto_model_t{};
-        m.model = &m.with_picto;
+        m.class_stage = nullptr;
     }
     return true;
 }
 
 // The operating point (the class stage's, or the part model's without one) and the
-// score floor that follows from it; the clock. False for a configuration the core refuses.
-bool configure(Options &o, const sbr_model_t *model, CallgrindClock &cg) {
-    if (o.threshold < 0.0f) o.threshold = model->picto.version != 0 ? model->picto.threshold : model->score_threshold;
+// score floor that follows from it; the clock. False for a configuration or models the
+// core refuses (sbr_recog_init() on a token workspace checks them together).
+bool configure(Options &o, const Models &m, CallgrindClock &cg) {
+    if (o.threshold < 0.0f) o.threshold = m.class_stage != nullptr ? m.class_stage->threshold : m.model->score_threshold;
     if (o.rc.min_score->count() == 0) {
         o.cfg.min_score = std::min(o.cfg.min_score, o.threshold);
         if (!o.all_path.empty()) o.cfg.min_score = std::min(o.cfg.min_score, 0.05f);  // the curve's tail
@@ -259,8 +261,17 @@ bool configure(Options &o, const sbr_model_t *model, CallgrindClock &cg) {
         o.cfg.clock_ctx = &cg;
         o.repeat = 1;
     }
-    const sbr_status_t st = sbr_recog_config_check(&o.cfg);
-    if (st != SBR_OK) std::fprintf(stderr, "sbr_detect: bad configuration: %s\n", sbr_status_str(st));
+    sbr_status_t st = sbr_recog_config_check(&o.cfg);
+    if (st != SBR_OK) {
+        std::fprintf(stderr, "sbr_detect: bad configuration: %s\n", sbr_status_str(st));
+        return false;
+    }
+    uint64_t token = 0;
+    sbr_recog_t rec;
+    st = sbr_recog_init(&rec, &o.cfg, m.model, m.class_stage, &token, sizeof token);
+    if (st != SBR_OK)
+        std::fprintf(stderr, "sbr_detect: the recogniser refuses these models with this configuration (%s)\n",
+                     sbr_status_str(st));
     return st == SBR_OK;
 }
 
@@ -316,6 +327,8 @@ bool open_outputs(const Options &o, const std::string &dir, Outputs &out) {
 // What the run counts, for the summary.
 struct Tally {
     std::vector<uint64_t> ws;
+    sbr_recog_t rec{};
+    bool rec_ready = false;  // rec initialised on ws as it is
     size_t ws_bytes = 0;
     std::vector<sbr_detection_t> dets = std::vector<sbr_detection_t>(256);
     std::vector<double> ms_total;
@@ -330,7 +343,7 @@ struct Tally {
 };
 
 // The recogniser on one frame, `repeat` times: the fastest run's time and statistics.
-sbr_status_t detect_timed(const Options &o, const sbr_model_t *model, CallgrindClock &cg, const std::string &file,
+sbr_status_t detect_timed(const Options &o, CallgrindClock &cg, const std::string &file,
                           const sbr_image_t &v, Tally &t, uint32_t &n, double &ms, sbr_recog_stats_t &stats) {
     sbr_status_t st = SBR_OK;
     for (int r = 0; r < o.repeat; ++r) {
@@ -347,8 +360,8 @@ sbr_status_t detect_timed(const Options &o, const sbr_model_t *model, CallgrindC
         (void)cg;
         (void)file;
 #endif
-        st = sbr_recog_detect(&v, o.use_roi ? &o.roi : nullptr, &o.cfg, model, t.ws.data(), t.ws.size() * 8,
-                              t.dets.data(), uint32_t(t.dets.size()), &n, &run_stats);
+        st = sbr_recog_detect(&t.rec, &v, o.use_roi ? &o.roi : nullptr, t.dets.data(), uint32_t(t.dets.size()), &n,
+                              &run_stats);
 #ifdef SBR_HAVE_CALLGRIND
         if (o.callgrind) {
             const std::string label = "frame " + cg.frame + " end";
@@ -390,7 +403,7 @@ void image_failed(const Options &o, const std::string &file, const std::string &
 
 // The recogniser on a decoded image: detections written and counted; `kept` those at the
 // operating point. False when the core refused the frame.
-bool detect_image(const Options &o, const sbr_model_t *model, CallgrindClock &cg, const std::string &file,
+bool detect_image(const Options &o, const Models &m, CallgrindClock &cg, const std::string &file,
                   const cv::Mat &img, Outputs &out, Tally &t, std::vector<sbr_detection_t> &kept,
                   sbr_recog_stats_t &stats, float &frame_ms) {
     const std::string name = fs::path(file).stem().string() + ".jpg";
@@ -399,11 +412,19 @@ bool detect_image(const Options &o, const sbr_model_t *model, CallgrindClock &cg
     const sbr_image_t v = bgr_view(o.grey ? grey : img);
     const uint32_t w = o.use_roi ? o.roi.width : v.width, h = o.use_roi ? o.roi.height : v.height;
     const size_t need = sbr_recog_workspace_size(&o.cfg, w, h);
-    if (need > t.ws.size() * 8) t.ws.assign(need / 8 + 1, 0);
+    if (!t.rec_ready || need > t.ws.size() * 8) {  // a larger workspace: the recogniser set up on it
+        if (need > t.ws.size() * 8 || t.ws.empty()) t.ws.assign(need / 8 + 1, 0);
+        const sbr_status_t ist = sbr_recog_init(&t.rec, &o.cfg, m.model, m.class_stage, t.ws.data(), t.ws.size() * 8);
+        t.rec_ready = ist == SBR_OK;
+        if (!t.rec_ready) {
+            image_failed(o, file, std::string("sbr_recog_init refused it: ") + sbr_status_str(ist), t);
+            return false;
+        }
+    }
     t.ws_bytes = std::max(t.ws_bytes, need);
     uint32_t n = 0;
     double ms = 0.0;
-    const sbr_status_t st = detect_timed(o, model, cg, file, v, t, n, ms, stats);
+    const sbr_status_t st = detect_timed(o, cg, file, v, t, n, ms, stats);
     frame_ms = float(ms);
     count_stats(stats, st, ms, t);
     if (st != SBR_OK && st != SBR_ERR_CAPACITY) {
@@ -445,7 +466,7 @@ void annotate_image(const Options &o, const std::string &file, cv::Mat &img,
 
 // One image: read, detections written, counted, drawn, and its CAN frames. False when
 // the CAN log's tracker cannot be set up.
-bool run_image(const Options &o, const sbr_model_t *model, CallgrindClock &cg, const std::string &file, bool first,
+bool run_image(const Options &o, const Models &m, CallgrindClock &cg, const std::string &file, bool first,
                Outputs &out, Tally &t) {
     std::vector<sbr_detection_t> kept;
     sbr_recog_stats_t stats{};
@@ -454,7 +475,7 @@ bool run_image(const Options &o, const sbr_model_t *model, CallgrindClock &cg, c
     const std::string problem = read_image(file, img);
     bool error = !problem.empty();
     if (error) image_failed(o, file, problem, t);
-    else error = !detect_image(o, model, cg, file, img, out, t, kept, stats, frame_ms);
+    else error = !detect_image(o, m, cg, file, img, out, t, kept, stats, frame_ms);
     if (!error && (!o.annotated.empty() || !o.overview.empty())) annotate_image(o, file, img, kept, out.ann);
     if (out.can) {
         std::vector<Detection> cd;
@@ -502,7 +523,7 @@ std::string bounds_text(const Options &o, const Tally &t) {
     return s.str();
 }
 
-std::string summary(const Options &o, const sbr_model_t *model, const std::string &dir, size_t nfiles,
+std::string summary(const Options &o, const Models &m, const std::string &dir, size_t nfiles,
                     const Outputs &out, const Tally &t) {
     std::ostringstream s;
     const char *stage_names[SBR_RECOG_STAGES] = {"parts (maps, MSER, contours, FDs)", "matching and votes",
@@ -513,9 +534,11 @@ std::string summary(const Options &o, const sbr_model_t *model, const std::strin
     for (const std::string &f : t.failures) s << "  failed: " << f << "\n";
     if (t.failed > t.failures.size()) s << "  (and " << t.failed - t.failures.size() << " more)\n";
     s << "model: " << (o.model_path.empty() ? "built-in (lib/models/sbr_model_gtsdb.c)" : o.model_path) << ", "
-      << model->proto_count << " prototypes, class stage "
-      << (model->picto.version != 0 ? (o.picto_path.empty() ? "built-in (lib/models/sbr_picto_gtsdb.c)" : o.picto_path)
-                                    : "none")
+      << m.model->proto_count << " prototypes, class stage "
+      << (m.class_stage == nullptr  ? "none"
+          : !o.picto_path.empty()   ? o.picto_path
+          : !o.model_path.empty()   ? o.model_path
+                                    : "built-in (lib/models/sbr_picto_gtsdb.c)")
       << ", operating point score >= " << o.threshold << "\n";
     s << "detections: " << t.ndet << " at the operating point";
     if (out.all.is_open()) s << ", " << t.nall << " in all";
@@ -561,7 +584,7 @@ int main(int argc, char **argv) {
     Models m;
     if (!load_models(o, m)) return 1;
     CallgrindClock cg;
-    if (!configure(o, m.model, cg)) return 2;
+    if (!configure(o, m, cg)) return 2;
     if (!fs::is_directory(o.input)) { std::fprintf(stderr, "sbr_detect: --input %s: no such folder\n", o.input.c_str()); return 1; }
     const std::string dir = gtsdb_image_dir(o.input);
     const std::vector<std::string> files = list_images(dir, o.range);
@@ -575,14 +598,14 @@ int main(int argc, char **argv) {
     Tally t;
     const auto t0 = std::chrono::steady_clock::now();
     for (size_t i = 0; i < files.size(); ++i) {
-        if (!run_image(o, m.model, cg, files[i], i == 0, out, t)) return 1;
+        if (!run_image(o, m, cg, files[i], i == 0, out, t)) return 1;
         if (o.progress)
             progress(i + 1, files.size(), t.ms_total.empty() ? 0.0 : t.sum_ms / double(t.ms_total.size()),
                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     if (!o.overview.empty() && out.ann.worst.size() > 0 && !out.ann.worst.write(o.overview))
         std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.overview.c_str());
-    const std::string s = summary(o, m.model, dir, files.size(), out, t);
+    const std::string s = summary(o, m, dir, files.size(), out, t);
     std::fputs(s.c_str(), stdout);
     if (!o.summary_path.empty()) std::ofstream(o.summary_path) << s;
     if (t.failed > 0) std::fprintf(stderr, "sbr_detect: %zu of %zu images failed\n", t.failed, files.size());

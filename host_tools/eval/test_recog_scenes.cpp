@@ -26,6 +26,7 @@
 
 #include "cli.hpp"
 #include "gtsdb.hpp"
+#include "recog_run.hpp"
 
 extern "C" {
 #include "sbr/recognizer.h"
@@ -37,6 +38,7 @@ namespace {
 
 struct Run {
     sbr_model_t model{};
+    sbr_picto_model_t picto{};
     sbr_recog_config_t cfg{};
     std::vector<uint64_t> ws;
     std::vector<sbr_detection_t> dets = std::vector<sbr_detection_t>(256);
@@ -44,11 +46,9 @@ struct Run {
 
     std::vector<sbr_detection_t> detect(const cv::Mat &img, float thr, const char *what) {
         const sbr_image_t v = bgr_view(img);
-        const size_t need = sbr_recog_workspace_size(&cfg, v.width, v.height);
-        if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
         uint32_t n = 0;
-        const sbr_status_t st = sbr_recog_detect(&v, nullptr, &cfg, &model, ws.data(), ws.size() * 8, dets.data(),
-                                                 uint32_t(dets.size()), &n, nullptr);
+        const sbr_status_t st =
+            recog_once(cfg, model, &picto, ws, v, nullptr, dets.data(), uint32_t(dets.size()), &n, nullptr);
         std::vector<sbr_detection_t> out;
         if (st != SBR_OK && st != SBR_ERR_CAPACITY) {
             std::printf("FAIL %s: sbr_recog_detect: %s\n", what, sbr_status_str(st));
@@ -155,9 +155,12 @@ int main(int argc, char **argv) {
     const auto gt = read_gt(dir + "/gt.txt");
     if (gt.empty()) { std::printf("SKIP: no GTSDB ground truth under %s\n", o.data.c_str()); return 77; }
     Run run;
-    if (sbr_model_gtsdb(&run.model) != SBR_OK) { std::printf("FAIL: sbr_model_gtsdb\n"); return 1; }
+    if (sbr_model_gtsdb(&run.model) != SBR_OK || sbr_picto_gtsdb(&run.picto) != SBR_OK) {
+        std::printf("FAIL: sbr_model_gtsdb, sbr_picto_gtsdb\n");
+        return 1;
+    }
     sbr_recog_config_default(&run.cfg);
-    const float thr = run.model.picto.threshold;
+    const float thr = run.picto.threshold;
     Tally t;
     for (const auto &f : list_images(dir, o.range)) {
         const int num = image_number(f);

@@ -127,7 +127,7 @@ int model_seeds(const fs::path &out)
     if (sbr_model_gtsdb(&m) != SBR_OK || sbr_picto_gtsdb(&p) != SBR_OK || sbr_track_model_kitti(&t) != SBR_OK)
         return 0;
     std::string bytes;
-    const sbr_host::Model model = sbr_host::model_from_view(m);
+    const sbr_host::Model model = sbr_host::model_from_view(m, &p);
     if (!sbr_host::model_bytes(model, bytes).empty()) return 0;
     write(out / "model_io" / "builtin.sbrm", std::string(1, '\0') + bytes);
     const sbr_host::Picto picto = sbr_host::picto_from_view(p);

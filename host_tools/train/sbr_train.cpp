@@ -47,6 +47,7 @@
 #include "gtsdb.hpp"
 #include "model_io.hpp"
 #include "parallel.hpp"
+#include "recog_run.hpp"
 
 extern "C" {
 #include "sbr/recognizer.h"
@@ -466,11 +467,10 @@ void score_image(const std::string &file, const std::vector<GtBox> &boxes, const
     cv::Mat img = cv::imread(file, cv::IMREAD_COLOR);
     if (img.empty()) return;
     sbr_image_t v = bgr_view(img);
-    const size_t need = sbr_recog_workspace_size(&rc, v.width, v.height);
-    if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
     uint32_t n = 0;
-    if (sbr_recog_detect(&v, nullptr, &rc, &m.view, ws.data(), ws.size() * 8, dets.data(), uint32_t(dets.size()),
-                         &n, nullptr) < 0 && n == 0)
+    if (sbr_host::recog_once(rc, m.view, m.picto_view(), ws, v, nullptr, dets.data(), uint32_t(dets.size()), &n,
+                             nullptr) < 0 &&
+        n == 0)
         return;
     std::vector<char> used(boxes.size(), 0);
     for (uint32_t k = 0; k < n; ++k) {

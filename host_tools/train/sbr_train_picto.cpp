@@ -173,6 +173,7 @@
 #include "gtsrb.hpp"
 #include "model_io.hpp"
 #include "parallel.hpp"
+#include "recog_run.hpp"
 
 extern "C" {
 #include "sbr/pictogram.h"
@@ -243,12 +244,10 @@ constexpr float kMineScore = 0.05f;
 
 // The boxes of sbr_recog_detect() on one image with configuration rc, best first.
 std::vector<Box> recog_boxes(const sbr_image_t &v, const sbr_recog_config_t &rc, const sbr_model_t &m,
-                             std::vector<uint64_t> &ws) {
-    const size_t need = sbr_recog_workspace_size(&rc, v.width, v.height);
-    if (ws.size() * 8 < need) ws.assign(need / 8 + 1, 0);
+                             const sbr_picto_model_t *picto, std::vector<uint64_t> &ws) {
     std::vector<sbr_detection_t> dets(4096);
     uint32_t n = 0;
-    sbr_recog_detect(&v, nullptr, &rc, &m, ws.data(), ws.size() * 8, dets.data(), uint32_t(dets.size()), &n, nullptr);
+    sbr_host::recog_once(rc, m, picto, ws, v, nullptr, dets.data(), uint32_t(dets.size()), &n, nullptr);
     std::vector<Box> out;
     for (uint32_t i = 0; i < n; ++i)
         out.push_back(rect_pixbox(dets[i].box));
@@ -271,10 +270,7 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     apply_front_end(g_front_end, rc.parts);
     rc.min_parts = 1;
     rc.min_score = picto != nullptr ? kMineScore : 0.0f;
-    sbr_model_t m = model;
-    if (picto != nullptr) m.picto = *picto;
-    else m.picto.version = 0;
-    return recog_boxes(v, rc, m, ws);
+    return recog_boxes(v, rc, model, picto, ws);
 }
 
 bool features(const sbr_image_t &v, const Box &b, std::vector<float> &f,
@@ -613,8 +609,6 @@ bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::
     sbr_recog_config_default(&rc);
     rc.min_score = 0.0f;
     rc.nms_iou = 1.0f;
-    sbr_model_t parts_only = model;
-    parts_only.picto.version = 0;
     struct Worker {
         std::vector<uint64_t> ws;
         std::vector<float> f, g = std::vector<float>(kGF);
@@ -630,7 +624,7 @@ bool learn_gate(const std::vector<std::string> &files, const std::map<int, std::
             if (img.empty()) return;
             const sbr_image_t v = bgr_view(img);
             const int num = image_number(files[i]);
-            std::vector<Box> boxes = recog_boxes(v, rc, parts_only, ws);
+            std::vector<Box> boxes = recog_boxes(v, rc, model, nullptr, ws);
             if (boxes.size() > rc.max_candidates) boxes.resize(rc.max_candidates);
             std::vector<Sample> local;
             for (const Box &b : boxes) {

@@ -323,6 +323,74 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
                               const float box[4], float refined[4], void *workspace,
                               size_t workspace_size);
 
+/** @name Looks at boxes: features and classifier together, with private buffers
+    The class stage as a caller runs it on candidate boxes (the recogniser does): a look
+    computes a box's features and its class probabilities in a workspace that keeps the
+    box and its features, so that the box regression (sbr_picto_look_refine()) reuses
+    them. The workspace's layout is the classifier's own; a caller only sizes it.
+    The results equal sbr_picto_features() or sbr_picto_features_outline() followed by
+    sbr_picto_classify(), sbr_picto_refine() and sbr_picto_gate() bit for bit.
+    @{ */
+
+/** Bytes at the head of a look's workspace: the last look's box and whether it holds. */
+#define SBR_PICTO_LOOK_HEAD_BYTES 32u
+/** Workspace bytes of sbr_picto_look(), sbr_picto_look_refine() and sbr_picto_look_gate():
+    the head, one feature vector and the classifier's scratch (::SBR_PICTO_WORKSPACE_SIZE). */
+#define SBR_PICTO_LOOK_WORKSPACE_SIZE \
+    ((size_t)SBR_PICTO_LOOK_HEAD_BYTES + (SBR_PICTO_FEATURES * sizeof(float)) + \
+     SBR_PICTO_WORKSPACE_SIZE)
+
+/**
+ * @brief Look at a box: its features (the whole box, or the inside of an outline) and its
+ *        class probabilities; the box and its features stay in the workspace for
+ *        sbr_picto_look_refine().
+ * @param[in]  model     checked with sbr_picto_check() first (only its header is checked
+ *                       here).
+ * @param[in]  img       as sbr_picto_features().
+ * @param[in]  box       x0, y0, x1, y1, as sbr_picto_features().
+ * @param[in]  outline   ::sbr_picto_outline_t.
+ * @param[out] prob      model->classes + 1 probabilities (the sign classes, then the
+ *                       background), written on ::SBR_OK only.
+ * @param[in]  nprob     length of `prob`, >= model->classes + 1.
+ * @param[in,out] workspace ::SBR_PICTO_LOOK_WORKSPACE_SIZE bytes, 8-byte aligned.
+ * @param[in]  workspace_size its size in bytes.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (nprob); ::SBR_ERR_CORRUPT (model
+ *         header); ::SBR_ERR_RANGE (box, outline, or features whose logits overflow);
+ *         errors of sbr_image_check(); ::SBR_ERR_WORKSPACE. After any status other than
+ *         ::SBR_OK the workspace holds no look.
+ */
+sbr_status_t sbr_picto_look(const sbr_picto_model_t *model, const sbr_image_t *img,
+                            const float box[4], uint32_t outline, float *prob, uint32_t nprob,
+                            void *workspace, size_t workspace_size);
+
+/**
+ * @brief sbr_picto_refine() of the last successful sbr_picto_look() in the workspace (its
+ *        box and features).
+ * @param[in]  model     the model of that look.
+ * @param[out] refined   x0, y0, x1, y1, written on ::SBR_OK only.
+ * @param[in,out] workspace the look's workspace.
+ * @param[in]  workspace_size its size in bytes.
+ * @return as sbr_picto_refine(); ::SBR_ERR_STATE when the workspace holds no look.
+ */
+sbr_status_t sbr_picto_look_refine(const sbr_picto_model_t *model, float refined[4],
+                                   void *workspace, size_t workspace_size);
+
+/**
+ * @brief The gate's score of a box (sbr_picto_gate_features() then sbr_picto_gate()). Uses
+ *        the look's workspace, which holds no look afterwards.
+ * @param[in]  model     checked with sbr_picto_check() first; with a gate.
+ * @param[in]  img       as sbr_picto_gate_features().
+ * @param[in]  box       x0, y0, x1, y1, as sbr_picto_gate_features().
+ * @param[out] score     written on ::SBR_OK only.
+ * @param[in,out] workspace ::SBR_PICTO_LOOK_WORKSPACE_SIZE bytes, 8-byte aligned.
+ * @param[in]  workspace_size its size in bytes.
+ * @return as sbr_picto_gate_features() and sbr_picto_gate().
+ */
+sbr_status_t sbr_picto_look_gate(const sbr_picto_model_t *model, const sbr_image_t *img,
+                                 const float box[4], float *score, void *workspace,
+                                 size_t workspace_size);
+/** @} */
+
 #ifdef __cplusplus
 }
 #endif

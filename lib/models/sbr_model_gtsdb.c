@@ -1008,5 +1008,5 @@ sbr_status_t sbr_model_gtsdb(sbr_model_t *out)
     out->cascade = model_cascade;
     out->vote_error = 1.199999973e-01f;
     out->score_threshold = 2.574792504e-01f;
-    return sbr_picto_gtsdb(&out->picto); /* the class stage trained with it */
+    return SBR_OK;
 }

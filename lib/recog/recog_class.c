@@ -32,15 +32,14 @@ static void centre_box(const recog_hyp_t *h, float box[4])
     box[3] = h->my + (0.5f * h->mh);
 }
 
-/* Features and class probabilities of one box; 0 when it cannot be sampled. */
+/* Class probabilities of one box (a look, whose features stay for the box regression);
+   0 when it cannot be sampled. */
 static int picto_box(const sbr_image_t *view, const sbr_picto_model_t *pm, const float box[4],
                      recog_picto_buf_t *b)
 {
     int ok = 0;
-    if ((sbr_picto_features(view, box, b->feat, SBR_PICTO_FEATURES, b->ws,
-                            SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
-        (sbr_picto_classify(pm, b->feat, SBR_PICTO_FEATURES, b->prob, SBR_PICTO_MAX_OUTPUTS, b->ws,
-                            SBR_PICTO_WORKSPACE_SIZE) == SBR_OK)) {
+    if (sbr_picto_look(pm, view, box, (uint32_t)SBR_PICTO_OUTLINE_BOX, b->prob,
+                       SBR_PICTO_MAX_OUTPUTS, b->look, SBR_PICTO_LOOK_WORKSPACE_SIZE) == SBR_OK) {
         ok = 1;
     }
     return ok;
@@ -111,10 +110,8 @@ static float triangle_mass(const recog_picto_buf_t *b)
 static void triangle_view(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
                           const float box[4], recog_picto_buf_t *b)
 {
-    if ((sbr_picto_features_outline(view, box, (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE, b->feat,
-                                    SBR_PICTO_FEATURES, b->ws, SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
-        (sbr_picto_classify(pm, b->feat, SBR_PICTO_FEATURES, b->prob, SBR_PICTO_MAX_OUTPUTS, b->ws,
-                            SBR_PICTO_WORKSPACE_SIZE) == SBR_OK)) {
+    if (sbr_picto_look(pm, view, box, (uint32_t)SBR_PICTO_OUTLINE_TRIANGLE, b->prob,
+                       SBR_PICTO_MAX_OUTPUTS, b->look, SBR_PICTO_LOOK_WORKSPACE_SIZE) == SBR_OK) {
         recog_hyp_t t = *h;
         (void)take_class(&t, b->prob, b->classes);
         if ((triangle_class(b, t.class_id) != 0) && (t.score > h->score)) {
@@ -153,8 +150,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     while (step < steps) {
         float nb[4];
         step++;
-        if ((sbr_picto_refine(pm, b->feat, SBR_PICTO_FEATURES, box, nb, b->ws,
-                              SBR_PICTO_WORKSPACE_SIZE) != SBR_OK) ||
+        if ((sbr_picto_look_refine(pm, nb, b->look, SBR_PICTO_LOOK_WORKSPACE_SIZE) != SBR_OK) ||
             (picto_box(view, pm, nb, b) == 0)) {
             step = steps; /* the box left the image: keep the last one */
         } else {
@@ -191,9 +187,8 @@ static int gate_passes(const recog_hyp_t *h, const sbr_image_t *view, const sbr_
     float score = 0.0f;
     int pass = 0;
     centre_box(h, box);
-    if ((sbr_picto_gate_features(view, box, pb->feat, SBR_PICTO_FEATURES, pb->ws,
-                                 SBR_PICTO_WORKSPACE_SIZE) == SBR_OK) &&
-        (sbr_picto_gate(pm, pb->feat, SBR_PICTO_FEATURES, &score) == SBR_OK) &&
+    if ((sbr_picto_look_gate(pm, view, box, &score, pb->look, SBR_PICTO_LOOK_WORKSPACE_SIZE) ==
+         SBR_OK) &&
         (score >= pm->gate_threshold)) {
         pass = 1;
     }
@@ -227,7 +222,7 @@ static void class_verdict(recog_ctx_t *c, recog_hyp_t *h, const sbr_image_t *vie
                           recog_picto_buf_t *pb)
 {
     const sbr_recog_config_t *cfg = c->cfg;
-    const sbr_picto_model_t *pm = &c->model->picto;
+    const sbr_picto_model_t *pm = c->picto;
     h->keep = 0u;
     if ((cfg->gate != 0u) && (pm->gate != NULL) && (gate_passes(h, view, pm, pb) == 0)) {
         c->st.gated++;
@@ -253,7 +248,7 @@ void sbr_recog_priv_class_stage(recog_ctx_t *c, const sbr_image_t *view, uint32_
             /* suppressed on part evidence */
         } else if (examined >= c->cfg->max_candidates) {
             h->keep = 0u;
-            c->st.capacity_hit |= 16u;
+            c->st.capacity_hit |= SBR_RECOG_HIT_CANDIDATES;
         } else {
             examined++;
             class_verdict(c, h, view, pb);

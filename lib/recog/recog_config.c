@@ -197,9 +197,7 @@ sbr_status_t sbr_model_check(const sbr_model_t *model)
             }
         }
     }
-    if ((classes_ok(model) == 0) ||
-        ((model->picto.version != 0u) && ((sbr_picto_check(&model->picto) != SBR_OK) ||
-                                          (model->picto.classes != model->class_count)))) {
+    if (classes_ok(model) == 0) {
         return SBR_ERR_CORRUPT;
     }
     return SBR_OK;
@@ -220,7 +218,7 @@ int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_confi
     l->work = SBR_WS_ALIGN8((size_t)work_len * sizeof(sbr_complex_t));
     l->votes = SBR_WS_ALIGN8((size_t)cfg->max_votes * SBR_RECOG_VOTE_BYTES);
     l->hyps = SBR_WS_ALIGN8((size_t)cfg->max_hypotheses * SBR_RECOG_HYP_BYTES);
-    l->picto = SBR_WS_ALIGN8(SBR_RECOG_PICTO_BYTES);
+    l->picto = SBR_RECOG_CLASS_BYTES;
     l->total = l->parts_ws + l->parts + l->index + l->results + l->work + l->votes + l->hyps +
                l->picto;
     return 1;

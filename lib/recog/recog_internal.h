@@ -72,6 +72,7 @@ typedef struct recog_layout_s {
 typedef struct recog_ctx_s {
     const sbr_recog_config_t *cfg;
     const sbr_model_t *model;
+    const sbr_picto_model_t *picto; /* the class stage; NULL: none */
     sbr_parts_config_t parts_cfg; /* cfg->parts, the intensity map alone on a grey frame */
     sbr_fft_t fft_p;
     sbr_fd_match_config_t mcfg;  /* votes: screened at the vote error */
@@ -95,10 +96,9 @@ typedef struct recog_ctx_s {
 
 /* The class stage's buffers in the workspace. */
 typedef struct recog_picto_buf_s {
-    float *feat;
+    void *look;  /* the looks' workspace (sbr_picto_look()), SBR_PICTO_LOOK_WORKSPACE_SIZE */
     float *prob;
     float *mean; /* averaged probabilities of several views */
-    void *ws;
     uint32_t classes;       /* the model's class count (outputs: classes + 1) */
     const uint8_t *outline; /* the model's class outlines (sbr_model_t::class_outline) */
 } recog_picto_buf_t;

@@ -69,7 +69,7 @@ sbr_status_t sbr_recog_priv_cast_votes(recog_ctx_t *c, uint32_t pi)
             const float size = sbr_util_maxf(w, h);
             if ((size >= c->cfg->min_size) && (size <= c->cfg->max_size)) {
                 if (c->nvotes >= c->cfg->max_votes) {
-                    c->st.capacity_hit |= 2u;
+                    c->st.capacity_hit |= SBR_RECOG_HIT_VOTES;
                 } else {
                     recog_vote_t *v = &c->votes[c->nvotes];
                     v->cx = p->fd.cx + (q->dx * s);
@@ -124,7 +124,7 @@ void sbr_recog_priv_group_votes(recog_ctx_t *c)
         }
         if (found == c->nhyps) {
             if (c->nhyps >= c->cfg->max_hypotheses) {
-                c->st.capacity_hit |= 4u;
+                c->st.capacity_hit |= SBR_RECOG_HIT_HYPOTHESES;
                 v->hyp = 0xFFFFFFFFu; /* dropped */
                 continue;
             }

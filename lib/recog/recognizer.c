@@ -5,6 +5,7 @@
  */
 #include "recog_internal.h"
 
+#include <stddef.h>
 #include <string.h>
 
 /* Close a timed stage: ticks since *t0 go to stage `s`; *t0 moves on. */
@@ -33,8 +34,25 @@ static sbr_status_t detect_view(const sbr_image_t *img, const sbr_rect_t *roi, s
     return st;
 }
 
-/* The configuration and the model, checked against each other. */
-static sbr_status_t detect_check(const sbr_recog_config_t *cfg, const sbr_model_t *model)
+/* "RECO": an initialised recogniser. */
+#define RECOG_MAGIC 0x5245434Fu
+
+/* FNV-1a over the recogniser's bytes before its integrity word. */
+static uint32_t recog_checksum(const sbr_recog_t *rec)
+{
+    const uint8_t *b = (const uint8_t *)rec;
+    const size_t n = offsetof(sbr_recog_t, check);
+    uint32_t h = 2166136261u;
+    size_t i;
+    for (i = 0u; i < n; i++) {
+        h = (h ^ (uint32_t)b[i]) * 16777619u;
+    }
+    return h;
+}
+
+/* The configuration, the library and the class stage, checked against each other. */
+static sbr_status_t init_check(const sbr_recog_config_t *cfg, const sbr_model_t *model,
+                               const sbr_picto_model_t *picto)
 {
     sbr_status_t st = sbr_recog_config_check(cfg);
     if (st == SBR_OK) {
@@ -45,7 +63,43 @@ static sbr_status_t detect_check(const sbr_recog_config_t *cfg, const sbr_model_
          (model->proto_count > cfg->max_model_protos))) {
         st = SBR_ERR_RANGE;
     }
+    if ((st == SBR_OK) && (picto != NULL) && (picto->version != 0u) &&
+        ((sbr_picto_check(picto) != SBR_OK) || (picto->classes != model->class_count))) {
+        st = SBR_ERR_CORRUPT;
+    }
     return st;
+}
+
+sbr_status_t sbr_recog_init(sbr_recog_t *rec, const sbr_recog_config_t *cfg,
+                            const sbr_model_t *model, const sbr_picto_model_t *picto,
+                            void *workspace, size_t workspace_size)
+{
+    sbr_status_t st;
+    if (rec == NULL) {
+        return SBR_ERR_NULL;
+    }
+    (void)memset(rec, 0, sizeof *rec);
+    if ((cfg == NULL) || (model == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = init_check(cfg, model, picto);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((workspace == NULL) || (workspace_size == 0u) || (sbr_util_aligned(workspace, 8u) == 0)) {
+        return SBR_ERR_WORKSPACE;
+    }
+    rec->cfg = *cfg;
+    rec->model = *model;
+    if ((picto != NULL) && (picto->version != 0u)) {
+        rec->picto = *picto;
+    }
+    rec->workspace = workspace;
+    rec->workspace_size = workspace_size;
+    rec->vote_error = (cfg->vote_error > 0.0f) ? cfg->vote_error : model->vote_error;
+    rec->magic = RECOG_MAGIC;
+    rec->check = recog_checksum(rec);
+    return SBR_OK;
 }
 
 /* The part extraction's options for this view: the configuration's, with only the
@@ -61,25 +115,26 @@ static sbr_status_t view_parts(const sbr_recog_config_t *cfg, const sbr_image_t 
 }
 
 /* The context of one call: matchers, and the arrays in the workspace (layout l). */
-static sbr_status_t ctx_init(recog_ctx_t *c, const sbr_recog_config_t *cfg,
-                             const sbr_model_t *model, void *workspace, const recog_layout_t *l)
+static sbr_status_t ctx_init(recog_ctx_t *c, const sbr_recog_t *rec, const recog_layout_t *l)
 {
+    const sbr_recog_config_t *cfg = &rec->cfg;
     uint8_t *base;
     (void)memset(c, 0, sizeof *c);
     if (sbr_fft_init(&c->fft_p, cfg->match_p) != SBR_OK) {
         return SBR_ERR_RANGE;
     }
     c->cfg = cfg;
-    c->model = model;
-    c->vote_error = (cfg->vote_error > 0.0f) ? cfg->vote_error : model->vote_error;
-    c->score_floor = (model->picto.version != 0u) ? cfg->candidate_score : cfg->min_score;
+    c->model = &rec->model;
+    c->picto = (rec->picto.version != 0u) ? &rec->picto : NULL;
+    c->vote_error = rec->vote_error;
+    c->score_floor = (c->picto != NULL) ? cfg->candidate_score : cfg->min_score;
     sbr_fd_match_config_default(&c->mcfg);
     c->mcfg.mode = SBR_FD_ROTATION_COVARIANT;
     c->mcfg.max_rotation = cfg->max_rotation;
     c->vcfg = c->mcfg;
     c->mcfg.max_error = c->vote_error;   /* only matches up to these errors count */
     c->vcfg.max_error = cfg->verify_error;
-    base = (uint8_t *)workspace;
+    base = (uint8_t *)rec->workspace;
     c->parts = (sbr_part_t *)(void *)&base[l->parts_ws];
     base = &base[l->parts_ws + l->parts];
     c->index = (recog_index_t *)(void *)base;
@@ -105,14 +160,14 @@ static sbr_status_t evidence_stages(recog_ctx_t *c, const sbr_image_t *view,
     sbr_status_t st = sbr_parts_extract(view, &c->parts_cfg, fft_n, workspace, parts_ws, c->parts,
                                         cfg->max_parts, &c->nparts, &c->st.parts_stats);
     if (st == SBR_ERR_CAPACITY) {
-        c->st.capacity_hit |= 1u;
+        c->st.capacity_hit |= SBR_RECOG_HIT_PARTS;
     } else if (st != SBR_OK) {
         return st;
     } else {
         /* all parts */
     }
     if (c->st.parts_stats.capacity_hit != 0u) {
-        c->st.capacity_hit |= 8u;
+        c->st.capacity_hit |= SBR_RECOG_HIT_MSER;
     }
     c->st.parts = c->nparts;
     stage_end(c, (uint32_t)SBR_RECOG_STAGE_PARTS, t0);
@@ -141,7 +196,8 @@ static sbr_status_t evidence_stages(recog_ctx_t *c, const sbr_image_t *view,
 /* Stages 5-6: non-maximum suppression on part evidence, best first (with a class stage at
    candidate_iou, by default none: only empty boxes go); then the class stage (the
    pictogram classifier scores and classifies the survivors) and suppression again on the
-   new scores. The class stage's buffers are the workspace's last l->picto bytes. Returns
+   new scores. The class stage's buffers are the workspace's last l->picto bytes
+   (SBR_RECOG_CLASS_BYTES: the looks' workspace, then the probabilities). Returns
    the number of hypotheses left (sorted, kept ones marked). */
 static uint32_t decide_stages(recog_ctx_t *c, const sbr_image_t *view, void *workspace,
                               const recog_layout_t *l, uint32_t *t0)
@@ -149,7 +205,7 @@ static uint32_t decide_stages(recog_ctx_t *c, const sbr_image_t *view, void *wor
     const sbr_recog_config_t *cfg = c->cfg;
     int picto = 0;
     uint32_t kept;
-    if (c->model->picto.version != 0u) {
+    if (c->picto != NULL) {
         picto = 1;
     }
     kept = sbr_recog_priv_compact(c);
@@ -158,12 +214,11 @@ static uint32_t decide_stages(recog_ctx_t *c, const sbr_image_t *view, void *wor
     stage_end(c, (uint32_t)SBR_RECOG_STAGE_NMS, t0);
     if (picto != 0) {
         uint8_t *base = (uint8_t *)workspace;
-        float *feat = (float *)(void *)&base[l->total - l->picto];
+        const size_t look = SBR_WS_ALIGN8(SBR_PICTO_LOOK_WORKSPACE_SIZE);
         recog_picto_buf_t pb;
-        pb.feat = feat;
-        pb.prob = &feat[SBR_PICTO_FEATURES];
+        pb.look = (void *)&base[l->total - l->picto];
+        pb.prob = (float *)(void *)&base[(l->total - l->picto) + look];
         pb.mean = &pb.prob[SBR_PICTO_MAX_OUTPUTS];
-        pb.ws = (void *)&pb.prob[2u * SBR_PICTO_MAX_OUTPUTS];
         pb.classes = c->model->class_count;
         pb.outline = c->model->class_outline;
         sbr_recog_priv_class_stage(c, view, kept, &pb);
@@ -207,10 +262,9 @@ static int write_detections(const recog_ctx_t *c, uint32_t n, const sbr_image_t 
     return full;
 }
 
-sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
-                              const sbr_recog_config_t *cfg, const sbr_model_t *model,
-                              void *workspace, size_t workspace_size, sbr_detection_t *dets,
-                              uint32_t capacity, uint32_t *count, sbr_recog_stats_t *stats)
+sbr_status_t sbr_recog_detect(sbr_recog_t *rec, const sbr_image_t *img, const sbr_rect_t *roi,
+                              sbr_detection_t *dets, uint32_t capacity, uint32_t *count,
+                              sbr_recog_stats_t *stats)
 {
     recog_ctx_t c;
     recog_layout_t l;
@@ -226,37 +280,35 @@ sbr_status_t sbr_recog_detect(const sbr_image_t *img, const sbr_rect_t *roi,
     if (stats != NULL) {
         (void)memset(stats, 0, sizeof *stats);
     }
-    if ((img == NULL) || (cfg == NULL) || (model == NULL) || (dets == NULL) || (count == NULL)) {
+    if ((rec == NULL) || (img == NULL) || (dets == NULL) || (count == NULL)) {
         return SBR_ERR_NULL;
     }
     *count = 0u;
-    st = detect_check(cfg, model);
-    if (st == SBR_OK) {
-        st = detect_view(img, roi, &view, &ox, &oy);
+    if ((rec->magic != RECOG_MAGIC) || (rec->check != recog_checksum(rec))) {
+        return SBR_ERR_STATE;
     }
+    st = detect_view(img, roi, &view, &ox, &oy);
     if (st != SBR_OK) {
         return st;
     }
-    if ((sbr_recog_priv_layout(view.width, view.height, cfg, &l) == 0) || (capacity == 0u)) {
+    if ((sbr_recog_priv_layout(view.width, view.height, &rec->cfg, &l) == 0) || (capacity == 0u)) {
         return SBR_ERR_SIZE;
     }
-    if ((workspace == NULL) || (workspace_size < l.total) ||
-        (sbr_util_aligned(workspace, 8u) == 0)) {
+    if (rec->workspace_size < l.total) {
         return SBR_ERR_WORKSPACE;
     }
-    if ((sbr_fft_init(&fft_n, cfg->parts.fd_n) != SBR_OK) ||
-        (ctx_init(&c, cfg, model, workspace, &l) != SBR_OK) ||
-        (view_parts(cfg, &view, &c.parts_cfg) != SBR_OK)) {
+    if ((sbr_fft_init(&fft_n, rec->cfg.parts.fd_n) != SBR_OK) || (ctx_init(&c, rec, &l) != SBR_OK) ||
+        (view_parts(&rec->cfg, &view, &c.parts_cfg) != SBR_OK)) {
         return SBR_ERR_RANGE;
     }
-    if (cfg->clock != NULL) {
-        t0 = cfg->clock(cfg->clock_ctx);
+    if (rec->cfg.clock != NULL) {
+        t0 = rec->cfg.clock(rec->cfg.clock_ctx);
     }
-    st = evidence_stages(&c, &view, &fft_n, workspace, l.parts_ws, &t0);
+    st = evidence_stages(&c, &view, &fft_n, rec->workspace, l.parts_ws, &t0);
     if (st != SBR_OK) {
         return st;
     }
-    kept = decide_stages(&c, &view, workspace, &l, &t0);
+    kept = decide_stages(&c, &view, rec->workspace, &l, &t0);
     full = write_detections(&c, kept, &view, ox, oy, dets, capacity, count);
     if (stats != NULL) {
         *stats = c.st;

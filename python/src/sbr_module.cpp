@@ -123,25 +123,33 @@ class Recognizer {
 public:
     Recognizer(nb::dict config, const std::string &model_path, const std::string &picto_path, bool no_picto) {
         sbr_model_gtsdb(&builtin_);
+        sbr_picto_gtsdb(&builtin_picto_);
         model_ = builtin_;
+        class_stage_ = &builtin_picto_;
         if (!model_path.empty()) {
             const std::string e = sbr_host::load_model(model_path, loaded_);
             if (!e.empty()) throw nb::value_error(("model: " + e).c_str());
             model_ = loaded_.view;
+            class_stage_ = loaded_.picto_view();
         }
         if (!picto_path.empty()) {
             const std::string e = sbr_host::load_picto(picto_path, picto_);
             if (!e.empty()) throw nb::value_error(("picto: " + e).c_str());
-            model_.picto = picto_.view;
+            class_stage_ = &picto_.view;
         } else if (no_picto) {
-            model_.picto = sbr_picto_model_t{};
+            class_stage_ = nullptr;
         }
-        threshold_ = model_.picto.version != 0 ? model_.picto.threshold : model_.score_threshold;
+        threshold_ = class_stage_ != nullptr ? class_stage_->threshold : model_.score_threshold;
         sbr_recog_config_default(&cfg_);
         cfg_.min_score = std::min(cfg_.min_score, threshold_);  // as sbr_detect
         for (auto kv : config) set_field(cfg_, nb::cast<std::string>(kv.first), kv.second);
         check_config(config);
         cfg_.clock = host_clock;
+        // the models against the configuration, once (sbr_recog_init() on a token workspace)
+        uint64_t token = 0;
+        sbr_recog_t probe;
+        const sbr_status_t st = sbr_recog_init(&probe, &cfg_, &model_, class_stage_, &token, sizeof token);
+        if (st != SBR_OK) raise_status("the models with this configuration", st);
     }
 
     // Every detection with score >= min_score: (class, x, y, w, h, score, share, parts).
@@ -165,8 +173,8 @@ public:
         sbr_status_t st;
         {
             nb::gil_scoped_release release;
-            st = sbr_recog_detect(&v, use_roi ? &r : nullptr, &cfg_, &model_, ws.data.get(), need, dets.data(),
-                                  uint32_t(dets.size()), &n, &stats);
+            st = sbr_recog_detect(&ws.rec, &v, use_roi ? &r : nullptr, dets.data(), uint32_t(dets.size()), &n,
+                                  &stats);
         }
         release(std::move(ws));
         if (st != SBR_OK && st != SBR_ERR_CAPACITY) raise_status("detect", st);
@@ -209,6 +217,7 @@ private:
     struct Workspace {
         std::unique_ptr<uint64_t[]> data;
         size_t bytes = 0;
+        sbr_recog_t rec{};  // the recogniser set up on data (sbr_recog_init() once per workspace)
     };
     Workspace acquire(size_t need) {
         {
@@ -223,6 +232,8 @@ private:
         Workspace w;
         w.data.reset(new uint64_t[need / 8 + 1]);
         w.bytes = (need / 8 + 1) * 8;
+        const sbr_status_t st = sbr_recog_init(&w.rec, &cfg_, &model_, class_stage_, w.data.get(), w.bytes);
+        if (st != SBR_OK) raise_status("detect", st);
         return w;
     }
     void release(Workspace w) {
@@ -243,6 +254,8 @@ private:
     }
 
     sbr_model_t builtin_{}, model_{};
+    sbr_picto_model_t builtin_picto_{};
+    const sbr_picto_model_t *class_stage_ = nullptr;  // nullptr: none
     sbr_host::Model loaded_;
     sbr_host::Picto picto_;
     sbr_recog_config_t cfg_{};

@@ -1,8 +1,11 @@
-// Fuzz harness: the recogniser. Frames from the input (size, stride, format, pixels), a
-// ROI, configuration fields overwritten from the input, the built-in model, a result
-// array of some capacity. On SBR_OK / SBR_ERR_CAPACITY: count <= capacity, every box
-// inside the frame (and the ROI), scores finite in [0, 1], classes of GTSDB; after any
-// other status the statistics are all zero.
+// Fuzz harness: the recogniser. Configuration fields overwritten from the input, the
+// built-in models (with or without the class stage), sbr_recog_init() on a workspace of
+// the size the view needs (or one byte short); then frames from the input (size, stride,
+// format, pixels), a ROI, a result array of some capacity, and sometimes one byte of the
+// recogniser changed after init. A configuration sbr_recog_config_check() refuses is
+// refused by init; a changed recogniser gives SBR_ERR_STATE. On SBR_OK / SBR_ERR_CAPACITY:
+// count <= capacity, every box inside the frame (and the ROI), scores finite in [0, 1],
+// classes of the model; after any other status the statistics are all zero.
 #include "fuzz_common.hpp"
 
 #include <cstddef>
@@ -15,9 +18,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     FuzzedDataProvider in(data, size);
     static sbr_model_t model;
+    static sbr_picto_model_t picto;
     static bool have_model = false;
     if (!have_model) {
         FZ_STATUS(sbr_model_gtsdb(&model), SBR_OK);
+        FZ_STATUS(sbr_picto_gtsdb(&picto), SBR_OK);
         have_model = true;
     }
     sbr_recog_config_t cfg;
@@ -43,18 +48,31 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const bool short_ws = (need > 0u) && (in.ConsumeIntegral<uint8_t>() >= 240u);
     const size_t given = (need == 0u) ? 4096u : (short_ws ? need - 1u : need);
     void *ws = fz_workspace(given);
+    const bool with_picto = in.ConsumeBool();
+    sbr_recog_t rec;
+    const sbr_status_t is = sbr_recog_init(&rec, &cfg, &model, with_picto ? &picto : nullptr, ws, given);
+    FZ_STATUS(is, SBR_OK, SBR_ERR_RANGE, SBR_ERR_CORRUPT);
+    if (cs != SBR_OK) {
+        FZ_CHECK(is != SBR_OK);
+    }
+    const bool tamper = in.ConsumeIntegral<uint8_t>() >= 248u;
+    if (tamper && is == SBR_OK) { // one byte of the instance changed after init
+        uint8_t *rb = reinterpret_cast<uint8_t *>(&rec);
+        const size_t at = in.ConsumeIntegralInRange<size_t>(0u, offsetof(sbr_recog_t, check) - 1u);
+        rb[at] = static_cast<uint8_t>(rb[at] ^ (1u + in.ConsumeIntegralInRange<uint32_t>(0u, 254u)));
+    }
     const uint32_t capacity = in.ConsumeIntegralInRange<uint32_t>(0u, 16u);
     sbr_detection_t dets[16];
     uint32_t count = 12345u;
     sbr_recog_stats_t stats;
-    const sbr_status_t st = sbr_recog_detect(&img, use_roi ? &roi : nullptr, &cfg, &model, ws, given,
-                                             capacity > 0u ? dets : nullptr, capacity, &count, &stats);
-    FZ_STATUS(st, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE, SBR_ERR_CORRUPT, SBR_ERR_SIZE, SBR_ERR_ALIGN,
+    const sbr_status_t st = sbr_recog_detect(&rec, &img, use_roi ? &roi : nullptr, capacity > 0u ? dets : nullptr,
+                                             capacity, &count, &stats);
+    FZ_STATUS(st, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE, SBR_ERR_STATE, SBR_ERR_SIZE, SBR_ERR_ALIGN,
               SBR_ERR_WORKSPACE, SBR_ERR_CAPACITY);
-    if (cs != SBR_OK) {
-        FZ_CHECK(st != SBR_OK && st != SBR_ERR_CAPACITY);
+    if (capacity > 0u && (is != SBR_OK || tamper)) {
+        FZ_CHECK(st == SBR_ERR_STATE); // an instance init refused, or one changed since
     }
-    if (short_ws && st != SBR_ERR_NULL && st != SBR_ERR_RANGE && st != SBR_ERR_SIZE && st != SBR_ERR_ALIGN) {
+    if (short_ws && st != SBR_ERR_NULL && st != SBR_ERR_STATE && st != SBR_ERR_RANGE && st != SBR_ERR_SIZE && st != SBR_ERR_ALIGN) {
         FZ_CHECK(st == SBR_ERR_WORKSPACE);
     }
     if (st == SBR_OK || st == SBR_ERR_CAPACITY) {

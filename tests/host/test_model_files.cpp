@@ -225,7 +225,7 @@ int main()
 
     // ---- the part model with its class stage (.sbrm)
     std::string model;
-    expect(sbr_host::model_bytes(sbr_host::model_from_view(mv), model).empty(), "write .sbrm");
+    expect(sbr_host::model_bytes(sbr_host::model_from_view(mv, &pv), model).empty(), "write .sbrm");
     {
         sbr_host::Model m;
         expect(sbr_host::parse_model(model, "builtin.sbrm", m).empty(), "the intact .sbrm loads");

@@ -1,0 +1,118 @@
+/* The class stage's looks at boxes: features and classifier with their buffers in one
+   workspace whose layout stays here (pictogram.h, sbr_picto_look()). */
+#include "sbr/pictogram.h"
+
+#include "../common/sbr_util.h"
+
+#include <string.h>
+
+/* "LOOK": the workspace holds a successful look's box and features. */
+#define LOOK_TAG 0x4C4F4F4Bu
+
+/* The workspace's head; the features follow at SBR_PICTO_LOOK_HEAD_BYTES, the
+   classifier's scratch after them. */
+typedef struct look_head_s {
+    uint32_t tag;
+    uint32_t pad;
+    float box[4];
+} look_head_t;
+
+typedef char look_head_fits[(sizeof(look_head_t) <= SBR_PICTO_LOOK_HEAD_BYTES) ? 1 : -1];
+/* The scratch starts 8-byte aligned. */
+typedef char look_scratch_aligned[((((size_t)SBR_PICTO_LOOK_HEAD_BYTES +
+                                     (SBR_PICTO_FEATURES * sizeof(float))) % 8u) == 0u)
+                                      ? 1
+                                      : -1];
+/* The gate's features and scratch fit a look's feature vector and scratch. */
+typedef char look_gate_fits[((SBR_PICTO_GATE_FEATURES <= SBR_PICTO_FEATURES) &&
+                             (SBR_PICTO_GATE_WORKSPACE_SIZE <= SBR_PICTO_WORKSPACE_SIZE))
+                                ? 1
+                                : -1];
+
+/* The parts of a look's workspace (checked: present, large enough, 8-byte aligned). */
+typedef struct look_ws_s {
+    look_head_t *head;
+    float *feat;
+    void *scratch;
+} look_ws_t;
+
+static sbr_status_t look_ws(void *workspace, size_t workspace_size, look_ws_t *w)
+{
+    uint8_t *base = (uint8_t *)workspace;
+    if ((workspace == NULL) || (workspace_size < SBR_PICTO_LOOK_WORKSPACE_SIZE) ||
+        (sbr_util_aligned(workspace, 8u) == 0)) {
+        return SBR_ERR_WORKSPACE;
+    }
+    w->head = (look_head_t *)workspace;
+    w->feat = (float *)(void *)&base[SBR_PICTO_LOOK_HEAD_BYTES];
+    w->scratch = (void *)&base[SBR_PICTO_LOOK_HEAD_BYTES + (SBR_PICTO_FEATURES * sizeof(float))];
+    return SBR_OK;
+}
+
+sbr_status_t sbr_picto_look(const sbr_picto_model_t *model, const sbr_image_t *img,
+                            const float box[4], uint32_t outline, float *prob, uint32_t nprob,
+                            void *workspace, size_t workspace_size)
+{
+    look_ws_t w;
+    sbr_status_t st;
+    if ((model == NULL) || (img == NULL) || (box == NULL) || (prob == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = look_ws(workspace, workspace_size, &w);
+    if (st != SBR_OK) {
+        return st;
+    }
+    w.head->tag = 0u;
+    st = sbr_picto_features_outline(img, box, outline, w.feat, SBR_PICTO_FEATURES, w.scratch,
+                                    SBR_PICTO_WORKSPACE_SIZE);
+    if (st == SBR_OK) {
+        st = sbr_picto_classify(model, w.feat, SBR_PICTO_FEATURES, prob, nprob, w.scratch,
+                                SBR_PICTO_WORKSPACE_SIZE);
+    }
+    if (st == SBR_OK) {
+        (void)memcpy(w.head->box, box, sizeof w.head->box);
+        w.head->tag = LOOK_TAG;
+    }
+    return st;
+}
+
+sbr_status_t sbr_picto_look_refine(const sbr_picto_model_t *model, float refined[4],
+                                   void *workspace, size_t workspace_size)
+{
+    look_ws_t w;
+    sbr_status_t st;
+    if ((model == NULL) || (refined == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = look_ws(workspace, workspace_size, &w);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if (w.head->tag != LOOK_TAG) {
+        return SBR_ERR_STATE;
+    }
+    return sbr_picto_refine(model, w.feat, SBR_PICTO_FEATURES, w.head->box, refined, w.scratch,
+                            SBR_PICTO_WORKSPACE_SIZE);
+}
+
+sbr_status_t sbr_picto_look_gate(const sbr_picto_model_t *model, const sbr_image_t *img,
+                                 const float box[4], float *score, void *workspace,
+                                 size_t workspace_size)
+{
+    look_ws_t w;
+    sbr_status_t st;
+    if ((model == NULL) || (img == NULL) || (box == NULL) || (score == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = look_ws(workspace, workspace_size, &w);
+    if (st != SBR_OK) {
+        return st;
+    }
+    w.head->tag = 0u;
+    st = sbr_picto_gate_features(img, box, w.feat, SBR_PICTO_FEATURES, w.scratch,
+                                 SBR_PICTO_WORKSPACE_SIZE);
+    if (st == SBR_OK) {
+        st = sbr_picto_gate(model, w.feat, SBR_PICTO_FEATURES, score);
+    }
+    return st;
+}
