@@ -43,6 +43,7 @@ typedef struct sbr_part_s {
 #define SBR_PARTS_DEFAULT_MAX_SIDE 160u     /**< max_side */
 #define SBR_PARTS_DEFAULT_MAX_CONTOUR 2048u /**< max_contour */
 #define SBR_PARTS_DEFAULT_FD_N 128u         /**< fd_n */
+#define SBR_PARTS_DEFAULT_FD_M 12u          /**< fd_m */
 /** @} */
 
 /** Configuration. Start from sbr_parts_config_default(). */

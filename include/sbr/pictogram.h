@@ -370,7 +370,9 @@ sbr_status_t sbr_picto_look(const sbr_picto_model_t *model, const sbr_image_t *i
  * @param[out] refined   x0, y0, x1, y1, written on ::SBR_OK only.
  * @param[in,out] workspace the look's workspace.
  * @param[in]  workspace_size its size in bytes.
- * @return as sbr_picto_refine(); ::SBR_ERR_STATE when the workspace holds no look.
+ * @return as sbr_picto_refine(); ::SBR_ERR_STATE when the workspace holds no look, or one
+ *         of a model with another hidden layer size. The regression reuses the hidden
+ *         units the look's classifier computed instead of computing them again.
  */
 sbr_status_t sbr_picto_look_refine(const sbr_picto_model_t *model, float refined[4],
                                    void *workspace, size_t workspace_size);

@@ -402,16 +402,20 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
  * with parts.subsample = `s` (1..8), for frames up to width x height, as a constant
  * expression for static allocation on an ECU (equal to the function; checked by the unit
  * tests). Blocks in order: the parts stage (::SBR_PARTS_WORKSPACE_SIZE of the finest map,
- * intensity at `s`), the parts, their index, the match results, the matcher's scratch, the
+ * intensity at `s`; after the part stage the same block holds the prototypes' coefficient
+ * magnitudes for the matcher's screening, 2 fd_m + 1 floats per prototype, and is at
+ * least that large), the parts, their index, the match results, the matcher's scratch, the
  * votes, the hypotheses, the class stage.
  */
 #define SBR_RECOG_WORKSPACE_DEFAULT_SIZE(width, height, s)                                     \
-    (SBR_WS_ALIGN8(SBR_PARTS_WORKSPACE_SIZE((width) / (s), (height) / (s),                      \
+    (SBR_WS_MAX(SBR_WS_ALIGN8(SBR_PARTS_WORKSPACE_SIZE((width) / (s), (height) / (s),           \
                                             SBR_RECOG_DEFAULT_DELTA, SBR_PARTS_DEFAULT_MAX_NODES, \
                                             SBR_PARTS_DEFAULT_MAX_REGIONS,                       \
                                             SBR_PARTS_DEFAULT_MAX_SIDE,                          \
                                             SBR_PARTS_DEFAULT_MAX_CONTOUR,                       \
-                                            SBR_PARTS_DEFAULT_FD_N)) +                           \
+                                            SBR_PARTS_DEFAULT_FD_N)),                            \
+                SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS *                       \
+                              ((2u * SBR_PARTS_DEFAULT_FD_M) + 1u) * sizeof(float))) +           \
      SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_PARTS * sizeof(sbr_part_t)) +                   \
      SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_PARTS * SBR_RECOG_INDEX_BYTES) +                \
      SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS * sizeof(sbr_fd_match_t)) +        \

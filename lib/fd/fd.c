@@ -640,6 +640,24 @@ static void query_magnitudes(const sbr_fd_t *query, float *qmag)
     }
 }
 
+/* screened_out() with the prototype's magnitudes given (pmag, query_magnitudes() of it):
+   the same sum, term by term. */
+static int screened_out_mag(const float *qmag, const float *pmag, uint32_t m, float level)
+{
+    const uint32_t n = (2u * m) + 1u;
+    float sum = 0.0f;
+    uint32_t k = 0u;
+    int out = 0;
+    while ((k < n) && (!(sum >= level))) {
+        sum += qmag[k] * pmag[k];
+        k++;
+    }
+    if (sum < level) {
+        out = 1;
+    }
+    return out;
+}
+
 /* Is the pair certainly worse than max_error? (level from screen_level(), > 0) */
 static int screened_out(const float *qmag, const sbr_fd_t *proto, float level)
 {
@@ -1031,20 +1049,35 @@ typedef struct lane_batch_s {
     uint32_t valid;
 } lane_batch_t;
 
+/* How a table is matched: trusted (its owner checked every entry, fd_internal.h) or not,
+   and its entries' coefficient magnitudes when the owner computed them (NULL: computed
+   per pair by the screening). */
+typedef struct fd_table_s {
+    int trusted;
+    const float *pmag; /* per entry 2M + 1 values, query_magnitudes() of it */
+} fd_table_t;
+
 /* The next (up to) four prototypes from *i that pass the header check and the screening,
    in table order (the screened ones get their no-match result); the walk stops at the
    first bad header, whose status goes to *header. */
 static void lanes_gather(const sbr_fd_t *query, const sbr_fd_t *protos, uint32_t count,
-                         const float *qmag, float level, int trusted, uint32_t *i,
+                         const float *qmag, float level, const fd_table_t *tb, uint32_t *i,
                          lane_batch_t *bt, sbr_fd_match_t *results, sbr_status_t *header)
 {
+    const int trusted = tb->trusted;
     bt->valid = 0u;
     while ((bt->valid < FD_LANES) && (*i < count) && (*header == SBR_OK)) {
         /* a trusted table (checked by its owner, fd_internal.h) gets the per-pair checks
            only: its M and the scale ratio */
         *header = (trusted != 0) ? check_trusted(query, &protos[*i]) : check_proto(query, &protos[*i]);
         if (*header == SBR_OK) {
-            if ((level > 0.0f) && (screened_out(qmag, &protos[*i], level) != 0)) {
+            int out = 0;
+            if (level > 0.0f) {
+                out = (tb->pmag != NULL)
+                          ? screened_out_mag(qmag, &tb->pmag[*i * ((2u * query->m) + 1u)], query->m, level)
+                          : screened_out(qmag, &protos[*i], level);
+            }
+            if (out != 0) {
                 no_match(query, &protos[*i], &results[*i]);
             } else {
                 bt->lane[bt->valid] = &protos[*i];
@@ -1111,7 +1144,7 @@ static void lanes_finish(uint32_t size, const sbr_fd_match_config_t *cfg, const 
 
 static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                       const sbr_fd_t *query, const sbr_fd_t *protos,
-                                      uint32_t count, int trusted, sbr_complex_t *work,
+                                      uint32_t count, const fd_table_t *tb, sbr_complex_t *work,
                                       sbr_fd_match_t *results)
 {
     const uint32_t size = fft->n;
@@ -1146,7 +1179,7 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
            (whose correlations are checked for overflow), so the first bad prototype in
            table order decides the status */
         lane_batch_t bt;
-        lanes_gather(query, protos, count, qmag, level, trusted, &i, &bt, results, &header);
+        lanes_gather(query, protos, count, qmag, level, tb, &i, &bt, results, &header);
         if (bt.valid > 0u) {
             uint32_t b;
             lanes_fill(fft, query, &bt, pos, re, im);
@@ -1182,9 +1215,10 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
    (fd_internal.h), so only the per-pair conditions are checked here. */
 static sbr_status_t match_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                 const sbr_fd_t *query, const sbr_fd_t *protos, uint32_t count,
-                                int trusted, sbr_complex_t *work, uint32_t work_len,
+                                const fd_table_t *tb, sbr_complex_t *work, uint32_t work_len,
                                 sbr_fd_match_t *results, uint32_t *best)
 {
+    const int trusted = tb->trusted;
     sbr_status_t st = check_match_args(fft, cfg, query, work, work_len, results);
     uint32_t i;
     uint32_t b = 0u;
@@ -1199,7 +1233,7 @@ static sbr_status_t match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
         return SBR_ERR_SIZE;
     }
     if (work_len >= SBR_FD_TABLE_WORK_LEN(fft->n)) {
-        st = match_table_lanes(fft, cfg, query, protos, count, trusted, work, results);
+        st = match_table_lanes(fft, cfg, query, protos, count, tb, work, results);
         if (st != SBR_OK) {
             return st;
         }
@@ -1229,14 +1263,21 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
                                 sbr_complex_t *work, uint32_t work_len, sbr_fd_match_t *results,
                                 uint32_t *best)
 {
-    return match_table(fft, cfg, query, protos, count, 0, work, work_len, results, best);
+    const fd_table_t tb = {0, NULL};
+    return match_table(fft, cfg, query, protos, count, &tb, work, work_len, results, best);
 }
 
 sbr_status_t sbr_fd_priv_match_checked_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                              const sbr_fd_t *query, const sbr_fd_t *protos,
-                                             uint32_t count, sbr_complex_t *work,
-                                             uint32_t work_len, sbr_fd_match_t *results,
-                                             uint32_t *best)
+                                             const float *proto_mag, uint32_t count,
+                                             sbr_complex_t *work, uint32_t work_len,
+                                             sbr_fd_match_t *results, uint32_t *best)
 {
-    return match_table(fft, cfg, query, protos, count, 1, work, work_len, results, best);
+    const fd_table_t tb = {1, proto_mag};
+    return match_table(fft, cfg, query, protos, count, &tb, work, work_len, results, best);
+}
+
+void sbr_fd_priv_magnitudes(const sbr_fd_t *fd, float *mag)
+{
+    query_magnitudes(fd, mag);
 }

@@ -30,7 +30,7 @@ void sbr_parts_config_default(sbr_parts_config_t *cfg)
         cfg->min_fill = 0.2f;
         cfg->max_contour = SBR_PARTS_DEFAULT_MAX_CONTOUR;
         cfg->fd_n = SBR_PARTS_DEFAULT_FD_N;
-        cfg->fd_m = 12u;
+        cfg->fd_m = SBR_PARTS_DEFAULT_FD_M;
     }
 }
 

@@ -2,6 +2,8 @@
    workspace whose layout stays here (pictogram.h, sbr_picto_look()). */
 #include "sbr/pictogram.h"
 
+#include "picto_internal.h"
+
 #include "../common/sbr_util.h"
 
 #include <string.h>
@@ -13,7 +15,7 @@
    classifier's scratch after them. */
 typedef struct look_head_s {
     uint32_t tag;
-    uint32_t pad;
+    uint32_t hidden; /* the look's model's hidden units: their values lead its scratch */
     float box[4];
 } look_head_t;
 
@@ -71,6 +73,7 @@ sbr_status_t sbr_picto_look(const sbr_picto_model_t *model, const sbr_image_t *i
     }
     if (st == SBR_OK) {
         (void)memcpy(w.head->box, box, sizeof w.head->box);
+        w.head->hidden = model->hidden;
         w.head->tag = LOOK_TAG;
     }
     return st;
@@ -88,11 +91,14 @@ sbr_status_t sbr_picto_look_refine(const sbr_picto_model_t *model, float refined
     if (st != SBR_OK) {
         return st;
     }
-    if (w.head->tag != LOOK_TAG) {
+    if ((w.head->tag != LOOK_TAG) || (w.head->hidden != model->hidden)) {
         return SBR_ERR_STATE;
     }
-    return sbr_picto_refine(model, w.feat, SBR_PICTO_FEATURES, w.head->box, refined, w.scratch,
-                            SBR_PICTO_WORKSPACE_SIZE);
+    /* the classifier left the rectified hidden units at the start of its scratch (the
+       regression's inputs, as sbr_picto_refine() would compute them again); without a
+       hidden layer the features are the inputs */
+    return sbr_picto_priv_refine_from(model, (model->hidden > 0u) ? (const float *)w.scratch : w.feat,
+                                      w.head->box, refined);
 }
 
 sbr_status_t sbr_picto_look_gate(const sbr_picto_model_t *model, const sbr_image_t *img,

@@ -2,6 +2,8 @@
    (pictogram.h). */
 #include "sbr/pictogram.h"
 
+#include "picto_internal.h"
+
 #include "../common/sbr_util.h"
 
 #include <math.h>
@@ -908,10 +910,7 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
                               const float box[4], float refined[4], void *workspace,
                               size_t workspace_size)
 {
-    float cx;
-    float cy;
-    float hw;
-    float hh;
+    const float *in;
     sbr_status_t st;
 
     if ((model == NULL) || (feat == NULL) || (box == NULL) || (refined == NULL)) {
@@ -924,14 +923,33 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
     if (box_in_domain(box) == 0) {
         return SBR_ERR_RANGE;
     }
+    in = feat;
+    if (model->w3 != NULL) {
+        in = last_inputs(model, feat, (float *)workspace);
+    }
+    return sbr_picto_priv_refine_from(model, in, box, refined);
+}
+
+sbr_status_t sbr_picto_priv_refine_from(const sbr_picto_model_t *model, const float *in,
+                                        const float box[4], float refined[4])
+{
+    float cx;
+    float cy;
+    float hw;
+    float hh;
+    if (header_ok(model) == 0) {
+        return SBR_ERR_CORRUPT;
+    }
+    if (box_in_domain(box) == 0) {
+        return SBR_ERR_RANGE;
+    }
     cx = 0.5f * (box[0] + box[2]);
     cy = 0.5f * (box[1] + box[3]);
     hw = 0.5f * (box[2] - box[0]);
     hh = 0.5f * (box[3] - box[1]);
     if (model->w3 != NULL) {
         float d[SBR_PICTO_BOX_OUTPUTS];
-        affine(model->w3, last_inputs(model, feat, (float *)workspace), last_inputs_n(model),
-               SBR_PICTO_BOX_OUTPUTS, d);
+        affine(model->w3, in, last_inputs_n(model), SBR_PICTO_BOX_OUTPUTS, d);
         if (all_finite(d, SBR_PICTO_BOX_OUTPUTS) == 0) {
             return SBR_ERR_RANGE; /* features so large that the regression overflows */
         }

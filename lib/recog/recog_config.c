@@ -207,10 +207,14 @@ int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_confi
                           recog_layout_t *l)
 {
     const uint32_t work_len = SBR_FD_TABLE_WORK_LEN(cfg->match_p);
+    const size_t mags = SBR_WS_ALIGN8((size_t)cfg->max_model_protos *
+                                      ((2u * cfg->parts.fd_m) + 1u) * sizeof(float));
     l->parts_ws = SBR_WS_ALIGN8(sbr_parts_workspace_size(&cfg->parts, width, height));
     if (l->parts_ws == 0u) {
         return 0;
     }
+    /* the part stage's block holds the prototypes' magnitudes afterwards */
+    l->parts_ws = SBR_WS_MAX(l->parts_ws, mags);
     l->parts = SBR_WS_ALIGN8((size_t)cfg->max_parts * sizeof(sbr_part_t));
     l->index = SBR_WS_ALIGN8((size_t)cfg->max_parts * SBR_RECOG_INDEX_BYTES);
     l->results = SBR_WS_ALIGN8((size_t)cfg->max_model_protos * sizeof(sbr_fd_match_t));

@@ -84,6 +84,7 @@ typedef struct recog_ctx_s {
     sbr_fd_match_t *results;
     sbr_complex_t *work;
     uint32_t work_len;
+    float *pmag; /* the model's prototypes' coefficient magnitudes, 2 fd_m + 1 each */
     recog_vote_t *votes;
     uint32_t nvotes;
     recog_hyp_t *hyps;

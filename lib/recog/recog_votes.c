@@ -53,7 +53,8 @@ sbr_status_t sbr_recog_priv_cast_votes(recog_ctx_t *c, uint32_t pi)
         return SBR_OK;
     }
     /* the model's prototypes were checked by sbr_model_check() this call */
-    st = sbr_fd_priv_match_checked_table(&c->fft_p, &c->mcfg, &p->fd, &m->fds[first], n, c->work,
+    st = sbr_fd_priv_match_checked_table(&c->fft_p, &c->mcfg, &p->fd, &m->fds[first],
+                                         &c->pmag[first * ((2u * m->fd_m) + 1u)], n, c->work,
                                          c->work_len, c->results, &best);
     if (st != SBR_OK) {
         return st;

@@ -5,6 +5,8 @@
  */
 #include "recog_internal.h"
 
+#include "../fd/fd_internal.h"
+
 #include <stddef.h>
 #include <string.h>
 
@@ -135,6 +137,7 @@ static sbr_status_t ctx_init(recog_ctx_t *c, const sbr_recog_t *rec, const recog
     c->mcfg.max_error = c->vote_error;   /* only matches up to these errors count */
     c->vcfg.max_error = cfg->verify_error;
     base = (uint8_t *)rec->workspace;
+    c->pmag = (float *)(void *)base; /* the part stage's block, after that stage */
     c->parts = (sbr_part_t *)(void *)&base[l->parts_ws];
     base = &base[l->parts_ws + l->parts];
     c->index = (recog_index_t *)(void *)base;
@@ -157,6 +160,7 @@ static sbr_status_t evidence_stages(recog_ctx_t *c, const sbr_image_t *view,
 {
     const sbr_recog_config_t *cfg = c->cfg;
     uint32_t i;
+    const uint32_t stride = (2u * c->model->fd_m) + 1u;
     sbr_status_t st = sbr_parts_extract(view, &c->parts_cfg, fft_n, workspace, parts_ws, c->parts,
                                         cfg->max_parts, &c->nparts, &c->st.parts_stats);
     if (st == SBR_ERR_CAPACITY) {
@@ -171,6 +175,11 @@ static sbr_status_t evidence_stages(recog_ctx_t *c, const sbr_image_t *view,
     }
     c->st.parts = c->nparts;
     stage_end(c, (uint32_t)SBR_RECOG_STAGE_PARTS, t0);
+
+    /* the screening's prototype magnitudes, once per frame instead of once per pair */
+    for (i = 0u; i < c->model->proto_count; i++) {
+        sbr_fd_priv_magnitudes(&c->model->fds[i], &c->pmag[i * stride]);
+    }
 
     for (i = 0u; i < c->nparts; i++) {
         st = sbr_recog_priv_cast_votes(c, i);
