@@ -65,11 +65,9 @@ extern "C" {
 #define SBR_MSER_COMP_BYTES 32u
 /** Bytes of one history entry of a stack entry (size and level; delta + 1 of them). */
 #define SBR_MSER_HISTORY_BYTES 8u
-/** Bytes per pixel: its heap link (4) and the map's copy (1). */
-#define SBR_MSER_PIXEL_BYTES 5u
-/** Bytes of the "reached" bitmap of a map of `pixels` pixels (whole 32-bit words). */
-#define SBR_MSER_REACHED_BYTES(pixels) (((((size_t)(pixels)) + 31u) / 32u) * 4u)
-/** Slack for aligning the map copy after the bitmap. */
+/** Bytes per pixel: its heap link (4) and the map's level or "reached" (2). */
+#define SBR_MSER_PIXEL_BYTES 6u
+/** Slack at the end of the workspace. */
 #define SBR_MSER_TAIL_BYTES 8u
 /** @} */
 
@@ -136,8 +134,7 @@ typedef struct sbr_mser_region_s {
      ((size_t)SBR_MSER_STACK *                                                              \
       (SBR_MSER_COMP_BYTES + ((((size_t)(delta)) + 1u) * SBR_MSER_HISTORY_BYTES))) +        \
      (SBR_MSER_NODES(width, height, nodes) * SBR_MSER_NODE_BYTES) +                         \
-     ((((size_t)(width)) * ((size_t)(height))) * SBR_MSER_PIXEL_BYTES) +                    \
-     SBR_MSER_REACHED_BYTES(((size_t)(width)) * ((size_t)(height))) + SBR_MSER_TAIL_BYTES)
+     ((((size_t)(width)) * ((size_t)(height))) * SBR_MSER_PIXEL_BYTES) + SBR_MSER_TAIL_BYTES)
 
 /**
  * @brief Fill a configuration with the defaults documented above. No-op for NULL.

@@ -403,8 +403,9 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
  * expression for static allocation on an ECU (equal to the function; checked by the unit
  * tests). Blocks in order: the parts stage (::SBR_PARTS_WORKSPACE_SIZE of the finest map,
  * intensity at `s`; after the part stage the same block holds the prototypes' coefficient
- * magnitudes for the matcher's screening, 2 fd_m + 1 floats per prototype, and is at
- * least that large), the parts, their index, the match results, the matcher's scratch, the
+ * magnitudes for the matcher's screening, 2 fd_m + 1 floats per prototype, and the vote
+ * grouping's index of hypotheses by column, width / 16 + 2 + 2 max_hypotheses words, and
+ * is at least that large), the parts, their index, the match results, the matcher's scratch, the
  * votes, the hypotheses, the class stage.
  */
 #define SBR_RECOG_WORKSPACE_DEFAULT_SIZE(width, height, s)                                     \
@@ -415,7 +416,10 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
                                             SBR_PARTS_DEFAULT_MAX_CONTOUR,                       \
                                             SBR_PARTS_DEFAULT_FD_N)),                            \
                 SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS *                       \
-                              ((2u * SBR_PARTS_DEFAULT_FD_M) + 1u) * sizeof(float))) +           \
+                              ((2u * SBR_PARTS_DEFAULT_FD_M) + 1u) * sizeof(float)) +            \
+                    SBR_WS_ALIGN8((((size_t)(width) / 16u) + 2u +                                \
+                                   (2u * (size_t)SBR_RECOG_DEFAULT_MAX_HYPOTHESES)) *           \
+                                  sizeof(uint32_t))) +                                           \
      SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_PARTS * sizeof(sbr_part_t)) +                   \
      SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_PARTS * SBR_RECOG_INDEX_BYTES) +                \
      SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS * sizeof(sbr_fd_match_t)) +        \

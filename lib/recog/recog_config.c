@@ -207,13 +207,17 @@ int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_confi
                           recog_layout_t *l)
 {
     const uint32_t work_len = SBR_FD_TABLE_WORK_LEN(cfg->match_p);
+    /* after the part stage its block holds the prototypes' magnitudes (the matcher's
+       screening) and the vote grouping's grid of hypotheses */
     const size_t mags = SBR_WS_ALIGN8((size_t)cfg->max_model_protos *
-                                      ((2u * cfg->parts.fd_m) + 1u) * sizeof(float));
+                                      ((2u * cfg->parts.fd_m) + 1u) * sizeof(float)) +
+                        SBR_WS_ALIGN8((((size_t)width / 16u) + 2u + (2u * (size_t)cfg->max_hypotheses)) *
+                                      sizeof(uint32_t));
+    l->view_width = width;
     l->parts_ws = SBR_WS_ALIGN8(sbr_parts_workspace_size(&cfg->parts, width, height));
     if (l->parts_ws == 0u) {
         return 0;
     }
-    /* the part stage's block holds the prototypes' magnitudes afterwards */
     l->parts_ws = SBR_WS_MAX(l->parts_ws, mags);
     l->parts = SBR_WS_ALIGN8((size_t)cfg->max_parts * sizeof(sbr_part_t));
     l->index = SBR_WS_ALIGN8((size_t)cfg->max_parts * SBR_RECOG_INDEX_BYTES);

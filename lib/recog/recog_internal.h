@@ -55,6 +55,12 @@ typedef struct recog_index_s {
 
 typedef char recog_index_size_check[(sizeof(recog_index_t) == SBR_RECOG_INDEX_BYTES) ? 1 : -1];
 
+/* Width in pixels of the columns the vote grouping indexes hypotheses by. */
+#define RECOG_GRID_CELL 16.0f
+/* Columns of a view `width` pixels wide (the last one also takes what lies right of it);
+   recog_config.c's layout spells the same count out. */
+#define RECOG_GRID_COLS(width) (((width) / 16u) + 2u)
+
 typedef struct recog_layout_s {
     size_t parts_ws;
     size_t parts;
@@ -65,6 +71,7 @@ typedef struct recog_layout_s {
     size_t hyps;
     size_t picto;
     size_t total;
+    uint32_t view_width;
 } recog_layout_t;
 
 
@@ -85,6 +92,10 @@ typedef struct recog_ctx_s {
     sbr_complex_t *work;
     uint32_t work_len;
     float *pmag; /* the model's prototypes' coefficient magnitudes, 2 fd_m + 1 each */
+    uint32_t *grid_head; /* [grid_cols] the hypotheses by column (recog_votes.c) */
+    uint32_t *grid_next; /* [max_hypotheses] */
+    uint32_t *grid_prev; /* [max_hypotheses] */
+    uint32_t grid_cols;
     recog_vote_t *votes;
     uint32_t nvotes;
     recog_hyp_t *hyps;

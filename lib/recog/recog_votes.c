@@ -110,19 +110,86 @@ static int agrees(const recog_hyp_t *h, float cx, float cy, float w, float hh,
     return ok;
 }
 
+/* The hypotheses by the column (RECOG_GRID_CELL pixels wide) of their mean centre x, so
+   that a vote is compared only with the hypotheses that can agree with it: one that
+   agrees has its mean within centre_tol x its width <= centre_tol x (1 + size_tol) x the
+   vote's width of the vote's centre. Columns are doubly linked lists over the hypotheses
+   in the grid's block (recog_internal.h); x outside the view falls in the first or last
+   column. */
+#define RECOG_NONE 0xFFFFFFFFu
+
+static uint32_t grid_col(const recog_ctx_t *c, float x)
+{
+    const float f = x / RECOG_GRID_CELL;
+    const uint32_t last = c->grid_cols - 1u;
+    uint32_t col = 0u;
+    if (f >= (float)last) {
+        col = last;
+    } else if (f > 0.0f) {
+        col = (uint32_t)f;
+    } else {
+        /* left of the view (or not a number): the first column */
+    }
+    return col;
+}
+
+static void grid_link(recog_ctx_t *c, uint32_t h, uint32_t col)
+{
+    const uint32_t first = c->grid_head[col];
+    c->grid_prev[h] = RECOG_NONE;
+    c->grid_next[h] = first;
+    if (first != RECOG_NONE) {
+        c->grid_prev[first] = h;
+    }
+    c->grid_head[col] = h;
+}
+
+static void grid_unlink(recog_ctx_t *c, uint32_t h, uint32_t col)
+{
+    const uint32_t pv = c->grid_prev[h];
+    const uint32_t nx = c->grid_next[h];
+    if (pv != RECOG_NONE) {
+        c->grid_next[pv] = nx;
+    } else {
+        c->grid_head[col] = nx;
+    }
+    if (nx != RECOG_NONE) {
+        c->grid_prev[nx] = pv;
+    }
+}
+
+/* The first hypothesis (smallest index) that agrees with vote v, or nhyps: the hypotheses
+   in the columns the agreement bound allows, each tested as a scan over all would test it
+   (the bound has a margin far above float rounding). */
+static uint32_t first_agreeing(const recog_ctx_t *c, const recog_vote_t *v)
+{
+    const float r = (c->cfg->centre_tol * v->w * (1.0f + c->cfg->size_tol) * 1.01f) + 2.0f;
+    const uint32_t hi = grid_col(c, v->cx + r);
+    uint32_t col = grid_col(c, v->cx - r);
+    uint32_t found = c->nhyps;
+    while (col <= hi) {
+        uint32_t h = c->grid_head[col];
+        while (h != RECOG_NONE) {
+            if ((h < found) && (agrees(&c->hyps[h], v->cx, v->cy, v->w, v->h, c->cfg) != 0)) {
+                found = h;
+            }
+            h = c->grid_next[h];
+        }
+        col++;
+    }
+    return found;
+}
+
 void sbr_recog_priv_group_votes(recog_ctx_t *c)
 {
     uint32_t i;
+    for (i = 0u; i < c->grid_cols; i++) {
+        c->grid_head[i] = RECOG_NONE;
+    }
     for (i = 0u; i < c->nvotes; i++) {
         recog_vote_t *v = &c->votes[i];
-        uint32_t h;
-        uint32_t found = c->nhyps;
-        for (h = 0u; h < c->nhyps; h++) {
-            if (agrees(&c->hyps[h], v->cx, v->cy, v->w, v->h, c->cfg) != 0) {
-                found = h;
-                break;
-            }
-        }
+        const uint32_t found = first_agreeing(c, v);
+        uint32_t col = RECOG_NONE; /* the hypothesis's column before this vote */
         if (found == c->nhyps) {
             if (c->nhyps >= c->cfg->max_hypotheses) {
                 c->st.capacity_hit |= SBR_RECOG_HIT_HYPOTHESES;
@@ -131,6 +198,8 @@ void sbr_recog_priv_group_votes(recog_ctx_t *c)
             }
             (void)memset(&c->hyps[found], 0, sizeof c->hyps[found]);
             c->nhyps++;
+        } else {
+            col = grid_col(c, c->hyps[found].mx);
         }
         c->hyps[found].sx += v->weight * v->cx;
         c->hyps[found].sy += v->weight * v->cy;
@@ -142,6 +211,15 @@ void sbr_recog_priv_group_votes(recog_ctx_t *c)
         c->hyps[found].mw = c->hyps[found].sw / c->hyps[found].sum;
         c->hyps[found].mh = c->hyps[found].sh / c->hyps[found].sum;
         v->hyp = found;
+        {
+            const uint32_t now = grid_col(c, c->hyps[found].mx);
+            if (now != col) {
+                if (col != RECOG_NONE) {
+                    grid_unlink(c, found, col);
+                }
+                grid_link(c, found, now);
+            }
+        }
     }
 }
 

@@ -13,9 +13,12 @@
 #define MSER_NONE 0xFFFFFFFFu
 #define MSER_LEVELS 256u
 #define MSER_SENTINEL 256u
+#define MSER_REACHED 0xFFFFu
 
-/* The flood keeps one bit per pixel: reached (or on the image border, which bounds the
-   fill). What else a pixel waiting in the heap needs travels with its heap entry:
+/* The flood keeps one 16-bit word per pixel: the map's level (inverted for the bright
+   pass) until the pixel is reached, then MSER_REACHED (the image border is reached from
+   the start, which bounds the fill); one load tells whether a neighbour is new and its
+   level. What else a pixel waiting in the heap needs travels with its heap entry:
    (pixel index << 3) | the next neighbour to look at (1 right, 2 down, 3 left, 4 up,
    5 none left); its level is the level of the stack it waits on. Pixel indices are below
    SBR_IMAGE_MAX_DIM^2 = 2^28, so an entry fits 32 bits. */
@@ -68,8 +71,8 @@ typedef struct mser_ctx_s {
     uint16_t *ring_val;  /* [SBR_MSER_STACK * ring_cap] their levels */
     mser_node_t *node;   /* [node_cap] */
     uint32_t *heap;      /* [pixels] entries (HEAP_DIR_BITS) */
-    uint32_t *reached;   /* [(pixels + 31) / 32] bit p % 32 of word p / 32: pixel p reached */
-    uint8_t *gray;       /* [pixels] the map, inverted for the bright pass */
+    uint16_t *lev;       /* [pixels] the map (inverted for the bright pass), MSER_REACHED
+                            once reached */
     uint32_t width;
     uint32_t height;
     uint32_t ring_cap;   /* delta + 1 */
@@ -117,12 +120,6 @@ sbr_status_t sbr_mser_config_check(const sbr_mser_config_t *cfg)
     return SBR_OK;
 }
 
-/* Words of the "reached" bitmap for `pixels` pixels (one bit each). */
-static size_t reached_words(size_t pixels)
-{
-    return (pixels + 31u) / 32u;
-}
-
 static size_t mser_nodes_for(uint32_t width, uint32_t height, const sbr_mser_config_t *cfg)
 {
     size_t n = SBR_MSER_WORST_NODES(width, height);
@@ -144,8 +141,7 @@ size_t sbr_mser_workspace_size(const sbr_mser_config_t *cfg, uint32_t width, uin
         const size_t ring = ((size_t)cfg->delta + 1u) * (size_t)SBR_MSER_HISTORY_BYTES;
         const size_t per_comp = (size_t)SBR_MSER_COMP_BYTES + ring;
         return (size_t)SBR_MSER_HEAP_HEADER_BYTES + ((size_t)SBR_MSER_STACK * per_comp) + nodes +
-               (pixels * (size_t)SBR_MSER_PIXEL_BYTES) + SBR_MSER_REACHED_BYTES(pixels) +
-               (size_t)SBR_MSER_TAIL_BYTES;
+               (pixels * (size_t)SBR_MSER_PIXEL_BYTES) + (size_t)SBR_MSER_TAIL_BYTES;
     }
 }
 
@@ -332,17 +328,7 @@ static uint32_t heap_pop(mser_ctx_t *c, uint32_t level)
     return c->heap[c->heap_base[level] + c->heap_top[level]];
 }
 
-static void mark_reached(mser_ctx_t *c, uint32_t p)
-{
-    c->reached[p >> 5] |= (1u << (p & 31u));
-}
-
-static uint32_t is_reached(const mser_ctx_t *c, uint32_t p)
-{
-    return (c->reached[p >> 5] >> (p & 31u)) & 1u;
-}
-
-/* Prepare one pass: the (inverted) copy of the map, the reached bits, and the heap layout. The
+/* Prepare one pass: the (inverted) copy of the map with its border reached, and the heap layout. The
    heap's layout needs the number of interior pixels per level: counted for the first
    pass; the second pass (same map, inverted) reads them off the first pass's layout,
    level v of the inverted map being level 255 - v of the map. */
@@ -369,10 +355,10 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     }
     for (y = 0u; y < h; y++) {
         const uint8_t *src = &map->data[(size_t)y * map->stride];
-        uint8_t *g = &c->gray[(size_t)y * w];
+        uint16_t *g = &c->lev[(size_t)y * w];
         uint32_t x;
         for (x = 0u; x < w; x++) {
-            g[x] = (uint8_t)(src[x] ^ xor_mask);
+            g[x] = (uint16_t)((uint32_t)src[x] ^ (uint32_t)xor_mask);
         }
         if ((second == 0) && (y > 0u) && (y < (h - 1u))) {
             for (x = 1u; x < (w - 1u); x++) {
@@ -380,21 +366,16 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
             }
         }
     }
-    /* nothing reached yet; the border is marked reached so the flood never enters it */
+    /* the border is reached from the start, so the flood never enters it */
     {
-        const size_t words = reached_words((size_t)w * (size_t)h);
-        size_t j;
         uint32_t i;
-        for (j = 0u; j < words; j++) {
-            c->reached[j] = 0u;
-        }
         for (i = 0u; i < w; i++) {
-            mark_reached(c, i);
-            mark_reached(c, ((h - 1u) * w) + i);
+            c->lev[i] = (uint16_t)MSER_REACHED;
+            c->lev[((h - 1u) * w) + i] = (uint16_t)MSER_REACHED;
         }
         for (y = 1u; y < (h - 1u); y++) {
-            mark_reached(c, y * w);
-            mark_reached(c, (y * w) + (w - 1u));
+            c->lev[y * w] = (uint16_t)MSER_REACHED;
+            c->lev[(y * w) + (w - 1u)] = (uint16_t)MSER_REACHED;
         }
     }
     for (v = 0u; v < MSER_LEVELS; v++) {
@@ -409,10 +390,11 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
 static void pass_flood(mser_ctx_t *c)
 {
     const uint32_t w = c->width;
+    uint16_t *const lev = c->lev;
     uint32_t off[5];
     uint32_t p = w + 1u;
     uint32_t k = 1u;
-    uint32_t cur = (uint32_t)c->gray[p];
+    uint32_t cur = (uint32_t)c->lev[p];
     uint32_t top = 1u;
     int done = 0;
 
@@ -424,14 +406,14 @@ static void pass_flood(mser_ctx_t *c)
 
     comp_init(c, 0u, MSER_SENTINEL);
     comp_init(c, 1u, cur);
-    mark_reached(c, p);
+    c->lev[p] = (uint16_t)MSER_REACHED;
     while (done == 0) {
         uint32_t e; /* the next heap entry */
         while (k <= 4u) {
             const uint32_t q = p + off[k];
-            if (is_reached(c, q) == 0u) {
-                const uint32_t g = (uint32_t)c->gray[q];
-                mark_reached(c, q);
+            const uint32_t g = (uint32_t)lev[q];
+            if (g != MSER_REACHED) {
+                lev[q] = (uint16_t)MSER_REACHED;
                 if (g < cur) {
                     /* a lower neighbour: come back to p later (at its next neighbour),
                        descend into q */
@@ -623,9 +605,7 @@ static void mser_ctx_init(mser_ctx_t *c, const sbr_image_t *map, const sbr_mser_
     base = &base[nodes * SBR_MSER_NODE_BYTES];
     c->heap = (uint32_t *)(void *)base;
     base = &base[pixels * 4u];
-    c->reached = (uint32_t *)(void *)base;
-    base = &base[reached_words(pixels) * 4u];
-    c->gray = base;
+    c->lev = (uint16_t *)(void *)base;
     c->width = map->width;
     c->height = map->height;
     c->node_cap = (uint32_t)nodes;
