@@ -3,9 +3,11 @@
  * (qemu mps2-an386 with -icount shift=0), for `./sbr.sh cost` (host_tools/bench_cost).
  *
  * The frame is read through semihosting from `frame.ppm` (binary PPM, P6, maxval 255) in
- * qemu's working folder into the board's 16 MiB PSRAM at 0x21000000; the recogniser's
- * workspace follows it. When both do not fit, the largest band of full rows (centred
- * vertically) that fits is processed and said so. The recogniser runs with its defaults
+ * qemu's working folder into a buffer in the 4 MiB SRAM when it fits there (a 1360 x 800
+ * RGB frame does), else into the board's 16 MiB PSRAM at 0x21000000 before the
+ * workspace; the recogniser's workspace takes the PSRAM. When frame and workspace do not
+ * fit, the largest band of full rows (centred vertically) that fits is processed and said
+ * so. The recogniser runs with its defaults
  * and the built-in model (lib/models), its stage clock reading the CMSDK APB timer 0
  * (25 MHz, counting down). With -icount shift=0 qemu advances virtual time by 1 ns per
  * instruction, so a timer tick is a fixed number of instructions: it is calibrated at
@@ -31,6 +33,11 @@
 
 #define PSRAM_BASE 0x21000000u
 #define PSRAM_BYTES (16u * 1024u * 1024u)
+/* Frames up to this size are read into SRAM (.bss; the rest of the 4 MiB SRAM holds the
+   image's data, its heap and its stack). */
+#define SRAM_FRAME_BYTES (3u * 1024u * 1024u + 512u * 1024u)
+
+static uint8_t g_frame[SRAM_FRAME_BYTES];
 
 /* CMSDK APB timer 0 */
 #define TIMER0_CTRL (*(volatile uint32_t *)0x40000000u)
@@ -82,7 +89,7 @@ int main(void)
 {
     FILE *f = fopen("frame.ppm", "rb");
     uint32_t w = 0u, h = 0u, maxval = 0u;
-    uint8_t *const frame = (uint8_t *)PSRAM_BASE;
+    uint8_t *frame = (uint8_t *)PSRAM_BASE;
     sbr_recog_config_t cfg;
     sbr_model_t model;
     sbr_picto_model_t picto;
@@ -110,6 +117,9 @@ int main(void)
         return 1;
     }
     frame_bytes = (size_t)w * h * 3u;
+    if (frame_bytes <= SRAM_FRAME_BYTES) {
+        frame = g_frame;
+    }
     if ((frame_bytes >= PSRAM_BYTES) || (fread(frame, 1u, frame_bytes, f) != frame_bytes)) {
         printf("error: frame.ppm too large or short\n");
         return 1;
@@ -120,7 +130,7 @@ int main(void)
     cfg.clock = timer_clock;
     (void)sbr_model_gtsdb(&model);
     (void)sbr_picto_gtsdb(&picto);
-    ws_off = (frame_bytes + 7u) & ~(size_t)7u;
+    ws_off = (frame == g_frame) ? 0u : ((frame_bytes + 7u) & ~(size_t)7u);
     /* the largest band of full rows whose workspace fits beside the frame */
     for (band = h; band >= 16u; band -= 8u) {
         ws_bytes = sbr_recog_workspace_size(&cfg, w, band);
