@@ -129,7 +129,7 @@ bool get_picto_weights(const std::string &s, size_t &off, uint32_t hidden, uint3
 // `header` as the generated file's leading C comment.
 std::string comment_block(const std::string &header) {
     std::ostringstream o;
-    o << "/*\n";
+    o << "/* SPDX-License-Identifier: MIT */\n/*\n";
     std::istringstream hs(header);
     for (std::string line; std::getline(hs, line);) o << (line.empty() ? " *" : " * " + line) << "\n";
     o << " */\n";

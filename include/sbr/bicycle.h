@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file bicycle.h
  * @brief Bicycle tracking from wheel ellipses (paper B): the projection of a bicycle's

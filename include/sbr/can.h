@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file can.h
  * @brief sbr's CAN messages: packing per `dbc/sbr.dbc`, end-to-end protection, and the

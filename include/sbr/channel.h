@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file channel.h
  * @brief Channel representation: cos² channel encoding, soft histograms and mode

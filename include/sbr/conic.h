@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file conic.h
  * @brief Conics (thesis ch. 2.2-2.3, papers A and B): direct least-squares ellipse fit,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file contour.h
  * @brief Closed outer boundaries of binary blobs (8-connected), traced iteratively.

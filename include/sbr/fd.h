@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file fd.h
  * @brief Fourier descriptors of closed contours and their correlation matching

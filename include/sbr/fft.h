@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file fft.h
  * @brief Fixed-size complex float32 FFT for the lengths 16, 32, ..., 1024.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file image.h
  * @brief Borrowed image views with explicit stride, and regions of interest.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file map.h
  * @brief u8 channel maps from camera images: intensity and colour (chromaticity) maps, with

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file mser.h
  * @brief Maximally stable extremal regions (MSER) of a u8 map, both polarities, in linear

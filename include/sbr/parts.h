@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file parts.h
  * @brief The front half of the recogniser: channel maps -> MSER regions -> outer contours

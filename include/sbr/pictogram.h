@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file pictogram.h
  * @brief The recogniser's class stage: what a candidate sign box contains, from the

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file recognizer.h
  * @brief Traffic-sign recognition from the shapes of regions (thesis paper D): channel

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file sbr.h
  * @brief Umbrella header: every public sbr module.

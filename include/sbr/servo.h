@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file servo.h
  * @brief Visual servoing with a learned inverse image Jacobian (the thesis's paper F and

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file tracker.h
  * @brief Channel-based multi-target tracking with a learned second-order motion model

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /**
  * @file types.h
  * @brief Basic types shared by the sbr modules.

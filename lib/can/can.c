@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * CAN messages of dbc/sbr.dbc: Intel-order signals by explicit shifts and masks, E2E
  * (CRC-8/SAE-J1850 + alive counter, Profile 1 style) and the per-cycle scheduler.

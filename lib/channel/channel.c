@@ -1,3 +1,6 @@
+/* SPDX-License-Identifier: MIT */
+/* Channel representation (include/sbr/channel.h): cos^2 channel encoding, soft 1-D and
+   2-D histograms and their mode decoding. */
 #include "sbr/channel.h"
 
 #include <math.h>

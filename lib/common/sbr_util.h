@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Private helpers shared by the core's modules (not installed). */
 #ifndef SBR_UTIL_H
 #define SBR_UTIL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Private helpers shared by the core's modules: sorting. */
 #include "sbr_util.h"
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT */
+/* The status names of include/sbr/status.h (sbr_status_str()). */
 #include "sbr/status.h"
 
 const char *sbr_status_str(sbr_status_t status)

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Bicycle tracking from wheel ellipses (paper B): projection, wheel pairing, bootstrap
    particle filter. See include/sbr/bicycle.h. */
 #include "sbr/bicycle.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Conics: classification, ellipse geometry, residual and coverage, and the helpers the
    fit (conic_fit.c), the torchlight pose (conic_torch.c) and the detector
    (conic_detect.c) share. See include/sbr/conic.h. */

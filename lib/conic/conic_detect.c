@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Conics: ellipse detection (regions -> contours -> fits). See include/sbr/conic.h. */
 #include "conic_internal.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Conics: the direct least-squares ellipse fit (Halir-Flusser). See include/sbr/conic.h. */
 #include "conic_internal.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Private to lib/conic: helpers its files share (small linear algebra, ellipse geometry,
    Sampson distance), defined in conic.c. Not installed. */
 #ifndef SBR_CONIC_INTERNAL_H

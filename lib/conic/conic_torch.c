@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Conics: the torchlight pose (the plane a circular light cone hits, from the ellipse it
    draws). See include/sbr/conic.h. */
 #include "conic_internal.h"

@@ -1,3 +1,6 @@
+/* SPDX-License-Identifier: MIT */
+/* Outer contours of a binary mask (include/sbr/contour.h): border following with a label
+   map. */
 #include "sbr/contour.h"
 
 /* Label map values: background, unvisited foreground, visited border pixel, visited border

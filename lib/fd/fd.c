@@ -1,3 +1,6 @@
+/* SPDX-License-Identifier: MIT */
+/* Fourier descriptors (include/sbr/fd.h): descriptors of contours, and their matching by
+   correlation, pair by pair and over a prototype table (four lanes at a time). */
 #include "sbr/fd.h"
 #include "fd_internal.h"
 

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Private to the core: the table matcher for a caller that has checked its prototype
    table already (the recogniser checks its model with sbr_model_check() before it
    matches, so each of a frame's thousands of queries need not check every prototype

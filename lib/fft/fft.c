@@ -1,3 +1,6 @@
+/* SPDX-License-Identifier: MIT */
+/* The fixed-size complex FFT (include/sbr/fft.h): forward and inverse transforms of an
+   initialised instance. */
 #include "fft_internal.h"
 #include "../common/sbr_util.h"
 

@@ -1,3 +1,6 @@
+/* SPDX-License-Identifier: MIT */
+/* sbr_fft_init(): the instance of a supported length, from the per-length set-up
+   functions. */
 #include "fft_internal.h"
 
 sbr_status_t sbr_fft_init(sbr_fft_t *fft, uint32_t n)

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT */
+/* sbr_fft_init_128(): the FFT instance of length 128 over its constant tables. */
 #include "fft_internal.h"
 
 /* One translation unit per length, so the linker keeps only the tables in use. */

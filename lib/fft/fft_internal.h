@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Private to lib/fft: instance set-up shared by the per-length init functions. */
 #ifndef SBR_FFT_INTERNAL_H
 #define SBR_FFT_INTERNAL_H

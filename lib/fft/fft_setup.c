@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT */
+/* The FFT instance set-up shared by every length: tables, stage count, integrity word. */
 #include "fft_internal.h"
 #include "../common/sbr_util.h"
 

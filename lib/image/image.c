@@ -1,3 +1,6 @@
+/* SPDX-License-Identifier: MIT */
+/* Image views (include/sbr/image.h): pixel formats, checks of a view, regions of
+   interest. */
 #include "sbr/image.h"
 
 uint32_t sbr_image_bytes_per_pixel(sbr_pixel_format_t format)

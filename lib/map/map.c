@@ -1,3 +1,6 @@
+/* SPDX-License-Identifier: MIT */
+/* Channel maps (include/sbr/map.h): the u8 intensity and chromaticity maps of a frame,
+   with optional block subsampling. */
 #include "sbr/map.h"
 
 #include "../common/sbr_util.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Parts of a frame: maps -> MSER -> region masks -> outer contours -> Fourier descriptors.
  * All buffers come from the caller's workspace; see include/sbr/parts.h.

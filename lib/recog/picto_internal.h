@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Private to lib/recog: what the class stage's looks (picto_look.c) share with the
    classifier (pictogram.c). Not installed. */
 #ifndef SBR_PICTO_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The recogniser's class stage: features of a candidate box and their classifier
    (pictogram.h). */
 #include "sbr/pictogram.h"

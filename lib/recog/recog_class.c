@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Recogniser: the class stage (pictogram classifier) on the candidates. See
  * include/sbr/recognizer.h.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Recogniser: configuration, model check and workspace layout. See include/sbr/recognizer.h.
  */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Private to lib/recog: the recogniser's working types and the functions its files share
    (config, votes + cascade, suppression, class stage, detect). Not installed. */
 #ifndef SBR_RECOG_INTERNAL_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Recogniser: ordering and non-maximum suppression of hypotheses. See
  * include/sbr/recognizer.h.

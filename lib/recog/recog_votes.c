@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Recogniser: prototype matches -> star-model votes -> hypotheses -> evidence per class
  * and cascade verification. See include/sbr/recognizer.h.

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Traffic-sign recogniser: parts -> prototype matches -> star-model votes -> hypotheses
  * -> cascade verification -> NMS -> class stage. See include/sbr/recognizer.h; the stages

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Maximally stable extremal regions: one flood fill per polarity builds the component
  * tree (Nistér–Stewénius), nodes of area >= min_area are kept with the area of their

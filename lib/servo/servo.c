@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Visual servoing with a learned inverse image Jacobian (servo.h). */
 #include "sbr/servo.h"
 

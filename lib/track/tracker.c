@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Channel-based multi-target tracker with a learned second-order motion model
    (paper E). See include/sbr/tracker.h for the method. */
 #include "sbr/tracker.h"
