@@ -5,7 +5,8 @@
 
 #include <math.h>
 
-#define SBR_PI_F 3.14159265f
+#include "../common/sbr_util.h"
+
 /* Slack (in channels) on both ends of a window's valid interval. Without it, a value on
    the boundary between two windows can be rounded out of both and lost; with it, both
    windows may accept it, and the near-identical estimates are merged (see insert_*). */

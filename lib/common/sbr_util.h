@@ -7,6 +7,10 @@
 
 #include <math.h>
 
+/* pi and 2 pi as float (every file of the core uses these). */
+#define SBR_PI_F 3.14159265f
+#define SBR_TWO_PI_F 6.28318531f
+
 /* Do the byte ranges [a, a + na) and [b, b + nb) share a byte? Compared as integers:
    relational comparison of pointers into different objects is undefined in C
    (MISRA.md, 11.4). */
@@ -100,7 +104,7 @@ static inline float sbr_util_atan2f(float y, float x)
         r = 1.57079633f - r;
     }
     if (x < 0.0f) {
-        r = 3.14159265f - r;
+        r = SBR_PI_F - r;
     }
     if (y < 0.0f) {
         r = -r;

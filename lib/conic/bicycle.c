@@ -8,7 +8,6 @@
 
 #include "../common/sbr_util.h"
 
-#define BIKE_PI 3.14159265358979f
 #define BIKE_G 9.81f
 #define BIKE_SUBSTEP 0.02f
 #define BIKE_MAX_DT_STATE_US 10000000u
@@ -46,10 +45,10 @@ static int state_ok(const sbr_bike_state_t *s)
 {
     return (isfinite(s->x) != 0) && (isfinite(s->z) != 0) && (isfinite(s->heading) != 0) &&
            (isfinite(s->speed) != 0) && (isfinite(s->steer) != 0) && (isfinite(s->roll) != 0) &&
-           (fabsf(s->x) < 1e4f) && (fabsf(s->z) < 1e4f) && (s->heading > -BIKE_PI) &&
-           (s->heading <= BIKE_PI) &&
-           (s->speed >= 0.0f) && (s->speed <= 100.0f) && (fabsf(s->steer) < (0.5f * BIKE_PI)) &&
-           (fabsf(s->roll) < (0.5f * BIKE_PI));
+           (fabsf(s->x) < 1e4f) && (fabsf(s->z) < 1e4f) && (s->heading > -SBR_PI_F) &&
+           (s->heading <= SBR_PI_F) &&
+           (s->speed >= 0.0f) && (s->speed <= 100.0f) && (fabsf(s->steer) < (0.5f * SBR_PI_F)) &&
+           (fabsf(s->roll) < (0.5f * SBR_PI_F));
 }
 
 static int ellipse_ok(const sbr_ellipse_t *e)
@@ -78,17 +77,17 @@ static int ellipses_ok(const sbr_ellipse_t *e, uint32_t n)
 static float wrap_angle(float a)
 {
     float r = a;
-    if ((r > BIKE_PI) || (r <= -BIKE_PI)) {
-        r = fmodf(r, 2.0f * BIKE_PI); /* (-2 pi, 2 pi), exact */
-        if (r > BIKE_PI) {
-            r -= 2.0f * BIKE_PI;
-        } else if (r <= -BIKE_PI) {
-            r += 2.0f * BIKE_PI;
+    if ((r > SBR_PI_F) || (r <= -SBR_PI_F)) {
+        r = fmodf(r, 2.0f * SBR_PI_F); /* (-2 pi, 2 pi), exact */
+        if (r > SBR_PI_F) {
+            r -= 2.0f * SBR_PI_F;
+        } else if (r <= -SBR_PI_F) {
+            r += 2.0f * SBR_PI_F;
         } else {
             /* in range */
         }
-        if (r <= -BIKE_PI) {
-            r = BIKE_PI; /* -pi rounded: the same direction */
+        if (r <= -SBR_PI_F) {
+            r = SBR_PI_F; /* -pi rounded: the same direction */
         }
     }
     return r;
@@ -263,8 +262,8 @@ static sbr_ellipse_t group_ellipse(const wheel_group_t *g)
     e.semi_major = g->a * k;
     e.semi_minor = fminf(g->b * k, e.semi_major);
     e.angle = 0.5f * atan2f(g->ey, g->ex);
-    if (e.angle <= (-0.5f * BIKE_PI)) {
-        e.angle += BIKE_PI;
+    if (e.angle <= (-0.5f * SBR_PI_F)) {
+        e.angle += SBR_PI_F;
     }
     return e;
 }
@@ -428,7 +427,7 @@ static float rng_gauss(uint32_t *s)
 {
     const float u1 = rng_uniform(s);
     const float u2 = rng_uniform(s);
-    return sqrtf(-2.0f * logf(u1)) * cosf(2.0f * BIKE_PI * u2);
+    return sqrtf(-2.0f * logf(u1)) * cosf(2.0f * SBR_PI_F * u2);
 }
 
 /* ---------------------------------------------------------------- particle filter */

@@ -389,10 +389,10 @@ int sbr_conic_priv_ellipse_of(const sbr_conic_t *q0, sbr_ellipse_t *el)
             vy = 0.0f;
         }
         ang = atan2f(vy, vx);
-        if (ang <= (-0.5f * CONIC_PI)) {
-            ang += CONIC_PI;
-        } else if (ang > (0.5f * CONIC_PI)) {
-            ang -= CONIC_PI;
+        if (ang <= (-0.5f * SBR_PI_F)) {
+            ang += SBR_PI_F;
+        } else if (ang > (0.5f * SBR_PI_F)) {
+            ang -= SBR_PI_F;
         } else {
             /* in range */
         }
@@ -615,8 +615,8 @@ sbr_status_t sbr_ellipse_coverage(const sbr_conic_t *conic, const sbr_pointf_t *
             if (sbr_conic_priv_sampson(&q, dx, dy) <= tol) {
                 const float u = ((dx * cs) + (dy * sn)) / el.semi_major;
                 const float v = ((dy * cs) - (dx * sn)) / el.semi_minor;
-                const float t = atan2f(v, u) + CONIC_PI;
-                const float fsec = (t / (2.0f * CONIC_PI)) * (float)COVERAGE_SECTORS;
+                const float t = atan2f(v, u) + SBR_PI_F;
+                const float fsec = (t / (2.0f * SBR_PI_F)) * (float)COVERAGE_SECTORS;
                 uint32_t sec = (uint32_t)fsec;
                 if (sec >= COVERAGE_SECTORS) {
                     sec = COVERAGE_SECTORS - 1u;

@@ -31,7 +31,7 @@ static uint32_t eig3_real(const float m[9], float roots[3])
             const float phi = acosf(arg);
             uint32_t k;
             for (k = 0u; k < 3u; ++k) {
-                roots[k] = (2.0f * r * cosf((phi - (2.0f * CONIC_PI * (float)k)) / 3.0f)) - sh;
+                roots[k] = (2.0f * r * cosf((phi - (2.0f * SBR_PI_F * (float)k)) / 3.0f)) - sh;
             }
         }
         n = 3u;

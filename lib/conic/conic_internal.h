@@ -8,7 +8,6 @@
 
 #include "../common/sbr_util.h"
 
-#define CONIC_PI 3.14159265358979f
 
 /* The largest magnitude of the six entries. */
 float sbr_conic_priv_max_abs(const sbr_conic_t *q);

@@ -8,8 +8,6 @@
 
 #include "../common/sbr_util.h"
 
-#define SBR_PI_F 3.14159265f
-#define SBR_TWO_PI_F 6.28318531f
 
 /* Reads point i of whichever array is given (integer or float points). */
 static void get_point(const sbr_point_t *pi, const sbr_pointf_t *pf, uint32_t i, float *x,

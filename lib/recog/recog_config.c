@@ -86,7 +86,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
     }
     if ((in_range(cfg->vote_error, 0.0f, 4.0f) == 0) ||
         (in_range(cfg->verify_error, 1.0e-6f, 4.0f) == 0) ||
-        (in_range(cfg->max_rotation, 1.0e-6f, RECOG_PI) == 0) ||
+        (in_range(cfg->max_rotation, 1.0e-6f, SBR_PI_F) == 0) ||
         (in_range(cfg->min_size, 1.0f, 16384.0f) == 0) ||
         (in_range(cfg->max_size, cfg->min_size, 16384.0f) == 0) ||
         (in_range(cfg->centre_tol, 1.0e-6f, 10.0f) == 0) ||

@@ -8,7 +8,6 @@
 
 #include "../common/sbr_util.h"
 
-#define RECOG_PI 3.14159265f
 
 /* A vote: a predicted sign (centre, size) from one part-prototype match. */
 typedef struct recog_vote_s {

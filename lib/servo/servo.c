@@ -10,7 +10,6 @@
 #define SERVO_MAGIC 0x5345524Fu
 #define RUN_MAGIC 0x52554E53u
 #define SERVO_MAX_VALUE 1.0e6f
-#define SERVO_PI 3.14159265358979f
 
 /* Offsets of a field's parts (floats). */
 static size_t off_b(const sbr_servo_config_t *c) { return (size_t)c->joints; }
@@ -158,11 +157,11 @@ static int values_ok(const float *v, uint32_t n)
 /* v wrapped to (-pi, pi] (|v| <= 1e6: a bounded number of turns, done by division). */
 static float servo_wrap(float v)
 {
-    const float two_pi = 2.0f * SERVO_PI;
-    float r = v - (two_pi * floorf((v + SERVO_PI) / two_pi));
-    if (r <= -SERVO_PI) {
+    const float two_pi = 2.0f * SBR_PI_F;
+    float r = v - (two_pi * floorf((v + SBR_PI_F) / two_pi));
+    if (r <= -SBR_PI_F) {
         r += two_pi;
-    } else if (r > SERVO_PI) {
+    } else if (r > SBR_PI_F) {
         r -= two_pi;
     } else {
         /* in range */

@@ -10,7 +10,6 @@
 #include "../common/sbr_util.h"
 
 #define TRK_MAGIC 0x5452434Bu
-#define TRK_PI 3.14159265358979f
 /* cos² kernel of support W has standard deviation 0.1808 W: W = sigma / 0.1808. */
 #define TRK_KERNEL_PER_SIGMA 5.53f
 #define TRK_ALIVE 0x100u
@@ -22,7 +21,7 @@ static float trk_kernel(float d, float w)
 {
     float r = 0.0f;
     if (fabsf(d) < (0.5f * w)) {
-        const float c = cosf((TRK_PI * d) / w);
+        const float c = cosf((SBR_PI_F * d) / w);
         r = c * c;
     }
     return r;
