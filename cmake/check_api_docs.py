@@ -5,9 +5,10 @@
 
 For each function declared in include/sbr/*.h, the doc comment (/** ... */) right before
 it must hold a `@param[in]`, `@param[out]` or `@param[in,out]` line for each of its
-parameters (several names may share one line: `@param[out] rear, front ...`). Prints the
-functions with an undocumented or untagged parameter; exit 1 if there is one (0 with
---report)."""
+parameters (several names may share one line: `@param[out] rear, front ...`), in the
+order of the signature, each with text of its own (not a filler line such as "length of
+the array, in elements"). Prints the functions with an undocumented, untagged,
+out-of-order or filler parameter; exit 1 if there is one (0 with --report)."""
 
 import argparse
 import os
@@ -15,6 +16,10 @@ import re
 import sys
 
 DECL = re.compile(r"^(?:[A-Za-z_][\w \*]*?)\b(sbr_\w+)\s*\(([^;{]*?)\)\s*;", re.M | re.S)
+
+
+# Text that says nothing a parameter's name does not (what the first docs gate let through).
+FILLER = ("length of the array, in elements", "its size in bytes")
 
 
 def params_of(arglist):
@@ -58,16 +63,23 @@ def main():
             if before.endswith("*/"):
                 start = before.rfind("/**")
                 doc = before[start:] if start >= 0 else ""
-            tagged = set()
-            for pm in re.finditer(r"@param\[(?:in|out|in,out)\]\s+(\w+(?:\s*,\s*\w+)*)", doc):
+            tagged = []
+            for pm in re.finditer(r"@param\[(?:in|out|in,out)\]\s+(\w+(?:\s*,\s*\w+)*)([^\n]*)", doc):
                 for n in pm.group(1).split(","):
-                    tagged.add(n.strip())
-            missing = [p for p in params_of(args) if p not in tagged]
+                    tagged.append(n.strip())
+                if pm.group(2).strip().rstrip(".") in FILLER:
+                    bad.append((name, func, ["filler text for " + pm.group(1)]))
+            sig = params_of(args)
+            missing = [p for p in sig if p not in tagged]
             if missing:
                 bad.append((name, func, missing))
+            order = [p for p in tagged if p in sig]
+            if order != [p for p in sig if p in order]:
+                bad.append((name, func, ["@param order " + ", ".join(order) + " is not the signature's"]))
     for name, func, missing in bad:
         print(f"  {name}: {func}: {', '.join(missing)}")
-    print(f"public functions: {total}; with a parameter not documented as @param[in|out|in,out]: {len(bad)}")
+    print(f"public functions: {total}; problems (a parameter not documented as @param[in|out|in,out], "
+          f"out of order, or filler): {len(bad)}")
     return 0 if (a.report or not bad) else 1
 
 

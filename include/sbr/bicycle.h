@@ -87,10 +87,10 @@ sbr_status_t sbr_bike_predict_state(const sbr_bike_model_t *model, const sbr_bik
 
 /**
  * @brief The image ellipses of the two wheels (exact perspective images of the circles).
- * @param[out] rear, front the ellipses; either may be NULL.
  * @param[in] camera the camera
  * @param[in] model the model
  * @param[in] state the state
+ * @param[out] rear, front the ellipses; either may be NULL.
  * @return ::SBR_OK; ::SBR_ERR_NULL (camera, model or state); ::SBR_ERR_RANGE (bad
  *         camera, model or state); ::SBR_ERR_DEGENERATE when a wheel is not entirely in
  *         front of the camera (Z > 0.1 m), so that its image is no ellipse.
@@ -125,8 +125,8 @@ typedef struct sbr_wheel_pair_s {
  * the axis-ratio mismatch, the vertical offset and the deviation of the distance from
  * the side view's (all normalised as above); pairs are written best first.
  *
- * @param[in] n  0 .. ::SBR_BIKE_MAX_ELLIPSES.
  * @param[in] ellipses the ellipses of one image (may be NULL when n = 0).
+ * @param[in] n  0 .. ::SBR_BIKE_MAX_ELLIPSES.
  * @param[in] model the model
  * @param[out] pairs candidate pairs, best first.
  * @param[in] capacity entries of the result array
@@ -247,11 +247,11 @@ size_t sbr_bike_pf_workspace_size(const sbr_bike_pf_config_t *cfg);
 
 /**
  * @brief Set up a filter with no track.
- * @param[in,out] workspace ::SBR_BIKE_PF_WORKSPACE_SIZE(cfg->particles) bytes, 4-byte aligned,
- *        owned by the filter until it is no longer used.
  * @param[in,out] pf the filter to set up (its previous content is ignored).
  * @param[in] cfg the configuration
- * @param[in] workspace_size its size in bytes
+ * @param[in,out] workspace ::SBR_BIKE_PF_WORKSPACE_SIZE(cfg->particles) bytes, 4-byte aligned,
+ *        owned by the filter until it is no longer used.
+ * @param[in] workspace_size bytes available at `workspace`
  * @return ::SBR_OK; ::SBR_ERR_NULL; errors of sbr_bike_pf_config_check();
  *         ::SBR_ERR_WORKSPACE (too small or misaligned).
  */

@@ -129,7 +129,7 @@ sbr_status_t sbr_can_unpack_ecu_status(const sbr_can_frame_t *frame, sbr_can_ecu
 /**
  * @brief CRC-8/SAE-J1850 (0x1D, init 0xFF, xorout 0xFF) of `len` bytes; 0 for NULL.
  * @param[in] data the values
- * @param[in] len length of the array, in elements
+ * @param[in] len number of bytes at `data`
  */
 uint8_t sbr_crc8_j1850(const uint8_t *data, uint32_t len);
 
@@ -182,9 +182,9 @@ sbr_status_t sbr_can_e2e_rx_init(sbr_can_e2e_rx_t *rx, uint32_t id);
 
 /**
  * @brief Check a received frame.
- * @param[out] result what the check found (also on error).
  * @param[in,out] rx the receiver's E2E state
  * @param[in] frame the CAN frame
+ * @param[out] result what the check found (also on error).
  * @return ::SBR_OK for ::SBR_E2E_OK and ::SBR_E2E_FIRST; ::SBR_ERR_CORRUPT for every other
  *         result; ::SBR_ERR_NULL. A repeated frame leaves the state as it was; a skipped
  *         counter is reported and the state follows the new counter.
@@ -232,13 +232,13 @@ sbr_status_t sbr_can_sched_config_check(const sbr_can_sched_config_t *cfg);
  * lowest priority first; the status frame then carries overload = 1 and `dropped` says
  * how many. Every frame is packed, then E2E-protected with `tx`.
  *
- * @param[out] frames   at least cfg->frame_budget entries (`capacity`).
- * @param[out] count    frames written.
- * @param[out] dropped  results that did not get a frame (budget, limits, invalid values).
  * @param[in,out] tx the sender's E2E state
  * @param[in] cfg the configuration
  * @param[in] cycle this cycle's results (signs, status, detections, objects).
+ * @param[out] frames   at least cfg->frame_budget entries (`capacity`).
  * @param[in] capacity entries of the result array
+ * @param[out] count    frames written.
+ * @param[out] dropped  results that did not get a frame (budget, limits, invalid values).
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for a bad config or when a result had
  *         an out-of-range value (that result is left out, the other frames are complete);
  *         ::SBR_ERR_CAPACITY if `capacity` < frame_budget (nothing written).
@@ -260,11 +260,11 @@ typedef struct sbr_can_port_s {
 
 /**
  * @brief Send frames in order through a port; stops at the first frame the port refuses.
- * @param[out] sent frames the port accepted.
  * @param[in] port the port
  * @param[in,out] ctx the port's own context, handed to its functions
  * @param[in] frames the frames
  * @param[in] count number of entries
+ * @param[out] sent frames the port accepted.
  * @return ::SBR_OK; ::SBR_ERR_NULL; the port's status for the first refused frame.
  */
 sbr_status_t sbr_can_send(const sbr_can_port_t *port, void *ctx, const sbr_can_frame_t *frames,

@@ -130,7 +130,7 @@ sbr_status_t sbr_channel_encode(const sbr_channel_config_t *cfg, float x, float 
  * @param[in] x the value along x
  * @param[in] weight the weight, finite and >= 0
  * @param[in,out] hist the histogram (`len` channel values) the encoding is added to.
- * @param[in] len length of the array, in elements
+ * @param[in] len length of `hist`, >= cfg->count
  * @return as sbr_channel_encode(); ::SBR_ERR_RANGE also when a channel it adds to is not
  *         a valid value (finite, >= 0) or would exceed ::SBR_CHANNEL_MAX_VALUE; on error
  *         nothing is added.
@@ -201,7 +201,7 @@ uint32_t sbr_channel2d_grid_len(const sbr_channel2d_config_t *cfg);
  * @param[in] y the value along y
  * @param[in] weight the weight, finite and >= 0
  * @param[in,out] grid the grid (x.count * y.count values, row-major by y).
- * @param[in] len length of the array, in elements
+ * @param[in] len length of `grid`, >= x.count * y.count
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE if `len` < the grid length;
  *         ::SBR_ERR_RANGE if x or y is outside its axis range, the weight is not finite,
  *         > 0 and at most ::SBR_CHANNEL_MAX_VALUE, or a cell it adds to is not a valid
@@ -215,7 +215,7 @@ sbr_status_t sbr_channel2d_accumulate(const sbr_channel2d_config_t *cfg, float x
  *        (M x M channels) is valid when both its x and y estimates are valid.
  * @param[in] cfg the configuration
  * @param[in] grid the grid (x.count * y.count values, row-major by y).
- * @param[in] len length of the array, in elements
+ * @param[in] len length of `grid`, >= x.count * y.count
  * @param[in] min_certainty smallest window sum that counts as a mode, >= 0.
  * @param[out] modes the decoded modes, strongest first.
  * @param[in] capacity entries of the result array

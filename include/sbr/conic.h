@@ -154,11 +154,11 @@ sbr_status_t sbr_ellipse_fit(const sbr_pointf_t *points, uint32_t n, sbr_conic_t
 /**
  * @brief Geometric fit residual: the Sampson distance |Q(p)| / |grad Q(p)| of each point
  *        (a first-order approximation of its distance to the conic, in pixels).
+ * @param[in] conic the conic
  * @param[in]  points  n points, |coordinate| <= ::SBR_CONIC_MAX_COORD.
+ * @param[in] n number of entries
  * @param[out] rms     root mean square distance (finite on ::SBR_OK).
  * @param[out] max_abs largest distance; may be NULL.
- * @param[in] conic the conic
- * @param[in] n number of entries
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (n = 0); ::SBR_ERR_RANGE (non-finite
  *         input, a point beyond ::SBR_CONIC_MAX_COORD, or distances that overflow float32).
  */
@@ -305,12 +305,12 @@ size_t sbr_ellipse_detect_workspace_size(const sbr_ellipse_detect_config_t *cfg,
  *        level).
  *
  * @param[in] image GRAY8 view, at least 3 x 3.
+ * @param[in] cfg the configuration
+ * @param[in,out] workspace the query's bytes, 8-byte aligned (scratch)
+ * @param[in] workspace_size bytes available at `workspace`
  * @param[out] out     detections, in the order their regions were found.
  * @param[in] capacity     length of `out`.
  * @param[out] count   detections written.
- * @param[in] cfg the configuration
- * @param[in,out] workspace the query's bytes, 8-byte aligned (scratch)
- * @param[in] workspace_size its size in bytes
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad configuration or format);
  *         errors of sbr_image_check(); ::SBR_ERR_WORKSPACE (too small or not 8-byte
  *         aligned); ::SBR_ERR_CAPACITY when `out` or an internal bound ran full (the

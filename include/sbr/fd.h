@@ -91,9 +91,9 @@ sbr_status_t sbr_fd_from_pointsf(const sbr_fft_t *fft, const sbr_pointf_t *point
  *        1..::SBR_FD_MAX_M, finite positive scale, finite centroid, finite coefficients
  *        whose energy (the sum of |C(n)|^2) is finite in float32 too (so no |C(n)| above
  *        about 1.8e19).
+ * @param[in] fd the descriptor
  * @param[out] energy (may be NULL) sum of |C(n)|^2 over the 2M + 1 coefficients (1 for a
  *                    descriptor sbr computed), written on success.
- * @param[in] fd the descriptor
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE.
  */
 sbr_status_t sbr_fd_check(const sbr_fd_t *fd, float *energy);
@@ -203,16 +203,16 @@ sbr_status_t sbr_fd_match(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg
 
 /**
  * @brief Correlate a query with a table of prototypes.
- * @param[in]  work     scratch of at least P complex values; with
- *                      SBR_FD_TABLE_WORK_LEN(P) the faster four-lane path is used.
- * @param[out] results  one result per prototype (`count` entries).
- * @param[out] best     index of the prototype with the smallest error.
  * @param[in] fft an initialised FFT instance
  * @param[in] cfg the configuration
  * @param[in] query the descriptor to look up.
  * @param[in] protos the prototype table (`count` descriptors of the query's M).
  * @param[in] count number of entries
+ * @param[in]  work     scratch of at least P complex values; with
+ *                      SBR_FD_TABLE_WORK_LEN(P) the faster four-lane path is used.
  * @param[in] work_len length of `work`
+ * @param[out] results  one result per prototype (`count` entries).
+ * @param[out] best     index of the prototype with the smallest error.
  * @return as sbr_fd_match(); ::SBR_ERR_SIZE for count 0. An invalid prototype (the
  *         conditions of sbr_fd_check(), or another M) stops the call with the status of
  *         the first invalid one in table order; results before it may have been written.

@@ -26,8 +26,7 @@
  * same in shadow and in sunlight; the 60 keeps the near-black pixels, whose hue is
  * mostly noise, near 128. Red sign rims are bright regions of the red map, blue
  * mandatory signs bright regions of the blue map, and the white or black inner parts
- * extremal regions of the intensity map. (They replaced opponent maps that put a dark
- * blue sign only about 20 levels above a pale sky: docs/results/recognition.md.)
+ * extremal regions of the intensity map (why these maps: docs/results/recognition.md).
  *
  * Output size: floor(width / s) x floor(height / s). Work: one pass over the source.
  */

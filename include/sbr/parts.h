@@ -149,11 +149,11 @@ size_t sbr_parts_workspace_size(const sbr_parts_config_t *cfg, uint32_t width, u
  * @param[in]  cfg       configuration.
  * @param[in]  fft       FFT instance of length cfg->fd_n.
  * @param[in,out] workspace sbr_parts_workspace_size() bytes, 4-byte aligned.
+ * @param[in] workspace_size bytes available at `workspace`
  * @param[out] parts     results, map by map (in the order of the kinds), each in MSER order.
  * @param[in]  capacity  length of `parts`.
  * @param[out] count     parts written.
  * @param[out] stats     (may be NULL) counters of this call.
- * @param[in] workspace_size its size in bytes
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad configuration, format/map mismatch);
  *         ::SBR_ERR_SIZE (view too small after subsampling); ::SBR_ERR_STATE (FFT instance
  *         invalid or not of length fd_n); ::SBR_ERR_WORKSPACE; ::SBR_ERR_CAPACITY when

@@ -64,7 +64,7 @@ extern "C" {
 #define SBR_PICTO_MAX_OUTPUTS (SBR_PICTO_MAX_CLASSES + 1u)
 /** Largest hidden layer. */
 #define SBR_PICTO_HIDDEN_MAX 256u
-/** Classifier format version (3: the class count is the model's). */
+/** Classifier format version (the class count is the model's). */
 #define SBR_PICTO_VERSION 3u
 /** Box-regression outputs: centre shift in x and y (fractions of the box's width and
     height), natural log of the width and height ratios. */
@@ -185,7 +185,7 @@ sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out);
  * @param[out] feat       ::SBR_PICTO_FEATURES values.
  * @param[in]  len        length of feat, >= ::SBR_PICTO_FEATURES.
  * @param[in,out] workspace  ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
- * @param[in] workspace_size its size in bytes
+ * @param[in] workspace_size bytes available at `workspace`
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (len); ::SBR_ERR_RANGE (box not
  *         finite, too small, or too far outside); errors of
  *         sbr_image_check(); ::SBR_ERR_WORKSPACE.
@@ -207,13 +207,13 @@ typedef enum sbr_picto_outline_e {
 
 /**
  * @brief sbr_picto_features() of what lies inside an outline in the box.
- * @param[in]  outline  ::sbr_picto_outline_t.
  * @param[in] img the frame
  * @param[in] box x0, y0, x1, y1 in pixels (at least ::SBR_PICTO_MIN_BOX wide and high).
+ * @param[in]  outline  ::sbr_picto_outline_t.
  * @param[out] feat ::SBR_PICTO_FEATURES values.
- * @param[in] len length of the array, in elements
+ * @param[in] len length of `feat`, >= ::SBR_PICTO_FEATURES
  * @param[in,out] workspace ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
- * @param[in] workspace_size its size in bytes
+ * @param[in] workspace_size bytes available at `workspace`
  * @return as sbr_picto_features(); ::SBR_ERR_RANGE also for an outline out of range.
  */
 sbr_status_t sbr_picto_features_outline(const sbr_image_t *img, const float box[4],
@@ -254,9 +254,9 @@ sbr_status_t sbr_picto_rim_contrast(const sbr_image_t *img, const float box[4], 
  *                       ::SBR_PICTO_MAX_COORD.
  * @param[out] feat      ::SBR_PICTO_GATE_FEATURES values (len at least that), written on
  *                       ::SBR_OK only.
+ * @param[in] len length of `feat`, >= ::SBR_PICTO_GATE_FEATURES
  * @param[in,out] workspace ::SBR_PICTO_GATE_WORKSPACE_SIZE bytes, 4-byte aligned.
- * @param[in] len length of the array, in elements
- * @param[in] workspace_size its size in bytes
+ * @param[in] workspace_size bytes available at `workspace`
  * @return ::SBR_OK; ::SBR_ERR_NULL; errors of sbr_image_check(); ::SBR_ERR_RANGE (a box
  *         not finite, too small or too far out); ::SBR_ERR_SIZE (len);
  *         ::SBR_ERR_WORKSPACE.
@@ -268,9 +268,9 @@ sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4],
  * @brief The gate's score of gate features (sbr_picto_model_t::gate).
  * @param[in]  model  checked with sbr_picto_check() first; with a gate.
  * @param[in]  feat   ::SBR_PICTO_GATE_FEATURES finite values (len at least that).
+ * @param[in] len length of `feat`, >= ::SBR_PICTO_GATE_FEATURES
  * @param[out] score  written on ::SBR_OK only; the candidate passes when
  *                    score >= model->gate_threshold.
- * @param[in] len length of the array, in elements
  * @return ::SBR_OK; ::SBR_ERR_NULL (also a model without a gate); ::SBR_ERR_SIZE (len);
  *         ::SBR_ERR_CORRUPT (gate_hidden above ::SBR_PICTO_GATE_HIDDEN_MAX);
  *         ::SBR_ERR_RANGE (a non-finite feature, or a score that overflows float32).
@@ -281,15 +281,15 @@ sbr_status_t sbr_picto_gate(const sbr_picto_model_t *model, const float *feat, u
 /**
  * @brief Class probabilities of a feature vector.
  * @param[in]  model  checked with sbr_picto_check() first (not repeated here per call:
- *                    the recogniser checks once per frame).
+ *                    sbr_recog_init() checks the recogniser's once).
  * @param[in]  feat   ::SBR_PICTO_FEATURES finite values.
+ * @param[in] len length of `feat`, >= ::SBR_PICTO_FEATURES
  * @param[out] prob   model->classes + 1 probabilities summing to 1: the sign classes,
  *                    then the background.
- * @param[in,out] workspace ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
- * @param[in] len length of the array, in elements
  * @param[in] nprob length of `prob`, >= model->classes + 1 (::SBR_PICTO_MAX_OUTPUTS
  *                  always suffices).
- * @param[in] workspace_size its size in bytes
+ * @param[in,out] workspace ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
+ * @param[in] workspace_size bytes available at `workspace`
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (len or nprob too small);
  *         ::SBR_ERR_CORRUPT (model header); ::SBR_ERR_RANGE (a non-finite feature, or
  *         features so large that the logits overflow float32; sbr_picto_features()
@@ -307,14 +307,14 @@ sbr_status_t sbr_picto_classify(const sbr_picto_model_t *model, const float *fea
  *        (w3 = NULL) the box is returned unchanged.
  * @param[in]  model  checked with sbr_picto_check() first.
  * @param[in]  feat   ::SBR_PICTO_FEATURES finite values, of `box`.
+ * @param[in] len length of `feat`, >= ::SBR_PICTO_FEATURES
  * @param[in]  box    x0, y0, x1, y1 the features came from; finite, at least
  *                    ::SBR_PICTO_MIN_BOX wide and high, each |coordinate| <=
  *                    ::SBR_PICTO_MAX_COORD.
  * @param[out] refined x0, y0, x1, y1 (may be the same array as box); finite and not
  *                    empty, written on ::SBR_OK only.
  * @param[in,out] workspace ::SBR_PICTO_WORKSPACE_SIZE bytes, 4-byte aligned.
- * @param[in] len length of the array, in elements
- * @param[in] workspace_size its size in bytes
+ * @param[in] workspace_size bytes available at `workspace`
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (len); ::SBR_ERR_CORRUPT (model
  *         header); ::SBR_ERR_RANGE (a non-finite feature, or features whose regression
  *         overflows float32; a box not finite, smaller than
@@ -354,7 +354,7 @@ sbr_status_t sbr_picto_refine(const sbr_picto_model_t *model, const float *feat,
  *                       background), written on ::SBR_OK only.
  * @param[in]  nprob     length of `prob`, >= model->classes + 1.
  * @param[in,out] workspace ::SBR_PICTO_LOOK_WORKSPACE_SIZE bytes, 8-byte aligned.
- * @param[in]  workspace_size its size in bytes.
+ * @param[in]  workspace_size bytes available at `workspace`.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE (nprob); ::SBR_ERR_CORRUPT (model
  *         header); ::SBR_ERR_RANGE (box, outline, or features whose logits overflow);
  *         errors of sbr_image_check(); ::SBR_ERR_WORKSPACE. After any status other than
@@ -370,7 +370,7 @@ sbr_status_t sbr_picto_look(const sbr_picto_model_t *model, const sbr_image_t *i
  * @param[in]  model     the model of that look.
  * @param[out] refined   x0, y0, x1, y1, written on ::SBR_OK only.
  * @param[in,out] workspace the look's workspace.
- * @param[in]  workspace_size its size in bytes.
+ * @param[in]  workspace_size bytes available at `workspace`.
  * @return as sbr_picto_refine(); ::SBR_ERR_STATE when the workspace holds no look, or one
  *         of a model with another hidden layer size. The regression reuses the hidden
  *         units the look's classifier computed instead of computing them again.
@@ -386,7 +386,7 @@ sbr_status_t sbr_picto_look_refine(const sbr_picto_model_t *model, float refined
  * @param[in]  box       x0, y0, x1, y1, as sbr_picto_gate_features().
  * @param[out] score     written on ::SBR_OK only.
  * @param[in,out] workspace ::SBR_PICTO_LOOK_WORKSPACE_SIZE bytes, 8-byte aligned.
- * @param[in]  workspace_size its size in bytes.
+ * @param[in]  workspace_size bytes available at `workspace`.
  * @return as sbr_picto_gate_features() and sbr_picto_gate().
  */
 sbr_status_t sbr_picto_look_gate(const sbr_picto_model_t *model, const sbr_image_t *img,

@@ -105,7 +105,7 @@ extern "C" {
 #define SBR_MODEL_NO_CLASS 255u
 /** Groups: map kind (0..3) x polarity (dark, bright). */
 #define SBR_MODEL_GROUPS 8u
-/** Model format version (the generated table and the file form; 4: the class count and
+/** Model format version of the generated table and the file form (the class count and
     the classes' outlines are the model's). */
 #define SBR_MODEL_VERSION 4u
 
@@ -250,8 +250,7 @@ typedef struct sbr_recog_config_s {
         at the part model's box, [0, 1]. Default 0: every candidate is refined once (the
         classifier calls a box a fifth of a sign's size off "no sign", yet its regression
         still points at the sign). Costs one pictogram per candidate; higher: less work,
-        fewer badly placed signs recovered (0.1 and refine_steps 1: the earlier, cheaper
-        behaviour). Measured: docs/results/recognition.md. */
+        fewer badly placed signs recovered (docs/results/recognition.md). */
     float refine_first_score;
     /** Further refinements (steps 2 .. refine_steps) only while the sign classes together
         are at least this probable, [0, 1]. Default 0.001 (after one move, a box near a
@@ -459,7 +458,7 @@ typedef struct sbr_recog_s {
  *                       part evidence alone).
  * @param[in]  workspace sbr_recog_workspace_size() bytes for the largest frame or ROI it
  *                       will see, 8-byte aligned; borrowed.
- * @param[in]  workspace_size its size in bytes.
+ * @param[in]  workspace_size bytes available at `workspace`.
  * @return ::SBR_OK; ::SBR_ERR_NULL (rec, cfg or model); ::SBR_ERR_RANGE (bad configuration,
  *         or model and configuration disagree on fd_n/fd_m, or the model exceeds
  *         max_model_protos); ::SBR_ERR_CORRUPT (the model fails sbr_model_check(), the

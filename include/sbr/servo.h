@@ -157,7 +157,7 @@ size_t sbr_servo_workspace_size(const sbr_servo_config_t *cfg);
  * @param[in] cfg the configuration (copied)
  * @param[in,out] workspace sbr_servo_workspace_size() bytes, 4-byte aligned, owned by
  *        the instance while it is used
- * @param[in] workspace_size its size in bytes
+ * @param[in] workspace_size bytes available at `workspace`
  * @return ::SBR_OK; ::SBR_ERR_NULL; configuration errors; ::SBR_ERR_WORKSPACE (too small
  *         or misaligned).
  */

@@ -215,8 +215,8 @@ sbr_status_t sbr_track_model_check(const sbr_track_model_t *model);
  *        extent / (regions - 2), first centre -spacing / 2, overlap 3). The tracker weighs
  *        a position's regions with sbr_channel_encode() on this layout; learning must use
  *        the same, so a learned table's regions mean what the tracker reads.
- * @param[in] axis 0 for x, 1 for y.
  * @param[in] model the model
+ * @param[in] axis 0 for x, 1 for y.
  * @param[out] cfg the configuration
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (axis, region count or extent).
  */
@@ -228,8 +228,6 @@ sbr_status_t sbr_track_region_config(const sbr_track_model_t *model, uint32_t ax
  *        of `accel_sigma` pixels (discretised on the velocity channels, the same for all
  *        regions); a new target's velocity prior is a Gaussian of `birth_sigma` around 0.
  * @param[out] model filled (its tables point to `transition` and `birth`).
- * @param[out] transition caller array of SBR_TRACK_MODEL_TRANSITION_LEN(3, 3, vel_count)
- *        floats (3 regions per axis); `birth` of SBR_TRACK_MODEL_BIRTH_LEN(3, 3, vel_count).
  * @param[in] width frame (or view) width, pixels
  * @param[in] height frame (or view) height, pixels
  * @param[in] period seconds between the frames the model describes, > 0.
@@ -237,6 +235,8 @@ sbr_status_t sbr_track_region_config(const sbr_track_model_t *model, uint32_t ax
  * @param[in] vel_spacing pixels per period between velocity channels, > 0.
  * @param[in] accel_sigma velocity change per period, pixels (Gaussian sigma), > 0.
  * @param[in] birth_sigma a new target's velocity prior, pixels per period, > 0.
+ * @param[out] transition caller array of SBR_TRACK_MODEL_TRANSITION_LEN(3, 3, vel_count)
+ *        floats (3 regions per axis); `birth` of SBR_TRACK_MODEL_BIRTH_LEN(3, 3, vel_count).
  * @param[in] transition_len length of `transition` in floats.
  * @param[out] birth caller array for the birth prior (`birth_len` floats).
  * @param[in] birth_len length of `birth` in floats.
@@ -277,11 +277,11 @@ size_t sbr_track_workspace_size(const sbr_track_config_t *cfg);
 
 /**
  * @brief Set up a tracker with no targets.
- * @param[in,out] workspace sbr_track_workspace_size() bytes, 4-byte aligned, owned by the tracker
- *        (and the model's tables must stay valid) while it is used.
  * @param[in,out] trk the tracker to set up (its previous content is ignored).
  * @param[in] cfg the configuration
- * @param[in] workspace_size its size in bytes
+ * @param[in,out] workspace sbr_track_workspace_size() bytes, 4-byte aligned, owned by the tracker
+ *        (and the model's tables must stay valid) while it is used.
+ * @param[in] workspace_size bytes available at `workspace`
  * @return ::SBR_OK; ::SBR_ERR_NULL; configuration errors; ::SBR_ERR_WORKSPACE.
  */
 sbr_status_t sbr_track_init(sbr_track_t *trk, const sbr_track_config_t *cfg, void *workspace,
