@@ -70,9 +70,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             det[i].y = fz_float(in, 0.0f, model->extent[1]);
             det[i].certainty = fz_float(in, 0.0f, 1.0f);
         }
-        const uint32_t period_us = static_cast<uint32_t>(model->period * 1.0e6f + 0.5f);
-        const uint32_t dt = (in.ConsumeIntegral<uint8_t>() < 200u) ? period_us
-                                                                    : in.ConsumeIntegralInRange<uint32_t>(0u, 10u * period_us);
+        // the model's period in microseconds, as a dt_us can carry it: a valid model may
+        // have any finite period > 0 (1e30 s from the model maker is accepted), so the
+        // conversion is clamped here, where the harness makes its steps
+        const double period_d = static_cast<double>(model->period) * 1.0e6 + 0.5;
+        const uint32_t period_us = (period_d < 4.0e9) ? static_cast<uint32_t>(period_d) : 4000000000u;
+        const uint64_t dt_max = 10ull * period_us;
+        const uint32_t dt = (in.ConsumeIntegral<uint8_t>() < 200u)
+                                ? period_us
+                                : in.ConsumeIntegralInRange<uint32_t>(
+                                      0u, dt_max < 0xFFFFFFFFull ? static_cast<uint32_t>(dt_max) : 0xFFFFFFFFu);
         sbr_track_target_t out[8];
         uint32_t count = 999u;
         const uint32_t cap = in.ConsumeIntegralInRange<uint32_t>(0u, 8u);
