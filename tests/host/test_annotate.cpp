@@ -27,6 +27,8 @@
 #include "annotate.hpp"
 #include "gtsdb.hpp"
 
+#include "test_help.hpp"
+
 namespace fs = std::filesystem;
 using namespace sbr_host;
 
@@ -235,6 +237,10 @@ void test_failed_images(const std::string &detect, const std::string &data, cons
 }  // namespace
 
 int main(int argc, char **argv) {
+    static const char *const options[] = {"--detect", "--data", "--work", nullptr};
+    const int h = test_help(argc, argv, "test_annotate: the annotated pictures and the contact sheet of sbr_detect",
+                            "test_annotate [--detect SBR_DETECT --data GTSDB_DIR] [--work DIR]", options);
+    if (h >= 0) return h;
     std::string detect, data, work = (fs::temp_directory_path() / "sbr_test_annotate").string();
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string k = argv[i];

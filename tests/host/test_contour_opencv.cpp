@@ -12,6 +12,8 @@
 
 extern "C" {
 #include "sbr/contour.h"
+
+#include "test_help.hpp"
 }
 
 namespace fs = std::filesystem;
@@ -71,6 +73,9 @@ static void compare(const cv::Mat &mask, const std::string &name, Tally &t) {
 }
 
 int main(int argc, char **argv) {
+    const int h = test_help(argc, argv, "test_contour_opencv: sbr's outer contours against OpenCV's findContours on MPEG-7 shapes",
+                            "test_contour_opencv MPEG7_PBM_DIR [MAX_IMAGES]");
+    if (h >= 0) return h;
     if (argc < 2) {
         std::fprintf(stderr, "usage: test_contour_opencv MPEG7_PBM_DIR [MAX_IMAGES]\n");
         return 2;

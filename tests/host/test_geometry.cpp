@@ -13,6 +13,8 @@
 #include "geometry.hpp"
 #include "parallel.hpp"
 
+#include "test_help.hpp"
+
 namespace {
 
 int failures = 0;
@@ -103,8 +105,11 @@ void test_parallel_for()
 
 }  // namespace
 
-int main()
+int main(int argc, char **argv)
 {
+    const int h = test_help(argc, argv, "test_geometry: the host tools' box geometry and Hungarian assignment",
+                            "test_geometry");
+    if (h >= 0) return h;
     test_hungarian();
     test_iou();
     test_parallel_for();

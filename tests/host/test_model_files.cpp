@@ -18,6 +18,8 @@ extern "C" {
 #include "sbr/pictogram.h"
 #include "sbr/recognizer.h"
 #include "sbr/tracker.h"
+
+#include "test_help.hpp"
 }
 
 namespace {
@@ -94,8 +96,11 @@ void binary_damage(const std::string &good, const char *name, Parse parse)
 
 }  // namespace
 
-int main()
+int main(int argc, char **argv)
 {
+    const int h = test_help(argc, argv, "test_model_files: the model file forms (.sbrm, .sbrp, .stm) intact and damaged",
+                            "test_model_files");
+    if (h >= 0) return h;
     sbr_model_t mv{};
     sbr_picto_model_t pv{};
     sbr_track_model_t tv{};

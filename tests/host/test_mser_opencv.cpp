@@ -23,6 +23,8 @@
 extern "C" {
 #include "sbr/map.h"
 #include "sbr/mser.h"
+
+#include "test_help.hpp"
 }
 
 namespace fs = std::filesystem;
@@ -61,6 +63,9 @@ static double best_iou(const Region &r, const std::vector<Region> &set) {
 }
 
 int main(int argc, char **argv) {
+    const int h = test_help(argc, argv, "test_mser_opencv: sbr's MSER against OpenCV's cv::MSER on GTSDB scenes",
+                            "test_mser_opencv GTSDB_DIR [IMAGES] [MIN_PERCENT] [MIN_REVERSE_PERCENT]");
+    if (h >= 0) return h;
     if (argc < 2) {
         std::fprintf(stderr, "usage: %s <gtsdb dir> [images] [min_percent] [min_reverse_percent]\n", argv[0]);
         return 2;

@@ -8,6 +8,8 @@
 
 #include "sign_tracker.hpp"
 
+#include "test_help.hpp"
+
 static int failures = 0;
 #define CHECK(c)                                                              \
     do {                                                                      \
@@ -17,8 +19,11 @@ static int failures = 0;
         }                                                                     \
     } while (0)
 
-int main()
+int main(int argc, char **argv)
 {
+    const int h = test_help(argc, argv, "test_sign_tracking: the host tools' sign tracker over recognised frames",
+                            "test_sign_tracking");
+    if (h >= 0) return h;
     sbr_host::SignTracker st(1360.0f, 800.0f, 0.1f);
     CHECK(st.ok());
     // Sign A (class 1, 30 km/h) on the right, moving outwards and speeding up as the car

@@ -111,6 +111,19 @@ def main():
         r = run([exe] + required + ["--no-such-option"])
         print(f"{tool} --no-such-option: exit {r.returncode}")
         failures += r.returncode != 2
+    # the host test programs: --help says what they test (exit 0, nothing run); an option
+    # they do not take is named (exit 2), never read as a path
+    for prog in ["test_mser_opencv", "test_contour_opencv", "test_annotate", "test_geometry",
+                 "test_model_files", "test_sign_tracking", "test_recog_scenes"]:
+        exe = os.path.join(a.tools, prog)
+        if not os.path.exists(exe):
+            continue
+        h = run([exe, "--help"])
+        b = run([exe, "--no-such-option"])
+        good = (h.returncode == 0 and re.search(r"(?i)usage", h.stdout) is not None and "SKIP" not in h.stdout
+                and b.returncode == 2 and ("--no-such-option" in b.stderr or prog == "test_recog_scenes"))
+        print(f"{prog} --help: exit {h.returncode}; --no-such-option: exit {b.returncode}")
+        failures += not good
     print("cli: " + ("OK" if failures == 0 else f"{failures} FAILED"))
     return 1 if failures else 0
 
