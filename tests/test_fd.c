@@ -44,9 +44,13 @@ void tearDown(void) {}
 /* Outer outline of a blocky "6": no rotational or mirror symmetry, far from a circle. */
 static const sbr_pointf_t k_six[8] = {{0, 0}, {0, 10}, {6, 10}, {6, 8}, {2, 8}, {2, 6}, {6, 6}, {6, 0}};
 
+/* The descriptor of a contour. The coefficients beyond 2M + 1 are zero, not stack
+   residue: the tests that raise m on a copy (a header that no longer matches the query's)
+   must see finite coefficients there, or sbr_fd_check() refuses the copy first. */
 static sbr_fd_t fd_of(const sbr_pointf_t *p, uint32_t n)
 {
     sbr_fd_t fd;
+    (void)memset(&fd, 0, sizeof fd);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_fd_from_pointsf(&g_fft_n, p, n, M, g_work, 256u, &fd));
     return fd;
 }
