@@ -52,20 +52,31 @@ static sbr_status_t look_ws(void *workspace, size_t workspace_size, look_ws_t *w
     return SBR_OK;
 }
 
+/* The start of a look or a gate: its pointers present, the workspace checked, and no
+   look held from here on (until this one succeeds). */
+static sbr_status_t look_start(const sbr_picto_model_t *model, const sbr_image_t *img,
+                               const float *box, const float *out, void *workspace,
+                               size_t workspace_size, look_ws_t *w)
+{
+    sbr_status_t st = SBR_ERR_NULL;
+    if ((model != NULL) && (img != NULL) && (box != NULL) && (out != NULL)) {
+        st = look_ws(workspace, workspace_size, w);
+    }
+    if (st == SBR_OK) {
+        w->head->tag = 0u;
+    }
+    return st;
+}
+
 sbr_status_t sbr_picto_look(const sbr_picto_model_t *model, const sbr_image_t *img,
                             const float box[4], uint32_t outline, float *prob, uint32_t nprob,
                             void *workspace, size_t workspace_size)
 {
     look_ws_t w;
-    sbr_status_t st;
-    if ((model == NULL) || (img == NULL) || (box == NULL) || (prob == NULL)) {
-        return SBR_ERR_NULL;
-    }
-    st = look_ws(workspace, workspace_size, &w);
+    sbr_status_t st = look_start(model, img, box, prob, workspace, workspace_size, &w);
     if (st != SBR_OK) {
         return st;
     }
-    w.head->tag = 0u;
     st = sbr_picto_features_outline(img, box, outline, w.feat, SBR_PICTO_FEATURES, w.scratch,
                                     SBR_PICTO_WORKSPACE_SIZE);
     if (st == SBR_OK) {
@@ -107,15 +118,10 @@ sbr_status_t sbr_picto_look_gate(const sbr_picto_model_t *model, const sbr_image
                                  size_t workspace_size)
 {
     look_ws_t w;
-    sbr_status_t st;
-    if ((model == NULL) || (img == NULL) || (box == NULL) || (score == NULL)) {
-        return SBR_ERR_NULL;
-    }
-    st = look_ws(workspace, workspace_size, &w);
+    sbr_status_t st = look_start(model, img, box, score, workspace, workspace_size, &w);
     if (st != SBR_OK) {
         return st;
     }
-    w.head->tag = 0u;
     st = sbr_picto_gate_features(img, box, w.feat, SBR_PICTO_FEATURES, w.scratch,
                                  SBR_PICTO_WORKSPACE_SIZE);
     if (st == SBR_OK) {

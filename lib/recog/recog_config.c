@@ -208,18 +208,19 @@ int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_confi
                           recog_layout_t *l)
 {
     const uint32_t work_len = SBR_FD_TABLE_WORK_LEN(cfg->match_p);
+    size_t after_parts;
     /* after the part stage its block holds the prototypes' magnitudes (the matcher's
        screening) and the vote grouping's grid of hypotheses */
-    const size_t mags = SBR_WS_ALIGN8((size_t)cfg->max_model_protos *
-                                      ((2u * cfg->parts.fd_m) + 1u) * sizeof(float)) +
-                        SBR_WS_ALIGN8((((size_t)width / 16u) + 2u + (2u * (size_t)cfg->max_hypotheses)) *
-                                      sizeof(uint32_t));
-    l->view_width = width;
+    l->mags = SBR_WS_ALIGN8((size_t)cfg->max_model_protos * ((2u * cfg->parts.fd_m) + 1u) *
+                            sizeof(float));
+    l->grid_cols = (width / 16u) + 2u;
+    after_parts = l->mags + SBR_WS_ALIGN8(((size_t)l->grid_cols + (2u * (size_t)cfg->max_hypotheses)) *
+                                          sizeof(uint32_t));
     l->parts_ws = SBR_WS_ALIGN8(sbr_parts_workspace_size(&cfg->parts, width, height));
     if (l->parts_ws == 0u) {
         return 0;
     }
-    l->parts_ws = SBR_WS_MAX(l->parts_ws, mags);
+    l->parts_ws = SBR_WS_MAX(l->parts_ws, after_parts);
     l->parts = SBR_WS_ALIGN8((size_t)cfg->max_parts * sizeof(sbr_part_t));
     l->index = SBR_WS_ALIGN8((size_t)cfg->max_parts * SBR_RECOG_INDEX_BYTES);
     l->results = SBR_WS_ALIGN8((size_t)cfg->max_model_protos * sizeof(sbr_fd_match_t));

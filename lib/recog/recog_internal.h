@@ -57,9 +57,6 @@ typedef char recog_index_size_check[(sizeof(recog_index_t) == SBR_RECOG_INDEX_BY
 
 /* Width in pixels of the columns the vote grouping indexes hypotheses by. */
 #define RECOG_GRID_CELL 16.0f
-/* Columns of a view `width` pixels wide (the last one also takes what lies right of it);
-   recog_config.c's layout spells the same count out. */
-#define RECOG_GRID_COLS(width) (((width) / 16u) + 2u)
 
 typedef struct recog_layout_s {
     size_t parts_ws;
@@ -71,7 +68,10 @@ typedef struct recog_layout_s {
     size_t hyps;
     size_t picto;
     size_t total;
-    uint32_t view_width;
+    size_t mags;        /* in the part stage's block after that stage: the prototypes'
+                           magnitudes, then the vote grouping's grid at this offset */
+    uint32_t grid_cols; /* the grid's columns: width / 16 + 2 (the last one also takes
+                           what lies right of the view) */
 } recog_layout_t;
 
 

@@ -141,10 +141,8 @@ static sbr_status_t ctx_init(recog_ctx_t *c, const sbr_recog_t *rec, const recog
     /* the part stage's block, after that stage: the prototypes' magnitudes, then the
        vote grouping's grid */
     c->pmag = (float *)(void *)base;
-    c->grid_head = (uint32_t *)(void *)&base[SBR_WS_ALIGN8((size_t)cfg->max_model_protos *
-                                                          ((2u * cfg->parts.fd_m) + 1u) *
-                                                          sizeof(float))];
-    c->grid_cols = RECOG_GRID_COLS(l->view_width);
+    c->grid_head = (uint32_t *)(void *)&base[l->mags];
+    c->grid_cols = l->grid_cols;
     c->grid_next = &c->grid_head[c->grid_cols];
     c->grid_prev = &c->grid_next[cfg->max_hypotheses];
     c->parts = (sbr_part_t *)(void *)&base[l->parts_ws];
