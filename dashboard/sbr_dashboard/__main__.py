@@ -79,6 +79,7 @@ def main(argv=None):
             server = WebServer(monitor, a.host, a.port)
         except OSError as e:
             print(f"sbr_dashboard: cannot listen on {a.host}:{a.port}: {e}", file=sys.stderr)
+            source.close()
             return 2
         server.start()
         print(f"sbr_dashboard: open {server.url} in a browser ({source.name}); Ctrl-C stops",
@@ -92,6 +93,7 @@ def main(argv=None):
             stop.set()
         if stop.is_set():
             server.stop()
+            source.close()
             return 0
     source.start()
     if a.virtual and a.feed_log:

@@ -191,7 +191,11 @@ class Monitor:
         self._pending_objs = []
         self.status = None
         self.status_count = 0
-        self.flag_counts = dict(overload=0, error=0, capacity=0)
+        # overload: images whose processing took longer than the status message's cycle
+        # (late) or whose results the ECU dropped (the Overload bit); either is an overload
+        self.flag_counts = dict(overload=0, late=0, dropped=0, error=0, capacity=0)
+        self.overload_now = False
+        self.object_frames = 0  # SBR_TrackedObject frames received, NoObject ones too
         self._proc_sum = 0.0
         self._status_times = collections.deque()
 
@@ -358,11 +362,20 @@ class Monitor:
             self.status = {k.replace("SBR_Status_", ""): phys[k] for k in phys
                            if not k.endswith(("_CRC", "_Counter"))}
             self.status_count += 1
-            self._proc_sum += phys["SBR_Status_ProcessingTime"]
-            for key, sig in (("overload", "SBR_Status_Overload"), ("error", "SBR_Status_Error"),
+            proc = phys["SBR_Status_ProcessingTime"]
+            self._proc_sum += proc
+            for key, sig in (("dropped", "SBR_Status_Overload"), ("error", "SBR_Status_Error"),
                              ("capacity", "SBR_Status_CapacityHit")):
                 if raw[sig]:
                     self.flag_counts[key] += 1
+            late = proc > spec.cycle_ms
+            self.flag_counts["late"] += late
+            was = self.overload_now
+            self.overload_now = late or bool(raw["SBR_Status_Overload"])
+            self.flag_counts["overload"] += self.overload_now
+            if self.overload_now and not was:
+                self._event(t, spec.frame_id, "overload", f"processing {proc:.1f} ms > the {spec.cycle_ms} ms cycle" if late
+                            else "the ECU dropped results of this image")
             self._status_times.append(t)
             while len(self._status_times) > 2 and t - self._status_times[0] > 2.0:
                 self._status_times.popleft()
@@ -382,6 +395,7 @@ class Monitor:
                 track=None if self._absent(msg, "SBR_Det_TrackId", track) else track))
             self.detections = list(self._pending_dets)
         elif n == "SBR_TrackedObject":
+            self.object_frames += 1
             track = int(raw["SBR_Obj_TrackId"])
             if int(raw["SBR_Obj_Index"]) == 0:
                 self._pending_objs = []
@@ -426,7 +440,7 @@ class Monitor:
             events=list(self.events),
             problems=[event_text(e) for e in list(self.events)[:PROBLEMS_SHOWN]],
             trace=list(self.trace)[-TRACE_SHOWN:],
-            tracker_seen=self.objects_reported > 0,
+            tracker_seen=self.object_frames > 0,
             speed_limit=self.speed_limit,
             speed_limit_sign=self.speed_limit_sign,
             signs=self.signs, detections=self.detections, objects=self.objects,
@@ -434,7 +448,14 @@ class Monitor:
                         processing_ms=None if self.status is None else self.status["ProcessingTime"],
                         processing_ms_mean=self._proc_sum / self.status_count
                         if self.status_count else None,
+                        cycle_ms=self._status_cycle_ms(), overload_now=self.overload_now,
                         status=self.status, flag_counts=dict(self.flag_counts)))
+
+    def _status_cycle_ms(self):
+        for spec in self.model.messages.values():
+            if spec.name == "SBR_EcuStatus":
+                return spec.cycle_ms
+        return None
 
     def _message_view(self, fid, st):
         period, jitter, per_cycle = self.periods[fid].figures()

@@ -31,6 +31,9 @@ class Source:
     def stop(self):
         self.stop_event.set()
 
+    def close(self):
+        """Lets go of the input when it was never started (a refusal after it was opened)."""
+
     def _guarded(self):
         try:
             self.run()
@@ -152,6 +155,9 @@ class BusSource(Source):
 
     def clock(self):
         return time.time()
+
+    def close(self):
+        self.bus.shutdown()  # python-can warns of a bus that is never shut down
 
     def run(self):
         notifier = can.Notifier(self.bus, [MonitorListener(self)], timeout=0.1)

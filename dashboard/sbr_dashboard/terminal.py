@@ -73,24 +73,32 @@ def render(s, width=78):
     out.append("=" * width)
     limit = s["speed_limit"]
     out.append(f"SPEED LIMIT: {limit} km/h" if limit is not None else "SPEED LIMIT: --")
-    out += items("confirmed signs", [f"{x['class_name'] or x['class_id']} {x['confidence']:.0f}% "
-                                     f"(age {x['age']})" for x in s["signs"]], width)
-    out += items("detections (last image)", [f"{d['class_name'] or d['class_id']} {d['confidence']:.0f}% "
-                                             f"@({d['cx']:.0f},{d['cy']:.0f})" for d in s["detections"]], width)
+    out += items("confirmed signs", [f"{x['class_name'] or x['class_id']} {x['confidence']:.0f} % "
+                                     f"(age {x['age']} frames)" for x in s["signs"]], width)
+    out += items("detections (last image)", [f"{d['class_name'] or d['class_id']} {d['confidence']:.0f} % "
+                                             f"at ({d['cx']:.0f} px, {d['cy']:.0f} px)" for d in s["detections"]],
+                 width)
     if s.get("tracker_seen", True):
-        out += items("tracked objects", [f"#{o['track']} ({o['x']:.0f},{o['y']:.0f})" for o in s["objects"]], width)
+        out += items("tracked objects", [f"#{o['track']} at ({o['x']:.0f} px, {o['y']:.0f} px) moving "
+                                         f"({o['vx']:.0f} px/s, {o['vy']:.0f} px/s) {o['certainty']:.0f} %"
+                                         for o in s["objects"]], width)
     else:
-        out += wrap("tracked objects: none reported so far (no tracker runs on stills: "
-                    "sbr_detect without --sequence)", width, "  ")
+        out += wrap("tracked objects: no SBR_TrackedObject frame received so far", width, "  ")
     out.append("-" * width)
+    cycle = h.get("cycle_ms")
     ecu = [f"{h['fps']:.1f} images/s",
-           f"processing {_fmt(h['processing_ms'])} ms (mean {_fmt(h['processing_ms_mean'])})", f"frame counter {st.get('FrameCounter', '--')}",
-           f"regions {st.get('RegionCount', '--')}"]
+           f"processing {_fmt(h['processing_ms'])} ms (mean {_fmt(h['processing_ms_mean'])} ms"
+           + (f", cycle {cycle} ms)" if cycle else ")"),
+           f"frame counter {st.get('FrameCounter', '--')}", f"regions {st.get('RegionCount', '--')}"]
+    if h.get("overload_now"):
+        ecu.insert(0, "OVERLOAD")
     out += items("ECU", ecu, width)
     fc = h["flag_counts"]
-    out += items("flags", [f"overload {fc['overload']}", f"error {fc['error']}", f"capacity {fc['capacity']}",
-                           f"frames {s['frames']}", f"unknown {s['unknown']}", f"lines skipped {s['skipped_lines']}",
-                           f"source time {s['source_time']:.1f} s"], width)
+    out += items("flags (images)", [f"overload {fc['overload']} (late {fc.get('late', 0)}, dropped "
+                                    f"{fc.get('dropped', 0)})", f"error {fc['error']}", f"capacity {fc['capacity']}"],
+                 width)
+    out += items("bus", [f"frames {s['frames']}", f"unknown {s['unknown']}", f"lines skipped {s['skipped_lines']}",
+                         f"source time {s['source_time']:.1f} s"], width)
     out.append("-" * width)
     msgs = s["messages"]
     name_w = max([len("message")] + [len(m["name"]) for m in msgs]) + 2

@@ -228,7 +228,7 @@ def test_terminal_screen_shows_state():
     mon.feed(0.05, 0x301, bytes(bad))
     screen = render(mon.snapshot())
     assert "SPEED LIMIT: 80 km/h" in screen
-    assert "SpeedLimit80 95% (age 0)" in screen
+    assert "SpeedLimit80 95 % (age 0 frames)" in screen and "SpeedLimit80 94 % at (640 px, 400 px)" in screen
     assert "SBR_EcuStatus" in screen and "CRC mismatch" in screen
     row = next(line for line in screen.splitlines() if line.startswith("SBR_EcuStatus"))
     assert row.split()[1:3] == ["e2e", "error"] and row.split()[4] == "1"
@@ -371,7 +371,7 @@ def test_tracked_objects_list_per_cycle():
     snap = mon.snapshot()
     assert [(o["track"], o["x"], o["y"], o["vx"], o["vy"], o["certainty"]) for o in snap["objects"]] \
         == [(7, 640, 300, -40, 8, 88), (9, 100, 700, 0, 0, 40)]
-    assert "tracked objects: #7 (640,300), #9 (100,700)" in render(snap)
+    assert "tracked objects: #7 at (640 px, 300 px) moving (-40 px/s, 8 px/s) 88 %," in render(snap, 120)
     feed_all(mon, s.cycle(1), 0.1)  # "no object" frame
     assert mon.snapshot()["objects"] == []
 
@@ -441,17 +441,53 @@ def test_terminal_fits_its_width_and_lists_the_page_problems():
             else:
                 got.append(ln.strip())
         assert got == s["problems"], width  # broken at spaces only
-        # the detections' list breaks between items: every "@(x,y)" whole on its line
-        assert screen.count("@(1300,700)") == 4
+        # the detections' list breaks between items: every "at (x px, y px)" whole on its line
+        assert screen.count("at (1300 px, 700 px)") == 4
 
 
-def test_no_tracker_on_stills_is_said():
+def test_tracked_objects_are_shown_when_their_frames_arrive():
     mon = Monitor(M)
     snd = Sender(M)
-    feed_all(mon, snd.cycle(0), 0.0)
+    feed_all(mon, [f for f in snd.cycle(0) if f[0] != 0x320], 0.0)
     s = mon.snapshot()
     assert s["tracker_seen"] is False
-    assert "no tracker runs" in render(s, 80)
+    assert "no SBR_TrackedObject frame received so far" in render(s, 80)
+    mon.feed(0.05, 0x320, snd(0x320, SBR_Obj_TrackId=255))  # the ECU reports none
+    s = mon.snapshot()
+    assert s["tracker_seen"] is True and "tracked objects: none" in render(s, 80)
     mon.feed(0.1, 0x320, snd(0x320, SBR_Obj_TrackId=3, SBR_Obj_PosX=100, SBR_Obj_PosY=50))
     s = mon.snapshot()
-    assert s["tracker_seen"] is True and "tracked objects: #3" in render(s, 80)
+    assert [o["track"] for o in s["objects"]] == [3] and "tracked objects: #3 at (100 px, 50 px)" in render(s, 80)
+
+
+def test_overload_when_processing_exceeds_the_cycle():
+    # SBR_EcuStatus's GenMsgCycleTime is 100 ms: 130 ms of processing is an overload,
+    # as is the Overload bit (results dropped); 60 ms with the bit clear is none
+    mon = Monitor(M)
+    s = Sender(M)
+    feed_all(mon, s.cycle(0, proc_ms=60.0), 0.0)
+    assert mon.snapshot()["health"]["overload_now"] is False
+    feed_all(mon, s.cycle(1, proc_ms=130.0), 0.1)
+    feed_all(mon, s.cycle(2, proc_ms=125.0), 0.2)
+    snap = mon.snapshot()
+    h = snap["health"]
+    assert h["cycle_ms"] == 100 and h["overload_now"] is True
+    assert (h["flag_counts"]["overload"], h["flag_counts"]["late"], h["flag_counts"]["dropped"]) == (2, 2, 0)
+    assert [p for p in snap["problems"] if "overload" in p] == \
+        ["0.10 s SBR_EcuStatus overload: processing 130.0 ms > the 100 ms cycle"]  # once, when it began
+    screen = render(snap, 100)
+    assert "ECU: OVERLOAD," in screen and "processing 125.0 ms (mean 105.0 ms, cycle 100 ms)" in screen
+    assert "overload 2 (late 2, dropped 0)" in screen
+    feed_all(mon, s.cycle(3, proc_ms=50.0), 0.3)
+    assert mon.snapshot()["health"]["overload_now"] is False
+
+
+def test_a_refused_start_shuts_the_bus_down(caplog):
+    # a bus opened, then the start refused (the page's port taken): close() lets go of it,
+    # so python-can does not warn that it was "not properly shut down"
+    import gc
+    src = BusSource(Monitor(M), "virtual", "refused-start")
+    src.close()
+    del src
+    gc.collect()
+    assert "not properly shut down" not in caplog.text

@@ -128,20 +128,24 @@ function render(s) {
   $("signs").innerHTML = s.signs.map((x) =>
     `<div class="sign" data-class="${x.class_id}">${signIcon(x.class_name, x.speed)}` +
     `<div class="sign-name">${esc(x.class_name || x.class_id)}</div>` +
-    `<div><span class="sign-conf">${fmt(x.confidence, 0)}</span>% · age ${x.age}</div></div>`).join("");
+    `<div><span class="sign-conf">${fmt(x.confidence, 0)}</span> % · age ${x.age} frames</div></div>`).join("");
   $("det-count").textContent = s.detections.length;
   $("obj-text").innerHTML = s.tracker_seen
     ? `<span id="obj-count">${s.objects.length}</span> tracked objects`
-    : `no tracker runs (no tracked object reported: stills)<span id="obj-count" hidden>0</span>`;
+    : `no SBR_TrackedObject frame received<span id="obj-count" hidden>0</span>`;
   renderPlane(s);
   const h = s.health, status = h.status || {};
   $("h-fps").textContent = fmt(h.fps, 1);
   $("h-proc").textContent = fmt(h.processing_ms, 1);
   $("h-proc-mean").textContent = fmt(h.processing_ms_mean, 1);
+  $("h-cycle").textContent = h.cycle_ms == null ? "--" : h.cycle_ms;
+  $("h-overload-now").hidden = !h.overload_now;
   $("h-frame-counter").textContent = status.FrameCounter == null ? "--" : status.FrameCounter;
   $("h-regions").textContent = status.RegionCount == null ? "--" : status.RegionCount;
   $("h-status-frames").textContent = h.status_frames;
   setCount("h-overload", h.flag_counts.overload);
+  $("h-late").textContent = h.flag_counts.late;
+  $("h-dropped").textContent = h.flag_counts.dropped;
   setCount("h-error", h.flag_counts.error);
   setCount("h-capacity", h.flag_counts.capacity);
   $("h-frames").textContent = s.frames;
