@@ -85,6 +85,19 @@ need_value() {
 # The images of GTSDB that the built-in models (lib/models) are trained on.
 SHIPPED_TRAINING="0-599"
 
+# What apt, dpkg and pip print while setting up goes to this log, not to the terminal.
+SETUP_LOG="$BUILD/setup.log"
+
+# logged CMD...: runs CMD with its output appended to the set-up log; on failure, the
+# log's last lines are shown.
+logged() {
+  if ! "$@" >> "$SETUP_LOG" 2>&1; then
+    echo "sbr.sh: set-up step failed: $* (the last lines of $SETUP_LOG:)" >&2
+    tail -n 25 "$SETUP_LOG" >&2
+    return 1
+  fi
+}
+
 # install_packages P...: the Debian packages of the list that are missing.
 install_packages() {
   local missing=()
@@ -92,11 +105,12 @@ install_packages() {
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   if [ "${#missing[@]}" -gt 0 ]; then
-    log "installing: ${missing[*]}"
+    mkdir -p "$BUILD"
+    log "installing ${#missing[@]} Debian packages: ${missing[*]} (output: $SETUP_LOG)"
     local sudo=""
     [ "$(id -u)" -eq 0 ] || sudo="sudo"
-    $sudo apt-get update -qq
-    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+    logged $sudo apt-get update -qq
+    logged $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}"
   fi
 }
 
@@ -113,12 +127,12 @@ setup_venv() {
   local want
   want="$(cat "$req" "$ROOT/dashboard/requirements.txt" "$ROOT/dashboard/pyproject.toml")"
   if [ ! -x "$venv/bin/python" ] || [ "$want" != "$(cat "$venv/requirements.installed" 2>/dev/null)" ]; then
-    log "python environment: $venv"
+    log "python environment: $venv (output: $SETUP_LOG)"
     rm -rf "$venv"
-    python3 -m venv "$venv"
-    "$venv/bin/pip" install -q --disable-pip-version-check -r "$req"
+    logged python3 -m venv "$venv"
+    logged "$venv/bin/pip" install --disable-pip-version-check -r "$req"
     # the dashboard package and its console script, editable: the checkout's code runs
-    "$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation --no-deps -e "$ROOT/dashboard"
+    logged "$venv/bin/pip" install --disable-pip-version-check --no-build-isolation --no-deps -e "$ROOT/dashboard"
     printf '%s\n' "$want" > "$venv/requirements.installed"
   fi
 }
@@ -196,6 +210,11 @@ cmd_test() {
     cases="$(grep -hE "^[0-9]+ Tests [0-9]+ Failures" "$BUILD/$name/Testing/Temporary/LastTest.log" \
              | awk '{t+=$1; f+=$3} END {printf "%d Unity test cases, %d failed", t, f}')"
     summary+=("$name: ctest $passed_n passed, $failed_n failed, $skipped_n skipped${skipped_names:+ ($skipped_names)} ($cases)")
+    if [ "$skipped_n" -gt 0 ]; then
+      # shellcheck disable=SC2046
+      while IFS= read -r why; do summary+=("$why"); done < <(python3 "$ROOT/tests/skip_reasons.py" \
+        "$BUILD/$name/Testing/Temporary/LastTest.log" $(echo "$skipped_names" | tr ',' ' '))
+    fi
     total_pass=$((total_pass + passed_n)); total_fail=$((total_fail + failed_n))
     total_skip=$((total_skip + skipped_n))
   done
@@ -235,7 +254,18 @@ cmd_test() {
   echo "cortex-m7: core built (-mcpu=cortex-m7 -mfpu=fpv5-sp-d16), no tests run"
   echo "${matrix_line} (core, every build type)"
   echo "${fuzz_line/fuzz:/fuzz smoke:} (harnesses)"
-  echo "total: ${total_pass} passed, ${total_fail} failed, ${total_skip} skipped"
+  # every part that decides the exit status: the ctest entries of the four builds, the
+  # build matrix's builds, the fuzz harnesses' smoke runs
+  local mp mf fp ff
+  mp="$(echo "$matrix_line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\1/p')"
+  mf="$(echo "$matrix_line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\2/p')"
+  fp="$(echo "$fuzz_line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\1/p')"
+  ff="$(echo "$fuzz_line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\2/p')"
+  [ -n "$mp" ] || { mp=0; mf=1; }
+  [ -n "$fp" ] || { fp=0; ff=1; }
+  echo "total: $((total_pass + mp + fp)) passed, $((total_fail + mf + ff)) failed, ${total_skip} skipped" \
+       "(ctest $((total_pass + total_fail + total_skip)), build matrix $((mp + mf)), fuzz harnesses $((fp + ff)))"
+  echo "set-up output: $SETUP_LOG; each build's test log: $BUILD/<build>.ctest.log"
   return "$failed"
 }
 
@@ -303,9 +333,23 @@ on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model FILE 
       return 2
     fi
   fi
+  local imgdir="$input"
+  [ -d "$input/FullIJCNN2013" ] && imgdir="$input/FullIJCNN2013"
+  if [ -z "$(find "$imgdir" -maxdepth 1 -type f \( -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.png' -o -iname '*.ppm' \) -print -quit)" ]; then
+    echo "sbr.sh detect: no .jpg, .jpeg, .png or .ppm images in $imgdir (nothing was written)" >&2
+    return 2
+  fi
+  if [ -e "$out" ] && [ ! -d "$out" ]; then
+    echo "sbr.sh detect: --out $out is a file, not a folder (nothing was written)" >&2
+    return 2
+  fi
   setup
   mkdir -p "$BUILD" "$out"
   build_native
+  # the folder holds this run's files only: what an earlier run wrote there goes (other
+  # files are left alone)
+  rm -rf "$out/annotated"
+  rm -f "$out"/{detections.txt,detections_all.txt,overview.png,sbr_can.log,summary.txt,evaluation.txt,evaluation.txt.new,pr_curve.png}
   local tools="$BUILD/native/host_tools"
   log "sbr_detect over $input${range:+ (images $range)}"
   local gt="" status=0
@@ -332,7 +376,11 @@ on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model FILE 
     { echo; echo "evaluation (sbr_eval, operating point score >= ${thr:-0}):"; cat "$out/evaluation.txt.new"; } >> "$out/summary.txt"
     rm -f "$out/evaluation.txt.new"
   fi
-  log "wrote $out: detections.txt, detections_all.txt, annotated/, sbr_can.log, summary.txt${gt:+, evaluation.txt, pr_curve.png, overview.png}"
+  local wrote=()
+  for f in detections.txt detections_all.txt annotated sbr_can.log summary.txt evaluation.txt pr_curve.png overview.png; do
+    [ -e "$out/$f" ] && wrote+=("$f$([ -d "$out/$f" ] && echo /)")
+  done
+  log "wrote $out: $(printf '%s, ' "${wrote[@]}" | sed 's/, $//')"
   [ "$status" -eq 0 ] || echo "sbr.sh detect: some images failed (listed in $out/summary.txt)" >&2
   return "$status"
 }

@@ -41,13 +41,13 @@ std::string label_of(const Mark &m) {
     char buf[96];
     switch (m.kind) {
     case MarkKind::kMissed:
-        std::snprintf(buf, sizeof buf, "missed %d %s", m.class_id, class_name(m.class_id));
+        std::snprintf(buf, sizeof buf, "missed %s", class_name(m.class_id));
         break;
     case MarkKind::kFalse:
-        std::snprintf(buf, sizeof buf, "FP %d %s %.2f", m.class_id, class_name(m.class_id), m.score);
+        std::snprintf(buf, sizeof buf, "FP %s %.2f", class_name(m.class_id), m.score);
         break;
     default:
-        std::snprintf(buf, sizeof buf, "%d %s %.2f", m.class_id, class_name(m.class_id), m.score);
+        std::snprintf(buf, sizeof buf, "%s %.2f", class_name(m.class_id), m.score);
         break;
     }
     return buf;
@@ -110,15 +110,43 @@ int gap(const cv::Rect &a, const cv::Rect &b) {
     return std::max(dx, dy);
 }
 
-void draw_legend(cv::Mat &img) {
-    const char *text = "solid: found   magenta FP: false detection   dashed: missed sign";
+// The legend's entries: a swatch (filled, or dashed for a missed sign) and its words.
+struct LegendItem {
+    cv::Scalar colour;
+    bool dashed;
+    const char *text;
+};
+
+// One line of legend on a black bar from (x, y) (its top), at most `width` pixels wide:
+// the box colour is the superclass's; with `judged` also magenta FP (a false detection)
+// and dashed (a missed sign). Returns the bar's height, 0 when it does not fit.
+int draw_legend_at(cv::Mat &img, int x, int y, int width, bool judged) {
+    const LegendItem all[] = {{superclass_colour(1), false, "box colour = superclass: prohibitory"},
+                                {superclass_colour(33), false, "mandatory"},
+                                {superclass_colour(18), false, "danger"},
+                                {superclass_colour(12), false, "other"},
+                                {kFalseColour, false, "FP: false detection"},
+                                {kWhite, true, "missed sign"}};
+    // without ground truth, nothing is judged: the superclass colours only
+    const std::vector<LegendItem> items(all, all + (judged ? 6 : 4));
     int base = 0;
-    const cv::Size ts = cv::getTextSize(text, kFont, kFontScale, 1, &base);
-    const cv::Rect bar(0, img.rows - ts.height - base - 6, std::min(img.cols, ts.width + 8), ts.height + base + 6);
-    if (bar.y < 0) return;
-    cv::rectangle(img, bar, kBlack, cv::FILLED);
-    cv::putText(img, text, {4, img.rows - base - 3}, kFont, kFontScale, kWhite, 1, cv::LINE_AA);
+    const int h = cv::getTextSize("Ag", kFont, kFontScale, 1, &base).height + base + 6;
+    int w = 4;
+    for (const LegendItem &it : items) w += 14 + cv::getTextSize(it.text, kFont, kFontScale, 1, &base).width + 10;
+    if (y < 0 || y + h > img.rows || w > width || x + w > img.cols) return 0;
+    cv::rectangle(img, cv::Rect(x, y, w, h), kBlack, cv::FILLED);
+    int at = x + 4;
+    for (const LegendItem &it : items) {
+        const cv::Rect sw(at, y + 3, 10, h - 6);
+        if (it.dashed) dashed_rect(img, sw);
+        else cv::rectangle(img, sw, it.colour, cv::FILLED);
+        at += 14;
+        cv::putText(img, it.text, {at, y + h - base - 3}, kFont, kFontScale, kWhite, 1, cv::LINE_AA);
+        at += cv::getTextSize(it.text, kFont, kFontScale, 1, &base).width + 10;
+    }
+    return h;
 }
+
 
 }  // namespace
 
@@ -147,7 +175,7 @@ std::vector<Mark> judge(const std::vector<DetLine> &dets, const std::vector<GtBo
     return marks;
 }
 
-std::vector<cv::Rect> draw_marks(cv::Mat &img, const std::vector<Mark> &marks, bool legend) {
+std::vector<cv::Rect> draw_marks(cv::Mat &img, const std::vector<Mark> &marks) {
     std::vector<cv::Rect> boxes;
     for (const Mark &m : marks) {
         const cv::Rect r = to_rect(m.box);
@@ -177,8 +205,13 @@ std::vector<cv::Rect> draw_marks(cv::Mat &img, const std::vector<Mark> &marks, b
         labels[i] = q;
         placed.push_back(q);
     }
-    if (legend) draw_legend(img);
     return labels;
+}
+
+void draw_legend(cv::Mat &img, bool judged) {
+    int base = 0;
+    const int h = cv::getTextSize("Ag", kFont, kFontScale, 1, &base).height + base + 6;
+    draw_legend_at(img, 0, img.rows - h, img.cols, judged);
 }
 
 bool WorstImages::worse(const Tile &a, const Tile &b) {
@@ -188,14 +221,17 @@ bool WorstImages::worse(const Tile &a, const Tile &b) {
     return a.name < b.name;
 }
 
-void WorstImages::offer(const std::string &name, const cv::Mat &annotated, const std::vector<Mark> &marks) {
+void WorstImages::offer(const std::string &name, const cv::Mat &annotated, const std::vector<Mark> &marks,
+                        const std::vector<cv::Rect> &labels) {
     Tile t;
     t.name = name;
     cv::Rect errors;
-    for (const Mark &m : marks) {
+    for (size_t i = 0; i < marks.size(); ++i) {
+        const Mark &m = marks[i];
         if (m.kind != MarkKind::kMissed && m.kind != MarkKind::kFalse) continue;
         (m.kind == MarkKind::kMissed ? t.missed : t.false_dets)++;
-        const cv::Rect r = to_rect(m.box);
+        cv::Rect r = to_rect(m.box);
+        if (i < labels.size()) r |= labels[i];  // the label stays inside the tile
         errors = errors.area() == 0 ? r : (errors | r);
     }
     if (t.missed + t.false_dets == 0 || annotated.empty() || capacity_ == 0) return;
@@ -208,7 +244,8 @@ void WorstImages::offer(const std::string &name, const cv::Mat &annotated, const
     h = std::min(h, annotated.rows);
     const int x = std::clamp(errors.x + errors.width / 2 - w / 2, 0, annotated.cols - w);
     const int y = std::clamp(errors.y + errors.height / 2 - h / 2, 0, annotated.rows - h);
-    cv::resize(annotated(cv::Rect(x, y, w, h)), t.image, cv::Size(420, 280), 0, 0, cv::INTER_AREA);
+    t.crop = cv::Rect(x, y, w, h);
+    cv::resize(annotated(t.crop), t.image, cv::Size(420, 280), 0, 0, cv::INTER_AREA);
     tiles_.push_back(std::move(t));
     std::stable_sort(tiles_.begin(), tiles_.end(), worse);
     if (tiles_.size() > capacity_) tiles_.pop_back();
@@ -216,11 +253,12 @@ void WorstImages::offer(const std::string &name, const cv::Mat &annotated, const
 
 bool WorstImages::write(const std::string &path) const {
     if (tiles_.empty()) return false;
-    const int cols = 3, tw = 420, th = 280, cap = 24, pad = 6, title = 30;
+    const int cols = 3, tw = 420, th = 280, cap = 24, pad = 6, title = 52;
     const int rows = int((tiles_.size() + cols - 1) / cols);
     cv::Mat sheet(title + rows * (th + cap + pad) + pad, pad + cols * (tw + pad), CV_8UC3, cv::Scalar(40, 40, 40));
     cv::putText(sheet, "worst images first: most missed signs (dashed) and false detections (magenta FP)",
                 {pad, 20}, kFont, 0.55, kWhite, 1, cv::LINE_AA);
+    draw_legend_at(sheet, pad, 27, sheet.cols - 2 * pad, true);
     for (size_t i = 0; i < tiles_.size(); ++i) {
         const int x = pad + int(i % cols) * (tw + pad), y = title + int(i / cols) * (th + cap + pad);
         tiles_[i].image.copyTo(sheet(cv::Rect(x, y, tw, th)));

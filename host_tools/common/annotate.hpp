@@ -42,27 +42,36 @@ std::vector<Mark> judge(const std::vector<DetLine> &dets, const std::vector<GtBo
 // Draws the marks on img: boxes first, then one label per mark ("FP" or "missed" before
 // the class name of false and missed ones) at the first place next to its box that keeps
 // inside the image and clear of the labels already placed (boxes in reading order).
-// With `legend`, a line at the bottom left says what solid, magenta and dashed mean.
 // Returns the label rectangles, in the order of `marks`.
-std::vector<cv::Rect> draw_marks(cv::Mat &img, const std::vector<Mark> &marks, bool legend);
+std::vector<cv::Rect> draw_marks(cv::Mat &img, const std::vector<Mark> &marks);
+
+// A legend on a bar at the bottom left (when it fits the width): the superclass of each
+// box colour and, when the marks are `judged` against ground truth, what magenta (FP) and
+// dashed (missed) mean.
+void draw_legend(cv::Mat &img, bool judged);
 
 // The worst images of a run, for the contact sheet: at most `capacity` kept, ranked by
 // misses + false detections (then misses, then name).
 class WorstImages {
 public:
     explicit WorstImages(size_t capacity) : capacity_(capacity) {}
-    // An annotated image and its marks; kept as a tile (a crop around its errors) when it
+    // An annotated image, its marks and their labels (draw_marks()); kept as a tile (a crop
+    // around its errors and their labels, so no label is cut at the tile's edge) when it
     // ranks among the worst so far. Images without errors are not kept.
-    void offer(const std::string &name, const cv::Mat &annotated, const std::vector<Mark> &marks);
+    void offer(const std::string &name, const cv::Mat &annotated, const std::vector<Mark> &marks,
+               const std::vector<cv::Rect> &labels);
     size_t size() const { return tiles_.size(); }
-    // The contact sheet: the tiles, worst first, 3 a row, each captioned with its name and
-    // counts. False when there is nothing to show or the file cannot be written.
+    // The part of its annotated image that tile i shows (worst first).
+    cv::Rect crop(size_t i) const { return tiles_.at(i).crop; }
+    // The contact sheet: a title and the colours' legend, the tiles, worst first, 3 a row,
+    // each captioned with its name and counts. False when there is nothing to show or the file cannot be written.
     bool write(const std::string &path) const;
 
 private:
     struct Tile {
         std::string name;
         size_t missed = 0, false_dets = 0;
+        cv::Rect crop;
         cv::Mat image;
     };
     static bool worse(const Tile &a, const Tile &b);

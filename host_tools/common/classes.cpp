@@ -33,15 +33,18 @@ int superclass_of(int c) {
     }
 }
 
+// The one table of class names (the value names of SBR_Sign_Class and SBR_Det_Class in
+// dbc/sbr.dbc, which the dashboard shows; host_annotate checks that the two agree).
 const char *class_name(int c) {
-    static const char *names[43] = {
-        "20", "30", "50", "60", "70", "80", "end 80", "100", "120", "no overtaking",
-        "no overtaking trucks", "priority next", "priority road", "give way", "stop", "no traffic",
-        "no trucks", "no entry", "danger", "bend left", "bend right", "double bend", "uneven road",
-        "slippery", "road narrows", "road works", "signals", "pedestrians", "children", "bicycles",
-        "snow", "animals", "end limits", "turn right", "turn left", "ahead only", "ahead or right",
-        "ahead or left", "keep right", "keep left", "roundabout", "end no overtaking",
-        "end no overtaking trucks"};
+    static const char *const names[43] = {
+        "SpeedLimit20", "SpeedLimit30", "SpeedLimit50", "SpeedLimit60", "SpeedLimit70", "SpeedLimit80",
+        "RestrictionEnds80", "SpeedLimit100", "SpeedLimit120", "NoOvertaking", "NoOvertakingTrucks",
+        "PriorityNextIntersection", "PriorityRoad", "GiveWay", "Stop", "NoTrafficBothWays", "NoTrucks",
+        "NoEntry", "Danger", "BendLeft", "BendRight", "Bend", "UnevenRoad", "SlipperyRoad", "RoadNarrows",
+        "Construction", "TrafficSignal", "PedestrianCrossing", "SchoolCrossing", "CyclesCrossing", "Snow",
+        "Animals", "RestrictionEnds", "GoRight", "GoLeft", "GoStraight", "GoRightOrStraight",
+        "GoLeftOrStraight", "KeepRight", "KeepLeft", "Roundabout", "RestrictionEndsOvertaking",
+        "RestrictionEndsOvertakingTrucks"};
     return (c >= 0 && c < 43) ? names[c] : "?";
 }
 

@@ -15,7 +15,8 @@ constexpr uint32_t kGtsdbClasses = 43;
 uint8_t class_outline_of(int class_id);
 
 // Superclass of a GTSDB class (0 prohibitory, 1 mandatory, 2 danger, 3 other; GTSDB's
-// ReadMe), the superclass names, and short class names ("?" outside 0..42).
+// ReadMe), the superclass names, and the class names (dbc/sbr.dbc's value names, such as
+// "SpeedLimit70"; "?" outside 0..42).
 int superclass_of(int class_id);
 extern const char *const kSuperclassNames[4];
 const char *class_name(int class_id);

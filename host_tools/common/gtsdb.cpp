@@ -27,22 +27,6 @@ PixBox rect_pixbox(const sbr_rect_t &r) {
     return {double(r.x), double(r.y), double(r.x) + r.width, double(r.y) + r.height};
 }
 
-bool parse_detection_line(const std::string &line, DetLine &d) {
-    std::stringstream ss(line);
-    std::string f[7];
-    int k = 0;
-    while (k < 7 && std::getline(ss, f[k], ';')) ++k;
-    if (k < 6) return false;
-    d.image = std::atoi(f[0].c_str());
-    d.left = std::atof(f[1].c_str());
-    d.top = std::atof(f[2].c_str());
-    d.right = std::atof(f[3].c_str());
-    d.bottom = std::atof(f[4].c_str());
-    d.class_id = std::atoi(f[5].c_str());
-    d.score = k >= 7 ? std::atof(f[6].c_str()) : 1.0;
-    return true;
-}
-
 std::map<int, std::vector<GtBox>> read_gt(const std::string &path) {
     std::map<int, std::vector<GtBox>> gt;
     std::ifstream f(path);

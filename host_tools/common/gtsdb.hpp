@@ -11,6 +11,7 @@
 #include <opencv2/core.hpp>
 
 #include "classes.hpp"
+#include "evaluation.hpp"
 #include "geometry.hpp"
 
 extern "C" {
@@ -28,17 +29,7 @@ struct GtBox {
 PixBox gt_pixbox(const GtBox &g);
 PixBox rect_pixbox(const sbr_rect_t &r);
 
-// One line of a detection file, "NNNNN.ext;left;top;right;bottom;class[;score]"
-// (GTSDB's format, inclusive pixels; score 1 when absent), as sbr_detect writes it.
-struct DetLine {
-    int image = 0;
-    double left = 0, top = 0, right = 0, bottom = 0;
-    int class_id = 0;
-    double score = 1.0;
-    PixBox box() const { return {left, top, right + 1.0, bottom + 1.0}; }
-};
-// False when the line has fewer than six fields.
-bool parse_detection_line(const std::string &line, DetLine &d);
+// DetLine and parse_detection_line(): evaluation.hpp.
 
 // gt.txt lines "NNNNN.ppm;l;t;r;b;class", keyed by image number. Empty map if unreadable.
 std::map<int, std::vector<GtBox>> read_gt(const std::string &path);

@@ -204,6 +204,11 @@ int parse_options(int argc, char **argv, Options &o) {
     if (!o.roi_v.empty()) {
         o.roi = {o.roi_v[0], o.roi_v[1], o.roi_v[2], o.roi_v[3]};
         o.use_roi = true;
+        if (o.roi.width == 0 || o.roi.height == 0) {
+            std::fprintf(stderr, "sbr_detect: --roi %u,%u,%u,%u: the width and height must be at least 1\n", o.roi.x,
+                         o.roi.y, o.roi.width, o.roi.height);
+            return 2;
+        }
     }
     apply_recog_cli(o.rc, o.cfg);
 #ifndef SBR_HAVE_CALLGRIND
@@ -288,6 +293,7 @@ struct Outputs {
     std::ofstream det, all;
     std::unique_ptr<CanLogWriter> can;
     Annotation ann;
+    bool overview_written = false;
 };
 
 // --gt, or the gt.txt beside the images; false when a given file cannot be read or
@@ -311,8 +317,7 @@ bool load_ground_truth(const Options &o, const std::string &dir, Annotation &a) 
     return true;
 }
 
-bool open_outputs(const Options &o, const std::string &dir, Outputs &out) {
-    if (!load_ground_truth(o, dir, out.ann)) return false;
+bool open_outputs(const Options &o, Outputs &out) {
     out.det.open(o.det_path);
     if (!out.det) { std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.det_path.c_str()); return false; }
     if (!o.all_path.empty()) out.all.open(o.all_path);
@@ -401,6 +406,24 @@ void image_failed(const Options &o, const std::string &file, const std::string &
     if (t.failures.size() < 10) t.failures.push_back(fs::path(file).filename().string() + ": " + why);
 }
 
+// What keeps the recogniser from taking a decoded image, in the user's terms, or "": a
+// side above the core's limit, a --roi that does not lie inside the image.
+std::string frame_problem(const Options &o, const cv::Mat &img) {
+    char buf[200];
+    if (img.cols > int(SBR_IMAGE_MAX_DIM) || img.rows > int(SBR_IMAGE_MAX_DIM)) {
+        std::snprintf(buf, sizeof buf, "the image is %d x %d pixels; the recogniser takes at most %u on a side "
+                      "(SBR_IMAGE_MAX_DIM)", img.cols, img.rows, SBR_IMAGE_MAX_DIM);
+        return buf;
+    }
+    const sbr_rect_t &r = o.roi;
+    if (o.use_roi && (uint64_t(r.x) + r.width > uint64_t(img.cols) || uint64_t(r.y) + r.height > uint64_t(img.rows))) {
+        std::snprintf(buf, sizeof buf, "--roi %u,%u,%u,%u does not lie inside the image (%d x %d pixels: x + w <= %d, "
+                      "y + h <= %d)", r.x, r.y, r.width, r.height, img.cols, img.rows, img.cols, img.rows);
+        return buf;
+    }
+    return "";
+}
+
 // The recogniser on a decoded image: detections written and counted; `kept` those at the
 // operating point. False when the core refused the frame.
 bool detect_image(const Options &o, const Models &m, CallgrindClock &cg, const std::string &file,
@@ -458,10 +481,12 @@ void annotate_image(const Options &o, const std::string &file, cv::Mat &img,
         a.missed += m.kind == MarkKind::kMissed;
         a.false_dets += m.kind == MarkKind::kFalse;
     }
-    draw_marks(img, marks, !a.gt_path.empty());
+    const std::vector<cv::Rect> labels = draw_marks(img, marks);
+    // the contact sheet's tiles without the legend (the sheet has its own)
+    if (!o.overview.empty()) a.worst.offer(fs::path(file).stem().string(), img, marks, labels);
+    draw_legend(img, !a.gt_path.empty());
     const std::string name = fs::path(file).stem().string() + ".jpg";
     if (!o.annotated.empty()) cv::imwrite((fs::path(o.annotated) / name).string(), img);
-    if (!o.overview.empty()) a.worst.offer(fs::path(file).stem().string(), img, marks);
 }
 
 // One image: read, detections written, counted, drawn, and its CAN frames. False when
@@ -472,7 +497,8 @@ bool run_image(const Options &o, const Models &m, CallgrindClock &cg, const std:
     sbr_recog_stats_t stats{};
     float frame_ms = 0.0f;
     cv::Mat img;
-    const std::string problem = read_image(file, img);
+    std::string problem = read_image(file, img);
+    if (problem.empty()) problem = frame_problem(o, img);
     bool error = !problem.empty();
     if (error) image_failed(o, file, problem, t);
     else error = !detect_image(o, m, cg, file, img, out, t, kept, stats, frame_ms);
@@ -570,9 +596,64 @@ std::string summary(const Options &o, const Models &m, const std::string &dir, s
     if (!out.ann.gt_path.empty() && (!o.annotated.empty() || !o.overview.empty()))
         s << "judged against " << out.ann.gt_path << " (class level, IoU >= 0.5): " << out.ann.missed
           << " signs missed (dashed boxes), " << out.ann.false_dets << " false detections (magenta, FP)\n";
-    if (!o.overview.empty())
-        s << "overview of the worst images: " << o.overview << " (" << out.ann.worst.size() << " images)\n";
+    if (!o.overview.empty()) {
+        if (out.overview_written)
+            s << "overview of the worst images: " << o.overview << " (" << out.ann.worst.size() << " images)\n";
+        else
+            s << "no overview: no image with a missed sign or a false detection\n";
+    }
     return s.str();
+}
+
+// --roi against the first image before anything runs (a folder's images share a size; one
+// of another size is refused on its own, naming --roi). False, with the reason printed,
+// when it does not fit.
+bool roi_fits_first(const Options &o, const std::string &file) {
+    if (!o.use_roi) return true;
+    cv::Mat img;
+    if (!read_image(file, img).empty()) return true;  // an unreadable image fails on its own later
+    const std::string problem = frame_problem(o, img);
+    if (problem.empty()) return true;
+    std::fprintf(stderr, "sbr_detect: %s: %s (nothing was run)\n", fs::path(file).filename().c_str(), problem.c_str());
+    return false;
+}
+
+// Everything checked before the first image (docs/usage/exit-status.md: 2, nothing
+// written): the models, the configuration, the input, --roi, --annotated, the ground
+// truth. -1 to go on, else the exit status.
+int prepare(Options &o, Models &m, CallgrindClock &cg, std::string &dir, std::vector<std::string> &files,
+            Outputs &out) {
+    if (!load_models(o, m) || !configure(o, m, cg)) return 2;
+    if (!fs::is_directory(o.input)) {
+        std::fprintf(stderr, "sbr_detect: --input %s: no such folder\n", o.input.c_str());
+        return 2;
+    }
+    dir = gtsdb_image_dir(o.input);
+    files = list_images(dir, o.range);
+    if (files.empty()) {
+        std::fprintf(stderr, "sbr_detect: no .jpg, .jpeg, .png or .ppm images in %s%s\n", dir.c_str(),
+                     o.range.empty() ? "" : (" numbered " + o.range.str()).c_str());
+        return 2;
+    }
+    if (!roi_fits_first(o, files.front())) return 2;
+    std::error_code ec;
+    if (!o.annotated.empty() && fs::equivalent(o.annotated, dir, ec)) {
+        std::fprintf(stderr, "sbr_detect: --annotated %s is the input folder: its images would be overwritten\n",
+                     o.annotated.c_str());
+        return 2;
+    }
+    if (!load_ground_truth(o, dir, out.ann)) return 2;
+    return open_outputs(o, out) ? -1 : 1;
+}
+
+// The contact sheet of this run, or none (an earlier run's file removed either way).
+void write_overview(const Options &o, Outputs &out) {
+    if (o.overview.empty()) return;
+    std::error_code ec;
+    fs::remove(o.overview, ec);
+    out.overview_written = out.ann.worst.size() > 0 && out.ann.worst.write(o.overview);
+    if (out.ann.worst.size() > 0 && !out.overview_written)
+        std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.overview.c_str());
 }
 
 }  // namespace
@@ -582,19 +663,12 @@ int main(int argc, char **argv) {
     const int rc = parse_options(argc, argv, o);
     if (rc >= 0) return rc;
     Models m;
-    if (!load_models(o, m)) return 1;
     CallgrindClock cg;
-    if (!configure(o, m, cg)) return 2;
-    if (!fs::is_directory(o.input)) { std::fprintf(stderr, "sbr_detect: --input %s: no such folder\n", o.input.c_str()); return 1; }
-    const std::string dir = gtsdb_image_dir(o.input);
-    const std::vector<std::string> files = list_images(dir, o.range);
-    if (files.empty()) {
-        std::fprintf(stderr, "sbr_detect: no .jpg, .jpeg, .png or .ppm images in %s%s\n", dir.c_str(),
-                     o.range.empty() ? "" : (" numbered " + o.range.str()).c_str());
-        return 1;
-    }
+    std::string dir;
+    std::vector<std::string> files;
     Outputs out;
-    if (!open_outputs(o, dir, out)) return 1;
+    const int ready = prepare(o, m, cg, dir, files, out);
+    if (ready >= 0) return ready;
     Tally t;
     const auto t0 = std::chrono::steady_clock::now();
     for (size_t i = 0; i < files.size(); ++i) {
@@ -603,8 +677,7 @@ int main(int argc, char **argv) {
             progress(i + 1, files.size(), t.ms_total.empty() ? 0.0 : t.sum_ms / double(t.ms_total.size()),
                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
-    if (!o.overview.empty() && out.ann.worst.size() > 0 && !out.ann.worst.write(o.overview))
-        std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.overview.c_str());
+    write_overview(o, out);
     const std::string s = summary(o, m, dir, files.size(), out, t);
     std::fputs(s.c_str(), stdout);
     if (!o.summary_path.empty()) std::ofstream(o.summary_path) << s;

@@ -8,7 +8,8 @@
         print(d.class_id, d.class_name, d.box, d.score)
 
 Also: sbr.Tracker (the channel-representation tracker), sbr.ellipse_fit, sbr.fd (Fourier
-descriptors and their matching), sbr.can (the DBC's messages with their E2E check).
+descriptors and their matching), sbr.can (the DBC's messages with their E2E check),
+sbr.evaluate (detections scored against GTSDB ground truth, sbr_eval's report).
 
 The core runs on a zero-copy view of the array (each row's pixels must be contiguous; any
 row stride, e.g. a crop `image[y0:y1, x0:x1]`, is accepted); the GIL is released while it
@@ -21,10 +22,11 @@ from typing import List, Optional, Sequence, Tuple
 import numpy as np
 
 from . import _sbr, can, fd
+from .evaluation import Evaluation, evaluate
 from ._points import as_points
 
 __all__ = ["Recognizer", "Detection", "Tracker", "Target", "Ellipse", "ellipse_fit", "class_name", "superclass",
-           "SUPERCLASSES", "CONFIG_FIELDS", "TRACKER_FIELDS", "fd", "can"]
+           "SUPERCLASSES", "CONFIG_FIELDS", "TRACKER_FIELDS", "fd", "can", "evaluate", "Evaluation"]
 
 #: GTSDB's superclasses, by superclass()'s index.
 SUPERCLASSES = ("prohibitory", "mandatory", "danger", "other")
@@ -35,7 +37,8 @@ CONFIG_FIELDS = tuple(sorted(_sbr.field_names()))
 
 
 def class_name(class_id: int) -> str:
-    """Short name of a GTSDB class ("30", "give way", ...; "?" outside 0..42)."""
+    """Name of a GTSDB class, as the DBC's value tables name it ("SpeedLimit70", "GiveWay",
+    ...; "?" outside 0..42)."""
     return _sbr.class_name(int(class_id))
 
 

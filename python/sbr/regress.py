@@ -2,7 +2,7 @@
 
     python -m sbr.regress --input DIR|LIST --out DIR [--scheduler ADDRESS | --workers N [--threads T]]
                           [--baseline DIR] [--range A-B] [--chunk N] [--resume]
-                          [--model F.sbrm --picto F.sbrp] [--gt FILE] [--eval-tool PATH]
+                          [--model F.sbrm --picto F.sbrp] [--gt FILE]
 
 The images (a folder's .jpg/.jpeg/.png/.ppm files sorted by name, a GTSDB folder with
 FullIJCNN2013/ inside, or a text file with one path per line) are cut into chunks of
@@ -24,16 +24,22 @@ Then OUT/ gets detections.txt and detections_all.txt in sbr_detect's format and 
 (score >= the operating point, and every detection down to 0.05), detections.parquet
 (one row per detection of either file: image, box, class id and name, score, share,
 parts, at_operating_point), failures.txt, and, when the images have GTSDB ground truth
-(gt.txt beside them, or --gt), evaluation.txt from sbr_eval (--baseline DIR: compared
-with the detections_all.txt of an earlier run, sbr_eval --baseline). Exit status 0, or 3
-when some images or chunks failed (listed), 2 for bad arguments.
+(gt.txt beside them, or --gt), evaluation.txt and pr_curve.png from the package's own
+evaluation (sbr.evaluate: sbr_eval's report; --baseline DIR: compared with the
+detections_all.txt of an earlier run). OUT holds this run's files only: the files of an
+earlier run there are removed first (its chunks too, unless --resume).
+
+Every option is checked before anything is written: the input, --baseline's
+detections_all.txt, --gt, --model and --picto. Exit status (docs/usage/exit-status.md):
+0 done; 2 refused before the run (a bad option, a file or folder that is not there, no
+images, the 'regress' extra missing); 3 done, some images or chunks failed (listed);
+1 the run failed.
 """
 import argparse
 import json
 import os
 import re
 import shutil
-import subprocess
 import sys
 import threading
 import time
@@ -51,7 +57,7 @@ def list_inputs(source, span=None):
         with open(source) as f:
             paths = [ln.strip() for ln in f if ln.strip() and not ln.startswith("#")]
     else:
-        raise SystemExit(f"sbr.regress: --input {source}: no such folder or list file")
+        return []
     if span is not None:
         paths = [p for p in paths if (n := image_number(p)) is not None and span[0] <= n <= span[1]]
     return paths
@@ -171,7 +177,6 @@ def parse_args(argv):
     ap.add_argument("--picto", help="class-stage file (sbr_train_picto --out); default built-in")
     ap.add_argument("--gt", help="GTSDB ground truth (default: gt.txt beside the images, when there)")
     ap.add_argument("--baseline", metavar="DIR", help="an earlier run's folder (its detections_all.txt)")
-    ap.add_argument("--eval-tool", help="sbr_eval binary (default: on PATH, or the checkout's build/native)")
     ap.add_argument("--no-progress", action="store_true", help="no progress bar (there is none when stdout is not a terminal)")
     a = ap.parse_args(argv)
     if a.chunk < 1 or (a.scheduler is None and a.workers < 1) or a.retries < 0 or (a.threads is not None
@@ -298,40 +303,34 @@ def gather(a, chunks, failed_chunks):
     return len(lines_op), len(lines_all), failures
 
 
-def find_eval_tool(given):
-    if given:
-        return given
-    here = os.path.dirname(os.path.abspath(__file__))
-    for cand in (shutil.which("sbr_eval"),
-                 os.path.join(here, "..", "..", "build", "native", "host_tools", "sbr_eval")):
-        if cand and os.path.isfile(cand) and os.access(cand, os.X_OK):
-            return cand
-    return None
-
-
 def evaluate(a, paths, threshold):
-    gt = a.gt or os.path.join(os.path.dirname(paths[0]), "gt.txt")
-    if not os.path.isfile(gt):
+    """evaluation.txt and pr_curve.png from the package's own evaluation (sbr.evaluate:
+    sbr_eval's report), when the images have ground truth."""
+    gt = ground_truth(a, paths)
+    if gt is None:
         return None
-    tool = find_eval_tool(a.eval_tool)
-    if tool is None:
-        print("sbr.regress: no sbr_eval (build the host tools, or --eval-tool): no evaluation.txt", file=sys.stderr)
-        return None
+    import sbr
     nums = [n for n in (image_number(p) for p in paths) if n is not None]
-    cmd = [tool, "--detections", os.path.join(a.out, "detections_all.txt"), "--gt", gt,
-           "--threshold", f"{threshold:g}", "--plot", os.path.join(a.out, "pr_curve.png")]
     if a.span:
-        cmd += ["--range", f"{a.span[0]}-{a.span[1]}"]
+        images = range(a.span[0], a.span[1] + 1)
     elif nums and len(nums) == len(paths):
-        cmd += ["--range", f"{min(nums)}-{max(nums)}"]
-    if a.baseline:
-        cmd += ["--baseline", os.path.join(a.baseline, "detections_all.txt")]
-    out = subprocess.run(cmd, capture_output=True, text=True)
+        images = range(min(nums), max(nums) + 1)
+    else:
+        images = None
+    plot = os.path.join(a.out, "pr_curve.png")
+    ev = sbr.evaluate(os.path.join(a.out, "detections_all.txt"), gt, images=images, threshold=threshold,
+                      baseline=os.path.join(a.baseline, "detections_all.txt") if a.baseline else None, plot=plot)
     with open(os.path.join(a.out, "evaluation.txt"), "w") as f:
-        f.write(out.stdout)
-    if out.returncode != 0:
-        print(f"sbr.regress: sbr_eval failed: {out.stderr.strip()}", file=sys.stderr)
-    return out.stdout
+        f.write(ev.text)
+    return ev.text
+
+
+def ground_truth(a, paths):
+    """The ground truth: --gt, else gt.txt beside the images, else None."""
+    if a.gt:
+        return a.gt
+    gt = os.path.join(os.path.dirname(paths[0]), "gt.txt")
+    return gt if os.path.isfile(gt) else None
 
 
 # What sbr.regress imports beyond the package's own dependencies: the 'regress' extra.
@@ -345,6 +344,42 @@ def missing_extra():
     return [dist for mod, dist in EXTRA_MODULES.items() if importlib.util.find_spec(mod) is None]
 
 
+# The files a run writes into OUT (chunks/ aside): an earlier run's are removed first.
+RUN_FILES = ("detections.txt", "detections_all.txt", "detections.parquet", "failures.txt", "evaluation.txt",
+             "pr_curve.png")
+
+
+def refuse(message):
+    """A usage error: one line, exit status 2, nothing written."""
+    print(f"sbr.regress: {message} (nothing was written)", file=sys.stderr)
+    return 2
+
+
+def check_files(a):
+    """What is wrong with the options' files and folders, or None."""
+    if not os.path.exists(a.input):
+        return f"--input {a.input}: no such folder or list file"
+    if a.baseline and not os.path.isfile(os.path.join(a.baseline, "detections_all.txt")):
+        return f"--baseline {a.baseline}: no detections_all.txt there (an earlier run's --out folder is expected)"
+    for opt, path in (("--gt", a.gt), ("--model", a.model), ("--picto", a.picto)):
+        if path and not os.path.isfile(path):
+            return f"{opt} {path}: no such file"
+    if os.path.exists(a.out) and not os.path.isdir(a.out):
+        return f"--out {a.out}: a file, not a folder"
+    return None
+
+
+def clear_out(a):
+    """OUT for this run: the earlier run's files removed (its chunks kept with --resume)."""
+    for name in RUN_FILES:
+        p = os.path.join(a.out, name)
+        if os.path.isfile(p):
+            os.remove(p)
+    if not a.resume:
+        shutil.rmtree(os.path.join(a.out, "chunks"), ignore_errors=True)
+    os.makedirs(os.path.join(a.out, "chunks"), exist_ok=True)
+
+
 def main(argv=None):
     a = parse_args(argv)
     missing = missing_extra()
@@ -353,17 +388,23 @@ def main(argv=None):
         print(f"sbr.regress: needs the 'regress' extra: pip install 'sbr[regress]' (missing: {', '.join(missing)})",
               file=sys.stderr)
         return 2
+    problem = check_files(a)
+    if problem:
+        return refuse(problem)
     paths = list_inputs(a.input, a.span)
     if not paths:
-        print(f"sbr.regress: no images in {a.input}", file=sys.stderr)
-        return 2
-    os.makedirs(os.path.join(a.out, "chunks"), exist_ok=True)
+        return refuse(f"no .jpg, .jpeg, .png or .ppm images in {a.input}"
+                      + (f" numbered {a.range}" if a.range else ""))
+    import sbr
+    try:
+        threshold = sbr.Recognizer(model=a.model, picto=a.picto).threshold
+    except ValueError as e:  # a model file the loader refuses
+        return refuse(str(e))
+    clear_out(a)
     chunks = [paths[i:i + a.chunk] for i in range(0, len(paths), a.chunk)]
     t0 = time.time()
     failed = compute(a, chunks)
     n_op, n_all, failures = gather(a, chunks, failed)
-    import sbr
-    threshold = sbr.Recognizer(model=a.model, picto=a.picto).threshold
     ev = evaluate(a, paths, threshold)
     print(f"sbr.regress: {len(paths)} images in {len(chunks)} chunks, {time.time() - t0:.1f} s; "
           f"{n_op} detections at the operating point (score >= {threshold:g}), {n_all} in all; "
@@ -372,6 +413,8 @@ def main(argv=None):
         print(ev, end="")
     for x in failures[:10]:
         print(f"  failed: {x}")
+    if len(failures) == len(paths):
+        return 1  # nothing usable
     return 3 if failures or failed else 0
 
 

@@ -281,6 +281,7 @@ NB_MODULE(_sbr, m) {
     sbr_py::bind_tracker(m);
     sbr_py::bind_shapes(m);
     sbr_py::bind_can(m);
+    sbr_py::bind_eval(m);
     m.def("field_names", []() {
         std::vector<std::string> n;
         for (const auto &kv : fields()) n.push_back(kv.first);

@@ -7,6 +7,7 @@ layout), not figures the code produced.
 """
 import math
 import os
+import re
 
 import numpy as np
 import pytest
@@ -298,3 +299,38 @@ def test_can_e2e_equals_the_dashboards_and_detects_faults():
 def test_can_refuses(call, text):
     with pytest.raises(ValueError, match=text):
         call()
+
+
+def test_evaluate_scores_constructed_files(tmp_path):
+    # two images: a found 70 sign, a false give-way sign, a missed road-works sign; and the
+    # same detections as their own baseline
+    gt = tmp_path / "gt.txt"
+    gt.write_text("00001.ppm;10;10;49;49;4\n00002.ppm;100;100;139;139;25\n")
+    det = tmp_path / "det.txt"
+    det.write_text("00001.jpg;11;11;49;49;4;0.9\n00002.jpg;300;300;339;339;13;0.8\n")
+    plot = tmp_path / "pr.png"
+    ev = sbr.evaluate(str(det), str(gt), threshold=0.5, baseline=str(det), max_drop=0.0, plot=str(plot))
+    cl = ev.figures["eval"]["class_level"]
+    assert (cl["tp"], cl["fp"], cl["fn"]) == (1, 1, 1)
+    sc = ev.figures["eval"]["superclasses"]
+    assert (sc["prohibitory"]["tp"], sc["danger"]["fn"], sc["other"]["fp"]) == (1, 1, 1)
+    assert re.search(r"^4 +1 +0 +0 +1\.0000 +1\.0000 +1\.0000  SpeedLimit70$", ev.text, re.M), ev.text
+    assert "25 Construction" in ev.text and "13 GiveWay" in ev.text
+    assert ev.worst_drop == 0.0 and not ev.regression
+    assert ev.text.splitlines()[-1].startswith("superclass_ap prohibitory=1.0000")
+    assert plot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    only_first = sbr.evaluate(str(det), str(gt), images=[1])
+    assert only_first.figures["images"] == 1 and only_first.figures["gt"] == 1
+
+
+def test_evaluate_names_what_it_cannot_read(tmp_path):
+    gt = tmp_path / "gt.txt"
+    gt.write_text("00001.ppm;10;10;49;49;4\n")
+    with pytest.raises(ValueError, match="missing.txt: cannot open it"):
+        sbr.evaluate(str(tmp_path / "missing.txt"), str(gt))
+    bad = tmp_path / "bad.txt"
+    bad.write_text("00001.jpg;1;2;3;4;5\n00001.jpg;1;2\n")
+    with pytest.raises(ValueError, match="bad.txt:2: not a detection line"):
+        sbr.evaluate(str(bad), str(gt))
+    with pytest.raises(ValueError, match="threshold"):
+        sbr.evaluate(str(gt), str(gt), threshold=2.0)

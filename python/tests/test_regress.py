@@ -3,8 +3,10 @@
 Environment: SBR_DETECT, SBR_EVAL (the host tools), SBR_DATA (the GTSDB folder).
   - 40 GTSDB images in chunks of 10: detections.txt and detections_all.txt byte-identical
     to sbr_detect's on the same images, detections.parquet holding the same detections,
-    evaluation.txt from sbr_eval; the same from one worker process of 3 threads sharing
-    its recogniser (chunks of 5);
+    evaluation.txt from the package's own evaluation identical to sbr_eval's report; the
+    same from one worker process of 3 threads sharing its recogniser (chunks of 5);
+  - an earlier run's files in --out are removed; bad --baseline, --gt, --model and a
+    missing or empty input are named in one line, exit 2, before anything is written;
   - a worker killed once while running a chunk: Dask runs it again elsewhere, the files
     are still identical;
   - a worker killed on every attempt at one chunk (--retries 0): that chunk is reported
@@ -33,7 +35,7 @@ def regress(*args, env=None, workers=("--workers", "2")):
     e = dict(os.environ)
     e.update(env or {})
     return subprocess.run([sys.executable, "-X", "faulthandler", "-m", "sbr.regress", "--input", DATA, "--range", RANGE,
-                           *workers, "--eval-tool", EVAL, *args], capture_output=True, text=True, env=e, timeout=300)
+                           *workers, *args], capture_output=True, text=True, env=e, timeout=300)
 
 
 @pytest.fixture(scope="module")
@@ -51,7 +53,13 @@ def test_same_detections_as_sbr_detect(tmp_path, reference):
     for name, want in reference.items():
         assert (out / name).read_text() == want, name
     assert "4 chunks, 0 already done" in r.stdout
-    assert (out / "evaluation.txt").read_text().startswith("images 40, ground-truth boxes")
+    # the package's own evaluation: sbr_eval's report on the same files, byte for byte
+    ev = subprocess.run([EVAL, "--detections", str(out / "detections_all.txt"), "--gt",
+                         os.path.join(os.path.dirname(first_image()), "gt.txt"), "--range", RANGE,
+                         "--threshold", threshold_of(r.stdout), "--plot", str(out / "pr_curve.png")],
+                        capture_output=True, text=True, check=True)
+    assert (out / "evaluation.txt").read_text() == ev.stdout
+    assert ev.stdout.startswith("images 40, ground-truth boxes")
     import pandas as pd
     df = pd.read_parquet(out / "detections.parquet")
     assert len(df) == reference["detections_all.txt"].count("\n")
@@ -60,6 +68,58 @@ def test_same_detections_as_sbr_detect(tmp_path, reference):
     assert (df.iloc[0]["image"], int(df.iloc[0]["left"]), int(df.iloc[0]["class_id"])) == \
         (first[0], int(first[1]), int(first[5]))
     assert df.iloc[0]["class_name"]
+
+
+def first_image():
+    src = os.path.join(DATA, "FullIJCNN2013") if os.path.isdir(os.path.join(DATA, "FullIJCNN2013")) else DATA
+    return os.path.join(src, "00400.jpg")
+
+
+def threshold_of(stdout):
+    import re
+    return re.search(r"operating point \(score >= ([0-9.]+)\)", stdout).group(1)
+
+
+def test_an_earlier_runs_files_are_removed(tmp_path):
+    # a folder that held another run: its evaluation, plot and a chunk of other images go;
+    # a file that is not the tool's stays
+    src = os.path.dirname(first_image())
+    d = tmp_path / "in"
+    d.mkdir()
+    shutil.copy(os.path.join(src, "00444.jpg"), d)  # no gt.txt: no evaluation this time
+    out = tmp_path / "o"
+    (out / "chunks").mkdir(parents=True)
+    for name in ("evaluation.txt", "pr_curve.png", "chunks/chunk_000007.json", "notes.txt"):
+        (out / name).write_text("an earlier run's")
+    r = subprocess.run([sys.executable, "-m", "sbr.regress", "--input", str(d), "--out", str(out), "--workers", "1"],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert sorted(os.listdir(out)) == ["chunks", "detections.parquet", "detections.txt", "detections_all.txt",
+                                       "failures.txt", "notes.txt"]
+    assert os.listdir(out / "chunks") == ["chunk_000000.json"]
+
+
+@pytest.mark.parametrize("args,named", [
+    (["--baseline", "/no/such/run"], "--baseline /no/such/run: no detections_all.txt"),
+    (["--gt", "/no/such/gt.txt"], "--gt /no/such/gt.txt: no such file"),
+    (["--model", "/no/such.sbrm"], "--model /no/such.sbrm: no such file"),
+])
+def test_bad_files_are_named_before_anything_is_written(tmp_path, args, named):
+    out = tmp_path / "o"
+    r = subprocess.run([sys.executable, "-m", "sbr.regress", "--input", DATA, "--out", str(out), *args],
+                       capture_output=True, text=True, timeout=120)
+    assert r.returncode == 2, r.stdout + r.stderr
+    assert named in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    assert not out.exists()
+
+
+def test_missing_and_empty_inputs_are_usage_errors(tmp_path):
+    for where in (tmp_path / "missing", tmp_path):
+        r = subprocess.run([sys.executable, "-m", "sbr.regress", "--input", str(where), "--out", str(tmp_path / "o")],
+                           capture_output=True, text=True, timeout=120)
+        assert r.returncode == 2, r.stdout + r.stderr
+        assert str(where) in r.stderr
+    assert not (tmp_path / "o").exists()
 
 
 def test_threads_of_one_worker_share_its_recogniser(tmp_path, reference):
@@ -108,7 +168,7 @@ def test_unreadable_image_is_counted(tmp_path):
     data = (d / "00445.jpg").read_bytes()
     (d / "00445.jpg").write_bytes(data[: len(data) // 2])
     r = subprocess.run([sys.executable, "-m", "sbr.regress", "--input", str(d), "--out", str(tmp_path / "o"),
-                        "--workers", "1", "--eval-tool", EVAL], capture_output=True, text=True, timeout=600)
+                        "--workers", "1"], capture_output=True, text=True, timeout=600)
     assert r.returncode == 3, r.stdout + r.stderr
     failures = (tmp_path / "o" / "failures.txt").read_text()
     assert "00445.jpg" in failures and "00444.jpg" not in failures

@@ -5,13 +5,14 @@
 //    missed sign's box dashed white and black, the found one in its superclass's colour,
 //    nothing filled, no magenta elsewhere); labels inside the image and apart, also for
 //    crowded boxes at the image's edges;
-//  - the contact sheet keeps the worst images, worst first;
+//  - the contact sheet keeps the worst images, worst first, and a tile holds its labels;
+//  - the class names are the DBC's (--dbc);
 //  - truncated and empty JPEG, PNG and PPM files are named as such, whole ones pass;
 //  - with --detect and --data: sbr_detect on GTSDB 00444 with a ground truth that leaves
 //    out one of its signs (a known false detection) and adds one in the sky (a known miss):
 //    the annotated JPEG has magenta on the first's box and dashes on the second's; a
 //    folder with a truncated JPEG beside a whole one exits with status 3 and names it; a
-//    folder that does not exist is named as such (status 1).
+//    folder that does not exist is named as such (status 2, docs/usage/exit-status.md).
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -21,6 +22,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -73,7 +76,7 @@ void test_constructed_scene() {
               marks[2].kind == MarkKind::kFound && marks[3].kind == MarkKind::kMissed && marks[3].class_id == 25,
           "the judgement: found, false, found, missed 25");
     check(judge(dets, gts, false)[1].kind == MarkKind::kDetected, "no ground truth: plain detections");
-    const std::vector<cv::Rect> labels = draw_marks(img, marks, true);
+    const std::vector<cv::Rect> labels = draw_marks(img, marks);
     check(is(px(img, 150, 80), kFalseColour) && is(px(img, 189, 80), kFalseColour) &&
               is(px(img, 170, 99), kFalseColour),
           "the false detection's box is magenta");
@@ -110,7 +113,12 @@ void test_crowded_labels() {
         marks.push_back({{double(k % 2 ? 180 : 0), double(20 * (k / 2) + 2), double(k % 2 ? 200 : 20),
                           double(20 * (k / 2) + 20)},
                          20 + k, 0.5, MarkKind::kFound});
-    check_labels(draw_marks(img, marks, false), img, "crowded");
+    check_labels(draw_marks(img, marks), img, "crowded");
+}
+
+std::string read_text(const std::string &path) {
+    std::ifstream s(path);
+    return std::string((std::istreambuf_iterator<char>(s)), std::istreambuf_iterator<char>());
 }
 
 void test_worst_images() {
@@ -119,17 +127,46 @@ void test_worst_images() {
     const Mark missed{{100, 100, 130, 130}, 25, 0.0, MarkKind::kMissed};
     const Mark fp{{200, 100, 230, 130}, 14, 0.6, MarkKind::kFalse};
     const Mark found{{10, 10, 40, 40}, 1, 0.9, MarkKind::kFound};
-    worst.offer("00001", img, {found});
+    worst.offer("00001", img, {found}, {});
     check(worst.size() == 0, "an image without errors is not kept");
-    worst.offer("00002", img, {fp});
-    worst.offer("00003", img, {missed, fp});
-    worst.offer("00004", img, {missed});
+    worst.offer("00002", img, {fp}, {});
+    worst.offer("00003", img, {missed, fp}, {});
+    worst.offer("00004", img, {missed}, {});
     check(worst.size() == 2, "the two worst kept");
     const std::string path = (fs::temp_directory_path() / "sbr_test_overview.png").string();
     check(worst.write(path), "the sheet is written");
     const cv::Mat sheet = cv::imread(path);
     check(sheet.cols == 6 + 3 * (420 + 6) && sheet.rows > 280, "the sheet's size");
     fs::remove(path);
+    // a missed sign at the right edge with its label to its left: the tile keeps the label
+    // whole (a crop around the box alone would start at x 1135 and cut it)
+    WorstImages edge(1);
+    const cv::Mat frame(800, 1360, CV_8UC3, cv::Scalar(50, 50, 50));
+    const Mark far{{1300, 400, 1331, 431}, 42, 0.0, MarkKind::kMissed};
+    const cv::Rect label(1100, 400, 196, 20);
+    edge.offer("00005", frame, {far}, {label});
+    check(edge.size() == 1 && (edge.crop(0) & label) == label && (edge.crop(0) & cv::Rect(1300, 400, 31, 31)) ==
+                                                                      cv::Rect(1300, 400, 31, 31),
+          "the tile holds the missed sign and its whole label");
+}
+
+// The one table of class names is the DBC's: every value name of SBR_Sign_Class in
+// dbc/sbr.dbc equals class_name() of its id.
+void test_class_names(const std::string &dbc) {
+    const std::string text = read_text(dbc);
+    const size_t at = text.find("VAL_ 768 SBR_Sign_Class ");
+    check(at != std::string::npos, "the DBC has SBR_Sign_Class's value names");
+    if (at == std::string::npos) return;
+    std::istringstream is(text.substr(at + 24, text.find(';', at) - at - 24));
+    int id = 0, seen = 0;
+    std::string quoted;
+    while (is >> id >> std::quoted(quoted)) {
+        if (id > 42) continue;
+        ++seen;
+        check(quoted == class_name(id), "class " + std::to_string(id) + ": DBC '" + quoted + "', table '" +
+                                            class_name(id) + "'");
+    }
+    check(seen == 43, "43 class names in the DBC (" + std::to_string(seen) + ")");
 }
 
 void write_bytes(const std::string &path, const std::vector<uchar> &b, size_t n) {
@@ -153,11 +190,6 @@ void test_file_problems() {
     write_bytes((dir / "empty.jpg").string(), {}, 0);
     check(image_file_problem((dir / "empty.jpg").string()) == "empty file", "empty file");
     fs::remove_all(dir);
-}
-
-std::string read_text(const std::string &path) {
-    std::ifstream s(path);
-    return std::string((std::istreambuf_iterator<char>(s)), std::istreambuf_iterator<char>());
 }
 
 // sbr_detect end to end on GTSDB 00444 with a constructed ground truth.
@@ -199,6 +231,8 @@ void test_sbr_detect(const std::string &detect, const std::string &data, const s
     }
     check(bright >= 10 && dark >= 10, "the missed sign's box in the sky is dashed (bright " + std::to_string(bright) +
                                           ", dark " + std::to_string(dark) + ")");
+    const cv::Vec3b sw = px(a, 8, a.rows - 9);  // the legend's first swatch: prohibitory red
+    check(sw[2] > 180 && sw[1] < 90 && sw[0] < 90, "the legend at the bottom left starts with the red swatch");
     const std::string text = read_text(work + "/summary.txt");
     check(text.find("1 signs missed (dashed boxes), 1 false detections") != std::string::npos,
           "the summary counts one miss and one false detection");
@@ -230,28 +264,30 @@ void test_failed_images(const std::string &detect, const std::string &data, cons
     check(read_text(out + ".txt").find("00444.jpg;") == 0, "the whole image is still processed");
     const int missing = exit_status(detect + " --input " + work + "/no-such-folder --detections " + out +
                                     "2.txt >/dev/null 2>" + out + ".err2");
-    check(missing == 1 && read_text(out + ".err2").find("no such folder") != std::string::npos,
+    check(missing == 2 && read_text(out + ".err2").find("no such folder") != std::string::npos,
           "a missing folder is named (status " + std::to_string(missing) + ")");
 }
 
 }  // namespace
 
 int main(int argc, char **argv) {
-    static const char *const options[] = {"--detect", "--data", "--work", nullptr};
+    static const char *const options[] = {"--detect", "--data", "--work", "--dbc", nullptr};
     const int h = test_help(argc, argv, "test_annotate: the annotated pictures and the contact sheet of sbr_detect",
-                            "test_annotate [--detect SBR_DETECT --data GTSDB_DIR] [--work DIR]", options);
+                            "test_annotate [--detect SBR_DETECT --data GTSDB_DIR] [--work DIR] [--dbc dbc/sbr.dbc]", options);
     if (h >= 0) return h;
-    std::string detect, data, work = (fs::temp_directory_path() / "sbr_test_annotate").string();
+    std::string detect, data, dbc, work = (fs::temp_directory_path() / "sbr_test_annotate").string();
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string k = argv[i];
         if (k == "--detect") detect = argv[i + 1];
         else if (k == "--data") data = argv[i + 1];
         else if (k == "--work") work = argv[i + 1];
+        else if (k == "--dbc") dbc = argv[i + 1];
     }
     test_constructed_scene();
     test_crowded_labels();
     test_worst_images();
     test_file_problems();
+    if (!dbc.empty()) test_class_names(dbc);
     if (!detect.empty() && !data.empty()) {
         test_sbr_detect(detect, data, work);
         test_failed_images(detect, data, work);

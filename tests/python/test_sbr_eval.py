@@ -246,7 +246,7 @@ def main():
         ok &= refused.returncode == 2
     print(f"largest drop {worst:.4f}: exit {loose.returncode} with a looser gate, "
           f"{tight.returncode} with a tighter one")
-    ok &= worst > 0.01 and loose.returncode == 0 and tight.returncode == 3
+    ok &= worst > 0.01 and loose.returncode == 0 and tight.returncode == 4
     same = subprocess.run([a.eval, "--detections", det, "--gt", a.gt, "--range", "400-599",
                            "--plot", png, "--baseline", det, "--max-drop", "0"],
                           capture_output=True, text=True)
@@ -256,6 +256,17 @@ def main():
     bad = subprocess.run([a.eval, "--detections", det, "--gt", a.gt, "--max-drop", "0.1"],
                          capture_output=True, text=True)
     ok &= bad.returncode == 2
+    # a file that is not there is named (exit 2, docs/usage/exit-status.md), as is a bad line
+    gone = subprocess.run([a.eval, "--detections", det, "--gt", a.gt, "--baseline", det + ".missing"],
+                          capture_output=True, text=True)
+    print(f"missing baseline: exit {gone.returncode}, {gone.stderr.strip()}")
+    ok &= gone.returncode == 2 and det + ".missing: cannot open it" in gone.stderr
+    broken = os.path.join(a.work, "broken.txt")
+    with open(broken, "w") as f:
+        f.write("00400.jpg;1;2;3;4;5;0.5\n00401.jpg;1;2\n")
+    bad_line = subprocess.run([a.eval, "--detections", broken, "--gt", a.gt], capture_output=True, text=True)
+    print(f"a bad line: exit {bad_line.returncode}, {bad_line.stderr.strip()}")
+    ok &= bad_line.returncode == 2 and f"{broken}:2: not a detection line" in bad_line.stderr
     return 0 if ok else 1
 
 

@@ -1,0 +1,137 @@
+#!/usr/bin/env python3
+"""The exit-status table (docs/usage/exit-status.md) as the programs follow it: each
+program run into each case that applies, its status and its message checked.
+
+    test_exit_status.py --tools DIR --sbr-sh PATH --dashboard PATH --data GTSDB_DIR
+
+sbr_detect: 0 (a whole image); 2 (a bad value, a missing or empty folder, --roi outside
+the image with its size, a missing model file, --annotated = the input folder); 3 (a
+truncated or a 20000-pixel image beside a whole one, each named, the size limit stated);
+1 (every image failed). sbr_eval: 0; 2 (a missing file, named); 4 (a regression beyond
+--max-drop). ./sbr.sh: 0 (--help); 2 (no command, an unknown one, an option without its
+value, a missing or empty --input folder, a missing --baseline file), all before any
+set-up. sbr-dashboard: 0 (a log replayed, --help); 2 (a missing log, an unknown option).
+sbr.regress's cases are in python/tests/test_regress.py.
+"""
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+FAILURES = []
+
+
+def expect(what, cmd, status, *texts, env=None):
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=env, stdin=subprocess.DEVNULL)
+    said = r.stdout + r.stderr
+    missing = [t for t in texts if t not in said]
+    ok = r.returncode == status and not missing
+    first = next((ln for ln in r.stderr.splitlines() if ln.strip()), "")
+    print(f"{'ok  ' if ok else 'FAIL'} {what}: exit {r.returncode} (expected {status}){': ' + first if first else ''}")
+    if not ok:
+        FAILURES.append(what)
+        if missing:
+            print(f"     missing from the output: {missing}\n{said[-1500:]}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--tools", required=True)
+    ap.add_argument("--sbr-sh", required=True)
+    ap.add_argument("--dashboard", required=True, help="the sbr-dashboard console script")
+    ap.add_argument("--data", required=True, help="GTSDB folder")
+    a = ap.parse_args()
+    src = os.path.join(a.data, "FullIJCNN2013") if os.path.isdir(os.path.join(a.data, "FullIJCNN2013")) else a.data
+    image = os.path.join(src, "00444.jpg")
+    if not os.path.isfile(image):
+        print(f"SKIP: no GTSDB image {image}")
+        return 77
+    detect, ev = os.path.join(a.tools, "sbr_detect"), os.path.join(a.tools, "sbr_eval")
+    w = tempfile.mkdtemp(prefix="sbr_exit_")
+    try:
+        def folder(name, files):
+            d = os.path.join(w, name)
+            os.makedirs(d)
+            for n, cut in files:
+                shutil.copy(image, os.path.join(d, n))
+                if cut:
+                    os.truncate(os.path.join(d, n), os.path.getsize(image) // 2)
+            return d
+
+        whole = folder("whole", [("00444.jpg", False)])
+        mixed = folder("mixed", [("00444.jpg", False), ("00445.jpg", True)])
+        broken = folder("broken", [("00445.jpg", True)])
+        empty = folder("empty", [])
+        big = folder("big", [("00444.jpg", False)])
+        with open(os.path.join(big, "00446.ppm"), "wb") as f:  # 20000 x 2 grey pixels
+            f.write(b"P6\n20000 2\n255\n" + bytes(20000 * 2 * 3))
+        det = os.path.join(w, "d.txt")
+        run = [detect, "--quiet", "--detections", det]
+
+        expect("sbr_detect, a whole image", run + ["--input", whole], 0)
+        expect("sbr_detect --threshold abc", run + ["--input", whole, "--threshold", "abc"], 2, "--threshold")
+        expect("sbr_detect, a missing folder", run + ["--input", w + "/none"], 2, "--input " + w + "/none: no such folder")
+        expect("sbr_detect, an empty folder", run + ["--input", empty], 2, "no .jpg, .jpeg, .png or .ppm images in")
+        expect("sbr_detect --roi outside", run + ["--input", whole, "--roi", "1300,700,200,200"], 2,
+               "--roi 1300,700,200,200 does not lie inside the image (1360 x 800 pixels")
+        expect("sbr_detect --roi 0,0,0,0", run + ["--input", whole, "--roi", "0,0,0,0"], 2, "--roi 0,0,0,0")
+        expect("sbr_detect, a missing model file", run + ["--input", whole, "--model", w + "/none.sbrm"], 2,
+               "none.sbrm")
+        expect("sbr_detect --annotated = the input", run + ["--input", whole, "--annotated", whole], 2,
+               "is the input folder")
+        expect("sbr_detect, a truncated image beside a whole one", run + ["--input", mixed], 3,
+               "00445.jpg: truncated JPEG")
+        expect("sbr_detect, a 20000-pixel image beside a whole one", run + ["--input", big], 3,
+               "20000 x 2 pixels; the recogniser takes at most 16384 on a side")
+        expect("sbr_detect, every image failed", run + ["--input", broken], 1, "1 of 1 images failed")
+
+        gt = os.path.join(w, "gt.txt")
+        with open(gt, "w") as f:
+            f.write("00444.ppm;379;528;427;573;20\n00444.ppm;389;569;419;600;7\n")
+        good, bad = os.path.join(w, "good.txt"), os.path.join(w, "bad.txt")
+        with open(good, "w") as f:
+            f.write("00444.jpg;379;528;427;573;20;0.9\n00444.jpg;389;569;419;600;7;0.9\n")
+        with open(bad, "w") as f:
+            f.write("00444.jpg;379;528;427;573;20;0.9\n")
+        plot = ["--plot", os.path.join(w, "pr.png")]
+        expect("sbr_eval", [ev, "--detections", good, "--gt", gt] + plot, 0)
+        expect("sbr_eval, a missing --gt file", [ev, "--detections", good, "--gt", w + "/no_gt.txt"] + plot, 2,
+               w + "/no_gt.txt: cannot open it")
+        expect("sbr_eval, a regression beyond --max-drop", [ev, "--detections", bad, "--gt", gt, "--baseline", good,
+                                                            "--max-drop", "0.1"] + plot, 4, "REGRESSION")
+
+        # sbr.sh: every case is refused before any set-up (a build root of its own, unused)
+        env = dict(os.environ, SBR_BUILD_ROOT=os.path.join(w, "build"))
+        sh = [a.sbr_sh]
+        expect("./sbr.sh --help", sh + ["--help"], 0, "./sbr.sh detect", env=env)
+        expect("./sbr.sh detect --help", sh + ["detect", "--help"], 0, "--baseline", env=env)
+        expect("./sbr.sh (no command)", sh, 2, env=env)
+        expect("./sbr.sh bogus", sh + ["bogus"], 2, "unknown command 'bogus'", env=env)
+        expect("./sbr.sh detect --input (no value)", sh + ["detect", "--input"], 2, "--input needs a value", env=env)
+        expect("./sbr.sh detect, a missing folder", sh + ["detect", "--input", w + "/none"], 2, "no such folder",
+               env=env)
+        expect("./sbr.sh detect, an empty folder", sh + ["detect", "--input", empty], 2, "no .jpg", env=env)
+        expect("./sbr.sh detect --baseline missing", sh + ["detect", "--baseline", w + "/none.txt"], 2,
+               "none.txt: no such file", env=env)
+        if os.path.isdir(os.path.join(w, "build")):
+            print("FAIL ./sbr.sh ran its set-up for a refused command")
+            FAILURES.append("sbr.sh set-up")
+
+        log = os.path.join(w, "c.log")
+        subprocess.run(run + ["--input", whole, "--canlog", log], check=True, capture_output=True)
+        dash = [a.dashboard]
+        expect("sbr-dashboard, a log replayed", dash + ["--log", log, "--terminal", "--once", "--fast"], 0,
+               "end of log")
+        expect("sbr-dashboard --help", dash + ["--help"], 0, "--log")
+        expect("sbr-dashboard, a missing log", dash + ["--log", w + "/none.log", "--terminal"], 2, "none.log")
+        expect("sbr-dashboard --bogus", dash + ["--log", log, "--bogus"], 2, "unrecognized arguments: --bogus")
+    finally:
+        shutil.rmtree(w, ignore_errors=True)
+    print(f"{len(FAILURES)} failures" if FAILURES else "every status as the table says")
+    return 1 if FAILURES else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
