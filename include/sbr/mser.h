@@ -55,7 +55,7 @@ extern "C" {
 #define SBR_MSER_MAX_DELTA 32u
 
 /** Bytes per component-tree node in the workspace. */
-#define SBR_MSER_NODE_BYTES 40u
+#define SBR_MSER_NODE_BYTES 32u
 
 /** @name Blocks of the MSER workspace (for ::SBR_MSER_WORKSPACE_SIZE) @{ */
 /** The grey-level heap's header: a first and a last pointer for each of the 256 levels. */
@@ -63,7 +63,7 @@ extern "C" {
 /** Depth of the component stack: every grey level, a sentinel and the root. */
 #define SBR_MSER_STACK 258u
 /** Bytes of one stack entry, without its history. */
-#define SBR_MSER_COMP_BYTES 32u
+#define SBR_MSER_COMP_BYTES 24u
 /** Bytes of one history entry of a stack entry (size and level; delta + 1 of them). */
 #define SBR_MSER_HISTORY_BYTES 8u
 /** Bytes per pixel: its heap link (4) and the map's level or "reached" (2). */

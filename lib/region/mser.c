@@ -15,11 +15,16 @@
 #define MSER_LEVELS 256u
 #define MSER_SENTINEL 256u
 #define MSER_REACHED 0xFFFFu
+#define LEV_REACHED 0x100u /* the pixel was reached by this pass's flood */
+#define LEV_BOXED 0x200u   /* the pixel is in the region whose box is being measured */
+#define LEV_LEVEL 0xFFu
 
 /* The flood keeps one 16-bit word per pixel: the map's level (inverted for the bright
-   pass) until the pixel is reached, then MSER_REACHED (the image border is reached from
-   the start, which bounds the fill); one load tells whether a neighbour is new and its
-   level. What else a pixel waiting in the heap needs travels with its heap entry:
+   pass), with LEV_REACHED set once the pixel is reached (the image border is MSER_REACHED
+   from the start, which bounds the fill); one load tells whether a neighbour is new and
+   its level. The level stays, so after the flood a selected node's pixels can be found
+   again (a fill from its seed over levels <= its own): its bounding box is measured then,
+   for the few selected nodes, not kept up per pixel. What else a pixel waiting in the heap needs travels with its heap entry:
    (pixel index << 3) | the next neighbour to look at (1 right, 2 down, 3 left, 4 up,
    5 none left); its level is the level of the stack it waits on. Pixel indices are below
    SBR_IMAGE_MAX_DIM^2 = 2^28, so an entry fits 32 bits. */
@@ -37,10 +42,6 @@ typedef struct mser_node_s {
     uint32_t seed;    /* a pixel (index y * width + x) */
     float var;        /* variation */
     float child_var;  /* smallest variation among its children */
-    uint16_t x0;      /* bounding box, inclusive */
-    uint16_t y0;
-    uint16_t x1;
-    uint16_t y1;
     uint8_t val;      /* level (in the pass's possibly inverted values) */
     uint8_t flags;
     uint8_t pad[2];
@@ -54,10 +55,7 @@ typedef struct mser_comp_s {
     uint32_t pend_tail;
     uint32_t ring_len;  /* entries of its main-chain history (oldest first) */
     uint16_t level;     /* 0..255, MSER_SENTINEL for the bottom entry */
-    uint16_t x0;
-    uint16_t y0;
-    uint16_t x1;
-    uint16_t y1;
+    uint16_t pad;
 } mser_comp_t;
 
 /* The public size macro spells these sizes out; keep them true. */
@@ -72,8 +70,8 @@ typedef struct mser_ctx_s {
     uint16_t *ring_val;  /* [SBR_MSER_STACK * ring_cap] their levels */
     mser_node_t *node;   /* [node_cap] */
     uint32_t *heap;      /* [pixels] entries (HEAP_DIR_BITS) */
-    uint16_t *lev;       /* [pixels] the map (inverted for the bright pass), MSER_REACHED
-                            once reached */
+    uint16_t *lev;       /* [pixels] the map (inverted for the bright pass) with
+                            LEV_REACHED once reached; the border MSER_REACHED */
     uint32_t width;
     uint32_t height;
     uint32_t ring_cap;   /* delta + 1 */
@@ -156,33 +154,16 @@ static void comp_init(mser_ctx_t *c, uint32_t k, uint32_t level)
     cp->pend_head = MSER_NONE;
     cp->pend_tail = MSER_NONE;
     cp->level = (uint16_t)level;
-    cp->x0 = 0xFFFFu;
-    cp->y0 = 0xFFFFu;
-    cp->x1 = 0u;
-    cp->y1 = 0u;
+    cp->pad = 0u;
     cp->ring_len = 0u;
 }
 
-static void comp_add_pixel(const mser_ctx_t *c, mser_comp_t *cp, uint32_t p)
+static void comp_add_pixel(mser_comp_t *cp, uint32_t p)
 {
-    const uint32_t y = (uint32_t)(((uint64_t)p * c->div_magic) >> c->div_shift);
-    const uint32_t x = p - (y * c->width);
     if (cp->size == 0u) {
         cp->seed = p;
     }
     cp->size++;
-    if (x < (uint32_t)cp->x0) {
-        cp->x0 = (uint16_t)x;
-    }
-    if (x > (uint32_t)cp->x1) {
-        cp->x1 = (uint16_t)x;
-    }
-    if (y < (uint32_t)cp->y0) {
-        cp->y0 = (uint16_t)y;
-    }
-    if (y > (uint32_t)cp->y1) {
-        cp->y1 = (uint16_t)y;
-    }
 }
 
 /* Append (val, size) to component k's main-chain history, keeping the newest ring_cap. */
@@ -246,10 +227,6 @@ static void comp_grow(mser_ctx_t *c, uint32_t k, uint32_t new_level)
             nd->seed = cp->seed;
             nd->var = 0.0f;
             nd->child_var = 3.0e38f;
-            nd->x0 = cp->x0;
-            nd->y0 = cp->y0;
-            nd->x1 = cp->x1;
-            nd->y1 = cp->y1;
             nd->val = (uint8_t)level;
             nd->flags = 0u;
             nd->pad[0] = 0u;
@@ -303,18 +280,6 @@ static void comp_merge(mser_ctx_t *c, uint32_t a, uint32_t b)
         ca->seed = cb->seed;
     }
     ca->size += cb->size;
-    if (cb->x0 < ca->x0) {
-        ca->x0 = cb->x0;
-    }
-    if (cb->y0 < ca->y0) {
-        ca->y0 = cb->y0;
-    }
-    if (cb->x1 > ca->x1) {
-        ca->x1 = cb->x1;
-    }
-    if (cb->y1 > ca->y1) {
-        ca->y1 = cb->y1;
-    }
 }
 
 static void heap_push(mser_ctx_t *c, uint32_t level, uint32_t p)
@@ -407,14 +372,14 @@ static void pass_flood(mser_ctx_t *c)
 
     comp_init(c, 0u, MSER_SENTINEL);
     comp_init(c, 1u, cur);
-    c->lev[p] = (uint16_t)MSER_REACHED;
+    c->lev[p] = (uint16_t)(cur | LEV_REACHED);
     while (done == 0) {
         uint32_t e; /* the next heap entry */
         while (k <= 4u) {
             const uint32_t q = p + off[k];
             const uint32_t g = (uint32_t)lev[q];
-            if (g != MSER_REACHED) {
-                lev[q] = (uint16_t)MSER_REACHED;
+            if (g < LEV_REACHED) {
+                lev[q] = (uint16_t)(g | LEV_REACHED);
                 if (g < cur) {
                     /* a lower neighbour: come back to p later (at its next neighbour),
                        descend into q */
@@ -432,7 +397,7 @@ static void pass_flood(mser_ctx_t *c)
                 k++;
             }
         }
-        comp_add_pixel(c, &c->comp[top], p);
+        comp_add_pixel(&c->comp[top], p);
         e = 0u;
         if (c->heap_top[cur] > 0u) {
             e = heap_pop(c, cur);
@@ -539,15 +504,69 @@ static void select_diverse(mser_ctx_t *c, float min_diversity)
     }
 }
 
+/* The bounding box of a node's pixels, after its pass's flood: the 4-connected pixels of
+   level <= its level around its seed (the component the flood grew), found again by a
+   fill that lists them in the heap (free after the flood) and marks them LEV_BOXED until
+   it is done. The border (MSER_REACHED) has every bit set, so the fill never enters it. */
+static uint32_t box_visit(uint16_t *lev, uint32_t *list, uint32_t n, uint32_t q, uint32_t val)
+{
+    const uint32_t g = (uint32_t)lev[q];
+    uint32_t m = n;
+    if ((g < LEV_BOXED) && ((g & LEV_LEVEL) <= val)) {
+        lev[q] = (uint16_t)(g | LEV_BOXED);
+        list[n] = q;
+        m = n + 1u;
+    }
+    return m;
+}
+
+static void node_bbox(mser_ctx_t *c, const mser_node_t *nd, sbr_rect_t *box)
+{
+    uint16_t *const lev = c->lev;
+    uint32_t *const list = c->heap;
+    const uint32_t w = c->width;
+    const uint32_t val = (uint32_t)nd->val;
+    uint32_t x0 = 0xFFFFFFFFu;
+    uint32_t x1 = 0u;
+    uint32_t p0 = 0xFFFFFFFFu; /* the first and last pixel in row order give the rows */
+    uint32_t p1 = 0u;
+    uint32_t n = 1u;
+    uint32_t i;
+    uint32_t y0;
+    uint32_t y1;
+
+    list[0] = nd->seed;
+    lev[nd->seed] = (uint16_t)((uint32_t)lev[nd->seed] | LEV_BOXED);
+    for (i = 0u; i < n; i++) {
+        const uint32_t p = list[i];
+        const uint32_t y = (uint32_t)(((uint64_t)p * c->div_magic) >> c->div_shift);
+        const uint32_t x = p - (y * w);
+        x0 = (x < x0) ? x : x0;
+        x1 = (x > x1) ? x : x1;
+        p0 = (p < p0) ? p : p0;
+        p1 = (p > p1) ? p : p1;
+        n = box_visit(lev, list, n, p + 1u, val);
+        n = box_visit(lev, list, n, p + w, val);
+        n = box_visit(lev, list, n, p - 1u, val);
+        n = box_visit(lev, list, n, p - w, val);
+    }
+    for (i = 0u; i < n; i++) {
+        lev[list[i]] = (uint16_t)((uint32_t)lev[list[i]] & ~LEV_BOXED);
+    }
+    y0 = (uint32_t)(((uint64_t)p0 * c->div_magic) >> c->div_shift);
+    y1 = (uint32_t)(((uint64_t)p1 * c->div_magic) >> c->div_shift);
+    box->x = x0;
+    box->y = y0;
+    box->width = (x1 - x0) + 1u;
+    box->height = (y1 - y0) + 1u;
+}
+
 /* A selected node as a region of the given polarity. */
-static void select_region(const mser_ctx_t *c, const mser_node_t *nd, uint8_t polarity,
+static void select_region(mser_ctx_t *c, const mser_node_t *nd, uint8_t polarity,
                           sbr_mser_region_t *r)
 {
     const uint32_t sy = (uint32_t)(((uint64_t)nd->seed * c->div_magic) >> c->div_shift);
-    r->bbox.x = (uint32_t)nd->x0;
-    r->bbox.y = (uint32_t)nd->y0;
-    r->bbox.width = ((uint32_t)nd->x1 - (uint32_t)nd->x0) + 1u;
-    r->bbox.height = ((uint32_t)nd->y1 - (uint32_t)nd->y0) + 1u;
+    node_bbox(c, nd, &r->bbox);
     r->area = nd->size;
     r->variation = nd->var;
     r->seed_x = (uint16_t)(nd->seed - (sy * c->width));
