@@ -45,6 +45,33 @@ def table(title, rows, top, limit):
     return over
 
 
+# Public headers that belong to no module folder: the umbrella, the shared types and the
+# statuses (lib/common/).
+SHARED_HEADERS = {"sbr.h", "types.h", "status.h"}
+
+
+def module_folders(root):
+    """Public headers include/sbr/X.h whose module has no folder lib/X/ (folder = header)."""
+    missing = []
+    for h in sorted(os.listdir(os.path.join(root, "include", "sbr"))):
+        if h.endswith(".h") and h not in SHARED_HEADERS and not os.path.isdir(os.path.join(root, "lib", h[:-2])):
+            missing.append(h)
+    return missing
+
+
+def longest_files(root, sub, exts, top):
+    """The longest source files under root/sub (lines), generated models left out."""
+    rows = []
+    for d, _, names in os.walk(os.path.join(root, sub)):
+        if os.path.join("lib", "models") in os.path.relpath(d, root):
+            continue
+        for n in names:
+            if n.endswith(exts):
+                with open(os.path.join(d, n), encoding="utf-8", errors="replace") as f:
+                    rows.append((sum(1 for _ in f), os.path.relpath(os.path.join(d, n), root)))
+    return sorted(rows, reverse=True)[:top]
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--source", required=True, help="the project root")
@@ -71,6 +98,14 @@ def main():
                   f"{sum(1 for r in mains if r[3] > 80)} over 80 lines)", mains, a.top, a.max_main)
     table(f"longest other host tool functions ({sum(1 for r in tools if r[1] != 'main' and r[3] > 80)}"
           " over 80 lines)", [r for r in tools if r[1] != "main"], a.top, None)
+    for sub, exts in (("lib", (".c", ".h", ".inc")), ("host_tools", (".cpp", ".hpp", ".c", ".py"))):
+        print(f"longest files in {sub}/ (lines):")
+        for n, rel in longest_files(a.source, sub, exts, 5):
+            print(f"  {n:6d}  {rel}")
+    missing = module_folders(a.source)
+    print("every public header's module in a folder of its name (include/sbr/X.h, lib/X/): "
+          + ("yes" if not missing else "no: " + ", ".join(missing)))
+    over += [("module folder", h) for h in missing]
     deep = [r for r in core if a.max_nesting is not None and r[4] > a.max_nesting]
     if a.max_nesting is not None:
         print(f"core functions nested deeper than {a.max_nesting}: {len(deep)}")

@@ -3,7 +3,7 @@
 #ifndef SBR_TESTS_RECOG_RUN_H
 #define SBR_TESTS_RECOG_RUN_H
 
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 
 /* init's status when it refuses; else detect's. */
 static inline sbr_status_t recog_run(const sbr_image_t *img, const sbr_rect_t *roi,

@@ -1,5 +1,5 @@
 /* Bicycle tracking from wheel ellipses: projection, pairing, particle filter. */
-#include "sbr/bicycle.h"
+#include "sbr/bike.h"
 
 #include <math.h>
 #include <string.h>
@@ -418,7 +418,7 @@ static void test_filter_rejects_bad_input(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_bike_pf_step(&pf, 40000u, e, 2u, &r));
 }
 
-/* bicycle.h: every documented status, in one table. */
+/* bike.h: every documented status, in one table. */
 static void test_bicycle_h_statuses(void)
 {
     status_table_t t;
@@ -475,7 +475,7 @@ static void test_bicycle_h_statuses(void)
 
 /* Issue 55, items 1 and 2: a sub-step that turns by more than 2 pi keeps the heading in
    (-pi, pi] and equal to the turn's angle modulo 2 pi; the state's ranges are those of
-   bicycle.h (heading (-pi, pi], |x|, |z| < 1e4, speed 0 .. 100, wheelbase < 100). */
+   bike.h (heading (-pi, pi], |x|, |z| < 1e4, speed 0 .. 100, wheelbase < 100). */
 static void test_heading_stays_wrapped_and_ranges_match_the_header(void)
 {
     sbr_bike_model_t m;
@@ -508,7 +508,7 @@ static void test_heading_stays_wrapped_and_ranges_match_the_header(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 1000u, &out));
     s.heading = 0.0f;
     {
-        /* each bound of bicycle.h: the last value inside, the first outside */
+        /* each bound of bike.h: the last value inside, the first outside */
         static const float inside[3] = {9999.0f, 100.0f, 99.0f};
         static const float outside[3] = {1e4f, 100.5f, 100.0f};
         uint32_t k;

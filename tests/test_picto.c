@@ -1,8 +1,8 @@
-/* Unity tests of the class stage's features and classifier (include/sbr/pictogram.h):
+/* Unity tests of the class stage's features and classifier (include/sbr/picto.h):
    feature values on constructed patches, RGB/BGR and scale agreement, softmax values of
    hand-made classifiers, the built-in classifier's consistency, and bad input. */
 #include "unity.h"
-#include "sbr/pictogram.h"
+#include "sbr/picto.h"
 
 #include <math.h>
 #include <string.h>
@@ -319,7 +319,7 @@ static void test_classify_values(void)
 /* A network with 7 hidden units (the classifier works on blocks of four units and four
    outputs: one block and a tail of three) and pseudo-random weights: its probabilities
    and refined box agree with a direct double-precision evaluation of the definitions in
-   pictogram.h. */
+   picto.h. */
 static void test_classify_matches_reference(void)
 {
     enum { HID = 7 };
@@ -444,7 +444,7 @@ static void test_builtin_and_corrupt(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_check(NULL));
 }
 
-/* The rim outlines of pictogram.h, written out independently: (u, v) of the unit box
+/* The rim outlines of picto.h, written out independently: (u, v) of the unit box
    inside `shape` shrunk to k about its centroid. */
 static int rim_in(uint32_t shape, float u, float v, float k)
 {

@@ -1,8 +1,8 @@
-/* Unity tests of the recogniser (include/sbr/recognizer.h): a model learned in the test
+/* Unity tests of the recogniser (include/sbr/recog.h): a model learned in the test
    from one synthetic sign finds the sign again elsewhere, larger, in another frame; the
    built-in model is consistent; bad input gets its status. */
 #include "unity.h"
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 #include "test_status_table.h"
 #include "recog_run.h"
 
@@ -585,7 +585,7 @@ static void test_recog_object(void)
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&rec, &v, NULL, g_dets, 16u, &n, NULL));
 }
 
-/* recognizer.h: every documented status, in one table. */
+/* recog.h: every documented status, in one table. */
 static void test_recognizer_h_statuses(void)
 {
     status_table_t t;

@@ -10,7 +10,7 @@
    cmake/compare_scene.py runs this program on the host and on the emulated Cortex-M4 and
    requires the same detections (the tolerance is documented there). */
 #include "unity.h"
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 #include "recog_run.h"
 
 #include <math.h>

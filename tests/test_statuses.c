@@ -16,7 +16,7 @@
 #include "sbr/image.h"
 #include "sbr/map.h"
 #include "sbr/mser.h"
-#include "sbr/pictogram.h"
+#include "sbr/picto.h"
 #include "sbr/status.h"
 #include "test_status_table.h"
 #include "unity.h"

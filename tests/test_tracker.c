@@ -1,6 +1,6 @@
 /* Channel-based tracker (paper E): model checks, tracking through misses, crossing
    targets, clutter, bad input. */
-#include "sbr/tracker.h"
+#include "sbr/track.h"
 
 #include <math.h>
 #include <string.h>
@@ -557,7 +557,7 @@ void test_config_statuses(void)
     TEST_ASSERT_EQUAL_UINT32(3u, rc.overlap);
 }
 
-/* tracker.h: every documented status, in one table. */
+/* track.h: every documented status, in one table. */
 void test_tracker_h_statuses(void)
 {
     status_table_t t;

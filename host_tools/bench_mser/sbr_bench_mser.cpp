@@ -37,7 +37,7 @@
 extern "C" {
 #include "sbr/map.h"
 #include "sbr/mser.h"
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 }
 
 namespace {

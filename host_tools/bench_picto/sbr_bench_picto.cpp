@@ -1,4 +1,4 @@
-// sbr_bench_picto: time per box of the recogniser's class stage (pictogram.h) on recorded
+// sbr_bench_picto: time per box of the recogniser's class stage (picto.h) on recorded
 // frames: sbr_picto_features() and sbr_picto_classify() with the built-in classifier.
 //
 //   sbr_bench_picto [--data DIR] [--images N] [--boxes N] [--rounds R]
@@ -27,7 +27,7 @@
 #include "gtsdb.hpp"
 
 extern "C" {
-#include "sbr/pictogram.h"
+#include "sbr/picto.h"
 }
 
 namespace {

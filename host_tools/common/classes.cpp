@@ -1,7 +1,7 @@
 #include "classes.hpp"
 
 extern "C" {
-#include "sbr/pictogram.h"
+#include "sbr/picto.h"
 }
 
 namespace sbr_host {

@@ -16,7 +16,7 @@ CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string
 }
 
 void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
-    const std::string g = "Recogniser (include/sbr/recognizer.h; defaults of sbr_recog_config_default())";
+    const std::string g = "Recogniser (include/sbr/recog.h; defaults of sbr_recog_config_default())";
     auto u = [&](const char *name, uint32_t &field, uint32_t lo, uint32_t hi, const char *what) {
         app.add_option(name, field, what)->check(CLI::Range(lo, hi))->capture_default_str()->group(g);
     };

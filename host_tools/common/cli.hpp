@@ -11,7 +11,7 @@
 #include "model_io.hpp"
 
 extern "C" {
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 }
 
 namespace sbr_host {

@@ -1,7 +1,7 @@
 #include "gtsdb.hpp"
 
 extern "C" {
-#include "sbr/pictogram.h"
+#include "sbr/picto.h"
 }
 
 #include <opencv2/imgcodecs.hpp>

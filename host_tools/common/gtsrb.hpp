@@ -13,7 +13,7 @@
 #include "geometry.hpp"
 
 extern "C" {
-#include "sbr/pictogram.h"
+#include "sbr/picto.h"
 }
 
 namespace sbr_host {

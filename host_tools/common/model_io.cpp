@@ -287,7 +287,7 @@ std::string parse_model(const std::string &s, const std::string &path, Model &m)
 std::string write_model_c(const Model &m, const std::string &path, const std::string &header) {
     std::ostringstream o;
     const sbr_model_t &v = m.view;
-    o << comment_block(header) << "#include \"sbr/recognizer.h\"\n\n";
+    o << comment_block(header) << "#include \"sbr/recog.h\"\n\n";
     // The tables are block-scope const objects of the one function that uses them
     // (MISRA C:2012 8.9); they live in flash, the caller's struct only points at them.
     o << "sbr_status_t sbr_model_gtsdb(sbr_model_t *out)\n{\n";
@@ -408,7 +408,7 @@ std::string parse_picto(const std::string &s, const std::string &path, Picto &p)
 std::string write_picto_c(const Picto &p, const std::string &path, const std::string &header) {
     if (!picto_sizes_ok(p)) return "classifier sizes do not match its hidden layer";
     std::ostringstream o;
-    o << comment_block(header) << "#include \"sbr/pictogram.h\"\n\n";
+    o << comment_block(header) << "#include \"sbr/picto.h\"\n\n";
     o << "sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)\n{\n";
     auto table = [&](const char *name, const std::vector<float> &w) {
         o << "    static const float " << name << "[" << w.size() << "] = {";

@@ -17,13 +17,13 @@
 #include <vector>
 
 extern "C" {
-#include "sbr/pictogram.h"
-#include "sbr/recognizer.h"
+#include "sbr/picto.h"
+#include "sbr/recog.h"
 }
 
 namespace sbr_host {
 
-// Owns the weights a sbr_picto_model_t points into (the class stage, pictogram.h).
+// Owns the weights a sbr_picto_model_t points into (the class stage, picto.h).
 // File form (.sbrp), little-endian: "SBRP" | u32 version | u32 features | u32 hidden |
 //   u32 classes (K) | f32 threshold | u32 flags (bit 0: box regression, bit 1: colour
 //   check, bit 2: gate) |
@@ -38,9 +38,9 @@ struct Picto {
     uint32_t classes = 0;  // sign classes (outputs: classes + 1)
     float threshold = 0.5f;
     std::vector<float> w1, w2, w3;  // w3 empty: no box regression
-    std::vector<uint8_t> rim_shape;  // colour check (pictogram.h): empty or `classes` entries each
+    std::vector<uint8_t> rim_shape;  // colour check (picto.h): empty or `classes` entries each
     std::vector<float> rim_floor;
-    std::vector<float> gate;  // the class stage's gate (pictogram.h): empty or its weights
+    std::vector<float> gate;  // the class stage's gate (picto.h): empty or its weights
     uint32_t gate_hidden = 0;
     float gate_threshold = 0.0f;
     sbr_picto_model_t view{};  // pointers refreshed by bind()

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 extern "C" {
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 }
 
 namespace sbr_host {

@@ -12,7 +12,7 @@
 #include <vector>
 
 extern "C" {
-#include "sbr/tracker.h"
+#include "sbr/track.h"
 }
 
 namespace sbr_host {

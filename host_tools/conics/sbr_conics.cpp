@@ -33,7 +33,7 @@
 #include <vector>
 
 extern "C" {
-#include "sbr/bicycle.h"
+#include "sbr/bike.h"
 #include "sbr/conic.h"
 }
 

@@ -40,7 +40,7 @@
 // --min-parts, --vote-error, --verify-error, --min-score, --refine-steps, --refine-first-score, --refine-score,
 //   --views, --view-score, --candidate-score, --candidate-iou, --triangle-view, --triangle-score
 //   override the recogniser's options of those names
-//   (include/sbr/recognizer.h), for tuning and regression; --maps sets parts.maps (bit k =
+//   (include/sbr/recog.h), for tuning and regression; --maps sets parts.maps (bit k =
 //   map kind k of include/sbr/map.h; 0x1 intensity only), --map-subsample
 //   parts.map_subsample, --map-min-area parts.map_min_area and --map-polarity
 //   parts.map_polarity (per kind, in the order intensity, red, blue, yellow; kinds not
@@ -94,7 +94,7 @@
 #endif
 
 extern "C" {
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 }
 
 namespace fs = std::filesystem;

@@ -29,7 +29,7 @@
 #include "recog_run.hpp"
 
 extern "C" {
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 }
 
 using namespace sbr_host;

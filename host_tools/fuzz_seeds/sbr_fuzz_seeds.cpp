@@ -26,9 +26,9 @@
 #include "track_model_io.hpp"
 
 extern "C" {
-#include "sbr/pictogram.h"
-#include "sbr/recognizer.h"
-#include "sbr/tracker.h"
+#include "sbr/picto.h"
+#include "sbr/recog.h"
+#include "sbr/track.h"
 }
 
 namespace fs = std::filesystem;

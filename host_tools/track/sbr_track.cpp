@@ -19,7 +19,7 @@
 #include <vector>
 
 extern "C" {
-#include "sbr/tracker.h"
+#include "sbr/track.h"
 }
 
 #include "baselines.hpp"

@@ -10,7 +10,7 @@
 #include <vector>
 
 extern "C" {
-#include "sbr/tracker.h"
+#include "sbr/track.h"
 }
 
 #include "kitti.hpp"

@@ -1,4 +1,4 @@
-// sbr_train_picto: learns the recogniser's class stage (pictogram.h) from annotated GTSDB
+// sbr_train_picto: learns the recogniser's class stage (picto.h) from annotated GTSDB
 // images: a classifier of candidate boxes into the 43 GTSDB classes and "no sign".
 //
 //   sbr_train_picto [--data DIR] [--range A-B] [--model FILE.sbrm] [--candidates FILE]
@@ -24,9 +24,9 @@
 // --decay 1e-4 (L2 weight decay), --balance 0, --exposure off, --mirror on, --rotate on, --bg-swap
 // round, --bg-fill off, the triangle view on, box regression on (--no-box: a classifier
 // without it).
-// Triangle view (recognizer.h triangle_view, on unless --no-triangle-view): the recogniser
+// Triangle view (recog.h triangle_view, on unless --no-triangle-view): the recogniser
 // classifies each candidate once more with only the inside of a danger sign's triangle in
-// view (pictogram.h SBR_PICTO_OUTLINE_TRIANGLE), so the classifier also learns those
+// view (picto.h SBR_PICTO_OUTLINE_TRIANGLE), so the classifier also learns those
 // views: every fourth copy of every annotated sign (all classes, with their class), every
 // other candidate box and every detection of a later round (below) are added as triangle
 // views with the same label. The background ones matter: a class stage that never saw
@@ -54,7 +54,7 @@
 // 0.839 (precision 0.937, recall 0.759: averaging makes the probabilities less extreme,
 // so fewer boxes reach 0.5) for three times the class stage's weights and multiply-adds,
 // so the class stage stays one network. (These figures are with the recogniser's earlier
-// suppression before the class stage; without it, recognizer.h candidate_iou, seeds 1, 2
+// suppression before the class stage; without it, recog.h candidate_iou, seeds 1, 2
 // and 3 give 0.866, 0.857 and 0.854.)
 // Dropout keeps the 752 x 128 first layer from learning the 636 training signs by heart:
 // without it the classifier names all annotated training boxes correctly but 88 % of the
@@ -128,7 +128,7 @@
 // they count as much as all signs together.
 //
 // Colour check (--rim-check, default 13: the yield sign): for each class listed, the floor
-// of its rim contrast (pictogram.h sbr_picto_rim_contrast(): how much redder the rim is
+// of its rim contrast (picto.h sbr_picto_rim_contrast(): how much redder the rim is
 // than the inside) is learned from its training signs (the 3 % quantile) and stored with
 // the classifier; the recogniser drops candidates of that class below it. Measured on the
 // cross-validation: docs/results/crossval.md. --from-picto FILE: no training, only the
@@ -136,7 +136,7 @@
 // in FILE (--out).
 // --map-subsample, --map-min-area: the part stage the candidates come from (sbr_detect's
 // options of those names; default every map at full resolution).
-// Gate (--gate; off by default): the class stage's cheap first look (pictogram.h
+// Gate (--gate; off by default): the class stage's cheap first look (picto.h
 // sbr_picto_model_t::gate) learned after the classifier, on its candidates of the training
 // images (learn_gate()): --gate-hidden rectified units (default 32, 0..32; 0 = linear),
 // threshold passing --gate-recall of the positive training candidates (default 0.995).
@@ -176,8 +176,8 @@
 #include "recog_run.hpp"
 
 extern "C" {
-#include "sbr/pictogram.h"
-#include "sbr/recognizer.h"
+#include "sbr/picto.h"
+#include "sbr/recog.h"
 }
 
 using namespace sbr_host;
@@ -223,7 +223,7 @@ void sort_samples(std::vector<Sample> &s) {
 }
 
 // Regression target of box b for the sign box g: centre shift in units of b's width and
-// height, log size ratios (pictogram.h, sbr_picto_refine()).
+// height, log size ratios (picto.h, sbr_picto_refine()).
 void box_target(const Box &b, const Box &g, float t[4]) {
     const float bw = float(b.x1 - b.x0), bh = float(b.y1 - b.y0);
     t[0] = float(0.5 * (g.x0 + g.x1) - 0.5 * (b.x0 + b.x1)) / bw;
@@ -586,7 +586,7 @@ bool learn_rim_floors(const std::vector<std::string> &files, const std::map<int,
     return true;
 }
 
-// --gate: the class stage's gate (pictogram.h sbr_picto_model_t::gate), learned on the
+// --gate: the class stage's gate (picto.h sbr_picto_model_t::gate), learned on the
 // candidates the class stage sees on the training images: the recogniser's default part
 // stage (no class stage, every hypothesis, best part score first, the first
 // max_candidates). A candidate is a positive when it covers a sign (IoU >= 0.3) or when

@@ -17,10 +17,10 @@
 #include "sbr/mser.h"
 #include "sbr/can.h"
 #include "sbr/parts.h"
-#include "sbr/recognizer.h"
-#include "sbr/bicycle.h"
+#include "sbr/recog.h"
+#include "sbr/bike.h"
 #include "sbr/conic.h"
-#include "sbr/tracker.h"
+#include "sbr/track.h"
 #include "sbr/servo.h"
 
 /** Library version. */

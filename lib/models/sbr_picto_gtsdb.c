@@ -7,7 +7,7 @@
  * Training: GTSDB images 00000-00599 and GTSRB's training tracks (gtsrb.hpp), 73727 sign samples, 571929 background samples,
  * 310 boxes for the box regression only.
  */
-#include "sbr/pictogram.h"
+#include "sbr/picto.h"
 
 sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)
 {

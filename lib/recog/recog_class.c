@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * Recogniser: the class stage (pictogram classifier) on the candidates. See
- * include/sbr/recognizer.h.
+ * include/sbr/recog.h.
  */
 #include "recog_internal.h"
 

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /*
- * Recogniser: configuration, model check and workspace layout. See include/sbr/recognizer.h.
+ * Recogniser: configuration, model check and workspace layout. See include/sbr/recog.h.
  */
 #include "recog_internal.h"
 

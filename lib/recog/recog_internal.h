@@ -4,7 +4,7 @@
 #ifndef SBR_RECOG_INTERNAL_H
 #define SBR_RECOG_INTERNAL_H
 
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 
 #include "../common/sbr_util.h"
 
@@ -41,7 +41,7 @@ typedef struct recog_hyp_s {
     uint32_t keep;
 } recog_hyp_t;
 
-/* The workspace macros (recognizer.h) count these sizes. */
+/* The workspace macros (recog.h) count these sizes. */
 typedef char recog_vote_size_check[(sizeof(recog_vote_t) == SBR_RECOG_VOTE_BYTES) ? 1 : -1];
 typedef char recog_hyp_size_check[(sizeof(recog_hyp_t) == SBR_RECOG_HYP_BYTES) ? 1 : -1];
 

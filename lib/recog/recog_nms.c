@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * Recogniser: ordering and non-maximum suppression of hypotheses. See
- * include/sbr/recognizer.h.
+ * include/sbr/recog.h.
  */
 #include "recog_internal.h"
 

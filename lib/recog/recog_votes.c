@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * Recogniser: prototype matches -> star-model votes -> hypotheses -> evidence per class
- * and cascade verification. See include/sbr/recognizer.h.
+ * and cascade verification. See include/sbr/recog.h.
  */
 #include "recog_internal.h"
 #include "../fd/fd_internal.h"

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /*
  * Traffic-sign recogniser: parts -> prototype matches -> star-model votes -> hypotheses
- * -> cascade verification -> NMS -> class stage. See include/sbr/recognizer.h; the stages
+ * -> cascade verification -> NMS -> class stage. See include/sbr/recog.h; the stages
  * are in recog_votes.c, recog_nms.c and recog_class.c, the configuration in recog_config.c.
  */
 #include "recog_internal.h"

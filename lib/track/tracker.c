@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* Channel-based multi-target tracker with a learned second-order motion model
-   (paper E). See include/sbr/tracker.h for the method. */
-#include "sbr/tracker.h"
+   (paper E). See include/sbr/track.h for the method. */
+#include "sbr/track.h"
 
 #include <math.h>
 #include <string.h>

@@ -29,7 +29,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 
 #define PSRAM_BASE 0x21000000u
 #define PSRAM_BYTES (16u * 1024u * 1024u)

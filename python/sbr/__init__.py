@@ -30,7 +30,7 @@ __all__ = ["Recognizer", "Detection", "Tracker", "Target", "Ellipse", "ellipse_f
 
 #: GTSDB's superclasses, by superclass()'s index.
 SUPERCLASSES = ("prohibitory", "mandatory", "danger", "other")
-#: The configuration fields Recognizer takes as keyword arguments (include/sbr/recognizer.h
+#: The configuration fields Recognizer takes as keyword arguments (include/sbr/recog.h
 #: documents each; maps, subsample and max_nodes are parts.maps, parts.subsample and
 #: parts.mser.max_nodes).
 CONFIG_FIELDS = tuple(sorted(_sbr.field_names()))
@@ -140,7 +140,7 @@ class Recognizer:
         return [Detection(c, (x, y, w, h), s, sh, p) for c, x, y, w, h, s, sh, p in out]
 
 
-#: The tracker's configuration fields (include/sbr/tracker.h documents each).
+#: The tracker's configuration fields (include/sbr/track.h documents each).
 TRACKER_FIELDS = ("max_targets", "window", "meas_sigma", "gate", "confirm_hits", "max_misses")
 
 
@@ -166,7 +166,7 @@ class Target:
 
 
 class Tracker:
-    """The channel-representation tracker (the thesis's paper E; include/sbr/tracker.h).
+    """The channel-representation tracker (the thesis's paper E; include/sbr/track.h).
 
     model: "kitti" (learned from KITTI car and cyclist tracks: 1242 x 375 images at 10 frames
     per second, window 25 unless given) or "cv" (constant velocity over a width x height

@@ -1,4 +1,4 @@
-// sbr._sbr.Tracker: the channel-representation tracker (include/sbr/tracker.h) with the
+// sbr._sbr.Tracker: the channel-representation tracker (include/sbr/track.h) with the
 // built-in KITTI model or a constant-velocity model; the GIL is released while a step runs.
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
@@ -14,7 +14,7 @@
 #include "bind_common.hpp"
 
 extern "C" {
-#include "sbr/tracker.h"
+#include "sbr/track.h"
 }
 
 namespace nb = nanobind;
@@ -91,7 +91,7 @@ public:
         for (auto kv : fields) set(cfg_, nb::cast<std::string>(kv.first), kv.second);
         const sbr_status_t st = sbr_track_config_check(&cfg_);
         if (st != SBR_OK)
-            refuse_config<sbr_track_config_t>(fields, st, "the tracker", "include/sbr/tracker.h", defaults, set,
+            refuse_config<sbr_track_config_t>(fields, st, "the tracker", "include/sbr/track.h", defaults, set,
                                               [](const sbr_track_config_t &c) { return sbr_track_config_check(&c); });
         bytes_ = sbr_track_workspace_size(&cfg_);
         ws_.reset(new uint64_t[bytes_ / 8 + 1]);

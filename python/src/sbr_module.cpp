@@ -21,7 +21,7 @@
 #include "model_io.hpp"
 
 extern "C" {
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 #include "sbr/status.h"
 }
 
@@ -248,7 +248,7 @@ private:
         const sbr_status_t st = sbr_recog_config_check(&cfg_);
         if (st != SBR_OK)
             sbr_py::refuse_config<sbr_recog_config_t>(
-                given, st, "the recogniser", "include/sbr/recognizer.h",
+                given, st, "the recogniser", "include/sbr/recog.h",
                 [](sbr_recog_config_t &c) { sbr_recog_config_default(&c); }, set_field,
                 [](const sbr_recog_config_t &c) { return sbr_recog_config_check(&c); });
     }

@@ -1,5 +1,5 @@
 // Fuzz harness: the bicycle model (predict, project, wheel pairing) and its particle
-// filter. Statuses: SBR_ERR_RANGE exactly when bicycle.h's ranges of the model, camera and
+// filter. Statuses: SBR_ERR_RANGE exactly when bike.h's ranges of the model, camera and
 // state are broken (header and code say the same). On SBR_OK: states finite with the
 // heading in (-pi, pi], the speed and steering kept; ellipses finite; pairs within capacity
 // with scores >= 0; filter results with finite means and deviations and an effective
@@ -9,7 +9,7 @@
 #include <cstddef>
 
 extern "C" {
-#include "sbr/bicycle.h"
+#include "sbr/bike.h"
 }
 
 namespace {
@@ -31,7 +31,7 @@ bool state_ok(const sbr_bike_state_t &s)
            fz_finite(s.roll);
 }
 
-// bicycle.h's ranges, written out from the header (not from the code)
+// bike.h's ranges, written out from the header (not from the code)
 constexpr float kPi = 3.14159265358979f;
 bool header_model(const sbr_bike_model_t &m)
 {

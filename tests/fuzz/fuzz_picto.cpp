@@ -6,7 +6,7 @@
 #include "fuzz_common.hpp"
 
 extern "C" {
-#include "sbr/pictogram.h"
+#include "sbr/picto.h"
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

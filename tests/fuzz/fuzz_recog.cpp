@@ -11,7 +11,7 @@
 #include <cstddef>
 
 extern "C" {
-#include "sbr/recognizer.h"
+#include "sbr/recog.h"
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -9,7 +9,7 @@
 #include <set>
 
 extern "C" {
-#include "sbr/tracker.h"
+#include "sbr/track.h"
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -15,9 +15,9 @@
 #include "track_model_io.hpp"
 
 extern "C" {
-#include "sbr/pictogram.h"
-#include "sbr/recognizer.h"
-#include "sbr/tracker.h"
+#include "sbr/picto.h"
+#include "sbr/recog.h"
+#include "sbr/track.h"
 
 #include "test_help.hpp"
 }
@@ -146,7 +146,7 @@ int main(int argc, char **argv)
     }
 
     {
-        // the colour check's tables (pictogram.h rim_shape, rim_floor; flags bit 1): they
+        // the colour check's tables (picto.h rim_shape, rim_floor; flags bit 1): they
         // load and save back; without them the file is the same minus the tables (older
         // files load); damaged tables are refused
         sbr_host::Picto with = sbr_host::picto_from_view(pv), without = with;
@@ -193,7 +193,7 @@ int main(int argc, char **argv)
     }
 
     {
-        // the gate (pictogram.h gate, gate_hidden, gate_threshold; flags bit 2): it loads
+        // the gate (picto.h gate, gate_hidden, gate_threshold; flags bit 2): it loads
         // and saves back; a hidden layer above the maximum, a non-finite weight or a
         // truncated gate are refused
         sbr_host::Picto with = sbr_host::picto_from_view(pv);

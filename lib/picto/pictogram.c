@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The recogniser's class stage: features of a candidate box and their classifier
-   (pictogram.h). */
-#include "sbr/pictogram.h"
+   (picto.h). */
+#include "sbr/picto.h"
 
 #include "picto_internal.h"
 
@@ -395,7 +395,7 @@ static void unit_norm(float *f, uint32_t n)
 }
 
 /* The columns [*u0, *u1) of patch row v that lie inside the upward triangle inscribed in
-   the patch, grown by one patch pixel (pictogram.h SBR_PICTO_OUTLINE_TRIANGLE): apex at
+   the patch, grown by one patch pixel (picto.h SBR_PICTO_OUTLINE_TRIANGLE): apex at
    (PS / 2, -1), base from (-1, PS + 1) to (PS + 1, PS + 1), pixel centres tested. At row
    v's centre the triangle is (v + 1.5) / 2 wide on either side of the middle, a quarter
    pixel off every pixel centre, so rounding cannot move a pixel in or out. */

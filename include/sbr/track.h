@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /**
- * @file tracker.h
+ * @file track.h
  * @brief Channel-based multi-target tracking with a learned second-order motion model
  *        (paper E).
  *
@@ -57,8 +57,8 @@
  * Memory: all densities live in a caller workspace (sbr_track_workspace_size(),
  * ::SBR_TRACK_WORKSPACE_SIZE); the instance is a plain struct. No heap, no globals.
  */
-#ifndef SBR_TRACKER_H
-#define SBR_TRACKER_H
+#ifndef SBR_TRACK_H
+#define SBR_TRACK_H
 
 #include "sbr/channel.h"
 #include "sbr/types.h"
@@ -322,4 +322,4 @@ sbr_status_t sbr_track_step(sbr_track_t *trk, uint32_t dt_us, const sbr_track_de
 }
 #endif
 
-#endif /* SBR_TRACKER_H */
+#endif /* SBR_TRACK_H */

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The class stage's looks at boxes: features and classifier with their buffers in one
-   workspace whose layout stays here (pictogram.h, sbr_picto_look()). */
-#include "sbr/pictogram.h"
+   workspace whose layout stays here (picto.h, sbr_picto_look()). */
+#include "sbr/picto.h"
 
 #include "picto_internal.h"
 

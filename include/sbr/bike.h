@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /**
- * @file bicycle.h
+ * @file bike.h
  * @brief Bicycle tracking from wheel ellipses (paper B): the projection of a bicycle's
  *        wheels, pairing of wheel ellipses in an image, and a bootstrap particle filter
  *        on a kinematic bicycle model with roll.
@@ -29,8 +29,8 @@
  * caller-provided workspace and its random generator (xorshift32, seeded by the
  * configuration) in its instance, so a run is repeatable bit for bit on one platform.
  */
-#ifndef SBR_BICYCLE_H
-#define SBR_BICYCLE_H
+#ifndef SBR_BIKE_H
+#define SBR_BIKE_H
 
 #include "sbr/conic.h"
 #include "sbr/types.h"
@@ -310,4 +310,4 @@ sbr_status_t sbr_bike_pf_step(sbr_bike_pf_t *pf, uint32_t dt_us, const sbr_ellip
 }
 #endif
 
-#endif /* SBR_BICYCLE_H */
+#endif /* SBR_BIKE_H */

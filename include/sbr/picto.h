@@ -1,10 +1,10 @@
 /* SPDX-License-Identifier: MIT */
 /**
- * @file pictogram.h
+ * @file picto.h
  * @brief The recogniser's class stage: what a candidate sign box contains, from the
  *        shape of its pictogram.
  *
- * The part model (recognizer.h) finds where signs are and their outline, but small
+ * The part model (recog.h) finds where signs are and their outline, but small
  * pictograms (a "3" against an "8" at 20 px) rarely give stable contours of their own. This
  * stage looks at the whole candidate box instead:
  *
@@ -35,8 +35,8 @@
  * Bounded work: one box costs SBR_PICTO_SIZE^2 x (up to 16) samples plus the classifier's
  * multiply-adds ((features + 1) x hidden + (hidden + 1) x outputs). No heap, no statics.
  */
-#ifndef SBR_PICTOGRAM_H
-#define SBR_PICTOGRAM_H
+#ifndef SBR_PICTO_H
+#define SBR_PICTO_H
 
 #include "sbr/image.h"
 
@@ -398,4 +398,4 @@ sbr_status_t sbr_picto_look_gate(const sbr_picto_model_t *model, const sbr_image
 }
 #endif
 
-#endif /* SBR_PICTOGRAM_H */
+#endif /* SBR_PICTO_H */

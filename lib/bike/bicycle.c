@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* Bicycle tracking from wheel ellipses (paper B): projection, wheel pairing, bootstrap
-   particle filter. See include/sbr/bicycle.h. */
-#include "sbr/bicycle.h"
+   particle filter. See include/sbr/bike.h. */
+#include "sbr/bike.h"
 
 #include <math.h>
 #include <string.h>

@@ -4,7 +4,7 @@
 #ifndef SBR_PICTO_INTERNAL_H
 #define SBR_PICTO_INTERNAL_H
 
-#include "sbr/pictogram.h"
+#include "sbr/picto.h"
 
 /* sbr_picto_refine() from the last layer's inputs `in` instead of the features: the
    rectified hidden units that sbr_picto_classify() leaves at the start of its workspace

@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: MIT */
 /**
- * @file recognizer.h
+ * @file recog.h
  * @brief Traffic-sign recognition from the shapes of regions (thesis paper D): channel
  *        maps -> MSER regions -> outer contours -> Fourier descriptors ("parts") ->
  *        matching against a prototype library -> star-model votes for the sign centre and
@@ -48,7 +48,7 @@
  *    badly, and suppressing on part scores dropped it before the class stage saw it).
  * 6. Class stage (when the recogniser has one, sbr_recog_init()'s `picto`): the surviving hypotheses
  *    (at most `max_candidates`, best part score first) are the candidates; the pictogram
- *    classifier (pictogram.h) looks at each box and gives the class (its most probable
+ *    classifier (picto.h) looks at each box and gives the class (its most probable
  *    sign class) and the score (that probability; "no sign" takes the rest). When the
  *    classifier has a box regression, a candidate is moved to the box the regression
  *    predicts and classified again there (`refine_steps` times at most: the first move
@@ -80,11 +80,11 @@
  * Everything lives in the caller's workspace (sbr_recog_workspace_size()); the model's
  * tables are only read. No heap, no statics.
  */
-#ifndef SBR_RECOGNIZER_H
-#define SBR_RECOGNIZER_H
+#ifndef SBR_RECOG_H
+#define SBR_RECOG_H
 
 #include "sbr/parts.h"
-#include "sbr/pictogram.h"
+#include "sbr/picto.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -236,7 +236,7 @@ typedef struct sbr_recog_config_s {
         hypothesis is a candidate). Larger: less class-stage work, lower recall. */
     float candidate_score;
     /** With a class stage: candidates classified per frame, best part score first
-        (bounds its work: each costs one pictogram, see pictogram.h). Default 256; a
+        (bounds its work: each costs one pictogram, see picto.h). Default 256; a
         1360 x 800 street frame has several hundred hypotheses, so the bound is usually
         reached: that is its purpose, and ::SBR_RECOG_HIT_CANDIDATES says so. Larger: more
         recall on signs with weak part evidence, more time. */
@@ -390,7 +390,7 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
 #define SBR_RECOG_INDEX_BYTES 12u /**< the part index, per part */
 #define SBR_RECOG_VOTE_BYTES 32u  /**< per vote */
 #define SBR_RECOG_HYP_BYTES 52u   /**< per hypothesis */
-/** The class stage's block: its looks' workspace (pictogram.h), then the class
+/** The class stage's block: its looks' workspace (picto.h), then the class
     probabilities of a box and their mean over views. */
 #define SBR_RECOG_CLASS_BYTES \
     (SBR_WS_ALIGN8(SBR_PICTO_LOOK_WORKSPACE_SIZE) + \
@@ -504,4 +504,4 @@ sbr_status_t sbr_recog_detect(sbr_recog_t *rec, const sbr_image_t *img, const sb
 }
 #endif
 
-#endif /* SBR_RECOGNIZER_H */
+#endif /* SBR_RECOG_H */
