@@ -93,11 +93,6 @@ static float wrap_angle(float a)
     return r;
 }
 
-static float clampf(float v, float lo, float hi)
-{
-    return fminf(fmaxf(v, lo), hi);
-}
-
 /* ---------------------------------------------------------------- model */
 
 void sbr_bike_model_default(sbr_bike_model_t *model)
@@ -848,9 +843,9 @@ static void predict_particles(sbr_bike_pf_t *pf, float dt)
         s->x += pf->cfg.position_noise * sq * rng_gauss(&pf->rng);
         s->z += pf->cfg.position_noise * sq * rng_gauss(&pf->rng);
         s->heading = wrap_angle(s->heading + (pf->cfg.heading_noise * sq * rng_gauss(&pf->rng)));
-        s->speed = clampf(s->speed + (pf->cfg.speed_noise * sq * rng_gauss(&pf->rng)), 0.0f, BIKE_MAX_SPEED);
-        s->steer = clampf(s->steer + (pf->cfg.steer_noise * sq * rng_gauss(&pf->rng)), -BIKE_MAX_STEER, BIKE_MAX_STEER);
-        s->roll = clampf(s->roll + (pf->cfg.roll_noise * sq * rng_gauss(&pf->rng)), -BIKE_MAX_ROLL, BIKE_MAX_ROLL);
+        s->speed = sbr_util_clampf(s->speed + (pf->cfg.speed_noise * sq * rng_gauss(&pf->rng)), 0.0f, BIKE_MAX_SPEED);
+        s->steer = sbr_util_clampf(s->steer + (pf->cfg.steer_noise * sq * rng_gauss(&pf->rng)), -BIKE_MAX_STEER, BIKE_MAX_STEER);
+        s->roll = sbr_util_clampf(s->roll + (pf->cfg.roll_noise * sq * rng_gauss(&pf->rng)), -BIKE_MAX_ROLL, BIKE_MAX_ROLL);
     }
 }
 

@@ -132,6 +132,19 @@ static inline float sbr_util_minf(float a, float b)
     return r;
 }
 
+/* v limited to lo .. hi (lo <= hi); NaN gives lo, so a cast of the result is defined. */
+static inline float sbr_util_clampf(float v, float lo, float hi)
+{
+    float r = v;
+    if (!(v >= lo)) {
+        r = lo;
+    }
+    if (r > hi) {
+        r = hi;
+    }
+    return r;
+}
+
 /* Intersection over union of two boxes x0, y0, x1, y1 (exclusive); 0 when they do not
    overlap or the union is empty. */
 static inline float sbr_util_box_iou(const float a[4], const float b[4])

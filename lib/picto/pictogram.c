@@ -35,18 +35,6 @@
 /* One over the square root of two: the diagonal axes. */
 #define DIAG 0.70710678f
 
-static float picto_clampf(float v, float lo, float hi)
-{
-    float r = v;
-    if (r < lo) {
-        r = lo;
-    }
-    if (r > hi) {
-        r = hi;
-    }
-    return r;
-}
-
 static int finite4(const float b[4])
 {
     int ok = 1;
@@ -221,7 +209,7 @@ static void picto_taps(float start, float step, uint32_t n, uint32_t size, uint3
     for (u = 0u; u < count; u++) {
         uint32_t i;
         for (i = 0u; i < n; i++) {
-            const float c = picto_clampf(
+            const float c = sbr_util_clampf(
                 start + (step * ((float)u + (((float)i + 0.5f) / (float)n))) - 0.5f, 0.0f, cmax);
             picto_tap_t *tp = &t[(u * n) + i];
             uint32_t c0 = (uint32_t)c;
@@ -337,8 +325,8 @@ static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap
     float acc[3][PS]; /* a local array: the compiler knows the rows do not alias it */
     const float sx = (box[2] - box[0]) / (float)PS;
     const float sy = (box[3] - box[1]) / (float)PS;
-    const uint32_t nx = (uint32_t)picto_clampf(ceilf(sx), 1.0f, 4.0f);
-    const uint32_t ny = (uint32_t)picto_clampf(ceilf(sy), 1.0f, 4.0f);
+    const uint32_t nx = (uint32_t)sbr_util_clampf(ceilf(sx), 1.0f, 4.0f);
+    const uint32_t ny = (uint32_t)sbr_util_clampf(ceilf(sy), 1.0f, 4.0f);
     const float inv = 1.0f / ((float)nx * (float)ny);
     const picto_tap_t *tx = taps;
     const picto_tap_t *ty = &taps[PS * 4u];
@@ -954,10 +942,10 @@ sbr_status_t sbr_picto_priv_refine_from(const sbr_picto_model_t *model, const fl
         if (all_finite(d, SBR_PICTO_BOX_OUTPUTS) == 0) {
             return SBR_ERR_RANGE; /* features so large that the regression overflows */
         }
-        cx += 2.0f * hw * picto_clampf(d[0], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);
-        cy += 2.0f * hh * picto_clampf(d[1], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);
-        hw *= expf(picto_clampf(d[2], -SBR_PICTO_MAX_LOG_SCALE, SBR_PICTO_MAX_LOG_SCALE));
-        hh *= expf(picto_clampf(d[3], -SBR_PICTO_MAX_LOG_SCALE, SBR_PICTO_MAX_LOG_SCALE));
+        cx += 2.0f * hw * sbr_util_clampf(d[0], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);
+        cy += 2.0f * hh * sbr_util_clampf(d[1], -SBR_PICTO_MAX_SHIFT, SBR_PICTO_MAX_SHIFT);
+        hw *= expf(sbr_util_clampf(d[2], -SBR_PICTO_MAX_LOG_SCALE, SBR_PICTO_MAX_LOG_SCALE));
+        hh *= expf(sbr_util_clampf(d[3], -SBR_PICTO_MAX_LOG_SCALE, SBR_PICTO_MAX_LOG_SCALE));
     }
     refined[0] = cx - hw;
     refined[1] = cy - hh;
