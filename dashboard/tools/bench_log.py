@@ -108,6 +108,11 @@ def main():
     ap.add_argument("--mode", choices=("terminal", "web", "both"), default="both")
     ap.add_argument("--log", help="replay this log instead of writing one (its frame count is --frames)")
     a = ap.parse_args()
+    if a.frames < 1:
+        ap.error("--frames: at least 1")
+    if a.log and not os.path.isfile(a.log):
+        print(f"bench_log.py: --log {a.log}: no such file", file=sys.stderr)
+        return 2
     path = a.log or os.path.join(os.environ.get("TMPDIR", "/tmp"), f"sbr_bench_{a.frames}.log")
     if not a.log:
         t0 = time.monotonic()
