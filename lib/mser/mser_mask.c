@@ -1,0 +1,148 @@
+/* SPDX-License-Identifier: MIT */
+/* A region of sbr_mser_detect() rebuilt from the map as a mask of its bounding box
+   (sbr_mser_region_mask()): a fill from its seed over the pixels of its level or beyond.
+   See include/sbr/mser.h. */
+#include "sbr/mser.h"
+
+#include "../common/sbr_util.h"
+
+#include <string.h>
+
+static int mser_pass_level(uint8_t v, const sbr_mser_region_t *r)
+{
+    int in = 0;
+    if (r->polarity == (uint8_t)SBR_MSER_DARK) {
+        if (v <= r->level) {
+            in = 1;
+        }
+    } else {
+        if (v >= r->level) {
+            in = 1;
+        }
+    }
+    return in;
+}
+
+/* One neighbour (nx, ny) of the region mask's fill: marked and stacked if it is in the
+   region and not marked yet. */
+static void mask_grow(const sbr_image_t *map, const sbr_mser_region_t *r, uint8_t *mask,
+                      uint32_t mask_stride, uint32_t nx, uint32_t ny, uint32_t *stack,
+                      uint32_t *sp, uint32_t *filled)
+{
+    uint8_t *m = &mask[((size_t)ny * mask_stride) + nx];
+    if (*m == 0u) {
+        const uint8_t v =
+            map->data[((size_t)(ny + r->bbox.y) * map->stride) + (size_t)(nx + r->bbox.x)];
+        if (mser_pass_level(v, r) != 0) {
+            *m = 255u;
+            stack[*sp] = (ny << 16) | nx;
+            (*sp)++;
+            (*filled)++;
+        }
+    }
+}
+
+/* A region that lies inside the map, one pixel off its border, with its seed inside its
+   box and an area the box can hold. */
+static int region_in_map(const sbr_image_t *map, const sbr_mser_region_t *region)
+{
+    const sbr_rect_t *b = &region->bbox;
+    int ok = 1;
+    if ((region->polarity != (uint8_t)SBR_MSER_DARK) &&
+        (region->polarity != (uint8_t)SBR_MSER_BRIGHT)) {
+        ok = 0;
+    } else if ((b->width == 0u) || (b->height == 0u) || (b->x < 1u) || (b->y < 1u) ||
+               (b->x >= (map->width - 1u)) || (b->y >= (map->height - 1u)) ||
+               (b->width > ((map->width - 1u) - b->x)) ||
+               (b->height > ((map->height - 1u) - b->y)) ||
+               ((uint32_t)region->seed_x < b->x) || ((uint32_t)region->seed_y < b->y) ||
+               ((uint32_t)region->seed_x >= (b->x + b->width)) ||
+               ((uint32_t)region->seed_y >= (b->y + b->height)) || (region->area == 0u) ||
+               (region->area > (b->width * b->height))) {
+        ok = 0;
+    } else {
+        /* inside */
+    }
+    return ok;
+}
+
+/* Flood fill of the region's pixels from its seed (already set in the mask and pushed);
+   returns the number of pixels filled. */
+static uint32_t mask_fill(const sbr_image_t *map, const sbr_mser_region_t *region, uint8_t *mask,
+                          uint32_t mask_stride, uint32_t *stack)
+{
+    const sbr_rect_t *b = &region->bbox;
+    uint32_t sp = 1u;
+    uint32_t filled = 1u;
+    while (sp > 0u) {
+        /* stack entries pack (y, x) in 16 bits each (region boxes are below 65536 px) */
+        uint32_t lx;
+        uint32_t ly;
+        sp--;
+        ly = stack[sp] >> 16;
+        lx = stack[sp] & 0xFFFFu;
+        if ((lx + 1u) < b->width) {
+            mask_grow(map, region, mask, mask_stride, lx + 1u, ly, stack, &sp, &filled);
+        }
+        if ((ly + 1u) < b->height) {
+            mask_grow(map, region, mask, mask_stride, lx, ly + 1u, stack, &sp, &filled);
+        }
+        if (lx > 0u) {
+            mask_grow(map, region, mask, mask_stride, lx - 1u, ly, stack, &sp, &filled);
+        }
+        if (ly > 0u) {
+            mask_grow(map, region, mask, mask_stride, lx, ly - 1u, stack, &sp, &filled);
+        }
+    }
+    return filled;
+}
+
+sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_t *region,
+                                  void *workspace, size_t workspace_size, uint8_t *mask,
+                                  uint32_t mask_stride, size_t mask_size)
+{
+    sbr_status_t st;
+    const sbr_rect_t *b;
+    uint32_t *stack;
+    uint32_t y;
+    uint32_t sx;
+    uint32_t sy;
+
+    if ((map == NULL) || (region == NULL) || (mask == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    st = sbr_image_check(map);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((map->format != SBR_PIXEL_GRAY8) || (map->width < 3u) || (map->height < 3u) ||
+        (region_in_map(map, region) == 0)) {
+        return SBR_ERR_RANGE;
+    }
+    b = &region->bbox;
+    if ((mask_stride < b->width) ||
+        (mask_size < (((size_t)(b->height - 1u) * mask_stride) + (size_t)b->width))) {
+        return SBR_ERR_ALIGN;
+    }
+    if ((workspace == NULL) ||
+        (workspace_size < SBR_MSER_MASK_WORKSPACE_SIZE(b->width, b->height)) ||
+        (sbr_util_aligned(workspace, 4u) == 0)) {
+        return SBR_ERR_WORKSPACE;
+    }
+    stack = (uint32_t *)workspace;
+    for (y = 0u; y < b->height; y++) {
+        (void)memset(&mask[(size_t)y * mask_stride], 0, (size_t)b->width);
+    }
+    if (mser_pass_level(map->data[((size_t)region->seed_y * map->stride) + region->seed_x],
+                        region) == 0) {
+        return SBR_ERR_CORRUPT;
+    }
+    sx = (uint32_t)region->seed_x - b->x;
+    sy = (uint32_t)region->seed_y - b->y;
+    mask[((size_t)sy * mask_stride) + sx] = 255u;
+    stack[0] = (sy << 16) | sx;
+    if (mask_fill(map, region, mask, mask_stride, stack) != region->area) {
+        return SBR_ERR_CORRUPT;
+    }
+    return SBR_OK;
+}
