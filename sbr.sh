@@ -137,28 +137,31 @@ setup_venv() {
   fi
 }
 
-# configure NAME [cmake args...]: one build tree per configuration under build/.
+# configure_build PRESET: the build tree of a configure preset of CMakePresets.json (every
+# build configuration is there: cmake --list-presets) in $BUILD/PRESET. The paths the
+# presets give under build/ follow SBR_BUILD_ROOT when it is set.
 configure_build() {
-  local name="$1"; shift
+  local name="$1" paths=()
+  case "$name" in
+    native) paths=(-DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
+                   -DSBR_COST_M4_ELF="$BUILD/cortex-m4/ports/cortex_m/sbr_cost_m4.elf"
+                   -DSBR_DATA_DIR="$DATA") ;;
+    sanitize) paths=(-DUNITY_ROOT="$(unity_root)") ;;
+    cortex-m4|armhf) paths=(-DUNITY_ROOT="$(unity_root)" -DSBR_HOST_TESTS_DIR="$BUILD/native/tests") ;;
+  esac
   log "build $name"
-  cmake -S "$ROOT" -B "$BUILD/$name" -G Ninja "$@" > "$BUILD/$name.configure.log" 2>&1 \
+  cmake --preset "$name" -S "$ROOT" -B "$BUILD/$name" ${paths[@]+"${paths[@]}"} > "$BUILD/$name.configure.log" 2>&1 \
     || { cat "$BUILD/$name.configure.log"; return 1; }
   cmake --build "$BUILD/$name" -j "$JOBS"
 }
 
 # The native build with tests and host tools (the test command, detect and train share it).
-build_native() {
-  configure_build native -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSBR_BUILD_TESTS=ON -DSBR_BUILD_HOST_TOOLS=ON -DSBR_VENV_PYTHON="$BUILD/venv/bin/python" \
-    -DSBR_COST_M4_ELF="$BUILD/cortex-m4/ports/cortex_m/sbr_cost_m4.elf"
-}
+build_native() { configure_build native; }
 
 unity_root() { echo "$BUILD/native/_deps/unity"; }
 
 # The fuzz harnesses (clang, libFuzzer + ASan + UBSan) in build/fuzz.
-build_fuzz() {
-  configure_build fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \
-    -DCMAKE_CXX_COMPILER=clang++ -DSBR_FUZZ=ON -DSBR_BUILD_TESTS=OFF -DSBR_BUILD_HOST_TOOLS=OFF
-}
+build_fuzz() { configure_build fuzz; }
 
 # Seed corpora from real data (GTSDB crops, MPEG-7 contours, the models, the DBC's
 # frames) in build/fuzz-seeds; needs the native build (sbr_fuzz_seeds) and the venv.
@@ -180,43 +183,25 @@ cmd_test() {
   esac
   setup
   mkdir -p "$BUILD"
-  local failed=0 summary=()
+  local failed=0
   build_native
-  configure_build sanitize -DCMAKE_BUILD_TYPE=Debug -DSBR_SANITIZE=ON -DSBR_BUILD_HOST_TOOLS=OFF \
-    -DUNITY_ROOT="$(unity_root)"
-  configure_build cortex-m4 -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-cortex-m4f.cmake" \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUNITY_ROOT="$(unity_root)" -DSBR_HOST_TESTS_DIR="$BUILD/native/tests"
-  configure_build armhf -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-armhf-linux.cmake" \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUNITY_ROOT="$(unity_root)" -DSBR_HOST_TESTS_DIR="$BUILD/native/tests"
-  configure_build cortex-m7 -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-cortex-m7.cmake" \
-    -DCMAKE_BUILD_TYPE=MinSizeRel
+  configure_build sanitize
+  configure_build cortex-m4
+  configure_build armhf
+  configure_build cortex-m7
   build_fuzz
 
-  local total_pass=0 total_fail=0 total_skip=0
+  local junit=()
   for name in native sanitize cortex-m4 armhf; do
     log "ctest $name"
     local out="$BUILD/$name.ctest.log"
+    # as the test presets of CMakePresets.json run it; the JUnit file keeps each test's
+    # whole output for the summary (tests/test_summary.py)
     if ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-       ctest --test-dir "$BUILD/$name" --output-on-failure -j "$JOBS" > "$out" 2>&1; then :; else failed=1; fi
+       ctest --test-dir "$BUILD/$name" --output-on-failure -j "$JOBS" --output-junit "$BUILD/$name.junit.xml" \
+         --test-output-size-passed 1000000 --test-output-size-failed 1000000 > "$out" 2>&1; then :; else failed=1; fi
     grep -E "Test +#|tests passed|FAILED|\*\*\*" "$out" || true
-    # ctest's count of executables and gates, and Unity's count of test cases
-    local line passed_n failed_n skipped_n cases skipped_names
-    line="$(grep -E "tests passed, [0-9]+ tests failed out of" "$out" | tail -1)"
-    failed_n="$(echo "$line" | sed -E 's/.* ([0-9]+) tests failed out of ([0-9]+).*/\1/')"
-    # a skipped test (its documented cause only, e.g. no vcan interface) is no pass
-    skipped_n="$(grep -cE "^\s+[0-9]+ - .*\(Skipped\)" "$out" || true)"
-    skipped_names="$(grep -E "^\s+[0-9]+ - .*\(Skipped\)" "$out" | sed -E 's/^\s+[0-9]+ - ([^ ]+).*/\1/' | paste -sd, - || true)"
-    passed_n="$(( $(echo "$line" | sed -E 's/.*out of ([0-9]+).*/\1/') - failed_n - skipped_n ))"
-    cases="$(grep -hE "^[0-9]+ Tests [0-9]+ Failures" "$BUILD/$name/Testing/Temporary/LastTest.log" \
-             | awk '{t+=$1; f+=$3} END {printf "%d Unity test cases, %d failed", t, f}')"
-    summary+=("$name: ctest $passed_n passed, $failed_n failed, $skipped_n skipped${skipped_names:+ ($skipped_names)} ($cases)")
-    if [ "$skipped_n" -gt 0 ]; then
-      # shellcheck disable=SC2046
-      while IFS= read -r why; do summary+=("$why"); done < <(python3 "$ROOT/tests/skip_reasons.py" \
-        "$BUILD/$name/Testing/Temporary/LastTest.log" $(echo "$skipped_names" | tr ',' ' '))
-    fi
-    total_pass=$((total_pass + passed_n)); total_fail=$((total_fail + failed_n))
-    total_skip=$((total_skip + skipped_n))
+    junit+=(--ctest "$name=$BUILD/$name.junit.xml")
   done
   log "Cortex-M4 size / static RAM / stack report"
   ctest --test-dir "$BUILD/cortex-m4" -R "report_cortex_m_size_stack|gate_fft_tables_dropped" -V 2>/dev/null \
@@ -230,41 +215,25 @@ cmd_test() {
     | grep -vE "^(Test command|Working Directory|Test timeout)" || true
   # every build type of the core with -Werror: gcc, clang, arm-none-eabi
   log "build matrix"
-  local matrix_line
   if python3 "$ROOT/cmake/build_matrix.py" --source "$ROOT" --work "$BUILD/matrix" --jobs "$JOBS" \
        > "$BUILD/matrix.log" 2>&1; then :; else failed=1; fi
   grep -vE "^build matrix: " "$BUILD/matrix.log" || true
-  matrix_line="$(grep -E "^build matrix: " "$BUILD/matrix.log" | tail -1)"
-  [ -n "$matrix_line" ] || { cat "$BUILD/matrix.log"; failed=1; matrix_line="build matrix: did not run"; }
 
   # the fuzz harnesses, a fixed number of runs each after the seeds (fresh corpus)
   log "fuzz smoke"
-  local fuzz_line
   make_fuzz_seeds
   rm -rf "$BUILD/fuzz-smoke"
   if python3 "$ROOT/tests/fuzz/run_fuzz.py" --bin "$BUILD/fuzz/tests/fuzz" --corpus "$BUILD/fuzz-smoke" \
        --seeds "$BUILD/fuzz-seeds" --runs "${SBR_FUZZ_SMOKE_RUNS:-3000}" --jobs "$JOBS" \
        > "$BUILD/fuzz-smoke.log" 2>&1; then :; else failed=1; fi
   grep -vE "^fuzz: " "$BUILD/fuzz-smoke.log" || true
-  fuzz_line="$(grep -E "^fuzz: " "$BUILD/fuzz-smoke.log" | tail -1)"
-  [ -n "$fuzz_line" ] || { cat "$BUILD/fuzz-smoke.log"; failed=1; fuzz_line="fuzz: did not run"; }
 
   log "summary"
-  printf '%s\n' "${summary[@]}"
   echo "cortex-m7: core built (-mcpu=cortex-m7 -mfpu=fpv5-sp-d16), no tests run"
-  echo "${matrix_line} (core, every build type)"
-  echo "${fuzz_line/fuzz:/fuzz smoke:} (harnesses)"
   # every part that decides the exit status: the ctest entries of the four builds, the
   # build matrix's builds, the fuzz harnesses' smoke runs
-  local mp mf fp ff
-  mp="$(echo "$matrix_line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\1/p')"
-  mf="$(echo "$matrix_line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\2/p')"
-  fp="$(echo "$fuzz_line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\1/p')"
-  ff="$(echo "$fuzz_line" | sed -nE 's/.* ([0-9]+) passed, ([0-9]+) failed.*/\2/p')"
-  [ -n "$mp" ] || { mp=0; mf=1; }
-  [ -n "$fp" ] || { fp=0; ff=1; }
-  echo "total: $((total_pass + mp + fp)) passed, $((total_fail + mf + ff)) failed, ${total_skip} skipped" \
-       "(ctest $((total_pass + total_fail + total_skip)), build matrix $((mp + mf)), fuzz harnesses $((fp + ff)))"
+  python3 "$ROOT/tests/test_summary.py" "${junit[@]}" --matrix "$BUILD/matrix.log" \
+    --fuzz "$BUILD/fuzz-smoke.log" || failed=1
   echo "set-up output: $SETUP_LOG; each build's test log: $BUILD/<build>.ctest.log"
   return "$failed"
 }
@@ -454,8 +423,7 @@ cmd_cost() {
   case "${1:-}" in -h|--help) python3 "$ROOT/host_tools/bench_cost/sbr_cost.py" --help; return 0 ;; esac
   setup
   build_native
-  configure_build cortex-m4 -DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchain-cortex-m4f.cmake" \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUNITY_ROOT="$(unity_root)" -DSBR_HOST_TESTS_DIR="$BUILD/native/tests"
+  configure_build cortex-m4
   local out="$ROOT/out/cost" args=()
   while [ $# -gt 0 ]; do
     case "$1" in
