@@ -347,7 +347,7 @@ on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model FILE 
   fi
   local wrote=()
   for f in detections.txt detections_all.txt annotated sbr_can.log summary.txt evaluation.txt pr_curve.png overview.png; do
-    [ -e "$out/$f" ] && wrote+=("$f$([ -d "$out/$f" ] && echo /)")
+    if [ -d "$out/$f" ]; then wrote+=("$f/"); elif [ -e "$out/$f" ]; then wrote+=("$f"); fi
   done
   log "wrote $out: $(printf '%s, ' "${wrote[@]}" | sed 's/, $//')"
   [ "$status" -eq 0 ] || echo "sbr.sh detect: some images failed (listed in $out/summary.txt)" >&2
