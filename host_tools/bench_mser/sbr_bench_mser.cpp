@@ -5,7 +5,7 @@
 //   sbr_bench_mser [--data DIR] [--first N] [--images N] [--map intensity|blue]
 //                  [--subsample S] [--rounds R] [--peer]
 //
-// Defaults: --data ../shared/data/gtsdb (its FullIJCNN2013 folder when it has one),
+// Defaults: --data DATA/gtsdb (DATA: the build's SBR_DATA_DIR) (its FullIJCNN2013 folder when it has one),
 // --first 400, --images 20 (frames 00400-00419), --map intensity, --subsample 1,
 // --rounds 3. Per frame the best round counts (the least disturbed by other load).
 // Prints: images, pixels per map, mean and median ms per map (both polarities), ns per
@@ -43,7 +43,7 @@ extern "C" {
 namespace {
 
 struct Options {
-    std::string data = "../shared/data/gtsdb", map = "intensity";
+    std::string data = std::string(SBR_DATA_ROOT) + "/gtsdb", map = "intensity";
     int first = 400, images = 20, subsample = 1, rounds = 3;
     bool peer = false;
 };

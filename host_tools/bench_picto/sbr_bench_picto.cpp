@@ -3,7 +3,7 @@
 //
 //   sbr_bench_picto [--data DIR] [--images N] [--boxes N] [--rounds R]
 //
-// Defaults: --data ../shared/data/gtsdb (GTSDB images 00400, 00450, 00500, ... of the
+// Defaults: --data DATA/gtsdb (DATA: the build's SBR_DATA_DIR) (GTSDB images 00400, 00450, 00500, ... of the
 // folder or its FullIJCNN2013), --images 3, --boxes 3000 per image, --rounds 15. The
 // boxes are fixed (12-130 px, some reaching past the image border), so two builds see the
 // same work.
@@ -46,7 +46,7 @@ void box_of(int i, uint32_t w, uint32_t h, float b[4]) {
 }  // namespace
 
 int main(int argc, char **argv) {
-    std::string data = "../shared/data/gtsdb";
+    std::string data = std::string(SBR_DATA_ROOT) + "/gtsdb";
     int images = 3, boxes = 3000, rounds = 15;
     CLI::App app{"sbr_bench_picto: time per box of the class stage's features and classifier"};
     app.add_option("--data", data, "GTSDB folder")->capture_default_str();

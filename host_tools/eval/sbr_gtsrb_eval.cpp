@@ -12,7 +12,7 @@
 using namespace sbr_host;
 
 int main(int argc, char **argv) {
-    std::string gtsrb = "../shared/data/gtsrb", picto_path, split = "validation";
+    std::string gtsrb = std::string(SBR_DATA_ROOT) + "/gtsrb", picto_path, split = "validation";
     unsigned threads = 2;
     std::string json;
     CLI::App app{"sbr_gtsrb_eval: the class stage (pictogram classifier) on GTSRB crops at their annotated boxes "

@@ -5,7 +5,7 @@
 //             [--no-calibrate] [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y]
 //   sbr_train --from-model FILE --out-c FILE     (the C table of a saved library)
 //
-// Defaults: --data ../shared/data/gtsdb, --range 0-399 (the training split; 400-599 is
+// Defaults: --data DATA/gtsdb (DATA: the build's SBR_DATA_DIR), --range 0-399 (the training split; 400-599 is
 // the development split and is never read), --vote-error 0.12, --min-support 2,
 // --max-protos 640, --min-weight 0. Writes the generated C table (--out-c, e.g. lib/models/sbr_model_gtsdb.c)
 // and/or the file form (--out-model, e.g. sbr_gtsdb.sbrm). Parts are learned with every
@@ -99,7 +99,7 @@ bool consistent(const Instance &a, const Instance &b, float centre_tol, float si
 }
 
 struct Options {
-    std::string data = "../shared/data/gtsdb", out_c, out_model, from_model;
+    std::string data = std::string(SBR_DATA_ROOT) + "/gtsdb", out_c, out_model, from_model;
     ImageRanges range{{{0, 399}}};
     float vote_error = 0.12f;
     int min_support = 2;

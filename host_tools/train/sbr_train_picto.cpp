@@ -12,7 +12,7 @@
 //                   [--gate [--gate-hidden H] [--gate-recall R]]
 //                   [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y]
 //
-// Defaults: --data ../shared/data/gtsdb, --gtsrb ../shared/data/gtsrb (its training tracks'
+// Defaults: --data DATA/gtsdb, --gtsrb DATA/gtsrb (DATA: the build's SBR_DATA_DIR) (its training tracks'
 // crops as more sign samples, docs/usage/gtsrb.md; --no-gtsrb: none), --range 0-399 (the
 // training split; the development split 400-599 is never read for training), --hidden 128,
 // --epochs 20, --jitter 20 (copies per annotated sign), --lr 0.01, --seed 1, --threshold 0.7
@@ -862,7 +862,7 @@ namespace {
 // Options (the defaults are the shipped class stage's, except the seed: ./sbr.sh train
 // passes --seed 2).
 struct Options {
-    std::string data = "../shared/data/gtsdb", cand_path, out_c, out_file, model_path;
+    std::string data = std::string(SBR_DATA_ROOT) + "/gtsdb", cand_path, out_c, out_file, model_path;
     int hidden = 128, epochs = 20, jitter = 20, box_jitter = 0;
     ImageRanges range{{{0, 399}}}, eval_range;
     float lr = 0.01f, threshold = 0.7f, bg_fraction = 0.3f, dropout = 0.5f, decay = 1e-4f, balance = 0.0f;
@@ -875,7 +875,7 @@ struct Options {
     bool box = true, exposure = false, mirror = true, rotate = true, tview = true;
     BgSwap bg_swap = BgSwap::round, bg_fill = BgSwap::off;
     unsigned seed = 1;
-    std::string gtsrb = "../shared/data/gtsrb";  // --gtsrb: GTSRB folder whose training tracks add sign samples
+    std::string gtsrb = std::string(SBR_DATA_ROOT) + "/gtsrb";  // --gtsrb: GTSRB folder whose training tracks add sign samples
     bool gtsrb_given = false;  // --gtsrb on the command line (a missing default folder is only a note)
     int gtsrb_cap = 400;    // --gtsrb-cap: crops a class at most, spread over its tracks
     int gtsrb_copies = 2;   // --gtsrb-copies: jittered copies of each crop besides itself
