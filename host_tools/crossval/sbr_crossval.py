@@ -104,11 +104,12 @@ def one_fold(a, k, test, train):
         else:
             times["sbr_train"] = run([os.path.join(a.tools, "sbr_train"), "--data", a.data, "--range",
                                       ranges(train), "--out-model", model] + shlex.split(a.train_args), log)
-        # the class stage learns from --gtsrb's training tracks too, unless the picto
+        # the class stage learns from --gtsrb's training tracks too, and without --gtsrb from
+        # GTSDB alone (not from the trainer's default data folder), unless the picto
         # arguments say otherwise
         extra = shlex.split(a.picto_args)
-        if a.gtsrb and not any(x.split("=")[0] in ("--gtsrb", "--no-gtsrb") for x in extra):
-            extra = ["--gtsrb", a.gtsrb] + extra
+        if not any(x.split("=")[0] in ("--gtsrb", "--no-gtsrb") for x in extra):
+            extra = (["--gtsrb", a.gtsrb] if a.gtsrb else ["--no-gtsrb"]) + extra
         times["sbr_train_picto"] = run([os.path.join(a.tools, "sbr_train_picto"), "--data", a.data,
                                         "--range", ranges(train), "--model", model, "--seed", str(a.seed),
                                         "--out", picto] + extra, log)
