@@ -173,7 +173,6 @@ class Monitor:
         self.last_frame = {}  # fid -> (dlc, hex bytes) of the newest frame
         self.signals = {}     # fid -> (raw, physical) values of the newest valid frame
         self.trace = collections.deque(maxlen=TRACE_KEPT)
-        self.objects_reported = 0  # tracked-object frames that named an object
         self.frames = 0
         self.unknown = 0
         self.skipped_lines = 0  # log lines that held no frame (comments and blanks not counted)
@@ -195,6 +194,9 @@ class Monitor:
         # (late) or whose results the ECU dropped (the Overload bit); either is an overload
         self.flag_counts = dict(overload=0, late=0, dropped=0, error=0, capacity=0)
         self.overload_now = False
+        # the cycle an image's processing must fit: SBR_EcuStatus's GenMsgCycleTime
+        self.status_cycle_ms = next((m.cycle_ms for m in model.messages.values() if m.name == "SBR_EcuStatus"),
+                                    None)
         self.object_frames = 0  # SBR_TrackedObject frames received, NoObject ones too
         self._proc_sum = 0.0
         self._status_times = collections.deque()
@@ -402,7 +404,6 @@ class Monitor:
             if self._absent(msg, "SBR_Obj_TrackId", track):
                 self.objects = []
                 return
-            self.objects_reported += 1
             self._pending_objs.append(dict(
                 track=track, x=phys["SBR_Obj_PosX"], y=phys["SBR_Obj_PosY"],
                 vx=phys["SBR_Obj_VelX"], vy=phys["SBR_Obj_VelY"],
@@ -448,14 +449,8 @@ class Monitor:
                         processing_ms=None if self.status is None else self.status["ProcessingTime"],
                         processing_ms_mean=self._proc_sum / self.status_count
                         if self.status_count else None,
-                        cycle_ms=self._status_cycle_ms(), overload_now=self.overload_now,
+                        cycle_ms=self.status_cycle_ms, overload_now=self.overload_now,
                         status=self.status, flag_counts=dict(self.flag_counts)))
-
-    def _status_cycle_ms(self):
-        for spec in self.model.messages.values():
-            if spec.name == "SBR_EcuStatus":
-                return spec.cycle_ms
-        return None
 
     def _message_view(self, fid, st):
         period, jitter, per_cycle = self.periods[fid].figures()

@@ -111,8 +111,9 @@ def main():
     r, t = run([py, "example.py"], cwd=nb, env=dict(env, MPLBACKEND="Agg"), timeout=300)
     printed = sorted(line.split()[0] for line in r.stdout.strip().splitlines() if line.strip())
     ref, _ = run([a.detect, "--input", nb, "--quiet", "--detections", os.path.join(a.work, "d444.txt")])
+    names = dbc_class_names()
     with open(os.path.join(a.work, "d444.txt")) as f:
-        want = sorted(_class_name(int(line.split(";")[5])) for line in f if line.strip())
+        want = sorted(names[int(line.split(";")[5])] for line in f if line.strip())
     figure = [x for x in os.listdir(nb) if x.endswith(".png")]
     print(f"4. the README's example in a folder with 00444.jpg: exit {r.returncode} in {t:.1f} s, printed {printed}, "
           f"sbr_detect finds {want}; figure {figure}")
@@ -123,11 +124,11 @@ def main():
     return 0 if ok else 1
 
 
-def _class_name(class_id):
-    """The DBC's value name of a class (dbc/sbr.dbc), the names the package prints."""
+def dbc_class_names():
+    """The DBC's value names of the classes (dbc/sbr.dbc), the names the package prints."""
     with open(os.path.join(ROOT, "dbc", "sbr.dbc")) as f:
         line = next(x for x in f if x.startswith("VAL_ 768 SBR_Sign_Class "))
-    return dict((int(k), v) for k, v in re.findall(r'(\d+) "([^"]+)"', line))[class_id]
+    return {int(k): v for k, v in re.findall(r'(\d+) "([^"]+)"', line)}
 
 
 if __name__ == "__main__":
