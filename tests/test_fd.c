@@ -5,7 +5,6 @@
 
 #include <math.h>
 #include <string.h>
-#include "../lib/common/sbr_util.h" /* the matcher's atan2 (private) */
 
 #define NPTS 40u
 #define PI_F 3.14159265f
@@ -455,36 +454,6 @@ static void test_screening_keeps_every_match_up_to_max_error(void)
     }
 }
 
-/* The matcher's polynomial atan2 against libm's over all four quadrants, the axes and
-   the signed zeros: within 6e-7 rad, and in (-pi, pi]. */
-static void test_fast_atan2_accuracy(void)
-{
-    float worst = 0.0f;
-    uint32_t i;
-    for (i = 0u; i < 3600u; i++) {
-        const float a = ((float)i * (2.0f * 3.14159265f)) / 3600.0f;
-        uint32_t k;
-        for (k = 0u; k < 3u; k++) {
-            const float rad = (k == 0u) ? 1.0f : ((k == 1u) ? 1.0e-20f : 3.0e20f);
-            const float y = rad * sinf(a);
-            const float x = rad * cosf(a);
-            const float got = sbr_util_atan2f(y, x);
-            float d = fabsf(got - atan2f(y, x));
-            if (d > 3.14159265f) {
-                d = fabsf(d - (2.0f * 3.14159265f)); /* +pi against -pi at y = -0 */
-            }
-            worst = (d > worst) ? d : worst;
-            TEST_ASSERT_TRUE((got > -3.1415930f) && (got <= 3.1415930f));
-        }
-    }
-    TEST_ASSERT_TRUE(worst < 6.0e-7f);
-    TEST_ASSERT_EQUAL_FLOAT(0.0f, sbr_util_atan2f(0.0f, 0.0f));
-    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 3.14159265f, sbr_util_atan2f(0.0f, -1.0f));
-    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 3.14159265f, sbr_util_atan2f(-0.0f, -1.0f));
-    TEST_ASSERT_FLOAT_WITHIN(1e-6f, -1.57079633f, sbr_util_atan2f(-2.0f, 0.0f));
-    TEST_ASSERT_FLOAT_WITHIN(1e-6f, 0.78539816f, sbr_util_atan2f(5.0f, 5.0f));
-}
-
 /* The lane path finds corrupted prototypes from the correlation they produce (a non-finite
    coefficient makes every lag non-finite) and their headers up front; the status is that of
    the first bad prototype in table order, in both modes. */
@@ -790,7 +759,6 @@ int main(void)
     RUN_TEST(test_table_lanes_equal_single_matches);
     RUN_TEST(test_table_lanes_refuse_corrupt_prototypes);
     RUN_TEST(test_screening_keeps_every_match_up_to_max_error);
-    RUN_TEST(test_fast_atan2_accuracy);
     RUN_TEST(test_degenerate_input_gets_status);
     RUN_TEST(test_check_reports_energy);
     return UNITY_END();

@@ -1,10 +1,8 @@
-/* Unity tests of the channel maps (include/sbr/map.h) and MSER (include/sbr/mser.h). */
+/* Unity tests of MSER (include/sbr/mser.h). The maps it runs on: test_map.c. */
 #include "unity.h"
-#include "sbr/map.h"
 #include "sbr/mser.h"
 #include "test_support.h"
 
-#include <math.h>
 #include <string.h>
 
 #define W 32u
@@ -68,127 +66,6 @@ static uint32_t mask_of(const sbr_mser_region_t *r)
         on += (g_mask[i] != 0u) ? 1u : 0u;
     }
     return on;
-}
-
-/* ---- maps ----------------------------------------------------------------------------- */
-
-static void test_map_formulas_on_known_colours(void)
-{
-    /* pure red, grey 100, pure blue, yellow (R=G=255, B=0) as RGB888 */
-    static const uint8_t rgb[12] = {255, 0, 0, 100, 100, 100, 0, 0, 255, 255, 255, 0};
-    uint8_t out[4];
-    sbr_image_t src = {4u, 1u, 12u, SBR_PIXEL_RGB888, rgb};
-    sbr_image_t ov;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_INTENSITY, 1u, out, 4u, 4u, &ov));
-    TEST_ASSERT_EQUAL_UINT8(85u, out[0]);  /* (T(255) + 1) / 3 = (255 + 1) / 3 */
-    TEST_ASSERT_EQUAL_UINT8(160u, out[1]); /* T(100) = round(sqrt(25500)) = round(159.7) */
-    TEST_ASSERT_EQUAL_UINT8(170u, out[3]); /* (510 + 1) / 3 */
-    TEST_ASSERT_EQUAL_UINT32(4u, ov.width);
-    TEST_ASSERT_EQUAL_INT(SBR_PIXEL_GRAY8, ov.format);
-    /* colour maps: C(d) = 128 + 128 d / (R + G + B + 60), truncated, clamped to 0..255 */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_RED, 1u, out, 4u, 4u, NULL));
-    TEST_ASSERT_EQUAL_UINT8(255u, out[0]); /* 128 + 65280 / 315 = 128 + 207, clamped */
-    TEST_ASSERT_EQUAL_UINT8(128u, out[1]); /* grey: d = 0 */
-    TEST_ASSERT_EQUAL_UINT8(25u, out[2]);  /* 128 - 32640 / 315 = 128 - 103 */
-    TEST_ASSERT_EQUAL_UINT8(185u, out[3]); /* 128 + 32640 / 570 = 128 + 57 */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_BLUE, 1u, out, 4u, 4u, NULL));
-    TEST_ASSERT_EQUAL_UINT8(25u, out[0]);
-    TEST_ASSERT_EQUAL_UINT8(128u, out[1]);
-    TEST_ASSERT_EQUAL_UINT8(255u, out[2]);
-    TEST_ASSERT_EQUAL_UINT8(14u, out[3]);  /* 128 - 65280 / 570 = 128 - 114 */
-    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_YELLOW, 1u, out, 4u, 4u, NULL));
-    TEST_ASSERT_EQUAL_UINT8(231u, out[0]); /* 128 + 32640 / 315 = 128 + 103 */
-    TEST_ASSERT_EQUAL_UINT8(128u, out[1]);
-    TEST_ASSERT_EQUAL_UINT8(0u, out[2]);   /* 128 - 207, clamped */
-    TEST_ASSERT_EQUAL_UINT8(242u, out[3]); /* 128 + 65280 / 570 = 128 + 114 */
-    /* brightness drops out: dark red (60, 20, 20) and bright red (240, 80, 80) differ only
-       through the dark bound 60: 128 + 10240 / 160 = 192 and 128 + 40960 / 460 = 217 */
-    {
-        static const uint8_t reds[6] = {60, 20, 20, 240, 80, 80};
-        sbr_image_t s1 = {2u, 1u, 6u, SBR_PIXEL_RGB888, reds};
-        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&s1, SBR_MAP_RED, 1u, out, 2u, 2u, NULL));
-        TEST_ASSERT_EQUAL_UINT8(192u, out[0]);
-        TEST_ASSERT_EQUAL_UINT8(217u, out[1]);
-    }
-    /* near-black pixels stay near grey: (0, 0, 6) is 128 + 1536 / 66 = 151 in the blue map
-       (with the bound 0 it would be 255) */
-    {
-        static const uint8_t dim[3] = {0, 0, 6};
-        sbr_image_t s3 = {1u, 1u, 3u, SBR_PIXEL_RGB888, dim};
-        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&s3, SBR_MAP_BLUE, 1u, out, 1u, 1u, NULL));
-        TEST_ASSERT_EQUAL_UINT8(151u, out[0]);
-    }
-    /* the same pixels in BGR order give the same maps */
-    {
-        static const uint8_t bgr[12] = {0, 0, 255, 100, 100, 100, 255, 0, 0, 0, 255, 255};
-        sbr_image_t s2 = {4u, 1u, 12u, SBR_PIXEL_BGR888, bgr};
-        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&s2, SBR_MAP_RED, 1u, out, 4u, 4u, NULL));
-        TEST_ASSERT_EQUAL_UINT8(255u, out[0]);
-        TEST_ASSERT_EQUAL_UINT8(25u, out[2]);
-    }
-}
-
-static void test_map_subsample_averages_blocks(void)
-{
-    /* 4x2 grey image, 2x2 blocks: mean of {0, 255, 255, 255} = 191.25 -> 191, T(191) =
-       round(220.7); of {10, 11, 12, 13} = 11.5 -> 12 (rounded to nearest), T(12) =
-       round(55.3) */
-    static const uint8_t g[8] = {0, 255, 10, 11, 255, 255, 12, 13};
-    uint8_t out[2];
-    sbr_image_t src = {4u, 2u, 4u, SBR_PIXEL_GRAY8, g};
-    sbr_image_t ov;
-    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, SBR_MAP_INTENSITY, 2u, out, 2u, 2u, &ov));
-    TEST_ASSERT_EQUAL_UINT32(2u, ov.width);
-    TEST_ASSERT_EQUAL_UINT32(1u, ov.height);
-    TEST_ASSERT_EQUAL_UINT8(221u, out[0]);
-    TEST_ASSERT_EQUAL_UINT8(55u, out[1]);
-}
-
-static void test_map_tone_curve_every_level(void)
-{
-    /* a grey ramp 0..255: the intensity map is T(c) = round(sqrt(255 c)), checked in
-       integers: v = T(c) exactly when (2v - 1)^2 <= 1020 c < (2v + 1)^2 */
-    static uint8_t ramp[256];
-    static uint8_t out[256];
-    sbr_image_t src = {256u, 1u, 256u, SBR_PIXEL_GRAY8, ramp};
-    uint32_t c;
-    for (c = 0u; c < 256u; c++) {
-        ramp[c] = (uint8_t)c;
-    }
-    TEST_ASSERT_EQUAL_INT(SBR_OK,
-                          (int)sbr_map_make(&src, SBR_MAP_INTENSITY, 1u, out, 256u, 256u, NULL));
-    for (c = 0u; c < 256u; c++) {
-        const uint32_t v = out[c];
-        const uint32_t lo = (v == 0u) ? 0u : (((2u * v) - 1u) * ((2u * v) - 1u));
-        TEST_ASSERT_TRUE_MESSAGE(lo <= 1020u * c, "tone curve too high");
-        TEST_ASSERT_TRUE_MESSAGE(1020u * c < (((2u * v) + 1u) * ((2u * v) + 1u)),
-                                 "tone curve too low");
-        if (c > 0u) {
-            TEST_ASSERT_TRUE(out[c] >= out[c - 1u]); /* monotonic */
-        }
-    }
-    TEST_ASSERT_EQUAL_UINT8(64u, out[16]);
-    TEST_ASSERT_EQUAL_UINT8(128u, out[64]);
-    TEST_ASSERT_EQUAL_UINT8(255u, out[255]);
-}
-
-static void test_map_bad_input(void)
-{
-    static uint8_t buf[16];
-    uint8_t out[16];
-    sbr_image_t gray = {4u, 2u, 4u, SBR_PIXEL_GRAY8, buf};
-    sbr_image_t rgb = {2u, 2u, 6u, SBR_PIXEL_RGB888, buf};
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_map_make(NULL, SBR_MAP_RED, 1u, out, 4u, 16u, NULL));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_map_make(&gray, SBR_MAP_INTENSITY, 1u, NULL, 4u, 16u, NULL));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_map_make(&gray, SBR_MAP_RED, 1u, out, 4u, 16u, NULL));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_map_make(&rgb, (sbr_map_kind_t)7, 1u, out, 4u, 16u, NULL));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_map_make(&rgb, SBR_MAP_RED, 0u, out, 4u, 16u, NULL));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_map_make(&rgb, SBR_MAP_RED, 3u, out, 4u, 16u, NULL));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_map_make(&rgb, SBR_MAP_RED, 1u, out, 1u, 16u, NULL));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_map_make(&rgb, SBR_MAP_RED, 1u, out, 2u, 3u, NULL));
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_OVERLAP, (int)sbr_map_make(&gray, SBR_MAP_INTENSITY, 1u, &buf[4], 4u, 8u, NULL));
-    gray.stride = 3u;
-    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_map_make(&gray, SBR_MAP_INTENSITY, 1u, out, 4u, 16u, NULL));
 }
 
 /* ---- MSER ----------------------------------------------------------------------------- */
@@ -477,10 +354,6 @@ static void test_mser_region_mask_rejects_bad_regions(void)
 int main(void)
 {
     UNITY_BEGIN();
-    RUN_TEST(test_map_formulas_on_known_colours);
-    RUN_TEST(test_map_subsample_averages_blocks);
-    RUN_TEST(test_map_tone_curve_every_level);
-    RUN_TEST(test_map_bad_input);
     RUN_TEST(test_mser_dark_square);
     RUN_TEST(test_mser_nested_regions_both_polarities);
     RUN_TEST(test_mser_ramp_is_not_stable);

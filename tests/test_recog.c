@@ -586,7 +586,7 @@ static void test_recog_object(void)
 }
 
 /* recog.h: every documented status, in one table. */
-static void test_recognizer_h_statuses(void)
+static void test_recog_h_statuses(void)
 {
     status_table_t t;
     const sbr_image_t v = view();
@@ -1043,7 +1043,7 @@ int main(void)
     RUN_TEST(test_grey_frame);
     RUN_TEST(test_bad_input);
     RUN_TEST(test_recog_object);
-    RUN_TEST(test_recognizer_h_statuses);
+    RUN_TEST(test_recog_h_statuses);
     RUN_TEST(test_builtin_model_and_sizes);
     RUN_TEST(test_class_stage);
     RUN_TEST(test_hostile_frames_builtin);

@@ -3,8 +3,8 @@
    call and the status its header documents for it; the rows are evaluated in order and
    every one is checked, so a failure names the call. The tables of the recogniser,
    parts, tracker, bicycle and CAN headers are in their own test files (they need those
-   tests' scenes and models): test_recog.c, test_parts.c, test_tracker.c,
-   test_bicycle.c, test_can.c, each a test_<header>_h_statuses(). */
+   tests' scenes and models): test_recog.c, test_parts.c, test_track.c,
+   test_bike.c, test_can.c, each a test_<header>_h_statuses(). */
 #include <math.h>
 #include <string.h>
 

@@ -1,5 +1,5 @@
-/* Channel-based tracker (paper E): model checks, tracking through misses, crossing
-   targets, clutter, bad input. */
+/* Unity tests of include/sbr/track.h: the channel-based tracker (paper E): model checks,
+   tracking through misses, crossing targets, clutter, bad input. */
 #include "sbr/track.h"
 
 #include <math.h>
@@ -558,7 +558,7 @@ void test_config_statuses(void)
 }
 
 /* track.h: every documented status, in one table. */
-void test_tracker_h_statuses(void)
+void test_track_h_statuses(void)
 {
     status_table_t t;
     sbr_track_model_t bad;
@@ -639,6 +639,6 @@ int main(void)
     RUN_TEST(test_meas_sigma_bounded_by_window);
     RUN_TEST(test_model_spacing_and_extent_bounded);
     RUN_TEST(test_config_statuses);
-    RUN_TEST(test_tracker_h_statuses);
+    RUN_TEST(test_track_h_statuses);
     return UNITY_END();
 }

@@ -1,4 +1,5 @@
-/* Bicycle tracking from wheel ellipses: projection, pairing, particle filter. */
+/* Unity tests of include/sbr/bike.h: bicycle tracking from wheel ellipses (projection,
+   pairing, particle filter). */
 #include "sbr/bike.h"
 
 #include <math.h>
@@ -419,7 +420,7 @@ static void test_filter_rejects_bad_input(void)
 }
 
 /* bike.h: every documented status, in one table. */
-static void test_bicycle_h_statuses(void)
+static void test_bike_h_statuses(void)
 {
     status_table_t t;
     sbr_bike_pf_config_t cfg = config(1u);
@@ -535,6 +536,6 @@ int main(void)
     RUN_TEST(test_filter_reset_repeats_a_fresh_filter);
     RUN_TEST(test_filter_drops_a_lost_track_and_restarts);
     RUN_TEST(test_filter_rejects_bad_input);
-    RUN_TEST(test_bicycle_h_statuses);
+    RUN_TEST(test_bike_h_statuses);
     return UNITY_END();
 }

@@ -1,9 +1,11 @@
-// test_recog_scenes: the recogniser (built-in library and class stage, default options)
-// on every real GTSDB frame of a fixed range (default the development split 00400-00599),
-// against the annotations; no hand-picked scene list.
+// SPDX-License-Identifier: MIT
+// test_builtin_models_gtsdb: a regression guard of the built-in models: the recogniser
+// (built-in part model and class stage, default options) on every real GTSDB frame of a
+// fixed range (default the development split 00400-00599), against the annotations; no
+// hand-picked scene list.
 //
-//   test_recog_scenes --data DIR [--range A-B] --min-recall R --min-crop-recall R
-//                     [--max-fp-rate F]
+//   test_builtin_models_gtsdb --data DIR [--range A-B] --min-recall R --min-crop-recall R
+//                             [--max-fp-rate F]
 //
 // 1. Frames with signs: an annotated sign counts as found when a detection at the
 //    operating point has its class and IoU >= 0.5; recall over all signs of the range
@@ -81,7 +83,7 @@ struct Options {
 
 // -1: go on; otherwise the exit status.
 int parse_options(int argc, char **argv, Options &o) {
-    CLI::App app{"test_recog_scenes: the built-in recogniser on GTSDB scenes against recall and false-detection floors"};
+    CLI::App app{"test_builtin_models_gtsdb: the built-in recogniser on GTSDB scenes against recall and false-detection floors"};
     app.add_option("--data", o.data, "GTSDB folder")->required();
     sbr_host::add_range_option(app, o.range, "images (default 400-599)");
     app.add_option("--min-recall", o.min_recall, "fail below this sign recall")->required()->check(sbr_host::finite_range(0, 1));
