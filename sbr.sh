@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # sbr's one entry point: set-up, the main job and the tests.
 #
 #   ./sbr.sh detect [--input DIR] [--out DIR] [--range A-B] [--baseline FILE]

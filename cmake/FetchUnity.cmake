@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Unity 2.6.1 (ThrowTheSwitch, MIT) as shipped in the PyPI wheel vyperling 0.0.4, folder
 # vyperling/c/. Downloaded at configure time with pip, pinned by version and sha256, and
 # unpacked into the build tree: Unity's files are never committed. -DUNITY_ROOT=<dir>

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Shared by the bare-metal toolchain files: arm-none-eabi GCC + newlib. The including file
 # sets SBR_CPU_FLAGS (core, FPU, float ABI) first.
 set(CMAKE_SYSTEM_NAME Generic)

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Build the core at every build type for every compiler with -Werror; print the matrix.
 
     build_matrix.py --source DIR --work DIR [--jobs N] [--only gcc,clang,arm-none-eabi]

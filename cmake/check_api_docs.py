@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Every parameter of every public function is documented with its direction.
 
     check_api_docs.py --source DIR [--report]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Gate: the core archive calls no heap, stdio or file-I/O function and has no mutable
 static or global data. With --arm also no soft-float double helpers (__aeabi_d*, which
 appear when C code does double arithmetic on a single-precision FPU).

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Gate: an image that calls only sbr_fft_init_64 contains the FFT tables of N <= 64
 and none of the larger lengths (per-length init + --gc-sections work as documented).
 

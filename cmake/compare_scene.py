@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Same detections on the host and on a cross target (tests/test_recog_scene.c).
 
 usage: compare_scene.py HOST_BINARY -- TARGET_COMMAND...

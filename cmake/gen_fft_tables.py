@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Generate sbr's const FFT tables (lib/fft/fft_tables.c and lib/fft/fft_tables.h).
 
 Regenerate with:   python3 cmake/gen_fft_tables.py lib/fft

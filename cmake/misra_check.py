@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Gate: cppcheck (warning, style, performance, portability) + the MISRA C:2012 addon over
 lib/. Every finding must be covered by a deviation of MISRA.md; otherwise it fails.
 

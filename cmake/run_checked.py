@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Run a test command and keep its exit status visible to ctest.
 
     run_checked.py -- COMMAND [ARGS...]

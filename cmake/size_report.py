@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Report for the Cortex-M build of the core: code size (text), static RAM (data + bss,
 must be 0) per object and in total, and the largest stack frames per function from the
 -fstack-usage files. Fails when static RAM is not 0 or a frame is dynamic (VLA/alloca).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # ctest gate: a separate consumer project (tests/consumer) builds and runs against sbr
 # twice: installed from the build tree into a scratch prefix (find_package(sbr) +
 # sbr::sbr), and added with add_subdirectory (as FetchContent does), where it must not

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # 32-bit ARM Linux (armhf, hard float). Tests run under qemu user-mode emulation;
 # executables are linked statically so qemu-arm needs no ARM sysroot.
 set(CMAKE_SYSTEM_NAME Linux)

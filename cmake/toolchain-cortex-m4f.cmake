@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Cortex-M4F bare metal (arm-none-eabi GCC + newlib), single-precision FPU, hard float.
 # Tests run on qemu's mps2-an386 (Cortex-M4 with FPU) through semihosting.
 set(SBR_CPU_FLAGS "-mcpu=cortex-m4 -mthumb -mfloat-abi=hard -mfpu=fpv4-sp-d16")

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Unit sizes of the code base: the longest functions of the core, the host tools' main()s,
-the README's line count (issue: a house a newcomer can read).
+the README's line count, and that every source file opens with an SPDX line and its purpose.
 
     unit_report.py --source DIR [--top N] [--max-core LINES] [--max-main LINES]
                    [--max-nesting DEPTH]
@@ -77,6 +78,31 @@ def longest_files(root, sub, exts):
     return sorted(rows, reverse=True)
 
 
+SOURCE_DIRS = ("lib", "include", "ports", "host_tools", "tests", "python", "dashboard", "cmake")
+SOURCE_EXTS = (".c", ".h", ".inc", ".cpp", ".hpp", ".py", ".cmake", ".js", ".css", ".html", ".ld")
+SKIP_DIRS = ("build", "__pycache__", ".pytest_cache", "node_modules")
+
+
+def without_header(root):
+    """Source files (and CMakeLists.txt, sbr.sh) whose first three lines hold no SPDX line,
+    or whose first line after it is not a comment (the file's one-line purpose)."""
+    paths = [os.path.join(root, f) for f in ("CMakeLists.txt", "sbr.sh")]
+    for sub in SOURCE_DIRS:
+        for d, dirs, files in os.walk(os.path.join(root, sub)):
+            dirs[:] = sorted(x for x in dirs if x not in SKIP_DIRS and not x.endswith(".egg-info"))
+            paths += [os.path.join(d, f) for f in sorted(files)
+                      if f.endswith(SOURCE_EXTS) or f == "CMakeLists.txt"]
+    bad = []
+    for p in paths:
+        with open(p, encoding="utf-8", errors="replace") as f:
+            head = [f.readline() for _ in range(4)]
+        spdx = [i for i, line in enumerate(head[:3]) if "SPDX-License-Identifier:" in line]
+        nxt = head[spdx[0] + 1].lstrip() if spdx else ""
+        if not spdx or (nxt and not nxt.startswith(("#", "//", "/*", "*", '"""', "<!--"))):
+            bad.append(os.path.relpath(p, root))
+    return bad
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--source", required=True, help="the project root")
@@ -117,6 +143,10 @@ def main():
     print("every public header's module in a folder of its name (include/sbr/X.h, lib/X/): "
           + ("yes" if not missing else "no: " + ", ".join(missing)))
     over += [("module folder", h) for h in missing]
+    unheaded = without_header(a.source)
+    print("every source file opens with an SPDX line and a line saying what it holds: "
+          + ("yes" if not unheaded else "no: " + ", ".join(unheaded)))
+    over += [("file header", h) for h in unheaded]
     deep = [r for r in core if a.max_nesting is not None and r[4] > a.max_nesting]
     if a.max_nesting is not None:
         print(f"core functions nested deeper than {a.max_nesting}: {len(deep)}")

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* For the recogniser's tests: sbr_recog_init() and sbr_recog_detect() in one call, as a
    test that varies the configuration or the models from call to call needs them. */
 #ifndef SBR_TESTS_RECOG_RUN_H

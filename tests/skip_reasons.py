@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The reason each skipped test gave, from ctest's log (./sbr.sh test's summary).
 
     skip_reasons.py BUILD/Testing/Temporary/LastTest.log NAME...

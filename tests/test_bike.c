@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of include/sbr/bike.h: bicycle tracking from wheel ellipses (projection,
    pairing, particle filter). */
 #include "sbr/bike.h"

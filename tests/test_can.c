@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of the CAN messages, E2E protection, scheduler and the mock (and, on the
    Cortex-M build, the bare-metal) port (include/sbr/can.h, ports/). */
 #include "unity.h"

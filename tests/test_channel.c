@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of the channel representation (include/sbr/channel.h), with the thesis's
    worked example as recomputed in THESIS_NOTES.md. */
 #include "unity.h"

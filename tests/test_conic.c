@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of conics (include/sbr/conic.h): classification, ellipse geometry, the
    direct fit, residual and coverage, torchlight pose and ellipse detection. */
 #include "unity.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of image views and contour tracing (include/sbr/image.h, contour.h). */
 #include "unity.h"
 #include "sbr/contour.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of Fourier descriptors and correlation matching (include/sbr/fd.h). */
 #include "unity.h"
 #include "sbr/fd.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of the fixed-size FFT (include/sbr/fft.h). */
 #include "unity.h"
 #include "sbr/fft.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of image views (include/sbr/image.h): bytes per pixel, the view check at its
    bounds (sizes, strides, formats), and regions of interest (where a sub-view starts, the
    edges, no wrap-around). Every status of the header is also in test_statuses.c. */

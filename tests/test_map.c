@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of the channel maps (include/sbr/map.h): the intensity tone curve and the
    colour-opponent formulas on known pixels, block averaging, and bad input. */
 #include "unity.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of MSER (include/sbr/mser.h). The maps it runs on: test_map.c. */
 #include "unity.h"
 #include "sbr/mser.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of part extraction (include/sbr/parts.h): maps -> MSER -> contours -> FDs. */
 #include "unity.h"
 #include "sbr/parts.h"

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of the class stage's features and classifier (include/sbr/picto.h):
    feature values on constructed patches, RGB/BGR and scale agreement, softmax values of
    hand-made classifiers, the built-in classifier's consistency, and bad input. */

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of the recogniser (include/sbr/recog.h): a model learned in the test
    from one synthetic sign finds the sign again elsewhere, larger, in another frame; the
    built-in model is consistent; bad input gets its status. */

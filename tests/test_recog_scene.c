@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* The whole recogniser with the built-in library and class stage on one small synthetic
    street scene (drawn with integer arithmetic, so every target renders the same pixels):
    a prohibitory-like sign, a blue "ahead only" disc, a danger-like triangle on a noisy

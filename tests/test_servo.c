@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of the servo module (include/sbr/servo.h): the learned inverse Jacobian of
    known linear plants, servoing a planar two-link arm learned from its own random
    motions, angle features, the trust bound and the stopping rule, and every documented

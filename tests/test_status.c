@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of the status names (include/sbr/status.h). */
 #include "unity.h"
 #include "sbr/sbr.h"

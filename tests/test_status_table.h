@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* A table of calls and the status each one's header documents for it, for the
    "every documented status" tests: ROW() evaluates the call in sequence and records it;
    status_table_check() asserts every row and names the failing call. */

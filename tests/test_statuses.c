@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Every documented status, header by header: one table-driven test per public header
    (image, fft, map, contour, mser, fd, conic, channel, pictogram, status). Each row is a
    call and the status its header documents for it; the rows are evaluated in order and

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The summary of ./sbr.sh test: every part that decides its exit status, counted.
 
     test_summary.py --ctest NAME=JUNIT.xml [--ctest ...] --matrix LOG --fuzz LOG

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Helpers shared by sbr's Unity tests (not part of the library). */
 #ifndef SBR_TEST_SUPPORT_H
 #define SBR_TEST_SUPPORT_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of include/sbr/track.h: the channel-based tracker (paper E): model checks,
    tracking through misses, crossing targets, clutter, bad input. */
 #include "sbr/track.h"

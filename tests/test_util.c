@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Unity tests of the core's private helpers (lib/common/sbr_util.h, sort.c): byte-range
    overlap, alignment, the fixed-order dot product, the polynomial atan2, min/max/clamp
    (NaN and infinities included), box IoU, microseconds as seconds, and the heap sort the

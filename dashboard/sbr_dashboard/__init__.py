@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """sbr's reference dashboard: a consumer of sbr's CAN traffic that knows only the DBC.
 
 Everything it knows of the messages (identifiers, layouts, ranges, value names, cycle

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """sbr dashboard: a live view of sbr's CAN traffic, decoded with the DBC alone.
 
   sbr-dashboard --log FILE [--fast | --rate R]    replay a candump log

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A candump log as real buses write it (`candump -l`: `(sec.usec) ifname FRAME` lines),
 read line by line without giving up on the first line it does not expect.
 

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """What the dashboard learns from the DBC, and nothing else.
 
 Per message: identifier, name, cycle time (attribute GenMsgCycleTime), E2E Data ID

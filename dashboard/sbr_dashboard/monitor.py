@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The checks a real consumer does, and the state the views show.
 
 Per received frame (in this order):

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Inputs: a candump log (at recorded speed or as fast as possible), a live SocketCAN
 interface, or python-can's virtual bus. Each runs in a thread of its own and feeds a
 Monitor; `clock()` gives the current source time for timeout supervision."""

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Terminal mode: one screen, redrawn in place (ANSI home + clear), for machines without
 a browser.
 

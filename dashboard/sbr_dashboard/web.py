@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The live page: Python's standard-library HTTP server, the state pushed to the browser
 as server-sent events (GET /events, one JSON snapshot per change, at most 10 per second,
 a comment line every second to keep the connection alive).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The dashboard's tests run against the installed package (./sbr.sh installs it into
 build/venv: pip install -e dashboard)."""
 import os

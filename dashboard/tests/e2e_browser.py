@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """End to end in a real browser: sbr_detect writes a CAN log over GTSDB images, the
 dashboard replays it, headless Chromium (Debian's, driven by Playwright) opens the page,
 and what the page shows equals what the log holds. Then fault injection: a copy of the log

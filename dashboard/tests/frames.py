@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Crafted frames for the tests: encoded with cantools from the DBC, E2E bytes set here."""
 import os
 

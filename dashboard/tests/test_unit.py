@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Unit tests of the dashboard: the DBC model, E2E checking, range checks, timeouts, the
 application state, the views and the inputs, with crafted frames."""
 import json

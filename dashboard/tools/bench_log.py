@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Throughput of the dashboard on a long candump log, replayed as fast as possible.
 
     python dashboard/tools/bench_log.py [--frames N] [--mode terminal|web|both] [--log FILE]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """sbr's cost benchmark (./sbr.sh cost; docs/usage/cost.md).
 
 Instructions per frame of sbr_recog_detect, which do not depend on the machine's load:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_to_ppm: decodes images (JPEG, PNG, ...) with OpenCV and writes them as binary PPM
 // (P6, RGB, maxval 255), the form the Cortex-M4 cost image reads through semihosting.
 //

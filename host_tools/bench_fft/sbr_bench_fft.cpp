@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_bench_fft: times sbr's FFT against FFTW (SIMD and scalar) and KissFFT in one run.
 //
 // For each N it runs rounds; in every round each method transforms the same input a fixed

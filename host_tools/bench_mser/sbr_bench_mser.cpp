@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_bench_mser: time of sbr_mser_detect() on the maps of recorded frames, as the
 // recogniser runs it (sbr_recog_config_default()'s MSER settings: delta 3, variation 0.5,
 // both polarities).

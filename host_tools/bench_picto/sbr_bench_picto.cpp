@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_bench_picto: time per box of the recogniser's class stage (picto.h) on recorded
 // frames: sbr_picto_features() and sbr_picto_classify() with the built-in classifier.
 //

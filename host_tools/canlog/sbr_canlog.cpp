@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_canlog: writes the CAN traffic sbr sends for a detections file, as a candump log.
 //   sbr_canlog --detections FILE --out LOG [--images N] [--first K]
 // FILE has GTSDB's format with an optional score: NNNNN.ext;left;top;right;bottom;class[;score]
@@ -32,18 +33,12 @@ int main(int argc, char **argv) {
     size_t lines = 0;
     while (std::getline(in, line)) {
         if (line.empty()) continue;
-        std::stringstream ss(line);
-        std::string f[7];
-        int k = 0;
-        while (k < 7 && std::getline(ss, f[k], ';')) ++k;
-        if (k < 6) { std::fprintf(stderr, "sbr_canlog: bad line: %s\n", line.c_str()); return 1; }
         sbr_host::Detection d;
-        const int img = std::atoi(f[0].c_str());
-        d.left = std::atoi(f[1].c_str()); d.top = std::atoi(f[2].c_str());
-        d.right = std::atoi(f[3].c_str()); d.bottom = std::atoi(f[4].c_str());
-        d.class_id = std::atoi(f[5].c_str());
-        d.score = k >= 7 ? static_cast<float>(std::atof(f[6].c_str())) : 1.0f;
-        by_image[img].push_back(d);
+        if (!sbr_host::parse_detection_line(line, d)) {
+            std::fprintf(stderr, "sbr_canlog: bad line: %s\n", line.c_str());
+            return 1;
+        }
+        by_image[d.image].push_back(d);
         ++lines;
     }
     sbr_host::CanLogWriter w(out_path);

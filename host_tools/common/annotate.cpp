@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "annotate.hpp"
 
 #include <opencv2/imgcodecs.hpp>
@@ -155,18 +156,18 @@ cv::Scalar superclass_colour(int class_id) {
     return colour[superclass_of(class_id)];
 }
 
-std::vector<Mark> judge(const std::vector<DetLine> &dets, const std::vector<GtBox> &gts, bool has_gt,
+std::vector<Mark> judge(const std::vector<Detection> &dets, const std::vector<GtBox> &gts, bool has_gt,
                         double iou_thr) {
     std::vector<Mark> marks;
     std::vector<double> scores;
-    for (const DetLine &d : dets) {
-        marks.push_back({d.box(), d.class_id, d.score, has_gt ? MarkKind::kFound : MarkKind::kDetected});
+    for (const Detection &d : dets) {
+        marks.push_back({d.box, d.class_id, d.score, has_gt ? MarkKind::kFound : MarkKind::kDetected});
         scores.push_back(d.score);
     }
     if (!has_gt) return marks;
     std::vector<char> hit;
     const std::vector<int> m = greedy_match(scores, gts.size(), iou_thr, [&](size_t d, size_t g) {
-        return dets[d].class_id == gts[g].class_id ? box_iou(dets[d].box(), gt_pixbox(gts[g])) : -1.0;
+        return dets[d].class_id == gts[g].class_id ? box_iou(dets[d].box, gt_pixbox(gts[g])) : -1.0;
     }, hit);
     for (size_t i = 0; i < dets.size(); ++i)
         if (m[i] < 0) marks[i].kind = MarkKind::kFalse;

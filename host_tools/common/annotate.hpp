@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Annotated pictures of the recogniser's results (sbr_detect --annotated, --overview):
 // each detection judged against the ground truth when it is known (found, false, or a
 // missed sign), drawn with its class name, labels placed so they neither overlap each
@@ -36,7 +37,7 @@ cv::Scalar superclass_colour(int class_id);
 // The marks of one image: its detections judged at class level against its ground truth
 // (sbr_eval's rule: greedy by score, IoU >= iou_thr, same class), or all kDetected when
 // has_gt is false.
-std::vector<Mark> judge(const std::vector<DetLine> &dets, const std::vector<GtBox> &gts, bool has_gt,
+std::vector<Mark> judge(const std::vector<Detection> &dets, const std::vector<GtBox> &gts, bool has_gt,
                         double iou_thr = 0.5);
 
 // Draws the marks on img: boxes first, then one label per mark ("FP" or "missed" before

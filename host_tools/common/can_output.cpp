@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "can_output.hpp"
 
 #include "sign_tracker.hpp"
@@ -44,11 +45,11 @@ int CanLogWriter::write_image(const std::vector<Detection> &dets, float processi
         c.class_id = static_cast<uint32_t>(d.class_id);
         // the score's range is 0..1 by contract; a tool-side clamp keeps a rounding
         // excess (1.0000001) from costing the frame
-        c.confidence = clampf(100.0f * d.score, 0.0f, 100.0f);
-        c.center_x = 0.5f * static_cast<float>(d.left + d.right);
-        c.center_y = 0.5f * static_cast<float>(d.top + d.bottom);
-        c.width = static_cast<float>(d.right - d.left);
-        c.height = static_cast<float>(d.bottom - d.top);
+        c.confidence = clampf(100.0f * static_cast<float>(d.score), 0.0f, 100.0f);
+        c.center_x = static_cast<float>(0.5 * (d.box.x0 + d.box.x1));
+        c.center_y = static_cast<float>(0.5 * (d.box.y0 + d.box.y1));
+        c.width = static_cast<float>(d.box.x1 - d.box.x0);
+        c.height = static_cast<float>(d.box.y1 - d.box.y0);
         c.track_id = SBR_CAN_TRACK_NONE_DET;
         cd.push_back(c);
     }
@@ -57,8 +58,8 @@ int CanLogWriter::write_image(const std::vector<Detection> &dets, float processi
         // consecutive frames: a sign is listed once, when its track is confirmed
         std::vector<SignTracker::Input> in;
         for (const Detection &d : dets)
-            in.push_back({0.5f * static_cast<float>(d.left + d.right), 0.5f * static_cast<float>(d.top + d.bottom),
-                          d.class_id, clampf(d.score, 0.0f, 1.0f)});
+            in.push_back({static_cast<float>(0.5 * (d.box.x0 + d.box.x1)), static_cast<float>(0.5 * (d.box.y0 + d.box.y1)),
+                          d.class_id, clampf(static_cast<float>(d.score), 0.0f, 1.0f)});
         std::vector<uint32_t> det_track;
         std::vector<SignTracker::Track> tracks = tracker_->update(in, det_track);
         for (size_t i = 0; i < cd.size(); ++i)
@@ -83,7 +84,7 @@ int CanLogWriter::write_image(const std::vector<Detection> &dets, float processi
         for (const Detection &d : by_score) {
             Confirmed c;
             c.class_id = static_cast<uint32_t>(d.class_id);
-            c.score = clampf(d.score, 0.0f, 1.0f);
+            c.score = clampf(static_cast<float>(d.score), 0.0f, 1.0f);
             c.track_id = next_track_;
             c.image = image_;
             next_track_ = (next_track_ + 1u) % 255u;

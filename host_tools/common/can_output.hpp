@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Host-side CAN output: one cycle per processed image, scheduled and E2E-protected by the
 // core (sbr_can_schedule) and written through the candump-log port. Used by sbr_canlog
 // and by sbr_detect --canlog.
@@ -14,14 +15,10 @@ extern "C" {
 #include "sbr_port_candump.h"
 }
 
+#include "detection.hpp"
+
 namespace sbr_host {
 
-// One detection in image coordinates (GTSDB convention: inclusive pixel box).
-struct Detection {
-    int left = 0, top = 0, right = 0, bottom = 0;
-    int class_id = 0;
-    float score = 0.0f;  // 0..1
-};
 
 // Confirmed signs (SBR_ConfirmedSign): the images are taken as independent stills, so a
 // detection passed to write_image (one at the operating point) is confirmed in its own

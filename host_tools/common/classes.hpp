@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GTSDB's sign classes for the host tools and the Python package: superclasses, names and
 // outlines. No OpenCV (gtsdb.hpp includes it for its image helpers).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Command-line options of the host tools, through CLI11 (Debian libcli11-dev): one parser
 // for every tool, so each accepts --help (exit 0, every option described) and refuses a
 // malformed or out-of-range value with the option's name (exit 2).

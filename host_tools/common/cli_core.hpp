@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The CLI11 helpers every host tool uses (header only; common/cli.hpp adds the
 // recogniser's options and image ranges for the tools that link sbr_host_common).
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scoring detection files against GTSDB ground truth (evaluation.hpp): greedy matching per
 // superclass, per class and class-agnostic, AP, the report's text and its JSON form.
 #include "evaluation.hpp"
@@ -14,22 +15,6 @@
 #include <sstream>
 
 namespace sbr_host {
-
-bool parse_detection_line(const std::string &line, DetLine &d) {
-    std::stringstream ss(line);
-    std::string f[7];
-    int k = 0;
-    while (k < 7 && std::getline(ss, f[k], ';')) ++k;
-    if (k < 6) return false;
-    d.image = std::atoi(f[0].c_str());
-    d.left = std::atof(f[1].c_str());
-    d.top = std::atof(f[2].c_str());
-    d.right = std::atof(f[3].c_str());
-    d.bottom = std::atof(f[4].c_str());
-    d.class_id = std::atoi(f[5].c_str());
-    d.score = k >= 7 ? std::atof(f[6].c_str()) : 1.0;
-    return true;
-}
 
 double precision_of(const Prf &p) { return p.tp + p.fp ? double(p.tp) / double(p.tp + p.fp) : 0.0; }
 double recall_of(const Prf &p) { return p.tp + p.fn ? double(p.tp) / double(p.tp + p.fn) : 0.0; }
@@ -69,12 +54,8 @@ void appendf(std::string &s, const char *fmt, ...) {
     s.append(big.c_str(), size_t(n));
 }
 
-struct Box {
-    int image = 0;
-    double l = 0, t = 0, r = 0, b = 0;
-    int cls = 0;
-    double score = 1.0;
-};
+// A detection or ground-truth box of a file (the ground truth is read as detections).
+using Box = Detection;
 
 // The boxes of a file; "" or what is wrong (the file, or its line and line number).
 std::string read_boxes(const std::string &path, std::vector<Box> &out) {
@@ -83,21 +64,15 @@ std::string read_boxes(const std::string &path, std::vector<Box> &out) {
     std::string line;
     for (long no = 1; std::getline(in, line); ++no) {
         if (line.empty() || line[0] == '#') continue;
-        DetLine d;
+        Detection d;
         if (!parse_detection_line(line, d)) return path + ":" + std::to_string(no) + ": not a detection line: " + line;
-        Box b;
-        b.image = d.image;
-        b.l = d.left; b.t = d.top; b.r = d.right; b.b = d.bottom;
-        b.cls = d.class_id;
-        b.score = d.score;
-        out.push_back(b);
+        out.push_back(d);
     }
     return "";
 }
 
-// GTSDB boxes are inclusive pixel ranges.
 double iou(const Box &a, const Box &b) {
-    return box_iou({a.l, a.t, a.r + 1.0, a.b + 1.0}, {b.l, b.t, b.r + 1.0, b.b + 1.0});
+    return box_iou(a.box, b.box);
 }
 
 // Greedy matching of detections to ground truth (greedy_match) within each image. `key`
@@ -153,37 +128,37 @@ Eval evaluate(const std::vector<Box> &dets, const std::vector<Box> &gts, double 
     // superclass level
     std::vector<char> hit;
     const auto msup = match(dets, gts, iou_thr, [](const Box &d, const Box &g) {
-        return superclass_of(d.cls) == superclass_of(g.cls); }, hit);
+        return superclass_of(d.class_id) == superclass_of(g.class_id); }, hit);
     std::array<std::vector<std::pair<double, bool>>, 4> scored;
     for (size_t i = 0; i < dets.size(); ++i) {
-        const int s = superclass_of(dets[i].cls);
+        const int s = superclass_of(dets[i].class_id);
         (msup[i] >= 0 ? e.sp[s].tp : e.sp[s].fp)++;
         scored[s].emplace_back(dets[i].score, msup[i] >= 0);
     }
     for (size_t g = 0; g < gts.size(); ++g) {
-        const int s = superclass_of(gts[g].cls);
+        const int s = superclass_of(gts[g].class_id);
         ++e.n_gt[s];
         if (!hit[g]) ++e.sp[s].fn;
     }
     for (int s = 0; s < 4; ++s) e.ap[s] = average_precision(scored[s], e.n_gt[s], e.curves[s]);
 
     // class level
-    e.match_cls = match(dets, gts, iou_thr, [](const Box &d, const Box &g) { return d.cls == g.cls; }, e.hit_cls);
+    e.match_cls = match(dets, gts, iou_thr, [](const Box &d, const Box &g) { return d.class_id == g.class_id; }, e.hit_cls);
     for (size_t i = 0; i < dets.size(); ++i) {
-        (e.match_cls[i] >= 0 ? e.cp[dets[i].cls].tp : e.cp[dets[i].cls].fp)++;
+        (e.match_cls[i] >= 0 ? e.cp[dets[i].class_id].tp : e.cp[dets[i].class_id].fp)++;
         (e.match_cls[i] >= 0 ? e.total.tp : e.total.fp)++;
     }
     for (size_t g = 0; g < gts.size(); ++g)
-        if (!e.hit_cls[g]) { ++e.cp[gts[g].cls].fn; ++e.total.fn; }
+        if (!e.hit_cls[g]) { ++e.cp[gts[g].class_id].fn; ++e.total.fn; }
 
     // confusion: class-agnostic matching, then the class pairs that differ
     const auto many = match(dets, gts, iou_thr, [](const Box &, const Box &) { return true; }, e.hit_any);
     for (size_t i = 0; i < dets.size(); ++i) {
-        if (many[i] < 0) ++e.conf[{-1, dets[i].cls}];
-        else if (gts[static_cast<size_t>(many[i])].cls != dets[i].cls) ++e.conf[{gts[static_cast<size_t>(many[i])].cls, dets[i].cls}];
+        if (many[i] < 0) ++e.conf[{-1, dets[i].class_id}];
+        else if (gts[static_cast<size_t>(many[i])].class_id != dets[i].class_id) ++e.conf[{gts[static_cast<size_t>(many[i])].class_id, dets[i].class_id}];
     }
     for (size_t g = 0; g < gts.size(); ++g)
-        if (!e.hit_any[g]) ++e.conf[{gts[g].cls, -1}];
+        if (!e.hit_any[g]) ++e.conf[{gts[g].class_id, -1}];
     return e;
 }
 
@@ -197,7 +172,8 @@ std::vector<Box> select(const std::vector<Box> &all, const std::set<int> &images
 
 std::string box_text(const Box &b) {
     char t[96];
-    std::snprintf(t, sizeof t, "%05d;%.0f;%.0f;%.0f;%.0f;%d", b.image, b.l, b.t, b.r, b.b, b.cls);
+    const InclusiveBox r = to_inclusive(b.box);
+    std::snprintf(t, sizeof t, "%05d;%.0f;%.0f;%.0f;%.0f;%d", b.image, r.left, r.top, r.right, r.bottom, b.class_id);
     return t;
 }
 
@@ -208,7 +184,7 @@ std::string best_on(const std::vector<Box> &all, const Box &g, double iou_thr) {
         if (d.image == g.image && iou(d, g) >= iou_thr && (best == nullptr || d.score > best->score)) best = &d;
     if (best == nullptr) return "none";
     char t[64];
-    std::snprintf(t, sizeof t, "class %d score %.2f", best->cls, best->score);
+    std::snprintf(t, sizeof t, "class %d score %.2f", best->class_id, best->score);
     return t;
 }
 
@@ -221,7 +197,7 @@ std::vector<const Box *> unmatched_fps(const std::vector<Box> &a, const Eval &ea
         if (ea.match_cls[i] >= 0) continue;
         bool seen = false;
         for (size_t j = 0; j < b.size() && !seen; ++j)
-            seen = eb.match_cls[j] < 0 && b[j].image == a[i].image && b[j].cls == a[i].cls && iou(a[i], b[j]) >= iou_thr;
+            seen = eb.match_cls[j] < 0 && b[j].image == a[i].image && b[j].class_id == a[i].class_id && iou(a[i], b[j]) >= iou_thr;
         if (!seen) out.push_back(&a[i]);
     }
     return out;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Scoring detection files against GTSDB ground truth, as sbr_eval reports it: no OpenCV,
 // so the Python package (sbr.regress) links the same code and prints the same report.
 #pragma once
@@ -9,21 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "geometry.hpp"
+#include "detection.hpp"
 
 namespace sbr_host {
-
-// One line of a detection file, "NNNNN.ext;left;top;right;bottom;class[;score]"
-// (GTSDB's format, inclusive pixels; score 1 when absent), as sbr_detect writes it.
-struct DetLine {
-    int image = 0;
-    double left = 0, top = 0, right = 0, bottom = 0;
-    int class_id = 0;
-    double score = 1.0;
-    PixBox box() const { return {left, top, right + 1.0, bottom + 1.0}; }
-};
-// False when the line has fewer than six fields.
-bool parse_detection_line(const std::string &line, DetLine &d);
 
 // Counts of one superclass, class or the class level, and what they give.
 struct Prf {

@@ -1,9 +1,16 @@
+// SPDX-License-Identifier: MIT
 #include "geometry.hpp"
 
 #include <algorithm>
 #include <limits>
 
 namespace sbr_host {
+
+PixBox from_inclusive(double left, double top, double right, double bottom) {
+    return {left, top, right + 1.0, bottom + 1.0};
+}
+
+InclusiveBox to_inclusive(const PixBox &b) { return {b.x0, b.y0, b.x1 - 1.0, b.y1 - 1.0}; }
 
 double box_iou(const PixBox &a, const PixBox &b) {
     const double iw = std::min(a.x1, b.x1) - std::max(a.x0, b.x0);

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Geometry shared by the host tools: boxes, their overlap, and the assignment problem
 // (Hungarian method) behind detection-to-track and ground-truth-to-hypothesis matching.
 // No OpenCV: the tracking tools use it too.
@@ -9,11 +10,19 @@
 
 namespace sbr_host {
 
-// A box [x0, x1) x [y0, y1) in pixels. GTSDB's files give inclusive pixel ranges: their
-// right and bottom get + 1 (gt_pixbox() in gtsdb.hpp).
+// A box [x0, x1) x [y0, y1) in pixels: the host's one box convention (the core's
+// sbr_rect_t is half-open too).
 struct PixBox {
     double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
+
+// GTSDB's files (ground truth, detection files) give inclusive pixel ranges [left, right]
+// x [top, bottom]. The one conversion between the two conventions, both ways:
+PixBox from_inclusive(double left, double top, double right, double bottom);
+struct InclusiveBox {
+    double left = 0, top = 0, right = 0, bottom = 0;
+};
+InclusiveBox to_inclusive(const PixBox &b);
 
 // Intersection over union; 0 for disjoint or empty boxes.
 double box_iou(const PixBox &a, const PixBox &b);

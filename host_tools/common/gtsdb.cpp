@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "gtsdb.hpp"
 
 extern "C" {
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 namespace sbr_host {
 
 PixBox gt_pixbox(const GtBox &g) {
-    return {double(g.left), double(g.top), g.right + 1.0, g.bottom + 1.0};
+    return from_inclusive(g.left, g.top, g.right, g.bottom);
 }
 
 PixBox rect_pixbox(const sbr_rect_t &r) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GTSDB helpers for the host tools: ground truth, image lists, BGR views for the core.
 #pragma once
 
@@ -29,7 +30,7 @@ struct GtBox {
 PixBox gt_pixbox(const GtBox &g);
 PixBox rect_pixbox(const sbr_rect_t &r);
 
-// DetLine and parse_detection_line(): evaluation.hpp.
+// Detection and parse_detection_line(): detection.hpp.
 
 // gt.txt lines "NNNNN.ppm;l;t;r;b;class", keyed by image number. Empty map if unreadable.
 std::map<int, std::vector<GtBox>> read_gt(const std::string &path);

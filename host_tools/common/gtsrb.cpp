@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GTSRB crops: the list, the validation split of their tracks, the class stage's accuracy.
 #include "gtsrb.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // GTSRB training crops for the host tools: the crop list with each crop's sign box, the
 // fixed split of its tracks into training and validation, and the class stage's accuracy
 // at the annotated boxes of a set of crops (sbr_gtsrb_eval, sbr_train_picto, sbr_crossval).

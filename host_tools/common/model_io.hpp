@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Prototype libraries on the host: the file form (load/save) and the generated C table.
 //
 // File form (.sbrm), little-endian, host struct layout of the core's types:

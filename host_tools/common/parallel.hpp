@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The host tools' thread fan-out: one function for "run this on every core, up to a
 // bound" and one for "hand out the items 0..n-1 to such workers". Results that must not
 // depend on the thread count are written per item (by index), never in completion order.

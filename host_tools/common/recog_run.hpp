@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The recogniser on one image for host tools that change models or configurations between
 // calls (trainers, evaluations): the workspace grows as images need, and sbr_recog_init()
 // checks the models with the configuration on each call (a host's cost; an ECU sets up

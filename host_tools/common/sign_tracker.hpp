@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sign tracking over consecutive frames with the core's channel tracker (sbr_track_*):
 // recogniser detections become tracks, so that a sign is reported once per pass with a
 // stable id. Positions are the box centres; the motion model is constant velocity

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The tracker's motion model on the host: its text file form (sbr_train_track
 // --model-out, sbr_track --model).
 //

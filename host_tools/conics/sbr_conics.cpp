@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_conics: the conic methods of papers A and B on synthetic data with known truth.
 //
 //   sbr_conics [--torch] [--fit] [--bike] [--seed S] [--trials N] [--save DIR]

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """sbr_crossval: k-fold cross-validation of sbr's recogniser on GTSDB 00000-00599.
 
 For each fold, both models (the part library, sbr_train, and the class stage,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_detect: runs sbr's recogniser over a folder of recorded images.
 //
 //   sbr_detect --input DIR --detections FILE [--annotated DIR] [--overview FILE] [--gt FILE|none] [--canlog FILE]
@@ -456,9 +457,7 @@ bool detect_image(const Options &o, const Models &m, CallgrindClock &cg, const s
     }
     for (uint32_t k = 0; k < n; ++k) {
         const auto &d = t.dets[k];
-        char line[160];
-        std::snprintf(line, sizeof line, "%s;%u;%u;%u;%u;%u;%.4f\n", name.c_str(), d.box.x, d.box.y,
-                      d.box.x + d.box.width - 1, d.box.y + d.box.height - 1, unsigned(d.class_id), double(d.score));
+        const std::string line = detection_line(name, from_core(d, image_number(file)));
         if (out.all.is_open()) { out.all << line; ++t.nall; }
         if (d.score >= o.threshold) { out.det << line; kept.push_back(d); ++t.ndet; }
     }
@@ -470,10 +469,8 @@ bool detect_image(const Options &o, const Models &m, CallgrindClock &cg, const s
 void annotate_image(const Options &o, const std::string &file, cv::Mat &img,
                     const std::vector<sbr_detection_t> &kept, Annotation &a) {
     const int number = image_number(file);
-    std::vector<DetLine> dets;
-    for (const auto &d : kept)
-        dets.push_back({number, double(d.box.x), double(d.box.y), double(d.box.x + d.box.width - 1),
-                        double(d.box.y + d.box.height - 1), int(d.class_id), double(d.score)});
+    std::vector<Detection> dets;
+    for (const auto &d : kept) dets.push_back(from_core(d, number));
     const auto g = a.gt.find(number);
     const std::vector<Mark> marks =
         judge(dets, g != a.gt.end() ? g->second : std::vector<GtBox>{}, !a.gt_path.empty());
@@ -505,9 +502,7 @@ bool run_image(const Options &o, const Models &m, CallgrindClock &cg, const std:
     if (!error && (!o.annotated.empty() || !o.overview.empty())) annotate_image(o, file, img, kept, out.ann);
     if (out.can) {
         std::vector<Detection> cd;
-        for (const auto &d : kept)
-            cd.push_back({int(d.box.x), int(d.box.y), int(d.box.x + d.box.width - 1), int(d.box.y + d.box.height - 1),
-                          int(d.class_id), d.score});
+        for (const auto &d : kept) cd.push_back(from_core(d, image_number(file)));
         if (o.sequence && first && !out.can->enable_tracking(float(img.cols), float(img.rows))) {
             std::fprintf(stderr, "sbr_detect: sign tracker set-up failed\n");
             return false;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_eval: scores a detections file against GTSDB ground truth.
 //
 //   sbr_eval --detections FILE --gt gt.txt [--range A-B] [--images DIR] [--iou 0.5]

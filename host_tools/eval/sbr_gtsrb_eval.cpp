@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_gtsrb_eval: the class stage on GTSRB crops at their annotated boxes (the fixed
 // validation tracks by default): accuracy per superclass, how often "no sign" wins, the
 // danger classes' confusions. docs/usage/gtsrb.md.

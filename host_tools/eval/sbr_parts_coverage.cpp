@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_parts_coverage: how many annotated signs the recogniser's front end can see whole.
 //   sbr_parts_coverage --data DIR [--range A-B] [--delta D] [--variation V] [--diversity X]
 //                      [--min-area A] [--min-fill F] [--maps MASK] [--map-subsample I,R,B,Y]

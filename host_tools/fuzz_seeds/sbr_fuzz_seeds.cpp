@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Seed corpora for the fuzz harnesses (tests/fuzz/), made from real data at set-up and
 // never committed:
 //   image harnesses (recog, regions, picto, conic): GTSDB crops around annotated signs;

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_servo: visual servoing of a simulated low-cost 5-joint arm with an inverse image
 // Jacobian learned from the arm's own random motions (paper F; include/sbr/servo.h).
 //

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_shapes: shape retrieval on a silhouette set (MPEG-7 CE-Shape-1, Kimia-99) with sbr's
 // contour tracing, Fourier descriptors and correlation matcher, against OpenCV baselines
 // measured in the same run:

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The two baselines the channel tracker is compared with: a constant-velocity Kalman
 // filter with Hungarian association and a bootstrap particle filter, both inside the same
 // track management as the core's tracker (confirmed by the second hit; a tentative track

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "clear_mot.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CLEAR-MOT scoring (Bernardin and Stiefelhagen 2008) of reported tracks against KITTI
 // ground truth: in every frame, ground-truth objects and hypotheses are matched if their
 // centres are at most kMatchPx apart; the previous frame's correspondences are kept while

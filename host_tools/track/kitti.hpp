@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // KITTI tracking ground truth for the tracking tools (sbr_track, sbr_train_track): the
 // label files, the documented corruption that turns ground truth into detections, a
 // synthetic sequence for timing, and KITTI's result format.

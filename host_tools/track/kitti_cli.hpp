@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The options both tracking tools take (sbr_track, sbr_train_track): the KITTI labels,
 // the sequences, the documented corruption and its seed, the classes; and loading the
 // sequences they name.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "motion_learning.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Learning of the channel tracker's motion model (paper E) from detections without track
 // ids, and its generated C form (lib/models/sbr_track_model_kitti.c).
 //

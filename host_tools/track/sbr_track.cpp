@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_track: paper E's channel tracker on KITTI tracking ground truth, against a
 // constant-velocity Kalman filter with Hungarian association and a bootstrap particle
 // filter, all three on the very same corrupted detections (docs/usage/track.md).

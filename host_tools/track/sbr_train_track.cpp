@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_train_track: learns the channel tracker's motion model (paper E) from KITTI
 // tracking box centres without track ids (motion_learning.hpp), writes it as a model file
 // (sbr_track --model) and/or as the generated C table of the built-in model

@@ -21,9 +21,9 @@ namespace sbr_host::picto_train {
 std::map<int, std::vector<Box>> read_boxes(const std::string &path) {
     std::map<int, std::vector<Box>> out;
     std::ifstream f(path);
-    DetLine d;
+    Detection d;
     for (std::string line; std::getline(f, line);)
-        if (parse_detection_line(line, d)) out[d.image].push_back(d.box());
+        if (parse_detection_line(line, d)) out[d.image].push_back(d.box);
     return out;
 }
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr_train: learns the recogniser's prototype library from annotated GTSDB images.
 //
 //   sbr_train [--data DIR] [--range A-B] [--out-c FILE] [--out-model FILE]
@@ -204,22 +205,22 @@ void collect_frame(const std::vector<GtBox> &boxes, const std::vector<int> &sign
         const float px1 = px0 + float(p.bbox.width), py1 = py0 + float(p.bbox.height);
         bool touches = false;
         for (size_t k = 0; k < boxes.size(); ++k) {
-            const auto &b = boxes[k];
-            const float bw = float(b.right - b.left + 1), bh = float(b.bottom - b.top + 1);
+            const PixBox g = gt_pixbox(boxes[k]);
+            const float x0 = float(g.x0), y0 = float(g.y0), x1 = float(g.x1), y1 = float(g.y1);
+            const float bw = x1 - x0, bh = y1 - y0;
             const float m = 0.1f * std::max(bw, bh) + 1.0f;
-            if (px1 > b.left - 2 * m && px0 < b.right + 1 + 2 * m && py1 > b.top - 2 * m && py0 < b.bottom + 1 + 2 * m)
-                touches = true;
-            const bool inside = px0 >= b.left - m && py0 >= b.top - m && px1 <= b.right + 1 + m && py1 <= b.bottom + 1 + m;
+            if (px1 > x0 - 2 * m && px0 < x1 + 2 * m && py1 > y0 - 2 * m && py0 < y1 + 2 * m) touches = true;
+            const bool inside = px0 >= x0 - m && py0 >= y0 - m && px1 <= x1 + m && py1 <= y1 + m;
             if (!inside || std::max(p.bbox.width, p.bbox.height) < 0.25f * std::max(bw, bh)) continue;
             Instance in;
             in.fd = p.fd;
             in.group = group_of(p);
             const float s = p.fd.scale;
-            in.dx = (0.5f * float(b.left + b.right + 1) - p.fd.cx) / s;
-            in.dy = (0.5f * float(b.top + b.bottom + 1) - p.fd.cy) / s;
+            in.dx = (0.5f * (x0 + x1) - p.fd.cx) / s;
+            in.dy = (0.5f * (y0 + y1) - p.fd.cy) / s;
             in.w = bw / s;
             in.h = bh / s;
-            in.cls = b.class_id;
+            in.cls = boxes[k].class_id;
             in.sign = sign_ids[k];
             in.area = float(p.bbox.width) * float(p.bbox.height);
             out.inst.push_back(in);

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #include "sbr_port_candump.h"
 
 size_t sbr_candump_format(char *buf, size_t size, uint64_t time_us, const char *ifname,

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* candump-log CAN port (host): writes each frame as a line of can-utils' log format,
      (1436509052.249713) can0 310#0102030405060708
    which `canplayer -I FILE` replays and cantools/python-can read. The caller sets the

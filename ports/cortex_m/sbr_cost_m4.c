@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * sbr_cost_m4: instructions per frame of the recogniser on the emulated Cortex-M4F
  * (qemu mps2-an386 with -icount shift=0), for `./sbr.sh cost` (host_tools/bench_cost).

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #include "sbr_port_cortex_m.h"
 
 #include <stddef.h>

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Bare-metal CAN port template (Cortex-M). The board support package provides the
  * driver hook
  *

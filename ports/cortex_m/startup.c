@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /*
  * Minimal Cortex-M4F start-up for sbr's test images (qemu mps2-an386) and template for an
  * ECU project: vector table, reset handler (FPU on, .data copied, .bss zeroed), newlib

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #include "sbr_port_mock.h"
 
 #include <stddef.h>

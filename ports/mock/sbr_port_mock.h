@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Mock CAN port: records frames in a caller array, for tests. It can refuse frames after
    a given number to exercise the sender's full-queue path. */
 #ifndef SBR_PORT_MOCK_H

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* SocketCAN port (Linux): a raw CAN socket bound to one interface, non-blocking.
  *
  * Full-queue policy: when the kernel refuses a frame (EAGAIN/EWOULDBLOCK: socket send

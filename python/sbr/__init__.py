@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """sbr: shape-based recognition of traffic signs, the C core for numpy images.
 
     import sbr, numpy as np

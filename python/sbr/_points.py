@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Point arrays for the core: N x 2 float32, C-contiguous (a copy when needed)."""
 import numpy as np
 

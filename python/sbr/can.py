@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """sbr.can: the CAN messages of dbc/sbr.dbc, packed and unpacked by the core
 (include/sbr/can.h), with its end-to-end protection (CRC-8/SAE-J1850 over the Data ID and
 payload, alive counter 0..14).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Scoring detections against GTSDB ground truth: sbr_eval's report, from the package.
 
     import sbr

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """sbr.fd: Fourier descriptors of closed contours and their correlation matching (the
 thesis's papers C and D; include/sbr/fd.h documents the maths).
 

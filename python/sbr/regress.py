@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Regression over recorded images on Dask: python -m sbr.regress.
 
     python -m sbr.regress --input DIR|LIST --out DIR [--scheduler ADDRESS | --workers N [--threads T]]

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr._sbr: the CAN messages of dbc/sbr.dbc (include/sbr/can.h): pack/unpack by message
 // name with the core's field names, and the E2E sender and receiver.
 #include <nanobind/nanobind.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared by the binding files: statuses as exceptions.
 #pragma once
 #include <nanobind/nanobind.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr._sbr.evaluate: the evaluation of sbr_eval (host_tools/common/evaluation.hpp) for
 // sbr.evaluate and sbr.regress, so an installed package reports without the checkout's
 // tools. The report's text is sbr_eval's, byte for byte.

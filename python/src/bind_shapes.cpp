@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr._sbr: Fourier descriptors and their matching (include/sbr/fd.h), the ellipse fit
 // (include/sbr/conic.h). Points come as N x 2 float32 arrays (the Python layer converts).
 #include <nanobind/nanobind.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr._sbr.Tracker: the channel-representation tracker (include/sbr/track.h) with the
 // built-in KITTI model or a constant-velocity model; the GIL is released while a step runs.
 #include <nanobind/nanobind.h>

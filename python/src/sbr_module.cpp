@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr._sbr: the recogniser for Python (nanobind). Thin: the core's configuration, models
 // and detections; statuses become exceptions (ValueError for bad input, MemoryError never:
 // the workspace is allocated here, RuntimeError for the rest), the GIL is released while

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """ctest python_wheel_fresh_venv: the sbr wheel as a user installs it.
 
     fresh_venv.py --work DIR --data GTSDB_DIR --detect SBR_DETECT

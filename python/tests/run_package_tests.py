@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """ctest python_package: the sbr wheel built from this checkout, installed, tested.
 
     run_package_tests.py --work DIR [pytest args]

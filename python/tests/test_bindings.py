@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The sbr package against the C tools and hostile input (ctest python_package).
 
 Environment: SBR_DETECT (the sbr_detect binary), SBR_DATA (the GTSDB folder); the tests

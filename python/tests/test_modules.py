@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """sbr.Tracker, sbr.ellipse_fit, sbr.fd and sbr.can against known geometry, the DBC read by
 cantools (an independent decoder) and hostile input.
 

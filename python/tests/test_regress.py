@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """python -m sbr.regress on a 2-worker LocalCluster (ctest python_package).
 
 Environment: SBR_DETECT, SBR_EVAL (the host tools), SBR_DATA (the GTSDB folder).

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """The binding's per-call overhead against the C call (not a test: prints figures).
 
     python python/tools/bench_bindings.py --data ../shared/data/gtsdb [--range 400-419] [--repeat 3]

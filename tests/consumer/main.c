@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 #include <sbr/sbr.h>
 
 /* Exit code 0 only if the installed library transforms correctly. */

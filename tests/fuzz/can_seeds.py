@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Seeds for the CAN harness (fuzz_can) from the DBC: every message of dbc/sbr.dbc
 encoded by cantools at its signals' minimum, middle and maximum, as the frames the
 harness's unpack branch reads.

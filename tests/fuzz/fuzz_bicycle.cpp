@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: the bicycle model (predict, project, wheel pairing) and its particle
 // filter. Statuses: SBR_ERR_RANGE exactly when bike.h's ranges of the model, camera and
 // state are broken (header and code say the same). On SBR_OK: states finite with the

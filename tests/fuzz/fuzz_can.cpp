@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: CAN pack/unpack of every message, E2E protect/check, the scheduler.
 // On SBR_OK: unpacked values in their signals' ranges; pack(unpack(f)) is accepted and
 // unpacks to the same values; a packed frame unpacks to its input within resolution and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: channel encoding, accumulation and decoding, 1-D and 2-D. On SBR_OK: encodings finite
 // and >= 0; decoded values finite inside the representable range, certainties finite
 // and >= 0, modes sorted by certainty and within capacity.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Shared by sbr's libFuzzer harnesses (tests/fuzz/): reading values from the input, and
 // invariant checks that abort (so libFuzzer reports the input) when an output that came
 // with SBR_OK breaks what the header promises.

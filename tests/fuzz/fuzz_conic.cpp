@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: conic classification, ellipse <-> conic, direct fit, residual, coverage,
 // torchlight pose and ellipse detection. On SBR_OK: classes in the enum and, where the
 // conic is clear of the zero rule's thresholds, the class conic.h's rule gives in exact

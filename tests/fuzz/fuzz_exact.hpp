@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Exact references for the harnesses' postconditions: a conic's determinants, centre,
 // value at the centre and ellipse geometry in long double (64-bit mantissa on x86-64,
 // where the fuzzers run), so that an SBR_OK result of the float32 core can be confirmed

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: FFT, Fourier descriptors (from integer and float points), mirror, smooth,
 // match and table match. On SBR_OK: the FFT's inverse undoes the forward within float
 // rounding; descriptors pass sbr_fd_check() with unit energy; a descriptor matches

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: the host model loaders (--model .sbrm, --picto .sbrp, sbr_track --model
 // text form). The first byte picks the loader, the rest is the file. A file the loader
 // accepts must pass the core's check, and saving it again must give a file that loads to

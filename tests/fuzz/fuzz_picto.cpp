@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: pictogram features (box and triangle outline), classification and box
 // refinement with the built-in class stage, its colour check and its gate. On SBR_OK:
 // features finite; the model's classes + 1 probabilities finite in [0, 1] summing to 1

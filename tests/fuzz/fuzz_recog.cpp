@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: the recogniser. Configuration fields overwritten from the input, the
 // built-in models (with or without the class stage), sbr_recog_init() on a workspace of
 // the size the view needs (or one byte short); then frames from the input (size, stride,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: maps, MSER, region masks, contour tracing and part extraction. Images and
 // configuration fields from the input. On SBR_OK: maps of the promised size; regions
 // inside the map with area within the bounds; masks that contain the seed; contours

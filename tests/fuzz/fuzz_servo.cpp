@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: the servo learner and steps (learned J and a given J) with hostile configurations, commands and
 // features (NaN, infinities, huge values, angles far off the seam), learning sequences
 // that run the field bound full, and a corrupted instance. On SBR_OK: every Jacobian

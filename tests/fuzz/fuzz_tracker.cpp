@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Fuzz harness: the channel tracker. The model (the KITTI one, or a constant-velocity one
 // from fuzzed parameters), configuration fields, dt and detections from the input, over
 // several steps. On SBR_OK / SBR_ERR_CAPACITY: count <= capacity; targets with finite

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Run sbr's libFuzzer harnesses and report executions, coverage and findings.
 
     run_fuzz.py --bin DIR --corpus DIR [--seeds DIR] [--targets a,b,...]

@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Deliberately breaks every rule the core-symbol gate enforces; built only to prove that
    the gate fails on it (gate_core_symbols_selftest). Never part of the library. */
 #include <stdio.h>

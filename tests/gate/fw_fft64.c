@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* A bare-metal image that uses only the 64-point FFT: the linker must drop the tables
    of the larger lengths (gate_fft_tables_dropped_by_linker). It also runs on the emulated
    Cortex-M4 and checks one transform (a DC input gives N at bin 0). */

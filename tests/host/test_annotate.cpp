@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The annotated pictures (host_tools/common/annotate.hpp) and the image checks of
 // sbr_detect (image_file_problem() in gtsdb.hpp):
 //  - a constructed scene with a known found sign, a known false detection and a known
@@ -46,7 +47,10 @@ void check(bool ok, const std::string &what) {
     }
 }
 
-DetLine det(int l, int t, int r, int b, int cls, double score) { return {444, double(l), double(t), double(r), double(b), cls, score}; }
+// A detection on image 444 with the inclusive box l..r x t..b (as a detection file gives it).
+Detection det(int l, int t, int r, int b, int cls, double score) {
+    return {444, from_inclusive(l, t, r, b), cls, score};
+}
 
 cv::Vec3b px(const cv::Mat &m, int x, int y) { return m.at<cv::Vec3b>(y, x); }
 bool is(const cv::Vec3b &p, const cv::Scalar &c) { return p[0] == c[0] && p[1] == c[1] && p[2] == c[2]; }
@@ -66,7 +70,7 @@ void check_labels(const std::vector<cv::Rect> &labels, const cv::Mat &img, const
 void test_constructed_scene() {
     cv::Mat img(200, 320, CV_8UC3, cv::Scalar(128, 128, 128));
     // A (class 1) found, B (class 14) false, C (class 25) missed, D (class 2) found at the right edge
-    const std::vector<DetLine> dets = {det(40, 60, 79, 99, 1, 0.9), det(150, 60, 189, 99, 14, 0.7),
+    const std::vector<Detection> dets = {det(40, 60, 79, 99, 1, 0.9), det(150, 60, 189, 99, 14, 0.7),
                                        det(290, 10, 319, 39, 2, 0.8)};
     const std::vector<GtBox> gts = {{40, 60, 79, 99, 1}, {230, 120, 269, 159, 25}, {291, 11, 319, 39, 2}};
     const std::vector<Mark> marks = judge(dets, gts, true);
@@ -211,8 +215,10 @@ void test_sbr_detect(const std::string &detect, const std::string &data, const s
     std::ifstream f(work + "/det.txt");
     bool seen = false;
     for (std::string line; std::getline(f, line);) {
-        DetLine d;
-        if (!parse_detection_line(line, d) || d.class_id != 7 || d.left < 900) continue;
+        Detection det_line;
+        if (!parse_detection_line(line, det_line) || det_line.class_id != 7) continue;
+        const InclusiveBox d = to_inclusive(det_line.box);
+        if (d.left < 900) continue;
         seen = true;
         int magenta = 0;
         for (int y = int(d.top) + 3; y <= int(d.bottom) - 3; ++y) {

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Host regression test: sbr's contour tracing equals OpenCV's findContours(RETR_EXTERNAL,
 // CHAIN_APPROX_NONE) on the MPEG-7 CE-Shape-1 silhouettes: the same contours, each the
 // same point sequence up to the start point. Exit 77 (ctest: skipped) without the data.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The host tools' shared geometry and fan-out (host_tools/common/geometry.hpp,
 // parallel.hpp): the Hungarian method's assignment cost equals brute force's optimum on
 // random rectangular problems, unassigned rows only when rows outnumber columns; IoU on

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // For the host test programs: -h / --help says what the program tests and how to call it
 // (exit 0), and an option the program does not take is an error naming it (exit 2),
 // never read as a path or ignored.

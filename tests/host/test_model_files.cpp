@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The model file forms (--model .sbrm, --picto .sbrp, sbr_track --model text) against
 // damaged files: the built-in models are written, then truncated at many lengths, bit-flipped
 // at many positions, changed with the CRC fixed up (counts, a weight made NaN, a table row

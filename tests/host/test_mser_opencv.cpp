@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Host regression test: sbr's MSER agrees with OpenCV's cv::MSER (the oracle) on GTSDB
 // scenes. For 20 images spread over the set, on the intensity map and on the red-opponent
 // map (both made by sbr and handed to both implementations), with OpenCV's default

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sign tracking in the pipeline: recogniser detections over consecutive frames become
 // tracks (SignTracker, the core's channel tracker), so that a sign is reported once per
 // pass with a stable id.

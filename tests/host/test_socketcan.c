@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* SocketCAN port on a real kernel interface: frames sent through sbr's port arrive on a
  * second socket bound to the same interface (vcan0 by default, or argv[1]).
  * Skips itself (exit 77) with a message only where the kernel has no CAN support

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Test-side reading of sbr's CAN logs, independent of the product's code: candump log
 lines (`(sec.usec) ifname ID#DATA`) and the E2E CRC the DBC describes (CRC-8/SAE-J1850 over
 the Data ID 0x5B00 | (id & 0xFF), low byte first, and payload bytes 1..7)."""

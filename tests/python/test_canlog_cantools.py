@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The CAN interface seen by an independent consumer: cantools loads dbc/sbr.dbc strictly
 and without warnings, decodes every frame of a candump log that sbr wrote for a detections
 file, and the decoded values equal the detections within each signal's resolution. E2E
@@ -35,8 +36,8 @@ def read_detections(path):
             img = int(p[0].split(".")[0])
             score = float(p[6]) if len(p) > 6 else 1.0
             l, t, r, b, c = (int(v) for v in p[1:6])
-            by_image[img].append(dict(cls=c, score=score, cx=(l + r) / 2, cy=(t + b) / 2,
-                                      w=r - l, h=b - t, order=n))
+            by_image[img].append(dict(cls=c, score=score, cx=(l + r + 1) / 2, cy=(t + b + 1) / 2,
+                                      w=r - l + 1, h=b - t + 1, order=n))
     return by_image
 
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The host tools' command lines (CLI11): --help exits 0 and describes every option; a
 malformed or out-of-range value is refused with exit 2 and a message naming the option;
 an unknown option is refused.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Smoke test of the cost benchmark (host_tools/bench_cost/sbr_cost.py) on one frame.
 
 usage: test_cost.py --bin DIR --gtsdb DIR [--m4-elf ELF] --work DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """sbr_crossval on a small GTSDB subset: the folds, the pooled figures, reuse and baseline.
 
 Three folds of four images each (GTSDB 00400-00411; each fold's models are trained on the

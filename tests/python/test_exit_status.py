@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The exit-status table (docs/usage/exit-status.md) as the programs follow it: each
 program run into each case that applies, its status and its message checked.
 

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """sbr_eval against detections whose scores are known by construction.
 
 From GTSDB's ground truth of images 400-599 (the development split), box j in file order

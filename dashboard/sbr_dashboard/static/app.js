@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // sbr dashboard page: renders the JSON snapshots the server pushes (server-sent events).
 "use strict";
 const $ = (id) => document.getElementById(id);

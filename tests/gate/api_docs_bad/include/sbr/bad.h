@@ -1,3 +1,4 @@
+/* SPDX-License-Identifier: MIT */
 /* Self-test input of cmake/check_api_docs.py: `b` has no direction, `c` no line at all. */
 /**
  * @brief Not a real function.
