@@ -276,7 +276,22 @@ void SampleCollector::gtsrb_crop(size_t i, std::mt19937 &rng, std::vector<Sample
     const sbr_image_t v = bgr_view(img);
     const std::vector<Box> gts{c.box};
     rng.seed(o_.seed * 100003u + 7919u * unsigned(i) + 1000003u);
-    sign_copies(make_site(img, v, gts, 0, c.cls), o_.gtsrb_copies, rng, local);
+    const Site site = make_site(img, v, gts, 0, c.cls);
+    sign_copies(site, o_.gtsrb_copies, rng, local);
+    // --gtsrb-synth: copies in perspective, under another exposure, blurred, often
+    // smaller (synth_copy()), for the class only, from a stream of their own (the copies
+    // above stay as they were)
+    std::mt19937 srng(o_.seed * 100003u + 7919u * unsigned(i) + 2000003u);
+    std::vector<float> f;
+    for (int j = 0; j < o_.gtsrb_synth; ++j) {
+        Box qs;
+        const cv::Mat seen = synth_copy(img, site.near, site.b, gts, site.mx0, site.my0, srng, qs);
+        if (seen.empty()) continue;
+        const sbr_image_t sv = bgr_view(seen);
+        if (!features(sv, qs, f)) continue;
+        local.push_back({f, c.cls});
+        if (o_.tview && j % 4 == 0 && features(sv, qs, f, kTriangle)) local.push_back({f, c.cls});
+    }
 }
 
 Counts count_samples(const std::vector<Sample> &samples, size_t images, double secs) {

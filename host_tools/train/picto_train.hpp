@@ -55,6 +55,7 @@ struct Options {
     bool gtsrb_given = false;  // --gtsrb on the command line (a missing default folder is only a note)
     int gtsrb_cap = 400;    // --gtsrb-cap: crops a class at most, spread over its tracks
     int gtsrb_copies = 2;   // --gtsrb-copies: jittered copies of each crop besides itself
+    int gtsrb_synth = 0;    // --gtsrb-synth: synthetic copies of each crop (synth_copy())
     FrontEnd front_end;     // --map-subsample, --map-min-area: the part stage of the candidates
 };
 

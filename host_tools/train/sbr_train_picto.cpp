@@ -99,6 +99,10 @@ int parse_options(int argc, char **argv, Options &o) {
     app.add_option("--gtsrb-cap", o.gtsrb_cap, "GTSRB crops of a class at most")
         ->check(CLI::Range(1, 100000))
         ->capture_default_str();
+    app.add_option("--gtsrb-synth", o.gtsrb_synth,
+                   "synthetic copies of each GTSRB crop (perspective, exposure, blur, smaller)")
+        ->check(CLI::Range(0, 1000))
+        ->capture_default_str();
     app.add_option("--gtsrb-copies", o.gtsrb_copies, "jittered copies of each GTSRB crop")
         ->check(CLI::Range(0, 1000))
         ->capture_default_str();
@@ -192,7 +196,8 @@ std::string c_header(const Options &o, const Counts &n) {
     if (!o.tview) swap_flag += " --no-triangle-view";
     if (!o.gtsrb.empty())
         swap_flag += " --gtsrb GTSRB --gtsrb-cap " + std::to_string(o.gtsrb_cap) + " --gtsrb-copies " +
-                     std::to_string(o.gtsrb_copies);
+                     std::to_string(o.gtsrb_copies) +
+                     (o.gtsrb_synth > 0 ? " --gtsrb-synth " + std::to_string(o.gtsrb_synth) : std::string());
     else
         swap_flag += " --no-gtsrb";
     {
