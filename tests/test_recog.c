@@ -733,7 +733,7 @@ static void test_class_stage(void)
            one refine_score: a first gate above that probability moves nothing, whatever
            the second; a first gate below it and a second above it move the box once. */
         TEST_ASSERT_EQUAL_UINT32(2u, g_cfg.refine_steps);
-        TEST_ASSERT_EQUAL_FLOAT(0.0f, g_cfg.refine_first_score);
+        TEST_ASSERT_EQUAL_FLOAT(0.0003f, g_cfg.refine_first_score);
         TEST_ASSERT_EQUAL_FLOAT(0.001f, g_cfg.refine_score);
         rc.refine_steps = 2u;
         rc.refine_first_score = 0.995f;

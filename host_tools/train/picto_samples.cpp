@@ -71,6 +71,9 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     // first classification does not find danger-like): mining also sees the false danger
     // signs the triangle view makes of those, and the committed class stage was learned so
     rc.triangle_score = 0.0f;
+    // every candidate refined once, as the committed class stage was learned (the
+    // recogniser's default refines only those its first look finds sign-like)
+    rc.refine_first_score = 0.0f;
     // every map at full resolution, as the part model was learned (sbr_train): the finest
     // candidates (the recogniser's default runs the blue map at half resolution; the class
     // stage learned this way scores the same there, see docs/results/recognition.md)

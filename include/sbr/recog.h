@@ -247,10 +247,12 @@ typedef struct sbr_recog_config_s {
         part model put them. Each step costs one more pictogram and the regression. */
     uint32_t refine_steps;
     /** The first refinement needs the sign classes together to be at least this probable
-        at the part model's box, [0, 1]. Default 0: every candidate is refined once (the
-        classifier calls a box a fifth of a sign's size off "no sign", yet its regression
-        still points at the sign). Costs one pictogram per candidate; higher: less work,
-        fewer badly placed signs recovered (docs/results/recognition.md). */
+        at the part model's box, [0, 1]. Default 0.0003: the candidates the classifier
+        finds at least that sign-like are refined (the others, most of the background, are
+        not moved; 0: every candidate is refined once, for boxes a fifth of a sign's size
+        off that it calls "no sign" yet whose regression still points at the sign). Each
+        refinement costs one pictogram; higher: less work, fewer badly placed signs
+        recovered (docs/results/realtime.md). */
     float refine_first_score;
     /** Further refinements (steps 2 .. refine_steps) only while the sign classes together
         are at least this probable, [0, 1]. Default 0.001 (after one move, a box near a

@@ -38,7 +38,7 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->candidate_score = 0.0f;
         cfg->max_candidates = 256u;
         cfg->refine_steps = 2u;
-        cfg->refine_first_score = 0.0f;
+        cfg->refine_first_score = 0.0003f;
         cfg->refine_score = 0.001f;
         cfg->views = 5u;
         cfg->view_score = 0.1f;
