@@ -4,7 +4,10 @@
 malformed or out-of-range value is refused with exit 2 and a message naming the option;
 an unknown option is refused.
 
-    test_cli.py --tools DIR [--sbr-sh PATH]"""
+    test_cli.py --tools DIR --tests DIR [--sbr-sh PATH]
+
+--tools: the host tools' folder; --tests: the folder of the C++ test programs (tests/host),
+each of which must be there."""
 
 import argparse
 import os
@@ -28,8 +31,8 @@ CASES = {
     "sbr_conics": ([], [("--trials", "0"), ("--seed", "-3")]),
     "sbr_fuzz_seeds": (["--out", "o"], [("--per-set", "0")]),
     "sbr_parts_coverage": (["--data", "d"], [("--range", "9-1"), ("--min-fill", "2"), ("--delta", "0")]),
-    "test_recog_scenes": (["--data", "d", "--min-recall", "0.5", "--min-crop-recall", "0.5"],
-                          [("--max-fp-rate", "-1"), ("--range", "a-b")]),
+    "test_builtin_models_gtsdb": (["--data", "d", "--min-recall", "0.5", "--min-crop-recall", "0.5"],
+                                  [("--max-fp-rate", "-1"), ("--range", "a-b")]),
     "sbr_shapes": (["--data", "d"], [("--n", "100"), ("--sigma", "x")]),
     "sbr_track": (["--labels", "l"], [("--noise", "abc"), ("--particles", "5"), ("--bench-targets", "33")]),
     "sbr_train_track": (["--labels", "l"], [("--em", "-1"), ("--vel-count", "3"), ("--tail", "nan")]),
@@ -48,6 +51,7 @@ def run(cmd):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--tools", required=True)
+    ap.add_argument("--tests", required=True, help="folder of the C++ test programs (tests/host)")
     ap.add_argument("--sbr-sh", help="./sbr.sh: each subcommand's --help prints its usage, runs nothing")
     a = ap.parse_args()
     failures = 0
@@ -80,8 +84,11 @@ def main():
         good = r.returncode == 0 and "./sbr.sh detect" in r.stdout and not re.search(r"^#", r.stdout, re.M)
         print(f"sbr.sh --help: exit {r.returncode}{'' if good else ' (comment marks or usage missing)'}")
         failures += not good
+    def where(prog):
+        return os.path.join(a.tests if prog.startswith("test_") else a.tools, prog)
+
     for tool, (required, bad) in CASES.items():
-        exe = os.path.join(a.tools, tool)
+        exe = where(tool)
         h = run([exe, "--help"])
         opts = sorted(set(re.findall(r"^\s+(?:-\w,)?(--[a-z][a-z0-9-]*)", h.stdout, re.M)))
         # every option has a description: its help block (its line and the indented lines
@@ -115,14 +122,16 @@ def main():
     # the host test programs: --help says what they test (exit 0, nothing run); an option
     # they do not take is named (exit 2), never read as a path
     for prog in ["test_mser_opencv", "test_contour_opencv", "test_annotate", "test_geometry",
-                 "test_model_files", "test_sign_tracking", "test_recog_scenes"]:
-        exe = os.path.join(a.tools, prog)
+                 "test_model_files", "test_sign_tracking", "test_builtin_models_gtsdb"]:
+        exe = where(prog)
         if not os.path.exists(exe):
+            print(f"{prog}: missing from {os.path.dirname(exe)}")
+            failures += 1
             continue
         h = run([exe, "--help"])
         b = run([exe, "--no-such-option"])
         good = (h.returncode == 0 and re.search(r"(?i)usage", h.stdout) is not None and "SKIP" not in h.stdout
-                and b.returncode == 2 and ("--no-such-option" in b.stderr or prog == "test_recog_scenes"))
+                and b.returncode == 2 and ("--no-such-option" in b.stderr or prog == "test_builtin_models_gtsdb"))
         print(f"{prog} --help: exit {h.returncode}; --no-such-option: exit {b.returncode}")
         failures += not good
     print("cli: " + ("OK" if failures == 0 else f"{failures} FAILED"))
