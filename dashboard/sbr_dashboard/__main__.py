@@ -6,7 +6,7 @@
   sbr-dashboard --virtual CHANNEL [--feed-log F]  python-can's virtual bus
 (the console script of the package in dashboard/, pyproject.toml; python -m sbr_dashboard
 does the same)
-options: --dbc FILE (default dbc/sbr.dbc), --terminal (no web page), --host, --port,
+options: --dbc FILE (default: dbc/sbr.dbc, installed with the package), --terminal (no web page), --host, --port,
          --timeout-factor F (default 3), --wait-client (start the input only once a page
          is connected, so that it sees the whole replay), --exit-after-end S (stop S seconds after a log
          ended; default: keep serving), --once (terminal: print one screen when the log
@@ -24,8 +24,9 @@ from .monitor import Monitor
 from .sources import BusSource, LogSource, SourceError, feed_log_to_bus
 from .terminal import HOME_CLEAR, render, terminal_width
 
-DEFAULT_DBC = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(
-    os.path.abspath(__file__)))), "dbc", "sbr.dbc")
+# The project's DBC, shipped inside the package (sbr_dashboard/sbr.dbc, a link to
+# dbc/sbr.dbc in the checkout that the wheel holds as a file).
+DEFAULT_DBC = os.path.join(os.path.dirname(os.path.abspath(__file__)), "sbr.dbc")
 
 
 def main(argv=None):
@@ -37,7 +38,7 @@ def main(argv=None):
     ap.add_argument("--feed-log", metavar="FILE", help="with --virtual: play this candump log onto the bus")
     ap.add_argument("--fast", action="store_true", help="replay the log as fast as possible")
     ap.add_argument("--rate", type=float, default=1.0, help="replay speed factor (default 1: the log's own timing)")
-    ap.add_argument("--dbc", default=DEFAULT_DBC, help="the DBC that describes the messages (default: dbc/sbr.dbc)")
+    ap.add_argument("--dbc", default=DEFAULT_DBC, help="the DBC that describes the messages (default: the project DBC, installed with the package)")
     ap.add_argument("--terminal", action="store_true",
                     help="terminal view instead of the page, laid out to the terminal's width")
     ap.add_argument("--once", action="store_true",
