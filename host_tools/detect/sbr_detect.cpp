@@ -455,9 +455,10 @@ bool detect_image(const Options &o, const Models &m, CallgrindClock &cg, const s
         image_failed(o, file, std::string("the recogniser refused it: ") + sbr_status_str(st), t);
         return false;
     }
+    const int number = image_number(file);
     for (uint32_t k = 0; k < n; ++k) {
         const auto &d = t.dets[k];
-        const std::string line = detection_line(name, from_core(d, image_number(file)));
+        const std::string line = detection_line(name, from_core(d, number));
         if (out.all.is_open()) { out.all << line; ++t.nall; }
         if (d.score >= o.threshold) { out.det << line; kept.push_back(d); ++t.ndet; }
     }

@@ -180,10 +180,15 @@ void SampleCollector::sign_copies(const Site &site, int copies, std::mt19937 &rn
 // another exposure, partly occluded and often farther away (synth_copy()); for the class
 // only (no box target).
 void SampleCollector::rare_copies(const Site &site, int num, size_t g, std::vector<Sample> &local) const {
-    const int extra = rare_rounds(site.cls) * o_.jitter;
     std::mt19937 srng(o_.seed * 100003u + unsigned(num) * 977u + unsigned(g) + 11u);
+    synth_copies(site, rare_rounds(site.cls) * o_.jitter, srng, local);
+}
+
+// n synthetic copies of the sign of `site` (synth_copy()) drawn from srng, for the class
+// only (no box target); every fourth also as the triangle view.
+void SampleCollector::synth_copies(const Site &site, int n, std::mt19937 &srng, std::vector<Sample> &local) const {
     std::vector<float> f;
-    for (int j = 0; j < extra; ++j) {
+    for (int j = 0; j < n; ++j) {
         Box qs;
         const cv::Mat seen = synth_copy(*site.img, site.near, site.b, *site.gts, site.mx0, site.my0, srng, qs);
         if (seen.empty()) continue;
@@ -281,20 +286,10 @@ void SampleCollector::gtsrb_crop(size_t i, std::mt19937 &rng, std::vector<Sample
     rng.seed(o_.seed * 100003u + 7919u * unsigned(i) + 1000003u);
     const Site site = make_site(img, v, gts, 0, c.cls);
     sign_copies(site, o_.gtsrb_copies, rng, local);
-    // --gtsrb-synth: copies in perspective, under another exposure, blurred, often
-    // smaller (synth_copy()), for the class only, from a stream of their own (the copies
-    // above stay as they were)
+    // --gtsrb-synth: synthetic copies from a stream of their own (the copies above stay
+    // as they were)
     std::mt19937 srng(o_.seed * 100003u + 7919u * unsigned(i) + 2000003u);
-    std::vector<float> f;
-    for (int j = 0; j < o_.gtsrb_synth; ++j) {
-        Box qs;
-        const cv::Mat seen = synth_copy(img, site.near, site.b, gts, site.mx0, site.my0, srng, qs);
-        if (seen.empty()) continue;
-        const sbr_image_t sv = bgr_view(seen);
-        if (!features(sv, qs, f)) continue;
-        local.push_back({f, c.cls});
-        if (o_.tview && j % 4 == 0 && features(sv, qs, f, kTriangle)) local.push_back({f, c.cls});
-    }
+    synth_copies(site, o_.gtsrb_synth, srng, local);
 }
 
 Counts count_samples(const std::vector<Sample> &samples, size_t images, double secs) {

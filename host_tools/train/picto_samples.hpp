@@ -35,6 +35,7 @@ private:
     void sign_copies(const Site &site, int copies, std::mt19937 &rng, std::vector<Sample> &local) const;
     void gtsrb_crop(size_t i, std::mt19937 &rng, std::vector<Sample> &local) const;
     void rare_copies(const Site &site, int num, size_t g, std::vector<Sample> &local) const;
+    void synth_copies(const Site &site, int n, std::mt19937 &srng, std::vector<Sample> &local) const;
     void box_jitter_copies(const Site &site, int num, size_t g, std::vector<Sample> &local) const;
     void candidates(const sbr_image_t &v, const std::vector<Box> &cands, const std::vector<Box> &gts,
                     const std::vector<int> &cls, bool mined, std::vector<Sample> &local) const;

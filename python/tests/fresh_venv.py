@@ -28,6 +28,8 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(HERE)
 ROOT = os.path.dirname(PACKAGE)
+sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
+from fresh_venv_install import install  # noqa: E402  (the project's test helpers)
 
 
 def run(cmd, **kw):
@@ -66,22 +68,13 @@ def main():
     wheel = glob.glob(os.path.join(a.work, "wheel", "sbr-*.whl"))[0]
     print(f"1. wheel {os.path.basename(wheel)} built in {t:.1f} s")
 
-    venv = os.path.join(a.work, "venv")
-    py = os.path.join(venv, "bin", "python")
-    r, t = run(["python3", "-m", "venv", venv])
-    # the project's pins as constraints: name==version lines only (a '-r' line there would
-    # be read as requirements and install more than the wheel declares)
-    constraints = os.path.join(a.work, "constraints.txt")
-    with open(os.path.join(ROOT, "tests", "python", "requirements.txt")) as f, open(constraints, "w") as c:
-        c.writelines(line for line in f if re.match(r"^[A-Za-z0-9_.\-\[\]]+==", line))
-    r2, t2 = run([py, "-m", "pip", "install", "-q", "--disable-pip-version-check", "-c", constraints,
-                  f"{wheel}[regress,notebook]"], cwd=a.work)
-    if r.returncode != 0 or r2.returncode != 0:
-        print(r.stdout + r.stderr + r2.stdout + r2.stderr)
+    py, frozen, t, err = install(a.work, f"{wheel}[regress,notebook]", a.work)
+    if err:
+        print(err)
         return 1
-    frozen = run([py, "-m", "pip", "list", "--format=freeze", "--disable-pip-version-check"])[0].stdout.split()
+    venv = os.path.dirname(os.path.dirname(py))
     names = sorted(x.split("==")[0].lower() for x in frozen)
-    print(f"2. fresh venv, pip install 'sbr[regress,notebook]' in {t + t2:.1f} s: {len(names)} packages: "
+    print(f"2. fresh venv, pip install 'sbr[regress,notebook]' in {t:.1f} s: {len(names)} packages: "
           f"{', '.join(names)}")
     for unwanted in ("pytest", "playwright", "cantools", "opencv-python"):
         if unwanted in names:

@@ -22,6 +22,8 @@ import sys
 import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from fresh_venv_install import install  # noqa: E402
 
 
 def run(cmd, **kw):
@@ -62,22 +64,15 @@ def main():
         return 1
     print(f"1. sbr_detect wrote the CAN log of 00444-00445 in {t:.1f} s")
 
-    venv = os.path.join(a.work, "venv")
-    r, t = run(["python3", "-m", "venv", venv])
-    constraints = os.path.join(a.work, "constraints.txt")
-    with open(os.path.join(ROOT, "tests", "python", "requirements.txt")) as f, open(constraints, "w") as c:
-        c.writelines(line for line in f if re.match(r"^[A-Za-z0-9_.\-\[\]]+==", line))
     pkg = os.path.join(a.work, "dashboard")  # a copy: the build leaves nothing in the checkout
     shutil.copytree(os.path.join(ROOT, "dashboard"), pkg, symlinks=False,
                     ignore=shutil.ignore_patterns("build", "*.egg-info", "__pycache__", "tests"))
-    r2, t2 = run([os.path.join(venv, "bin", "python"), "-m", "pip", "install", "-q", "--disable-pip-version-check",
-                  "-c", constraints, pkg], cwd=a.work)
-    if r.returncode != 0 or r2.returncode != 0:
-        print(r.stdout + r.stderr + r2.stdout + r2.stderr)
+    py, frozen, t, err = install(a.work, pkg, a.work)
+    if err:
+        print(err)
         return 1
-    r, _ = run([os.path.join(venv, "bin", "python"), "-m", "pip", "list", "--format=freeze",
-                "--disable-pip-version-check"])
-    print(f"2. fresh venv, pip install dashboard/ in {t + t2:.1f} s: " + ", ".join(r.stdout.split()))
+    venv = os.path.dirname(os.path.dirname(py))
+    print(f"2. fresh venv, pip install dashboard/ in {t:.1f} s: " + ", ".join(frozen))
 
     elsewhere = os.path.join(a.work, "elsewhere")
     os.makedirs(elsewhere)
