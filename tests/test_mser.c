@@ -231,6 +231,95 @@ static void test_mser_random_regions_are_extremal(void)
     }
 }
 
+/* Level limits: pixels beyond a limit are not flooded, regions within delta of it are not
+   reported, and the regions well inside are those of the unrestricted flood. Two bright
+   squares (220) apart from each other (two floods of the walled map), a faint one (140)
+   and a dark one (40) on a 128 background. */
+static void test_mser_level_limits(void)
+{
+    static sbr_mser_region_t full[64];
+    uint32_t n = 0u;
+    uint32_t nfull = 0u;
+    uint32_t i;
+    uint32_t kept = 0u;
+    memset(g_map, 128, sizeof g_map);
+    fill(3u, 3u, 8u, 8u, 220u);
+    fill(18u, 18u, 8u, 8u, 220u);
+    fill(3u, 18u, 8u, 8u, 140u);
+    fill(18u, 3u, 8u, 8u, 40u);
+    TEST_ASSERT_EQUAL_UINT32(255u, g_cfg.dark_max);
+    TEST_ASSERT_EQUAL_UINT32(0u, g_cfg.bright_min);
+    g_cfg.min_area = 30u;
+    g_cfg.polarity = SBR_MSER_BRIGHT;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&nfull));
+    memcpy(full, g_reg, sizeof full);
+    /* unrestricted: the three squares (and the background's bright regions) */
+    for (i = 0u; i < nfull; i++) {
+        kept += ((full[i].area == 64u) && (full[i].level >= 140u)) ? 1u : 0u;
+    }
+    TEST_ASSERT_EQUAL_UINT32(3u, kept);
+    /* from 150 up: the two 220 squares exactly as unrestricted, nothing else */
+    g_cfg.bright_min = 150u;
+    memset(g_ws, 0xA5, sizeof g_ws);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(2u, n);
+    for (i = 0u; i < n; i++) {
+        uint32_t j;
+        uint32_t same = 0u;
+        TEST_ASSERT_EQUAL_UINT8(220u, g_reg[i].level);
+        TEST_ASSERT_EQUAL_UINT32(64u, mask_of(&g_reg[i]));
+        for (j = 0u; j < nfull; j++) {
+            /* every field but the seed (any pixel of the region: where its flood began) */
+            same += ((full[j].bbox.x == g_reg[i].bbox.x) && (full[j].bbox.y == g_reg[i].bbox.y) &&
+                     (full[j].bbox.width == g_reg[i].bbox.width) &&
+                     (full[j].bbox.height == g_reg[i].bbox.height) && (full[j].area == g_reg[i].area) &&
+                     (full[j].variation == g_reg[i].variation) && (full[j].level == g_reg[i].level) &&
+                     (full[j].polarity == g_reg[i].polarity)) ? 1u : 0u;
+        }
+        TEST_ASSERT_EQUAL_UINT32(1u, same);
+    }
+    TEST_ASSERT_TRUE(g_reg[0].bbox.x != g_reg[1].bbox.x);
+    /* a region within delta (5) of the limit is not reported: 220 < 216 + 5 */
+    g_cfg.bright_min = 216u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    g_cfg.bright_min = 215u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(2u, n);
+    /* everything a wall: no region, no error */
+    g_cfg.bright_min = 255u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    /* dark regions up to 100: the dark square alone; up to 44 it is within delta */
+    g_cfg.bright_min = 0u;
+    g_cfg.polarity = SBR_MSER_DARK;
+    g_cfg.dark_max = 100u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_EQUAL_UINT8(40u, g_reg[0].level);
+    TEST_ASSERT_EQUAL_UINT32(18u, g_reg[0].bbox.x);
+    TEST_ASSERT_EQUAL_UINT32(64u, g_reg[0].area);
+    g_cfg.dark_max = 44u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    /* both polarities, each with its limit (the bright pass counts its own levels) */
+    g_cfg.polarity = SBR_MSER_BOTH;
+    g_cfg.dark_max = 100u;
+    g_cfg.bright_min = 150u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_EQUAL_UINT32(3u, n);
+    g_cfg.dark_max = 255u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
+    TEST_ASSERT_TRUE(n > 3u);
+    /* out of range */
+    g_cfg.dark_max = 256u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&g_cfg));
+    g_cfg.dark_max = 255u;
+    g_cfg.bright_min = 256u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)sbr_mser_config_check(&g_cfg));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, (int)detect(&n));
+}
+
 static void test_mser_capacity_and_node_bound(void)
 {
     uint32_t n = 0u;
@@ -245,7 +334,7 @@ static void test_mser_capacity_and_node_bound(void)
     /* a node bound of 1 cannot hold the tree: distinct status, smaller workspace */
     g_cfg.max_nodes = 1u;
     TEST_ASSERT_TRUE(sbr_mser_workspace_size(&g_cfg, W, H) <
-                     sbr_mser_workspace_size(&(sbr_mser_config_t){5u, 60u, 14400u, 0.25f, 0.2f, 3u, 0u}, W, H));
+                     sbr_mser_workspace_size(&(sbr_mser_config_t){5u, 60u, 14400u, 0.25f, 0.2f, 3u, 0u, 255u, 0u}, W, H));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, (int)detect(&n));
     /* the size macro and the size query agree */
     TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_MSER_WORKSPACE_SIZE(W, H, 5u, 1u),
@@ -359,6 +448,7 @@ int main(void)
     RUN_TEST(test_mser_nested_regions_both_polarities);
     RUN_TEST(test_mser_ramp_is_not_stable);
     RUN_TEST(test_mser_random_regions_are_extremal);
+    RUN_TEST(test_mser_level_limits);
     RUN_TEST(test_mser_capacity_and_node_bound);
     RUN_TEST(test_mser_bad_input);
     RUN_TEST(test_mser_region_mask_rejects_bad_regions);

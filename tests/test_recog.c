@@ -87,6 +87,8 @@ static void test_config(void)
     g_cfg.parts.map_subsample[SBR_MAP_BLUE] = 1u; /* every map at full resolution: the
                                                      models here are learned from this
                                                      small frame's parts */
+    g_cfg.parts.map_polarity[SBR_MAP_INTENSITY] = 0u; /* and both polarities of each, as
+                                                        sbr_train learns a part model */
     g_cfg.parts.max_side = 48u;
     g_cfg.parts.max_regions = 256u;
     g_cfg.parts.max_contour = 512u;
@@ -379,7 +381,8 @@ static void test_grey_frame(void)
     TEST_ASSERT_TRUE(g_dets[0].parts >= 2u);
     first = g_dets[0];
     {
-        /* its parts: those of the intensity map alone */
+        /* its parts: those of the intensity map alone, both polarities (grey_polarity 0:
+           the ring, red on a colour frame, is a dark region in grey) */
         sbr_parts_config_t pc = g_cfg.parts;
         sbr_fft_t fft;
         uint32_t np = 0u;
@@ -390,7 +393,25 @@ static void test_grey_frame(void)
         TEST_ASSERT_TRUE(np >= 2u);
         TEST_ASSERT_EQUAL_UINT32(np, st.parts);
     }
-    /* the same grey values in an RGB frame: the colour maps see nothing, the same result */
+    /* the default: a colour frame's intensity map bright only, a grey frame's both; with
+       grey_polarity bright only the ring's dark region is not flooded, fewer parts */
+    {
+        sbr_recog_config_t c;
+        sbr_recog_config_default(&c);
+        TEST_ASSERT_EQUAL_UINT32(0u, c.grey_polarity);
+        TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_MSER_BRIGHT, c.parts.map_polarity[SBR_MAP_INTENSITY]);
+        c = g_cfg;
+        sbr_recog_stats_t sb;
+        uint32_t nb = 0u;
+        c.grey_polarity = (uint32_t)SBR_MSER_BRIGHT;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&g, NULL, &c, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
+                                                16u, &nb, &sb));
+        TEST_ASSERT_TRUE(sb.parts < st.parts);
+        c.grey_polarity = 4u;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&c));
+    }
+    /* the same grey values in an RGB frame with the grey frame's polarities (here both,
+       the configuration's): the colour maps see nothing, the same result */
     for (y = 0u; y < H; y++) {
         for (x = 0u; x < W; x++) {
             g_rgb[y][x][0] = g_grey[y][x];
@@ -398,8 +419,12 @@ static void test_grey_frame(void)
             g_rgb[y][x][2] = g_grey[y][x];
         }
     }
-    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&rgb, NULL, &g_cfg, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
-                                                   16u, &n, NULL));
+    {
+        sbr_recog_config_t c = g_cfg;
+        c.parts.map_polarity[SBR_MAP_INTENSITY] = g_cfg.grey_polarity;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&rgb, NULL, &c, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
+                                                16u, &n, NULL));
+    }
     TEST_ASSERT_EQUAL_UINT32(1u, n);
     TEST_ASSERT_TRUE(same_detection(&first, &g_dets[0]));
     /* refused without an intensity map; stats zeroed */

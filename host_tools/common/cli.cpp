@@ -50,6 +50,8 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
       "parts.maps: bit k = map kind k of include/sbr/map.h (0x1 intensity only)");
     u("--max-nodes", cfg.parts.mser.max_nodes, 0u, 100000000u, "MSER tree nodes (0: the worst case)");
     u("--subsample", cfg.parts.subsample, 1u, SBR_MAP_MAX_SUBSAMPLE, "parts.subsample of every map");
+    u("--grey-polarity", cfg.grey_polarity, 0u, 3u,
+      "the intensity map's polarities on a grey frame (0: parts.mser's, 1 dark, 2 bright, 3 both)");
     add_front_end_options(app, r.front_end, g);
 }
 
@@ -71,6 +73,20 @@ void add_front_end_options(CLI::App &app, FrontEnd &fe, const std::string &group
         ->delimiter(',')
         ->expected(1, int(SBR_MAP_KINDS))
         ->check(CLI::Range(0u, 3u))
+        ->type_name("I[,R[,B[,Y]]]")
+        ->group(group);
+    app.add_option("--map-bright-min", fe.bright_min,
+                   "parts.map_bright_min per kind: bright regions from this level up (0: parts.mser's), same order")
+        ->delimiter(',')
+        ->expected(1, int(SBR_MAP_KINDS))
+        ->check(CLI::Range(0u, 255u))
+        ->type_name("I[,R[,B[,Y]]]")
+        ->group(group);
+    app.add_option("--map-dark-max", fe.dark_max,
+                   "parts.map_dark_max per kind: dark regions up to this level (0: parts.mser's), same order")
+        ->delimiter(',')
+        ->expected(1, int(SBR_MAP_KINDS))
+        ->check(CLI::Range(0u, 255u))
         ->type_name("I[,R[,B[,Y]]]")
         ->group(group);
 }

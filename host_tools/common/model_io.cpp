@@ -459,6 +459,8 @@ void parts_at_full_resolution(sbr_parts_config_t &parts) {
         parts.map_subsample[k] = 1;
         parts.map_min_area[k] = 0;
         parts.map_polarity[k] = 0;
+        parts.map_bright_min[k] = 0;
+        parts.map_dark_max[k] = 0;
     }
 }
 
@@ -466,6 +468,8 @@ void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts) {
     for (size_t k = 0; k < fe.sub.size(); ++k) parts.map_subsample[k] = fe.sub[k];
     for (size_t k = 0; k < fe.area.size(); ++k) parts.map_min_area[k] = fe.area[k];
     for (size_t k = 0; k < fe.polarity.size(); ++k) parts.map_polarity[k] = fe.polarity[k];
+    for (size_t k = 0; k < fe.bright_min.size(); ++k) parts.map_bright_min[k] = fe.bright_min[k];
+    for (size_t k = 0; k < fe.dark_max.size(); ++k) parts.map_dark_max[k] = fe.dark_max[k];
 }
 
 }  // namespace sbr_host

@@ -94,13 +94,13 @@ bool report_write(const char *tool, const std::string &path, const std::string &
 // Every map of parts at full resolution with the MSER defaults' region bound: how the
 // prototype library is learned (sbr_train) and how the class stage's training candidates
 // are found (sbr_train_picto), whatever resolution the recogniser runs a map at
-// (descriptors are scale-normalised; parts.h map_subsample, map_min_area, map_polarity).
+// (descriptors are scale-normalised; parts.h map_subsample, map_min_area, map_polarity, map_bright_min, map_dark_max).
 void parts_at_full_resolution(sbr_parts_config_t &parts);
 
 // Part-stage options a trainer learns with instead of full resolution (the options of
-// sbr_detect of the same names): --map-subsample, --map-min-area, --map-polarity I[,R,B,Y].
+// sbr_detect of the same names): --map-subsample, --map-min-area, --map-polarity, --map-bright-min, --map-dark-max I[,R,B,Y].
 struct FrontEnd {
-    std::vector<unsigned> sub, area, polarity;
+    std::vector<unsigned> sub, area, polarity, bright_min, dark_max;
 };
 void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts);
 

@@ -46,7 +46,9 @@
 //   parts.map_subsample, --map-min-area parts.map_min_area and --map-polarity
 //   parts.map_polarity (per kind, in the order intensity, red, blue, yellow; kinds not
 //   given keep their defaults; an area or a polarity of 0 means the MSER default;
-//   polarity 1 dark, 2 bright, 3 both), --max-nodes parts.mser.max_nodes (MSER tree nodes, most of
+//   polarity 1 dark, 2 bright, 3 both; the default is 2 for intensity: --map-polarity 3
+//   floods both), --grey-polarity the intensity map's polarities on a grey frame
+//   (default 0: both), --max-nodes parts.mser.max_nodes (MSER tree nodes, most of
 //   the workspace; 0 = the worst case), --max-candidates the class stage's candidate
 //   bound and --max-parts, --max-votes, --max-hypotheses the recogniser's bounds of those
 //   names (smaller: less workspace); --gate 0 turns the class stage's gate off (it is used

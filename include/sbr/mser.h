@@ -99,6 +99,18 @@ typedef struct sbr_mser_config_s {
     /** Bound on tree nodes of area >= min_area per polarity; 0 = the worst case for the
         map size. Default 0. */
     uint32_t max_nodes;
+    /** Dark regions only up to this level, 0..255: pixels above it are never flooded (they
+        bound the fill like the map's border), and regions of levels above dark_max -
+        delta are not reported (their variation would need levels beyond the limit).
+        Regions further inside are the unrestricted flood's, except that the stability
+        and diversity tests see no ancestor beyond the limit. Default 255 (no limit). A
+        map whose wanted dark regions are all dark (the blue map's yellow signs) floods a
+        few per cent of its pixels instead of all. */
+    uint32_t dark_max;
+    /** Bright regions only down to this level, 0..255: the same for the bright pass (pixels
+        below it are never flooded, regions below bright_min + delta not reported). Default
+        0 (no limit). */
+    uint32_t bright_min;
 } sbr_mser_config_t;
 
 /** One region. Its pixels: the 4-connected component of pixels of the map that pass the

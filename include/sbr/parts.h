@@ -71,6 +71,14 @@ typedef struct sbr_parts_config_s {
         otherwise an ::sbr_mser_polarity_t mask. A map whose signs all have one polarity
         there needs one flood instead of two. Default 0 for every kind. */
     uint32_t map_polarity[SBR_MAP_KINDS];
+    /** Level limits of one map kind's regions (index ::sbr_map_kind_t; mser.h dark_max and
+        bright_min): bright regions only from map_bright_min[k] up, 0 = mser.bright_min;
+        dark regions only up to map_dark_max[k], 0 = mser.dark_max. The pixels beyond a
+        limit are not flooded: a colour map whose signs are far from grey (red rims are
+        above 136 in the red map, where under 2 % of a scene's pixels are) costs a few per
+        cent of a full flood. Default 0 for every kind. */
+    uint32_t map_bright_min[SBR_MAP_KINDS];
+    uint32_t map_dark_max[SBR_MAP_KINDS];
     /** Region extraction. Defaults: delta 5, area 60..14400, variation 0.25, diversity 0.2,
         both polarities, max_nodes 68000 (a sixteenth of a 1360 x 800 map, measured
         sufficient on GTSDB scenes; stats.capacity_hit says when a frame needed more). */

@@ -191,13 +191,25 @@ sbr_status_t sbr_model_gtsdb(sbr_model_t *out);
 /** Options. Start from sbr_recog_config_default(); every field is documented there. */
 typedef struct sbr_recog_config_s {
     /** Part extraction (parts.h). fd_n and fd_m must equal the model's. Default:
-        sbr_parts_config_default() with MSER delta 3, max_variation 0.5, maps = intensity
-        + blue, the blue map at half resolution (map_subsample[SBR_MAP_BLUE] = 2) with
+        sbr_parts_config_default() with MSER delta 3, max_variation 0.5, and each map
+        flooded where its signs are: the intensity map's bright regions
+        (map_polarity[SBR_MAP_INTENSITY] = SBR_MSER_BRIGHT); the red map's bright regions
+        from level 136 up (map_polarity[SBR_MAP_RED] = SBR_MSER_BRIGHT,
+        map_bright_min[SBR_MAP_RED] = 136: red rims and discs, under 2 % of a scene's
+        pixels); the blue map at half resolution (map_subsample[SBR_MAP_BLUE] = 2) with
         regions from 40 of its pixels (map_min_area[SBR_MAP_BLUE] = 40, signs from about
-        15 px). Trade-off: maps and subsample set most of the time and memory; subsample 2
-        quarters both and loses signs below about 24 px. On a GRAY8 frame only the
-        intensity map of `maps` is used (the colour kinds are skipped). Why these: docs/results/recognition.md. */
+        15 px), bright ones and dark ones up to level 120 (map_dark_max[SBR_MAP_BLUE] =
+        120: yellow). Trade-off: maps and subsample set most of the time and memory;
+        subsample 2 quarters both and loses signs below about 24 px. On a GRAY8 frame only
+        the intensity map of `maps` is used (the colour kinds are skipped), with the
+        polarities of `grey_polarity`. Why these: docs/results/realtime.md (2026-12-05)
+        and docs/results/recognition.md. */
     sbr_parts_config_t parts;
+    /** Polarities of the intensity map on a GRAY8 frame (its only map): 0 = parts.mser's,
+        otherwise an ::sbr_mser_polarity_t mask; replaces map_polarity[SBR_MAP_INTENSITY]
+        there. Default 0 (both: in grey a red ring on a bright ground is a dark region, the
+        only region a sign's rim gives). */
+    uint32_t grey_polarity;
     /** Correlation size P (a supported FFT size, >= 2M + 1). Default 32. Larger P locates
         the peak on a finer grid before refinement; the cost grows with P log P. */
     uint32_t match_p;

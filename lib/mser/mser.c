@@ -3,86 +3,10 @@
  * Maximally stable extremal regions: one flood fill per polarity builds the component
  * tree (Nistér–Stewénius), nodes of area >= min_area are kept with the area of their
  * region delta levels below; a second, linear pass over those nodes computes the
- * variations and selects the stable ones. See include/sbr/mser.h for the definitions.
+ * variations and selects the stable ones (mser_select.c). See include/sbr/mser.h for the
+ * definitions.
  */
-#include "sbr/mser.h"
-
-#include "../common/sbr_util.h"
-
-#include <string.h>
-
-#define MSER_NONE 0xFFFFFFFFu
-#define MSER_LEVELS 256u
-#define MSER_SENTINEL 256u
-#define MSER_REACHED 0xFFFFu
-#define LEV_REACHED 0x100u /* the pixel was reached by this pass's flood */
-#define LEV_BOXED 0x200u   /* the pixel is in the region whose box is being measured */
-#define LEV_LEVEL 0xFFu
-
-/* The flood keeps one 16-bit word per pixel: the map's level (inverted for the bright
-   pass), with LEV_REACHED set once the pixel is reached (the image border is MSER_REACHED
-   from the start, which bounds the fill); one load tells whether a neighbour is new and
-   its level. The level stays, so after the flood a selected node's pixels can be found
-   again (a fill from its seed over levels <= its own): its bounding box is measured then,
-   for the few selected nodes, not kept up per pixel. What else a pixel waiting in the heap needs travels with its heap entry:
-   (pixel index << 3) | the next neighbour to look at (1 right, 2 down, 3 left, 4 up,
-   5 none left); its level is the level of the stack it waits on. Pixel indices are below
-   SBR_IMAGE_MAX_DIM^2 = 2^28, so an entry fits 32 bits. */
-#define HEAP_DIR_BITS 3u
-#define HEAP_DIR_MASK 7u
-
-#define NODE_SELECTED 1u
-
-/* A completed tree node of area >= min_area. */
-typedef struct mser_node_s {
-    uint32_t parent;  /* node index or MSER_NONE */
-    uint32_t next;    /* next node in its owner's list of nodes still waiting for a parent */
-    uint32_t size;    /* area at level val */
-    uint32_t size_lo; /* area of the main-chain node delta levels below */
-    uint32_t seed;    /* a pixel (index y * width + x) */
-    float var;        /* variation */
-    float child_var;  /* smallest variation among its children */
-    uint8_t val;      /* level (in the pass's possibly inverted values) */
-    uint8_t flags;
-    uint8_t pad[2];
-} mser_node_t;
-
-/* A component on the flood's stack (levels strictly decrease towards the top). */
-typedef struct mser_comp_s {
-    uint32_t size;
-    uint32_t seed;
-    uint32_t pend_head; /* its completed nodes whose parent is not complete yet */
-    uint32_t pend_tail;
-    uint32_t ring_len;  /* entries of its main-chain history (oldest first) */
-    uint16_t level;     /* 0..255, MSER_SENTINEL for the bottom entry */
-    uint16_t pad;
-} mser_comp_t;
-
-/* The public size macro spells these sizes out; keep them true. */
-typedef char mser_node_size_check[(sizeof(mser_node_t) == SBR_MSER_NODE_BYTES) ? 1 : -1];
-typedef char mser_comp_size_check[(sizeof(mser_comp_t) == SBR_MSER_COMP_BYTES) ? 1 : -1];
-
-typedef struct mser_ctx_s {
-    uint32_t *heap_base; /* [256] first heap slot of each level */
-    uint32_t *heap_top;  /* [256] entries on each level's stack */
-    mser_comp_t *comp;   /* [SBR_MSER_STACK] */
-    uint32_t *ring_size; /* [SBR_MSER_STACK * ring_cap] main-chain areas */
-    uint16_t *ring_val;  /* [SBR_MSER_STACK * ring_cap] their levels */
-    mser_node_t *node;   /* [node_cap] */
-    uint32_t *heap;      /* [pixels] entries (HEAP_DIR_BITS) */
-    uint16_t *lev;       /* [pixels] the map (inverted for the bright pass) with
-                            LEV_REACHED once reached; the border MSER_REACHED */
-    uint32_t width;
-    uint32_t height;
-    uint32_t ring_cap;   /* delta + 1 */
-    uint32_t node_cap;
-    uint32_t node_count;
-    uint32_t delta;
-    uint32_t min_area;
-    uint32_t div_shift;  /* y = (p * div_magic) >> div_shift, exact for p < width * height */
-    uint64_t div_magic;
-    int overflow;
-} mser_ctx_t;
+#include "mser_internal.h"
 
 void sbr_mser_config_default(sbr_mser_config_t *cfg)
 {
@@ -94,6 +18,8 @@ void sbr_mser_config_default(sbr_mser_config_t *cfg)
         cfg->min_diversity = 0.2f;
         cfg->polarity = (uint32_t)SBR_MSER_BOTH;
         cfg->max_nodes = 0u;
+        cfg->dark_max = 255u;
+        cfg->bright_min = 0u;
     }
 }
 
@@ -113,7 +39,8 @@ sbr_status_t sbr_mser_config_check(const sbr_mser_config_t *cfg)
     if (!((cfg->min_diversity >= 0.0f) && (cfg->min_diversity < 1.0f))) {
         return SBR_ERR_RANGE;
     }
-    if ((cfg->polarity == 0u) || (cfg->polarity > (uint32_t)SBR_MSER_BOTH)) {
+    if ((cfg->polarity == 0u) || (cfg->polarity > (uint32_t)SBR_MSER_BOTH) ||
+        (cfg->dark_max > 255u) || (cfg->bright_min > 255u)) {
         return SBR_ERR_RANGE;
     }
     return SBR_OK;
@@ -294,11 +221,51 @@ static uint32_t heap_pop(mser_ctx_t *c, uint32_t level)
     return c->heap[c->heap_base[level] + c->heap_top[level]];
 }
 
+/* A pass's pixels beyond its level limit (values above `limit` of the possibly inverted
+   map): reached from the start like the border, so no flood enters them; the heap's layout
+   counts the interior pixels within the limit. */
+static void pass_walls(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, uint32_t limit)
+{
+    const uint32_t w = c->width;
+    const uint32_t h = c->height;
+    uint32_t y;
+    for (y = 0u; y < h; y++) {
+        const uint8_t *src = &map->data[(size_t)y * map->stride];
+        uint16_t *g = &c->lev[(size_t)y * w];
+        uint32_t x;
+        for (x = 0u; x < w; x++) {
+            const uint32_t v = (uint32_t)src[x] ^ (uint32_t)xor_mask;
+            if (v > limit) {
+                g[x] = (uint16_t)MSER_REACHED;
+            } else {
+                g[x] = (uint16_t)v;
+                c->heap_top[v]++; /* count per level for now (the border taken off below) */
+            }
+        }
+        if ((y == 0u) || (y == (h - 1u))) {
+            for (x = 0u; x < w; x++) {
+                if ((uint32_t)g[x] < MSER_LEVELS) {
+                    c->heap_top[g[x]]--;
+                }
+            }
+        } else {
+            if ((uint32_t)g[0] < MSER_LEVELS) {
+                c->heap_top[g[0]]--;
+            }
+            if ((uint32_t)g[w - 1u] < MSER_LEVELS) {
+                c->heap_top[g[w - 1u]]--;
+            }
+        }
+    }
+}
+
 /* Prepare one pass: the (inverted) copy of the map with its border reached, and the heap layout. The
    heap's layout needs the number of interior pixels per level: counted for the first
    pass; the second pass (same map, inverted) reads them off the first pass's layout,
-   level v of the inverted map being level 255 - v of the map. */
-static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, int second)
+   level v of the inverted map being level 255 - v of the map. With a level limit below
+   255 (pass_walls) the pixels beyond it are walls and the pass counts its own. */
+static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, int second,
+                       uint32_t limit)
 {
     const uint32_t w = c->width;
     const uint32_t h = c->height;
@@ -307,7 +274,7 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     uint32_t v;
     uint32_t acc = 0u;
 
-    if (second != 0) {
+    if ((second != 0) && (limit >= (MSER_LEVELS - 1u))) {
         /* heap_top[v] = count of level 255 - v of the first pass, from its layout */
         for (v = 0u; v < MSER_LEVELS; v++) {
             const uint32_t u = (MSER_LEVELS - 1u) - v;
@@ -319,7 +286,10 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
             c->heap_top[v] = 0u;
         }
     }
-    for (y = 0u; y < h; y++) {
+    if (limit < (MSER_LEVELS - 1u)) {
+        pass_walls(c, map, xor_mask, limit);
+    }
+    for (y = 0u; (limit >= (MSER_LEVELS - 1u)) && (y < h); y++) {
         const uint8_t *src = &map->data[(size_t)y * map->stride];
         uint16_t *g = &c->lev[(size_t)y * w];
         uint32_t x;
@@ -352,13 +322,14 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     c->node_count = 0u;
 }
 
-/* Build the tree of one pass. */
-static void pass_flood(mser_ctx_t *c)
+/* Build the tree of the pixels connected to p (not yet reached): the whole interior when
+   no pass limit walls parts of it off. */
+static void flood_from(mser_ctx_t *c, uint32_t start)
 {
     const uint32_t w = c->width;
     uint16_t *const lev = c->lev;
     uint32_t off[5];
-    uint32_t p = w + 1u;
+    uint32_t p = start;
     uint32_t k = 1u;
     uint32_t cur = (uint32_t)c->lev[p];
     uint32_t top = 1u;
@@ -430,173 +401,32 @@ static void pass_flood(mser_ctx_t *c)
     }
 }
 
-/* Variations, selection and duplicate removal over the nodes of one pass; emits regions. */
-/* Each node's variation (growth over delta levels relative to its size) and, in its
-   parent, the smallest variation of its children. */
-static void select_variation(mser_ctx_t *c)
+/* Build the tree (a forest with walls) of one pass: one flood from the first interior
+   pixel, and with walls (limit below 255) one from every interior pixel no earlier flood
+   reached. */
+static void pass_flood(mser_ctx_t *c, uint32_t limit)
 {
-    uint32_t n;
-    for (n = 0u; n < c->node_count; n++) {
-        mser_node_t *nd = &c->node[n];
-        const uint32_t top_val = (uint32_t)nd->val + c->delta;
-        uint32_t a = n;
-        uint32_t grown;
-        while ((c->node[a].parent != MSER_NONE) &&
-               ((uint32_t)c->node[c->node[a].parent].val <= top_val)) {
-            a = c->node[a].parent;
-        }
-        grown = c->node[a].size - nd->size_lo;
-        nd->var = (float)grown / (float)nd->size;
-        if ((nd->parent != MSER_NONE) && (nd->var < c->node[nd->parent].child_var)) {
-            c->node[nd->parent].child_var = nd->var;
-        }
-    }
-}
-
-/* Stable nodes: small enough, variation within bounds and a local minimum against the
-   children and the parent (children come before their parents, so child_var is
-   complete here). */
-static void select_stable(mser_ctx_t *c, const sbr_mser_config_t *cfg)
-{
-    uint32_t n;
-    for (n = 0u; n < c->node_count; n++) {
-        mser_node_t *nd = &c->node[n];
-        int ok = 1;
-        if ((nd->size > cfg->max_area) || (nd->var > cfg->max_variation) ||
-            (nd->var > nd->child_var)) {
-            ok = 0;
-        }
-        if ((ok != 0) && (nd->var > 0.0f) && (nd->parent != MSER_NONE) &&
-            (nd->var >= c->node[nd->parent].var)) {
-            ok = 0;
-        }
-        if (ok != 0) {
-            nd->flags = NODE_SELECTED;
-        }
-    }
-}
-
-/* Diversity: of a selected node and its nearest selected ancestor that differ in size by
-   less than min_diversity of the ancestor's, the less stable one is dropped. */
-static void select_diverse(mser_ctx_t *c, float min_diversity)
-{
-    uint32_t n;
-    for (n = 0u; n < c->node_count; n++) {
-        mser_node_t *nd = &c->node[n];
-        uint32_t a = MSER_NONE;
-        if (nd->flags == NODE_SELECTED) {
-            a = nd->parent;
-            while ((a != MSER_NONE) && (c->node[a].flags != NODE_SELECTED)) {
-                a = c->node[a].parent;
-            }
-        }
-        if (a != MSER_NONE) {
-            mser_node_t *an = &c->node[a];
-            const uint32_t gap = an->size - nd->size;
-            if ((float)gap >= (min_diversity * (float)an->size)) {
-                /* diverse enough */
-            } else if (an->var < nd->var) {
-                nd->flags = 0u;
-            } else {
-                an->flags = 0u;
-            }
-        }
-    }
-}
-
-/* The bounding box of a node's pixels, after its pass's flood: the 4-connected pixels of
-   level <= its level around its seed (the component the flood grew), found again by a
-   fill that lists them in the heap (free after the flood) and marks them LEV_BOXED until
-   it is done. The border (MSER_REACHED) has every bit set, so the fill never enters it. */
-static uint32_t box_visit(uint16_t *lev, uint32_t *list, uint32_t n, uint32_t q, uint32_t val)
-{
-    const uint32_t g = (uint32_t)lev[q];
-    uint32_t m = n;
-    if ((g < LEV_BOXED) && ((g & LEV_LEVEL) <= val)) {
-        lev[q] = (uint16_t)(g | LEV_BOXED);
-        list[n] = q;
-        m = n + 1u;
-    }
-    return m;
-}
-
-static void node_bbox(mser_ctx_t *c, const mser_node_t *nd, sbr_rect_t *box)
-{
-    uint16_t *const lev = c->lev;
-    uint32_t *const list = c->heap;
     const uint32_t w = c->width;
-    const uint32_t val = (uint32_t)nd->val;
-    uint32_t x0 = 0xFFFFFFFFu;
-    uint32_t x1 = 0u;
-    uint32_t p0 = 0xFFFFFFFFu; /* the first and last pixel in row order give the rows */
-    uint32_t p1 = 0u;
-    uint32_t n = 1u;
-    uint32_t i;
-    uint32_t y0;
-    uint32_t y1;
-
-    list[0] = nd->seed;
-    lev[nd->seed] = (uint16_t)((uint32_t)lev[nd->seed] | LEV_BOXED);
-    for (i = 0u; i < n; i++) {
-        const uint32_t p = list[i];
-        const uint32_t y = (uint32_t)(((uint64_t)p * c->div_magic) >> c->div_shift);
-        const uint32_t x = p - (y * w);
-        x0 = (x < x0) ? x : x0;
-        x1 = (x > x1) ? x : x1;
-        p0 = (p < p0) ? p : p0;
-        p1 = (p > p1) ? p : p1;
-        n = box_visit(lev, list, n, p + 1u, val);
-        n = box_visit(lev, list, n, p + w, val);
-        n = box_visit(lev, list, n, p - 1u, val);
-        n = box_visit(lev, list, n, p - w, val);
-    }
-    for (i = 0u; i < n; i++) {
-        lev[list[i]] = (uint16_t)((uint32_t)lev[list[i]] & ~LEV_BOXED);
-    }
-    y0 = (uint32_t)(((uint64_t)p0 * c->div_magic) >> c->div_shift);
-    y1 = (uint32_t)(((uint64_t)p1 * c->div_magic) >> c->div_shift);
-    box->x = x0;
-    box->y = y0;
-    box->width = (x1 - x0) + 1u;
-    box->height = (y1 - y0) + 1u;
-}
-
-/* A selected node as a region of the given polarity. */
-static void select_region(mser_ctx_t *c, const mser_node_t *nd, uint8_t polarity,
-                          sbr_mser_region_t *r)
-{
-    const uint32_t sy = (uint32_t)(((uint64_t)nd->seed * c->div_magic) >> c->div_shift);
-    node_bbox(c, nd, &r->bbox);
-    r->area = nd->size;
-    r->variation = nd->var;
-    r->seed_x = (uint16_t)(nd->seed - (sy * c->width));
-    r->seed_y = (uint16_t)sy;
-    if (polarity == (uint8_t)SBR_MSER_DARK) {
-        r->level = nd->val;
+    if (limit >= (MSER_LEVELS - 1u)) {
+        flood_from(c, w + 1u);
     } else {
-        r->level = (uint8_t)(255u - (uint32_t)nd->val);
-    }
-    r->polarity = polarity;
-}
-
-static void pass_select(mser_ctx_t *c, const sbr_mser_config_t *cfg, uint8_t polarity,
-                        sbr_mser_region_t *regions, uint32_t capacity, uint32_t *count,
-                        int *full)
-{
-    uint32_t n;
-    select_variation(c);
-    select_stable(c, cfg);
-    if (cfg->min_diversity > 0.0f) {
-        select_diverse(c, cfg->min_diversity);
-    }
-    for (n = 0u; n < c->node_count; n++) {
-        if (c->node[n].flags != NODE_SELECTED) {
-            /* not a region */
-        } else if (*count < capacity) {
-            select_region(c, &c->node[n], polarity, &regions[*count]);
-            (*count)++;
-        } else {
-            *full = 1;
+        /* the interior row by row, four words at a time while all four are reached (a
+           wall, the border or flooded: LEV_REACHED set in each; p + 3 stays within the
+           last row) */
+        const uint16_t *const lev = c->lev;
+        const uint32_t end = (c->height - 1u) * w;
+        uint32_t p = w + 1u;
+        while (p < end) {
+            const uint32_t four = (uint32_t)lev[p] & (uint32_t)lev[p + 1u] &
+                                  (uint32_t)lev[p + 2u] & (uint32_t)lev[p + 3u];
+            if ((four & LEV_REACHED) != 0u) {
+                p += 4u;
+            } else {
+                if ((uint32_t)c->lev[p] < LEV_REACHED) {
+                    flood_from(c, p);
+                }
+                p++;
+            }
         }
     }
 }
@@ -675,17 +505,22 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     }
     mser_ctx_init(&c, map, cfg, workspace);
     if ((cfg->polarity & (uint32_t)SBR_MSER_DARK) != 0u) {
-        pass_setup(&c, map, 0u, 0);
-        pass_flood(&c);
-        pass_select(&c, cfg, (uint8_t)SBR_MSER_DARK, regions, capacity, count, &full);
+        pass_setup(&c, map, 0u, 0, cfg->dark_max);
+        pass_flood(&c, cfg->dark_max);
+        sbr_mser_priv_pass_select(&c, cfg, (uint8_t)SBR_MSER_DARK, cfg->dark_max, regions,
+                                  capacity, count, &full);
         overflow |= c.overflow;
-        counted = 1;
+        if (cfg->dark_max >= 255u) {
+            counted = 1; /* the bright pass may read its level counts off this pass's */
+        }
     }
     if ((cfg->polarity & (uint32_t)SBR_MSER_BRIGHT) != 0u) {
+        const uint32_t limit = 255u - cfg->bright_min; /* in the inverted map's values */
         c.overflow = 0;
-        pass_setup(&c, map, 0xFFu, counted);
-        pass_flood(&c);
-        pass_select(&c, cfg, (uint8_t)SBR_MSER_BRIGHT, regions, capacity, count, &full);
+        pass_setup(&c, map, 0xFFu, counted, limit);
+        pass_flood(&c, limit);
+        sbr_mser_priv_pass_select(&c, cfg, (uint8_t)SBR_MSER_BRIGHT, limit, regions, capacity,
+                                  count, &full);
         overflow |= c.overflow;
     }
     if ((full != 0) || (overflow != 0)) {

@@ -21,6 +21,8 @@ void sbr_parts_config_default(sbr_parts_config_t *cfg)
             cfg->map_subsample[k] = 1u;
             cfg->map_min_area[k] = 0u;
             cfg->map_polarity[k] = 0u;
+            cfg->map_bright_min[k] = 0u;
+            cfg->map_dark_max[k] = 0u;
         }
         sbr_mser_config_default(&cfg->mser);
         cfg->mser.max_nodes = SBR_PARTS_DEFAULT_MAX_NODES;
@@ -59,7 +61,8 @@ sbr_status_t sbr_parts_config_check(const sbr_parts_config_t *cfg)
         if ((cfg->map_subsample[k] == 0u) || (cfg->map_subsample[k] > SBR_MAP_MAX_SUBSAMPLE) ||
             ((cfg->subsample * cfg->map_subsample[k]) > SBR_MAP_MAX_SUBSAMPLE) ||
             (cfg->map_min_area[k] > cfg->mser.max_area) ||
-            (cfg->map_polarity[k] > (uint32_t)SBR_MSER_BOTH)) {
+            (cfg->map_polarity[k] > (uint32_t)SBR_MSER_BOTH) || (cfg->map_bright_min[k] > 255u) ||
+            (cfg->map_dark_max[k] > 255u)) {
             return SBR_ERR_RANGE;
         }
     }
@@ -285,6 +288,12 @@ static sbr_status_t parts_of_map(const sbr_image_t *img, const sbr_parts_config_
     }
     if (cfg->map_polarity[kind] != 0u) {
         mc.polarity = cfg->map_polarity[kind];
+    }
+    if (cfg->map_bright_min[kind] != 0u) {
+        mc.bright_min = cfg->map_bright_min[kind];
+    }
+    if (cfg->map_dark_max[kind] != 0u) {
+        mc.dark_max = cfg->map_dark_max[kind];
     }
     st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, b->map, img->width / sub, map_size, &map);
     if (st != SBR_OK) {

@@ -12,15 +12,25 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
            looser stability bound to come out as regions at all */
         cfg->parts.mser.delta = SBR_RECOG_DEFAULT_DELTA;
         cfg->parts.mser.max_variation = 0.5f;
-        /* intensity and blue: red rims already stand out in intensity, blue signs need
-           their own map (the red map's parts added false hypotheses and time:
-           docs/results/recognition.md) */
-        cfg->parts.maps = (1u << (uint32_t)SBR_MAP_INTENSITY) | (1u << (uint32_t)SBR_MAP_BLUE);
-        /* blue at half resolution: a quarter of its MSER time; blue signs small enough to
-           be lost there are still found by their intensity parts (same accuracy, measured
-           in docs/results/recognition.md) */
+        /* intensity, red and blue, each flooded where its signs are (docs/results/realtime.md):
+           - intensity: bright regions only (white insides, pictograms on blue); its dark
+             flood cost a third of the part stage and carried few signs the other maps miss;
+           - red: bright regions from level 136 up (red rims, no-entry discs, stop signs):
+             under 2 % of a scene's pixels are that red, so its flood costs a few per cent
+             of a full one;
+           - blue at half resolution (a quarter of the pixels; its signs are large enough),
+             regions from 40 of its pixels, bright ones (blue signs) and dark ones up to
+             level 120 (the yellow of priority roads). */
+        cfg->parts.maps = (1u << (uint32_t)SBR_MAP_INTENSITY) | (1u << (uint32_t)SBR_MAP_RED) |
+                          (1u << (uint32_t)SBR_MAP_BLUE);
+        cfg->parts.map_polarity[SBR_MAP_INTENSITY] = (uint32_t)SBR_MSER_BRIGHT;
+        cfg->parts.map_polarity[SBR_MAP_RED] = (uint32_t)SBR_MSER_BRIGHT;
+        cfg->parts.map_bright_min[SBR_MAP_RED] = 136u;
         cfg->parts.map_subsample[SBR_MAP_BLUE] = 2u;
         cfg->parts.map_min_area[SBR_MAP_BLUE] = 40u;
+        cfg->parts.map_dark_max[SBR_MAP_BLUE] = 120u;
+        /* a grey frame has its intensity map only: both polarities (grey_polarity) */
+        cfg->grey_polarity = 0u;
         cfg->match_p = SBR_RECOG_DEFAULT_MATCH_P;
         cfg->max_parts = SBR_RECOG_DEFAULT_MAX_PARTS;
         cfg->max_votes = SBR_RECOG_DEFAULT_MAX_VOTES;
@@ -81,7 +91,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (cfg->cascade_depth > 65535u) || (cfg->min_parts > 65535u) ||
         (cfg->max_candidates > 1000000u) || (cfg->refine_steps > SBR_RECOG_MAX_REFINE) ||
         (cfg->views == 0u) || (cfg->views > SBR_RECOG_MAX_VIEWS) || (cfg->triangle_view > 1u) ||
-        (cfg->gate > 1u)) {
+        (cfg->gate > 1u) || (cfg->grey_polarity > (uint32_t)SBR_MSER_BOTH)) {
         return SBR_ERR_RANGE;
     }
     if ((in_range(cfg->vote_error, 0.0f, 4.0f) == 0) ||

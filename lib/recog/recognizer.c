@@ -106,13 +106,15 @@ sbr_status_t sbr_recog_init(sbr_recog_t *rec, const sbr_recog_config_t *cfg,
 }
 
 /* The part extraction's options for this view: the configuration's, with only the
-   intensity map for a grey frame (::SBR_ERR_RANGE when the configuration has none). */
+   intensity map, of grey_polarity, for a grey frame (::SBR_ERR_RANGE when the
+   configuration has none). */
 static sbr_status_t view_parts(const sbr_recog_config_t *cfg, const sbr_image_t *view,
                                sbr_parts_config_t *out)
 {
     *out = cfg->parts;
     if (view->format == SBR_PIXEL_GRAY8) {
         out->maps &= 1u << (uint32_t)SBR_MAP_INTENSITY;
+        out->map_polarity[SBR_MAP_INTENSITY] = cfg->grey_polarity;
     }
     return (out->maps != 0u) ? SBR_OK : SBR_ERR_RANGE;
 }

@@ -1,0 +1,94 @@
+/* SPDX-License-Identifier: MIT */
+/* Private to lib/mser: the flood's working types (tree nodes, growing components, the
+   context of one detection) shared by the flood (mser.c) and the selection
+   (mser_select.c). Not installed. */
+#ifndef SBR_MSER_INTERNAL_H
+#define SBR_MSER_INTERNAL_H
+
+#include "sbr/mser.h"
+
+#include "../common/sbr_util.h"
+
+#include <string.h>
+
+#define MSER_NONE 0xFFFFFFFFu
+#define MSER_LEVELS 256u
+#define MSER_SENTINEL 256u
+#define MSER_REACHED 0xFFFFu
+#define LEV_REACHED 0x100u /* the pixel was reached by this pass's flood */
+#define LEV_BOXED 0x200u   /* the pixel is in the region whose box is being measured */
+#define LEV_LEVEL 0xFFu
+#define MSER_LIMIT_NONE 0xFFFFu /* no pass limit: every node's variation is known */
+
+/* The flood keeps one 16-bit word per pixel: the map's level (inverted for the bright
+   pass), with LEV_REACHED set once the pixel is reached (the image border is MSER_REACHED
+   from the start, which bounds the fill); one load tells whether a neighbour is new and
+   its level. The level stays, so after the flood a selected node's pixels can be found
+   again (a fill from its seed over levels <= its own): its bounding box is measured then,
+   for the few selected nodes, not kept up per pixel. What else a pixel waiting in the heap needs travels with its heap entry:
+   (pixel index << 3) | the next neighbour to look at (1 right, 2 down, 3 left, 4 up,
+   5 none left); its level is the level of the stack it waits on. Pixel indices are below
+   SBR_IMAGE_MAX_DIM^2 = 2^28, so an entry fits 32 bits. */
+#define HEAP_DIR_BITS 3u
+#define HEAP_DIR_MASK 7u
+
+#define NODE_SELECTED 1u
+
+/* A completed tree node of area >= min_area. */
+typedef struct mser_node_s {
+    uint32_t parent;  /* node index or MSER_NONE */
+    uint32_t next;    /* next node in its owner's list of nodes still waiting for a parent */
+    uint32_t size;    /* area at level val */
+    uint32_t size_lo; /* area of the main-chain node delta levels below */
+    uint32_t seed;    /* a pixel (index y * width + x) */
+    float var;        /* variation */
+    float child_var;  /* smallest variation among its children */
+    uint8_t val;      /* level (in the pass's possibly inverted values) */
+    uint8_t flags;
+    uint8_t pad[2];
+} mser_node_t;
+
+/* A component on the flood's stack (levels strictly decrease towards the top). */
+typedef struct mser_comp_s {
+    uint32_t size;
+    uint32_t seed;
+    uint32_t pend_head; /* its completed nodes whose parent is not complete yet */
+    uint32_t pend_tail;
+    uint32_t ring_len;  /* entries of its main-chain history (oldest first) */
+    uint16_t level;     /* 0..255, MSER_SENTINEL for the bottom entry */
+    uint16_t pad;
+} mser_comp_t;
+
+/* The public size macro spells these sizes out; keep them true. */
+typedef char mser_node_size_check[(sizeof(mser_node_t) == SBR_MSER_NODE_BYTES) ? 1 : -1];
+typedef char mser_comp_size_check[(sizeof(mser_comp_t) == SBR_MSER_COMP_BYTES) ? 1 : -1];
+
+typedef struct mser_ctx_s {
+    uint32_t *heap_base; /* [256] first heap slot of each level */
+    uint32_t *heap_top;  /* [256] entries on each level's stack */
+    mser_comp_t *comp;   /* [SBR_MSER_STACK] */
+    uint32_t *ring_size; /* [SBR_MSER_STACK * ring_cap] main-chain areas */
+    uint16_t *ring_val;  /* [SBR_MSER_STACK * ring_cap] their levels */
+    mser_node_t *node;   /* [node_cap] */
+    uint32_t *heap;      /* [pixels] entries (HEAP_DIR_BITS) */
+    uint16_t *lev;       /* [pixels] the map (inverted for the bright pass) with
+                            LEV_REACHED once reached; the border MSER_REACHED */
+    uint32_t width;
+    uint32_t height;
+    uint32_t ring_cap;   /* delta + 1 */
+    uint32_t node_cap;
+    uint32_t node_count;
+    uint32_t delta;
+    uint32_t min_area;
+    uint32_t div_shift;  /* y = (p * div_magic) >> div_shift, exact for p < width * height */
+    uint64_t div_magic;
+    int overflow;
+} mser_ctx_t;
+
+/* Variations, stable nodes, duplicates and the regions of one pass's tree (its pixels'
+   levels still in c->lev); limit: the pass's level limit (0xFFFF none). */
+void sbr_mser_priv_pass_select(mser_ctx_t *c, const sbr_mser_config_t *cfg, uint8_t polarity,
+                               uint32_t limit, sbr_mser_region_t *regions, uint32_t capacity,
+                               uint32_t *count, int *full);
+
+#endif
