@@ -12,12 +12,14 @@ Instructions per frame of sbr_recog_detect, which do not depend on the machine's
     frames as PPM, built-in model and default options; its detections are compared with
     the host's on the same pixels (box edges within 1 px, scores within 1e-3, the
     tolerance of the scene test, cmake/compare_scene.py);
-next to wall-clock figures of sbr_detect --repeat N on the development split (these do
-depend on the machine; the fastest of N runs per frame).
+and both on the hostile frames of sbr_hostile_frames (noise, a checkerboard, a grid of
+sign-like rings, random blocks: the worst case a schedule must allow for), next to
+wall-clock figures of sbr_detect --repeat N on the development split (these do depend on
+the machine; the fastest of N runs per frame).
 
 usage: sbr_cost.py --bin DIR --m4-elf ELF --gtsdb DIR [--range A-B] [--m4-range A-B]
                    [--wall-range A-B] [--repeat N] [--out DIR] [--no-wall] [--no-m4]
-                   [-- sbr_detect options...]
+                   [--no-hostile] [-- sbr_detect options...]
 Options after -- (e.g. --model F --picto F, --max-candidates N) go to the host runs; the
 Cortex-M4 image always runs the built-in model with the default options.
 Prints the tables and writes cost.txt and cost.json into --out.
@@ -77,15 +79,18 @@ def inclusive(cg_file, functions):
     return got
 
 
-def host_callgrind(args, extra, work):
-    cg_dir = os.path.join(work, "callgrind")
+def host_callgrind(args, extra, work, inputs=None, name="callgrind"):
+    """Per-frame, per-stage instructions of sbr_detect on `inputs` (sbr_detect options that
+    name the frames; default the GTSDB frames of --range), dumps in work/<name>."""
+    cg_dir = os.path.join(work, name)
     shutil.rmtree(cg_dir, ignore_errors=True)
     os.makedirs(cg_dir)
-    lo, hi = args.range
+    if inputs is None:
+        inputs = ["--input", args.gtsdb, "--range", "%d-%d" % args.range]
     cmd = ["valgrind", "--tool=callgrind", "--collect-atstart=no",
            "--callgrind-out-file=" + os.path.join(cg_dir, "cg.out"),
-           os.path.join(args.bin, "sbr_detect"), "--input", args.gtsdb, "--range", "%d-%d" % (lo, hi),
-           "--detections", os.path.join(work, "callgrind_detections.txt"), "--callgrind", "--quiet"] + extra
+           os.path.join(args.bin, "sbr_detect")] + inputs + [
+           "--detections", os.path.join(work, name + "_detections.txt"), "--callgrind", "--quiet"] + extra
     run(cmd)
     frames = {}
     for name in sorted(os.listdir(cg_dir)):
@@ -160,19 +165,30 @@ def same_dets(a, b):
     return True
 
 
-def cortex_m4(args, work):
-    ppm_dir = os.path.join(work, "ppm")
-    shutil.rmtree(ppm_dir, ignore_errors=True)
-    files = frames_of(args.gtsdb, args.m4_range)
-    run([os.path.join(args.bin, "sbr_to_ppm"), "--out", ppm_dir] + files)
+def hostile_frames(args, work):
+    """The hostile frames (sbr_hostile_frames) in work/hostile."""
+    d = os.path.join(work, "hostile")
+    shutil.rmtree(d, ignore_errors=True)
+    run([os.path.join(args.bin, "sbr_hostile_frames"), "--out", d])
+    return d
+
+
+def cortex_m4(args, work, ppm_dir=None):
+    """Per-frame Cortex-M4 figures on the GTSDB frames of --m4-range (converted to PPM), or
+    on the PPM frames of ppm_dir."""
+    if ppm_dir is None:
+        ppm_dir = os.path.join(work, "ppm")
+        shutil.rmtree(ppm_dir, ignore_errors=True)
+        files = frames_of(args.gtsdb, args.m4_range)
+        run([os.path.join(args.bin, "sbr_to_ppm"), "--out", ppm_dir] + files)
     # the host's detections on the same pixels, built-in model, default options (floor 0.3)
-    host_det = os.path.join(work, "m4_host_detections.txt")
+    host_det = os.path.join(work, "m4_%s_host_detections.txt" % os.path.basename(ppm_dir))
     run([os.path.join(args.bin, "sbr_detect"), "--input", ppm_dir, "--detections", host_det,
          "--threshold", "0.3", "--min-score", "0.3", "--quiet"])
     host = {}
     with open(host_det) as f:
         for line in f:
-            host.setdefault(line.split(";")[0][:5], []).append(line)
+            host.setdefault(os.path.splitext(line.split(";")[0])[0], []).append(line)
     frames = {}
     run_dir = os.path.join(work, "qemu")
     os.makedirs(run_dir, exist_ok=True)
@@ -214,6 +230,38 @@ def mega(v):
     return "%.1f" % (v / 1e6)
 
 
+def host_table(host, lines, summary):
+    """Appends the per-frame, per-stage table of host_callgrind()'s figures (and with
+    summary its median, mean and shares); returns the median and mean per column."""
+    cols = STAGES + ["total"]
+    width = max([8] + [len(n) for n in host])
+    lines.append("  %-*s" % (width, "frame") + "".join("%17s" % c for c in cols))
+    for name in sorted(host):
+        lines.append("  %-*s" % (width, name) + "".join("%17s" % mega(host[name][c]) for c in cols))
+    med = {c: statistics.median([host[n][c] for n in host]) for c in cols}
+    mean = {c: statistics.mean([host[n][c] for n in host]) for c in cols}
+    if summary:
+        lines.append("  %-*s" % (width, "median") + "".join("%17s" % mega(med[c]) for c in cols))
+        lines.append("  %-*s" % (width, "mean") + "".join("%17s" % mega(mean[c]) for c in cols))
+        lines.append("  share of the mean: " + ", ".join("%s %.0f %%" % (c, 100.0 * mean[c] / mean["total"])
+                                                         for c in STAGES))
+    return med, mean
+
+
+def m4_table(m4, lines):
+    """Appends the per-frame table of cortex_m4()'s figures; returns the totals."""
+    names = ["parts", "votes", "grouping", "cascade", "NMS", "class stage"]
+    width = max([8] + [len(n) for n in m4])
+    lines.append("  %-*s" % (width, "frame") + "".join("%13s" % c for c in names)
+                 + "%13s%10s  %s" % ("total", "same dets", "view"))
+    for name in sorted(m4):
+        fr = m4[name]
+        lines.append("  %-*s" % (width, name) + "".join("%13s" % mega(fr["stages"].get(k, 0)) for k in range(6))
+                     + "%13s%10s  %s" % (mega(fr.get("total", 0)), "yes" if fr["same_as_host"] else "NO",
+                                         fr.get("view", "?")))
+    return [m4[n].get("total", 0) for n in m4]
+
+
 def main():
     argv = sys.argv[1:]
     extra = []
@@ -231,6 +279,7 @@ def main():
     ap.add_argument("--out", default="cost")
     ap.add_argument("--no-wall", action="store_true")
     ap.add_argument("--no-m4", action="store_true")
+    ap.add_argument("--no-hostile", action="store_true", help="skip the hostile frames")
     args = ap.parse_args(argv)
     if args.m4_range is None:
         args.m4_range = args.range
@@ -245,19 +294,24 @@ def main():
     lines.append("")
     lines.append("x86-64 (valgrind callgrind), frames %05d-%05d (%d), millions of instructions:"
                  % (args.range[0], args.range[1], len(host)))
-    cols = STAGES + ["total"]
-    lines.append("  %-8s" % "frame" + "".join("%17s" % c for c in cols))
-    for name in sorted(host):
-        lines.append("  %-8s" % name + "".join("%17s" % mega(host[name][c]) for c in cols))
-    med = {c: statistics.median([host[n][c] for n in host]) for c in cols}
-    mean = {c: statistics.mean([host[n][c] for n in host]) for c in cols}
-    lines.append("  %-8s" % "median" + "".join("%17s" % mega(med[c]) for c in cols))
-    lines.append("  %-8s" % "mean" + "".join("%17s" % mega(mean[c]) for c in cols))
-    share = "  share of the mean: " + ", ".join("%s %.0f %%" % (c, 100.0 * mean[c] / mean["total"]) for c in STAGES)
-    lines.append(share)
+    med, mean = host_table(host, lines, True)
     report["host_median"] = med
     report["host_mean"] = mean
-    lines.append("host median: %.3f x 10^9 instructions per frame" % (med["total"] / 1e9))
+    worst = max(host, key=lambda n: host[n]["total"])
+    lines.append("host median: %.3f x 10^9 instructions per frame (worst of the %d: %.3f x 10^9, %s)"
+                 % (med["total"] / 1e9, len(host), host[worst]["total"] / 1e9, worst))
+    hostile_dir = None
+    if not args.no_hostile:
+        hostile_dir = hostile_frames(args, args.out)
+        hh = host_callgrind(args, extra, args.out, ["--input", hostile_dir], "callgrind_hostile")
+        report["host_hostile"] = hh
+        lines.append("")
+        lines.append("x86-64, the hostile frames (sbr_hostile_frames), millions of instructions:")
+        host_table(hh, lines, False)
+        hw = max(hh, key=lambda n: hh[n]["total"])
+        report["host_hostile_worst_ratio"] = hh[hw]["total"] / med["total"]
+        lines.append("host hostile worst: %.3f x 10^9 instructions (%s), %.2f x the GTSDB median"
+                     % (hh[hw]["total"] / 1e9, hw, hh[hw]["total"] / med["total"]))
 
     if not args.no_m4 and args.m4_elf:
         m4 = cortex_m4(args, args.out)
@@ -265,19 +319,27 @@ def main():
         lines.append("")
         lines.append("Cortex-M4F (qemu mps2-an386, -icount shift=0), built-in model, default options,"
                      " frames %05d-%05d, millions of instructions:" % args.m4_range)
-        names = ["parts", "votes", "grouping", "cascade", "NMS", "class stage"]
-        lines.append("  %-8s" % "frame" + "".join("%13s" % c for c in names) + "%13s%10s  %s" % ("total", "same dets", "view"))
-        for name in sorted(m4):
-            fr = m4[name]
-            lines.append("  %-8s" % name + "".join("%13s" % mega(fr["stages"].get(k, 0)) for k in range(6))
-                         + "%13s%10s  %s" % (mega(fr.get("total", 0)), "yes" if fr["same_as_host"] else "NO",
-                                             fr.get("view", "?")))
-        tot = [m4[n].get("total", 0) for n in m4]
+        tot = m4_table(m4, lines)
         same = sum(1 for n in m4 if m4[n]["same_as_host"])
-        lines.append("Cortex-M4 median: %.3f x 10^9 instructions per frame; workspace %s bytes;"
+        worst = max(m4, key=lambda n: m4[n].get("total", 0))
+        lines.append("Cortex-M4 median: %.3f x 10^9 instructions per frame (worst %.3f x 10^9, %s); workspace %s bytes;"
                      " detections the same as the host's (1 px, 1e-3) on %d of %d frames"
-                     % (statistics.median(tot) / 1e9, next(iter(m4.values())).get("workspace"), same, len(m4)))
+                     % (statistics.median(tot) / 1e9, m4[worst].get("total", 0) / 1e9, worst,
+                        next(iter(m4.values())).get("workspace"), same, len(m4)))
         report["cortex_m4_median"] = statistics.median(tot)
+        if hostile_dir is not None:
+            m4h = cortex_m4(args, args.out, hostile_dir)
+            report["cortex_m4_hostile"] = m4h
+            lines.append("")
+            lines.append("Cortex-M4F, the hostile frames, millions of instructions:")
+            m4_table(m4h, lines)
+            hw = max(m4h, key=lambda n: m4h[n].get("total", 0))
+            ratio = m4h[hw].get("total", 0) / statistics.median(tot)
+            report["cortex_m4_hostile_worst_ratio"] = ratio
+            lines.append("Cortex-M4 hostile worst: %.3f x 10^9 instructions (%s), %.2f x the GTSDB median;"
+                         " detections the same as the host's on %d of %d frames"
+                         % (m4h[hw].get("total", 0) / 1e9, hw, ratio,
+                            sum(1 for n in m4h if m4h[n]["same_as_host"]), len(m4h)))
         inits = [m4[n]["init"] for n in m4 if "init" in m4[n]]
         if inits:
             lines.append("sbr_recog_init (once, not per frame: the configuration and models checked): "

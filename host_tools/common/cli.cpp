@@ -42,6 +42,8 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
     f("--candidate-score", cfg.candidate_score, 0.0, 0.999999, "part-evidence floor of a class-stage candidate");
     f("--candidate-iou", cfg.candidate_iou, 1e-6, 1.0, "suppression before the class stage (1: none)");
     u("--max-candidates", cfg.max_candidates, 0u, 1000000u, "class-stage candidate bound");
+    u("--max-extra-looks", cfg.max_extra_looks, 0u, 1000000u,
+      "class-stage looks per frame beyond each candidate's first");
     u("--max-parts", cfg.max_parts, 1u, 1000000u, "part bound");
     u("--max-votes", cfg.max_votes, 1u, 4000000u, "vote bound");
     u("--max-hypotheses", cfg.max_hypotheses, 1u, 1000000u, "hypothesis bound");

@@ -343,10 +343,12 @@ struct Tally {
     std::vector<std::vector<double>> ms_stage = std::vector<std::vector<double>>(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
     std::vector<std::string> failures;  // "file: why", the first few
-    size_t capacity_kind[5] = {0, 0, 0, 0, 0};
+    size_t capacity_kind[6] = {0, 0, 0, 0, 0, 0};
     uint32_t max_candidates = 0;  // the class stage's bound, for the summary
     size_t classified = 0, refined = 0, views = 0, rim_rejected = 0, gated = 0, frames_run = 0;
+    uint32_t max_extra_looks = 0;  // the most extra looks of one frame
     uint64_t parts_total = 0;
+    uint32_t parts_max = 0;
     double sum_ms = 0;
 };
 
@@ -391,8 +393,10 @@ void count_stats(const sbr_recog_stats_t &stats, sbr_status_t st, double ms, Tal
     t.sum_ms += ms;
     for (unsigned s = 0; s < SBR_RECOG_STAGES; ++s) t.ms_stage[s].push_back(stats.stage_ticks[s] / 1000.0);
     t.parts_total += stats.parts;
+    t.parts_max = std::max(t.parts_max, stats.parts);
     if (stats.capacity_hit != 0 || st == SBR_ERR_CAPACITY) ++t.capacity_frames;
-    for (unsigned b = 0; b < 5; ++b) t.capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
+    for (unsigned b = 0; b < 6; ++b) t.capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
+    t.max_extra_looks = std::max(t.max_extra_looks, stats.extra_looks);
     t.classified += stats.classified;
     t.refined += stats.refined;
     t.views += stats.views;
@@ -529,6 +533,11 @@ std::string bounds_text(const Options &o, const Tally &t) {
           << " candidates of best part score of a frame and skips the rest,\n"
              "    which fixes its time per frame; a sign skipped there counts as a miss";
     s << "\n";
+    s << "  class-stage extra looks (--max-extra-looks " << o.cfg.max_extra_looks << "): reached on "
+      << t.capacity_kind[5] << " of " << fr << " frames (the most a frame spent: " << t.max_extra_looks << ")";
+    if (t.capacity_kind[5] > 0)
+        s << ":\n    on those frames the last candidates kept the box, class and score of their last look";
+    s << "\n";
     const char *names[4] = {"parts (--max-parts ", "votes (--max-votes ", "hypotheses (--max-hypotheses ",
                             "MSER tree nodes (--max-nodes "};
     const uint32_t limits[4] = {o.cfg.max_parts, o.cfg.max_votes, o.cfg.max_hypotheses, o.cfg.parts.mser.max_nodes};
@@ -566,7 +575,8 @@ std::string summary(const Options &o, const Models &m, const std::string &dir, s
       << ", operating point score >= " << o.threshold << "\n";
     s << "detections: " << t.ndet << " at the operating point";
     if (out.all.is_open()) s << ", " << t.nall << " in all";
-    s << "\nparts per frame (mean): " << (t.ms_total.empty() ? 0 : t.parts_total / t.ms_total.size()) << "\n";
+    s << "\nparts per frame (mean): " << (t.ms_total.empty() ? 0 : t.parts_total / t.ms_total.size())
+      << " (most in one frame: " << t.parts_max << ")\n";
     char buf[256];
     const std::string runs = o.repeat > 1 ? ", fastest of " + std::to_string(o.repeat) + " runs" : "";
     std::snprintf(buf, sizeof buf, "time per frame (one core%s): median %.1f ms, 95th percentile %.1f ms\n",

@@ -214,7 +214,8 @@ typedef struct sbr_recog_config_s {
         the peak on a finer grid before refinement; the cost grows with P log P. */
     uint32_t match_p;
     /** Parts kept per frame (bounds the workspace: each part's record and its 12-byte
-        entry in the cascade's index of parts by group and x). Default 4096. */
+        entry in the cascade's index of parts by group and x). Default 3072 (GTSDB frames
+        have at most 2,699 with the default maps; frames of random colour blocks reach it). */
     uint32_t max_parts;
     /** Votes kept per frame. Default 16384. */
     uint32_t max_votes;
@@ -295,6 +296,15 @@ typedef struct sbr_recog_config_s {
         the class stage's time) with the same detections at the usual operating point.
         0: every candidate. Higher: less work, fewer danger signs recovered. */
     float triangle_score;
+    /** With a class stage: the looks a frame may spend beyond each candidate's first
+        (refinement steps, extra views, triangle views), 0 .. 1000000. The candidates are
+        classified in order of part score; once the budget is spent, further extra looks
+        are skipped and a candidate keeps the box, class and score of its last look
+        (::SBR_RECOG_HIT_LOOKS in the statistics). Bounds the class stage's work on frames full of
+        sign-like shapes (a grid of rings: about 1,000 extra looks) to a known multiple of
+        a scene's; GTSDB frames spend at most a few dozen (docs/results/realtime.md).
+        Default 256. */
+    uint32_t max_extra_looks;
     /** Score floor of reported detections, [0, 1): the class stage's probability, or the
         part score without one. Default 0.3 (below the usual operating point, so
         evaluations can draw precision-recall curves). */
@@ -347,6 +357,7 @@ typedef struct sbr_detection_s {
 #define SBR_RECOG_HIT_HYPOTHESES 4u  /**< max_hypotheses */
 #define SBR_RECOG_HIT_MSER 8u        /**< the part stage's MSER nodes or regions */
 #define SBR_RECOG_HIT_CANDIDATES 16u /**< max_candidates */
+#define SBR_RECOG_HIT_LOOKS 32u      /**< max_extra_looks */
 /** @} */
 
 /** What one call did. */
@@ -361,6 +372,8 @@ typedef struct sbr_recog_stats_s {
     uint32_t classified;      /**< candidates the class stage examined */
     uint32_t refined;         /**< box refinements the class stage applied */
     uint32_t views;           /**< extra views the class stage classified (config.views) */
+    uint32_t extra_looks;     /**< looks beyond each candidate's first (refinements, extra
+                                   views, triangle views; config.max_extra_looks) */
     uint32_t rim_rejected;    /**< candidates dropped by the class stage's colour check
                                    (sbr_picto_model_t::rim_floor) */
     uint32_t gated;           /**< candidates the class stage's gate rejected (config.gate) */
@@ -394,10 +407,11 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
 /** @name Defaults that size the workspace (sbr_recog_config_default()) @{ */
 #define SBR_RECOG_DEFAULT_DELTA 3u               /**< parts.mser.delta */
 #define SBR_RECOG_DEFAULT_MATCH_P 32u            /**< match_p */
-#define SBR_RECOG_DEFAULT_MAX_PARTS 4096u        /**< max_parts */
+#define SBR_RECOG_DEFAULT_MAX_PARTS 3072u        /**< max_parts */
 #define SBR_RECOG_DEFAULT_MAX_VOTES 16384u       /**< max_votes */
 #define SBR_RECOG_DEFAULT_MAX_HYPOTHESES 4096u   /**< max_hypotheses */
 #define SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS 1024u /**< max_model_protos */
+#define SBR_RECOG_DEFAULT_MAX_EXTRA_LOOKS 256u   /**< max_extra_looks */
 /** @} */
 
 /** @name Per-entry bytes of the recogniser's workspace arrays @{ */

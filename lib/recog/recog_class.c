@@ -54,6 +54,7 @@ static uint32_t average_views(recog_hyp_t *h, const sbr_image_t *view,
                               const sbr_picto_model_t *pm, uint32_t views, const float box[4],
                               recog_picto_buf_t *b)
 {
+    /* (the caller checks the extra-look budget for views - 1 looks) */
     static const float dir[SBR_RECOG_MAX_VIEWS - 1u][2] = {
         {1.0f, 0.0f}, {-1.0f, 0.0f}, {0.0f, 1.0f}, {0.0f, -1.0f}};
     const float dx = SBR_RECOG_VIEW_SHIFT * (box[2] - box[0]);
@@ -130,6 +131,19 @@ static void triangle_view(recog_hyp_t *h, const sbr_image_t *view, const sbr_pic
    and score unless the candidate, still view_score likely, gets the mean of
    config.views views (average_views()).
    Returns 0 when the box cannot be sampled; counts refinements and extra views in *st. */
+/* One extra look from the frame's budget (config.max_extra_looks): 1 if there was one. */
+static int spend_look(sbr_recog_stats_t *st, uint32_t budget, uint32_t n)
+{
+    int ok = 0;
+    if ((st->extra_looks <= budget) && (n <= (budget - st->extra_looks))) {
+        st->extra_looks += n;
+        ok = 1;
+    } else {
+        st->capacity_hit |= SBR_RECOG_HIT_LOOKS;
+    }
+    return ok;
+}
+
 static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
                         const sbr_recog_config_t *cfg, recog_picto_buf_t *b,
                         sbr_recog_stats_t *st)
@@ -152,7 +166,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
         float nb[4];
         step++;
         if ((sbr_picto_look_refine(pm, nb, b->look, SBR_PICTO_LOOK_WORKSPACE_SIZE) != SBR_OK) ||
-            (picto_box(view, pm, nb, b) == 0)) {
+            (spend_look(st, cfg->max_extra_looks, 1u) == 0) || (picto_box(view, pm, nb, b) == 0)) {
             step = steps; /* the box left the image: keep the last one */
         } else {
             st->refined++;
@@ -170,10 +184,12 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
             }
         }
     }
-    if ((cfg->views > 1u) && (signs >= cfg->view_score)) {
+    if ((cfg->views > 1u) && (signs >= cfg->view_score) &&
+        (spend_look(st, cfg->max_extra_looks, cfg->views - 1u) != 0)) {
         st->views += average_views(h, view, pm, cfg->views, box, b);
     }
-    if ((cfg->triangle_view != 0u) && (danger >= cfg->triangle_score)) {
+    if ((cfg->triangle_view != 0u) && (danger >= cfg->triangle_score) &&
+        (spend_look(st, cfg->max_extra_looks, 1u) != 0)) {
         triangle_view(h, view, pm, box, b);
     }
     return 1;

@@ -54,6 +54,7 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->view_score = 0.1f;
         cfg->triangle_view = 1u;
         cfg->triangle_score = 0.001f;
+        cfg->max_extra_looks = SBR_RECOG_DEFAULT_MAX_EXTRA_LOOKS;
         cfg->min_score = 0.3f;
         cfg->nms_iou = 0.3f;
         cfg->candidate_iou = 1.0f;
@@ -91,7 +92,8 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (cfg->cascade_depth > 65535u) || (cfg->min_parts > 65535u) ||
         (cfg->max_candidates > 1000000u) || (cfg->refine_steps > SBR_RECOG_MAX_REFINE) ||
         (cfg->views == 0u) || (cfg->views > SBR_RECOG_MAX_VIEWS) || (cfg->triangle_view > 1u) ||
-        (cfg->gate > 1u) || (cfg->grey_polarity > (uint32_t)SBR_MSER_BOTH)) {
+        (cfg->gate > 1u) || (cfg->grey_polarity > (uint32_t)SBR_MSER_BOTH) ||
+        (cfg->max_extra_looks > 1000000u)) {
         return SBR_ERR_RANGE;
     }
     if ((in_range(cfg->vote_error, 0.0f, 4.0f) == 0) ||

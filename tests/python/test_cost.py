@@ -12,7 +12,9 @@ Checks what the figures must satisfy whatever the code's speed (no timing is ass
   - on the emulated Cortex-M4F (when the image is given): the timer calibration is
     qemu's 40 instructions a tick (-icount shift=0, 25 MHz), the stage figures are at
     most the call's total, the whole frame fitted, and the detections are the host's on
-    the same pixels.
+    the same pixels;
+  - the five hostile frames measured on both (every stage adding up; on the Cortex-M4F
+    the whole frame, a status of success or of a bound reached).
 Exit 0 on success, 1 on a failed check, 77 (skipped) without valgrind.
 """
 import argparse
@@ -75,6 +77,24 @@ def main():
             bad.append("Cortex-M4 status %s" % m4["status"])
         if not m4["same_as_host"] or m4["host_dets"] == 0:
             bad.append("Cortex-M4 detections differ from the host's (%d on the host)" % m4["host_dets"])
+    # the hostile frames: all five measured, each frame's stages adding up, the worst's
+    # ratio to the GTSDB median reported (not asserted: a figure, not a timing)
+    names = ["hostile_checker", "hostile_colour_blocks", "hostile_grey_blocks", "hostile_noise", "hostile_rings"]
+    hh = rep.get("host_hostile", {})
+    if sorted(hh) != names:
+        bad.append("hostile frames measured: %s, not %s" % (sorted(hh), names))
+    for n, hf in hh.items():
+        if hf["total"] != sum(hf[s] for s in stages + ["set-up+output"]) or hf["total"] <= 0:
+            bad.append("%s: stages do not add up to the total" % n)
+    if not rep.get("host_hostile_worst_ratio", 0) > 0:
+        bad.append("no hostile worst ratio")
+    if "cortex_m4" in rep:
+        m4h = rep.get("cortex_m4_hostile", {})
+        if sorted(m4h) != names:
+            bad.append("Cortex-M4 hostile frames: %s" % sorted(m4h))
+        for n, hf in m4h.items():
+            if hf.get("status") not in ("SBR_OK", "SBR_ERR_CAPACITY") or not hf["view"].startswith("0 0 1360 800"):
+                bad.append("Cortex-M4 %s: status %s, view %s" % (n, hf.get("status"), hf.get("view")))
     for b in bad:
         print("FAIL: " + b)
     if not bad:
