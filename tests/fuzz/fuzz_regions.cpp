@@ -40,7 +40,7 @@ void fuzz_map_mser_contour(FuzzedDataProvider &in)
     const bool header_ok = cfg.delta >= 1u && cfg.delta <= SBR_MSER_MAX_DELTA && cfg.min_area >= 1u &&
                            cfg.max_area >= cfg.min_area && cfg.max_variation > 0.0f && cfg.max_variation <= 1e30f &&
                            cfg.min_diversity >= 0.0f && cfg.min_diversity < 1.0f && cfg.polarity >= 1u &&
-                           cfg.polarity <= 3u;
+                           cfg.polarity <= 3u && cfg.dark_max <= 255u && cfg.bright_min <= 255u;
     FZ_CHECK((cs == SBR_OK) == header_ok);
     const size_t need = sbr_mser_workspace_size(&cfg, view.width, view.height);
     if (need > 0u) {
@@ -70,6 +70,13 @@ void fuzz_map_mser_contour(FuzzedDataProvider &in)
         FZ_CHECK(r.seed_x >= r.bbox.x && r.seed_x < r.bbox.x + r.bbox.width);
         FZ_CHECK(r.seed_y >= r.bbox.y && r.seed_y < r.bbox.y + r.bbox.height);
         FZ_CHECK(fz_finite(r.variation) && r.variation >= 0.0f);
+        // the level limits: no region within delta of a limit or beyond it
+        if (r.polarity == SBR_MSER_DARK && cfg.dark_max < 255u) {
+            FZ_CHECK((uint32_t)r.level + cfg.delta <= cfg.dark_max);
+        }
+        if (r.polarity == SBR_MSER_BRIGHT && cfg.bright_min > 0u) {
+            FZ_CHECK((uint32_t)r.level >= cfg.bright_min + cfg.delta);
+        }
         const size_t mws = SBR_MSER_MASK_WORKSPACE_SIZE(r.bbox.width, r.bbox.height);
         mask.assign((size_t)r.bbox.width * r.bbox.height, 0u);
         const sbr_status_t rs = sbr_mser_region_mask(&view, &r, fz_workspace(mws), mws, mask.data(),
