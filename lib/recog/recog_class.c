@@ -124,14 +124,8 @@ static void triangle_view(recog_hyp_t *h, const sbr_image_t *view, const sbr_pic
     }
 }
 
-/* The class stage on one hypothesis: classify its box; if the signs are at least
-   refine_first_score probable, and then while they are at least refine_score probable
-   (at most refine_steps times in all), move the box by the classifier's box regression
-   and classify again there; the box is the last one, and so are class
-   and score unless the candidate, still view_score likely, gets the mean of
-   config.views views (average_views()).
-   Returns 0 when the box cannot be sampled; counts refinements and extra views in *st. */
-/* One extra look from the frame's budget (config.max_extra_looks): 1 if there was one. */
+/* One extra look from the frame's budget (config.max_extra_looks): 1 if there were
+   n left (otherwise none is taken and the bound is marked reached). */
 static int spend_look(sbr_recog_stats_t *st, uint32_t budget, uint32_t n)
 {
     int ok = 0;
@@ -144,6 +138,14 @@ static int spend_look(sbr_recog_stats_t *st, uint32_t budget, uint32_t n)
     return ok;
 }
 
+/* The class stage on one hypothesis: classify its box; if the signs are at least
+   refine_first_score probable, and then while they are at least refine_score probable
+   (at most refine_steps times in all), move the box by the classifier's box regression
+   and classify again there; the box is the last one, and so are class
+   and score unless the candidate, still view_score likely, gets the mean of
+   config.views views (average_views()).
+   Each look after the first takes from the frame's budget (spend_look()).
+   Returns 0 when the box cannot be sampled; counts refinements and extra views in *st. */
 static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto_model_t *pm,
                         const sbr_recog_config_t *cfg, recog_picto_buf_t *b,
                         sbr_recog_stats_t *st)
@@ -167,7 +169,8 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
         step++;
         if ((sbr_picto_look_refine(pm, nb, b->look, SBR_PICTO_LOOK_WORKSPACE_SIZE) != SBR_OK) ||
             (spend_look(st, cfg->max_extra_looks, 1u) == 0) || (picto_box(view, pm, nb, b) == 0)) {
-            step = steps; /* the box left the image: keep the last one */
+            step = steps; /* the box left the image, or the frame's extra looks are spent:
+                             keep the last one */
         } else {
             st->refined++;
             box[0] = nb[0];
