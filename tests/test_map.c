@@ -79,6 +79,53 @@ static void test_map_subsample_averages_blocks(void)
     TEST_ASSERT_EQUAL_UINT8(55u, out[1]);
 }
 
+/* Colour frames at subsample 2 (the recogniser's blue map: its own loop): every pixel
+   the map value of its 2 x 2 block's rounded mean colour, that value taken from the
+   subsample-1 path on a one-pixel frame of the mean colour; RGB and BGR, every kind, an
+   odd size (the last row and column dropped) and a padded stride. */
+static void test_map_subsample2_colour_blocks(void)
+{
+    static uint8_t px[7u * 40u];
+    static uint8_t out[3u * 8u];
+    uint32_t state = 99u;
+    uint32_t i;
+    uint32_t f;
+    uint32_t k;
+    for (i = 0u; i < sizeof px; i++) {
+        state = (state * 1664525u) + 1013904223u;
+        px[i] = (uint8_t)(state >> 24);
+    }
+    for (f = 0u; f < 2u; f++) {
+        const sbr_pixel_format_t fmt = (f == 0u) ? SBR_PIXEL_RGB888 : SBR_PIXEL_BGR888;
+        const sbr_image_t src = {13u, 7u, 40u, fmt, px}; /* 13 x 7, stride 40 > 39 */
+        for (k = 0u; k < SBR_MAP_KINDS; k++) {
+            sbr_image_t ov;
+            uint32_t x;
+            uint32_t y;
+            TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, (sbr_map_kind_t)k, 2u, out, 8u,
+                                                            sizeof out, &ov));
+            TEST_ASSERT_EQUAL_UINT32(6u, ov.width);
+            TEST_ASSERT_EQUAL_UINT32(3u, ov.height);
+            for (y = 0u; y < 3u; y++) {
+                for (x = 0u; x < 6u; x++) {
+                    uint8_t mean[3];
+                    uint8_t one;
+                    uint32_t c;
+                    const sbr_image_t m = {1u, 1u, 3u, fmt, mean};
+                    for (c = 0u; c < 3u; c++) {
+                        const uint32_t a = (2u * y * 40u) + (2u * x * 3u) + c;
+                        const uint32_t sum = (uint32_t)px[a] + px[a + 3u] + px[a + 40u] + px[a + 43u];
+                        mean[c] = (uint8_t)((sum + 2u) / 4u);
+                    }
+                    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&m, (sbr_map_kind_t)k, 1u, &one, 1u,
+                                                                    1u, NULL));
+                    TEST_ASSERT_EQUAL_UINT8(one, out[(y * 8u) + x]);
+                }
+            }
+        }
+    }
+}
+
 static void test_map_tone_curve_every_level(void)
 {
     /* a grey ramp 0..255: the intensity map is T(c) = round(sqrt(255 c)), checked in
@@ -131,6 +178,7 @@ int main(void)
     UNITY_BEGIN();
     RUN_TEST(test_map_formulas_on_known_colours);
     RUN_TEST(test_map_subsample_averages_blocks);
+    RUN_TEST(test_map_subsample2_colour_blocks);
     RUN_TEST(test_map_tone_curve_every_level);
     RUN_TEST(test_map_bad_input);
     return UNITY_END();

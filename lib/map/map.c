@@ -134,6 +134,28 @@ typedef struct map_read_s {
     uint32_t shift;
 } map_read_t;
 
+/* Output row y of a map at subsample 2 from a colour frame (the recogniser's blue map):
+   the same block means as map_block_row(), the four pixels of a block read directly. */
+static void map_block2_row(const sbr_image_t *src, sbr_map_kind_t kind, const map_read_t *rd,
+                           uint32_t y, uint32_t ow, uint8_t *dst)
+{
+    const uint8_t *r0 = &src->data[((size_t)y * 2u) * src->stride];
+    const uint8_t *r1 = &r0[src->stride];
+    const uint32_t ri = rd->ri;
+    const uint32_t bi = rd->bi;
+    uint32_t x;
+    for (x = 0u; x < ow; x++) {
+        const uint8_t *a = &r0[(size_t)x * 6u];
+        const uint8_t *b = &r1[(size_t)x * 6u];
+        const uint32_t sr = (((uint32_t)a[ri] + (uint32_t)a[3u + ri]) + (uint32_t)b[ri]) +
+                            (uint32_t)b[3u + ri];
+        const uint32_t sg = (((uint32_t)a[1] + (uint32_t)a[4]) + (uint32_t)b[1]) + (uint32_t)b[4];
+        const uint32_t sb = (((uint32_t)a[bi] + (uint32_t)a[3u + bi]) + (uint32_t)b[bi]) +
+                            (uint32_t)b[3u + bi];
+        dst[x] = map_value(kind, (sr + 2u) >> 2u, (sg + 2u) >> 2u, (sb + 2u) >> 2u);
+    }
+}
+
 /* Output row y of a subsampled map: each pixel the map value of its block's mean colour. */
 static void map_block_row(const sbr_image_t *src, sbr_map_kind_t kind, const map_read_t *rd,
                           uint32_t y, uint32_t ow, uint8_t *dst)
@@ -223,6 +245,8 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
         if (subsample == 1u) {
             map_row(kind, &src->data[(size_t)y * src->stride], rd.bpp, rd.ri, rd.bi, ow,
                     &out[(size_t)y * out_stride]);
+        } else if ((subsample == 2u) && (rd.bpp == 3u)) {
+            map_block2_row(src, kind, &rd, y, ow, &out[(size_t)y * out_stride]);
         } else {
             map_block_row(src, kind, &rd, y, ow, &out[(size_t)y * out_stride]);
         }
