@@ -16,7 +16,6 @@
    it prints are those sbr_detect finds on the image, and it writes its figure.
 Prints what was installed and how long each step took.
 """
-import argparse
 import glob
 import os
 import re
@@ -29,7 +28,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 PACKAGE = os.path.dirname(HERE)
 ROOT = os.path.dirname(PACKAGE)
 sys.path.insert(0, os.path.join(ROOT, "tests", "python"))
-from fresh_venv_install import install  # noqa: E402  (the project's test helpers)
+from fresh_venv_install import install, start  # noqa: E402  (the project's test helpers)
 
 
 def run(cmd, **kw):
@@ -47,17 +46,9 @@ def readme_example():
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--data", required=True, help="GTSDB folder")
-    ap.add_argument("--detect", required=True, help="sbr_detect, for the classes on 00444")
-    a = ap.parse_args()
-    images = os.path.join(a.data, "FullIJCNN2013") if os.path.isdir(os.path.join(a.data, "FullIJCNN2013")) else a.data
-    if not os.path.isfile(os.path.join(images, "00444.jpg")):
-        print(f"SKIP: no GTSDB images in {a.data}")
+    a = start(__doc__.split("\n\n")[0], "sbr_detect, for the classes on 00444")
+    if a is None:
         return 77
-    shutil.rmtree(a.work, ignore_errors=True)
-    os.makedirs(a.work)
     ok = True
 
     r, t = run([sys.executable, "-m", "pip", "wheel", "-q", "--disable-pip-version-check", "--no-build-isolation",
@@ -99,7 +90,7 @@ def main():
 
     nb = os.path.join(a.work, "notebook")
     os.makedirs(nb)
-    shutil.copy(os.path.join(images, "00444.jpg"), nb)
+    shutil.copy(os.path.join(a.images, "00444.jpg"), nb)
     with open(os.path.join(nb, "example.py"), "w") as f:
         f.write(readme_example())
     r, t = run([py, "example.py"], cwd=nb, env=dict(env, MPLBACKEND="Agg"), timeout=300)

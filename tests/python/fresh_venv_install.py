@@ -2,9 +2,12 @@
 """A package installed as a user installs it, for the fresh-venv tests
 (python/tests/fresh_venv.py, tests/python/test_dashboard_fresh_venv.py): a new venv from
 the system's python3 (no project packages, no test requirements), then `pip install` of
-what is given, held to the project's pins as constraints."""
+what is given, held to the project's pins as constraints; and the two tests' common
+start (options, the GTSDB frame they need, a fresh work folder)."""
+import argparse
 import os
 import re
+import shutil
 import subprocess
 import time
 
@@ -32,3 +35,21 @@ def install(work, target, cwd):
     frozen = subprocess.run([py, "-m", "pip", "list", "--format=freeze", "--disable-pip-version-check"],
                             capture_output=True, text=True).stdout.split()
     return py, frozen, time.time() - t0, ""
+
+
+def start(description, detect_help):
+    """The tests' options (--work, --data GTSDB, --detect sbr_detect; a.images: the folder
+    of GTSDB's frames) with a fresh, empty --work folder; None (the caller skips, 77) when GTSDB's frame 00444 is not there."""
+    ap = argparse.ArgumentParser(description=description)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--data", required=True, help="GTSDB folder")
+    ap.add_argument("--detect", required=True, help=detect_help)
+    a = ap.parse_args()
+    images = os.path.join(a.data, "FullIJCNN2013") if os.path.isdir(os.path.join(a.data, "FullIJCNN2013")) else a.data
+    if not os.path.isfile(os.path.join(images, "00444.jpg")):
+        print(f"SKIP: no GTSDB images in {a.data}")
+        return None
+    shutil.rmtree(a.work, ignore_errors=True)
+    os.makedirs(a.work)
+    a.images = images
+    return a

@@ -13,7 +13,6 @@
    the last image's best speed-limit detection (from sbr_detect's detections file) and
    every message of the DBC decoded (the DBC is installed with the package).
 """
-import argparse
 import os
 import re
 import shutil
@@ -23,7 +22,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fresh_venv_install import install  # noqa: E402
+from fresh_venv_install import install, start  # noqa: E402
 
 
 def run(cmd, **kw):
@@ -45,17 +44,9 @@ def expected_limit(det_path):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--work", required=True)
-    ap.add_argument("--data", required=True, help="GTSDB folder")
-    ap.add_argument("--detect", required=True, help="sbr_detect")
-    a = ap.parse_args()
-    images = os.path.join(a.data, "FullIJCNN2013") if os.path.isdir(os.path.join(a.data, "FullIJCNN2013")) else a.data
-    if not os.path.isfile(os.path.join(images, "00444.jpg")):
-        print(f"SKIP: no GTSDB images in {a.data}")
+    a = start(__doc__.split("\n\n")[0], "sbr_detect")
+    if a is None:
         return 77
-    shutil.rmtree(a.work, ignore_errors=True)
-    os.makedirs(a.work)
     log = os.path.join(a.work, "can.log")
     r, t = run([a.detect, "--input", a.data, "--range", "444-445", "--quiet", "--detections",
                 os.path.join(a.work, "det.txt"), "--canlog", log])
