@@ -58,39 +58,24 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
 }
 
 void add_front_end_options(CLI::App &app, FrontEnd &fe, const std::string &group) {
-    app.add_option("--map-subsample", fe.sub, "parts.map_subsample per kind, in the order intensity, red, blue, yellow")
-        ->delimiter(',')
-        ->expected(1, int(SBR_MAP_KINDS))
-        ->check(CLI::Range(1u, SBR_MAP_MAX_SUBSAMPLE))
-        ->type_name("I[,R[,B[,Y]]]")
-        ->group(group);
-    app.add_option("--map-min-area", fe.area, "parts.map_min_area per kind (0: the MSER default), same order")
-        ->delimiter(',')
-        ->expected(1, int(SBR_MAP_KINDS))
-        ->check(CLI::Range(0u, 100000000u))
-        ->type_name("I[,R[,B[,Y]]]")
-        ->group(group);
-    app.add_option("--map-polarity", fe.polarity,
-                   "parts.map_polarity per kind (0: parts.mser's, 1 dark, 2 bright, 3 both), same order")
-        ->delimiter(',')
-        ->expected(1, int(SBR_MAP_KINDS))
-        ->check(CLI::Range(0u, 3u))
-        ->type_name("I[,R[,B[,Y]]]")
-        ->group(group);
-    app.add_option("--map-bright-min", fe.bright_min,
-                   "parts.map_bright_min per kind: bright regions from this level up (0: parts.mser's), same order")
-        ->delimiter(',')
-        ->expected(1, int(SBR_MAP_KINDS))
-        ->check(CLI::Range(0u, 255u))
-        ->type_name("I[,R[,B[,Y]]]")
-        ->group(group);
-    app.add_option("--map-dark-max", fe.dark_max,
-                   "parts.map_dark_max per kind: dark regions up to this level (0: parts.mser's), same order")
-        ->delimiter(',')
-        ->expected(1, int(SBR_MAP_KINDS))
-        ->check(CLI::Range(0u, 255u))
-        ->type_name("I[,R[,B[,Y]]]")
-        ->group(group);
+    // one value per map kind, in the order intensity, red, blue, yellow
+    auto per_kind = [&](const char *name, std::vector<unsigned> &values, unsigned lo, unsigned hi, const char *what) {
+        app.add_option(name, values, what)
+            ->delimiter(',')
+            ->expected(1, int(SBR_MAP_KINDS))
+            ->check(CLI::Range(lo, hi))
+            ->type_name("I[,R[,B[,Y]]]")
+            ->group(group);
+    };
+    per_kind("--map-subsample", fe.sub, 1u, SBR_MAP_MAX_SUBSAMPLE,
+             "parts.map_subsample per kind, in the order intensity, red, blue, yellow");
+    per_kind("--map-min-area", fe.area, 0u, 100000000u, "parts.map_min_area per kind (0: the MSER default), same order");
+    per_kind("--map-polarity", fe.polarity, 0u, 3u,
+             "parts.map_polarity per kind (0: parts.mser's, 1 dark, 2 bright, 3 both), same order");
+    per_kind("--map-bright-min", fe.bright_min, 0u, 255u,
+             "parts.map_bright_min per kind: bright regions from this level up (0: parts.mser's), same order");
+    per_kind("--map-dark-max", fe.dark_max, 0u, 255u,
+             "parts.map_dark_max per kind: dark regions up to this level (0: parts.mser's), same order");
 }
 
 void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg) { apply_front_end(r.front_end, cfg.parts); }
