@@ -259,6 +259,28 @@ static void pass_walls(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     }
 }
 
+/* A pass without a level limit: the (inverted) copy of the map, its interior pixels
+   counted per level unless the second pass reads the counts off the first's layout. */
+static void pass_copy(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, int second)
+{
+    const uint32_t w = c->width;
+    const uint32_t h = c->height;
+    uint32_t y;
+    for (y = 0u; y < h; y++) {
+        const uint8_t *src = &map->data[(size_t)y * map->stride];
+        uint16_t *g = &c->lev[(size_t)y * w];
+        uint32_t x;
+        for (x = 0u; x < w; x++) {
+            g[x] = (uint16_t)((uint32_t)src[x] ^ (uint32_t)xor_mask);
+        }
+        if ((second == 0) && (y > 0u) && (y < (h - 1u))) {
+            for (x = 1u; x < (w - 1u); x++) {
+                c->heap_top[g[x]]++; /* count per level for now */
+            }
+        }
+    }
+}
+
 /* Prepare one pass: the (inverted) copy of the map with its border reached, and the heap layout. The
    heap's layout needs the number of interior pixels per level: counted for the first
    pass; the second pass (same map, inverted) reads them off the first pass's layout,
@@ -288,19 +310,8 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     }
     if (limit < (MSER_LEVELS - 1u)) {
         pass_walls(c, map, xor_mask, limit);
-    }
-    for (y = 0u; (limit >= (MSER_LEVELS - 1u)) && (y < h); y++) {
-        const uint8_t *src = &map->data[(size_t)y * map->stride];
-        uint16_t *g = &c->lev[(size_t)y * w];
-        uint32_t x;
-        for (x = 0u; x < w; x++) {
-            g[x] = (uint16_t)((uint32_t)src[x] ^ (uint32_t)xor_mask);
-        }
-        if ((second == 0) && (y > 0u) && (y < (h - 1u))) {
-            for (x = 1u; x < (w - 1u); x++) {
-                c->heap_top[g[x]]++; /* count per level for now */
-            }
-        }
+    } else {
+        pass_copy(c, map, xor_mask, second);
     }
     /* the border is reached from the start, so the flood never enters it */
     {
