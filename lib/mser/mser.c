@@ -292,7 +292,6 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     const uint32_t w = c->width;
     const uint32_t h = c->height;
     const uint32_t interior = (w - 2u) * (h - 2u);
-    uint32_t y;
     uint32_t v;
     uint32_t acc = 0u;
 
@@ -316,6 +315,7 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     /* the border is reached from the start, so the flood never enters it */
     {
         uint32_t i;
+        uint32_t y;
         for (i = 0u; i < w; i++) {
             c->lev[i] = (uint16_t)MSER_REACHED;
             c->lev[((h - 1u) * w) + i] = (uint16_t)MSER_REACHED;
