@@ -351,54 +351,58 @@ static void grey_normalise(float *g)
     }
 }
 
-/* The eight orientation bins of pixel (u, v)'s gradient: its projections on 0, 45, 90 and
-   135 degrees, direction k getting a positive projection, k + 4 a negative one (negated);
-   the other bin gets +0, which leaves every sum as it was, so all eight bins are updated
-   without a data-dependent branch or index. */
-static void orient_bins(const float *g, uint32_t u, uint32_t v, float add8[ORIENT])
+/* One pixel's gradient into a cell's eight orientation bins: its projections p0..p3 on 0,
+   45, 90 and 135 degrees, direction k getting a positive projection, k + 4 a negative
+   one (negated). The bins start at +0 and only grow, so the projection's other bin, which
+   would get +0, is left as it is. */
+static inline void orient_add(float *cell, float p0, float p1, float p2, float p3)
 {
-    const float gx = g[(v * PS) + nb_hi(u)] - g[(v * PS) + nb_lo(u)];
-    const float gy = g[(nb_hi(v) * PS) + u] - g[(nb_lo(v) * PS) + u];
-    float proj[4];
-    uint32_t k;
-    proj[0] = gx;
-    proj[1] = DIAG * (gx + gy);
-    proj[2] = gy;
-    proj[3] = DIAG * (gy - gx);
-    for (k = 0u; k < 4u; k++) {
-        float pos = 0.0f;
-        float neg = -proj[k];
-        if (proj[k] > 0.0f) {
-            pos = proj[k];
-            neg = 0.0f;
-        }
-        add8[k] = pos;
-        add8[k + 4u] = neg;
+    if (p0 > 0.0f) {
+        cell[0] += p0;
+    } else {
+        cell[4] += -p0;
+    }
+    if (p1 > 0.0f) {
+        cell[1] += p1;
+    } else {
+        cell[5] += -p1;
+    }
+    if (p2 > 0.0f) {
+        cell[2] += p2;
+    } else {
+        cell[6] += -p2;
+    }
+    if (p3 > 0.0f) {
+        cell[3] += p3;
+    } else {
+        cell[7] += -p3;
     }
 }
 
 /* Orientation histograms of the normalised grey patch: per cell, and per cell of the
-   finer centre grid; each unit-normalised. */
+   finer centre grid; each unit-normalised. Pixels are visited in raster order, so every
+   bin sums its pixels in the same order whichever way the cells are indexed. */
 static void orient_features(const float *g, float *feat)
 {
-    uint32_t u;
     uint32_t v;
     for (v = 0u; v < PS; v++) {
+        const float *row = &g[v * PS];
+        const float *up = &g[nb_lo(v) * PS];
+        const float *down = &g[nb_hi(v) * PS];
+        float *cells = &feat[F_HOG + ((v / CELL) * CELLS * ORIENT)];
+        float *fine = NULL; /* the centre grid's row of cells, for rows of the centre */
+        uint32_t u;
+        if ((v >= CENTRE_LO) && (v < (PS - CENTRE_LO))) {
+            fine = &feat[F_CENTRE + (((v - CENTRE_LO) / CENTRE_CELL) * CENTRE_CELLS * ORIENT)];
+        }
         for (u = 0u; u < PS; u++) {
-            float add8[ORIENT];
-            float *cell = &feat[F_HOG + ((((v / CELL) * CELLS) + (u / CELL)) * ORIENT)];
-            uint32_t k;
-            orient_bins(g, u, v, add8);
-            for (k = 0u; k < ORIENT; k++) {
-                cell[k] += add8[k];
-            }
-            if ((u >= CENTRE_LO) && (v >= CENTRE_LO) && (u < (PS - CENTRE_LO)) &&
-                (v < (PS - CENTRE_LO))) {
-                float *fine = &feat[F_CENTRE + ((((((v - CENTRE_LO) / CENTRE_CELL) * CENTRE_CELLS) +
-                                                  ((u - CENTRE_LO) / CENTRE_CELL))) * ORIENT)];
-                for (k = 0u; k < ORIENT; k++) {
-                    fine[k] += add8[k];
-                }
+            const float gx = row[nb_hi(u)] - row[nb_lo(u)];
+            const float gy = down[u] - up[u];
+            const float p1 = DIAG * (gx + gy);
+            const float p3 = DIAG * (gy - gx);
+            orient_add(&cells[(u / CELL) * ORIENT], gx, p1, gy, p3);
+            if ((fine != NULL) && (u >= CENTRE_LO) && (u < (PS - CENTRE_LO))) {
+                orient_add(&fine[((u - CENTRE_LO) / CENTRE_CELL) * ORIENT], gx, p1, gy, p3);
             }
         }
     }
