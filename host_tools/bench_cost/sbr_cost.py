@@ -12,7 +12,8 @@ Instructions per frame of sbr_recog_detect, which do not depend on the machine's
     frames as PPM, built-in model and default options; its detections are compared with
     the host's on the same pixels (box edges within 1 px, scores within 1e-3, the
     tolerance of the scene test, cmake/compare_scene.py);
-and both on the hostile frames of sbr_hostile_frames (noise, a checkerboard, a grid of
+the Cortex-M4F's cost of one class-stage look (ports/cortex_m/sbr_picto_m4.c: features
+and classifier apart, per box side); and both on the hostile frames of sbr_hostile_frames (noise, a checkerboard, a grid of
 sign-like rings, random blocks: the worst case a schedule must allow for), next to
 wall-clock figures of sbr_detect --repeat N on the development split (these do depend on
 the machine; the fastest of N runs per frame).
@@ -226,6 +227,40 @@ def cortex_m4(args, work, ppm_dir=None):
     return frames
 
 
+def picto_m4(args, work):
+    """One class-stage look on the Cortex-M4F (ports/cortex_m/sbr_picto_m4.c, beside the
+    frame image): features and classifier instructions per box side and outline."""
+    elf = os.path.join(os.path.dirname(os.path.abspath(args.m4_elf)), "sbr_picto_m4.elf")
+    if not os.path.exists(elf):
+        return None
+    out = run(["qemu-system-arm", "-M", "mps2-an386", "-cpu", "cortex-m4", "-nographic",
+               "-icount", "shift=0", "-semihosting-config", "enable=on,target=native",
+               "-kernel", elf], cwd=work, timeout=600)
+    looks = {"looks": []}
+    for line in out.splitlines():
+        m = re.match(r"look (\d+) (\d+): features (\d+) classify (\d+)$", line)
+        if m:
+            looks["looks"].append([int(m.group(k)) for k in range(1, 5)])
+        elif line.startswith("calibration: "):
+            looks["calibration"] = float(line.split()[1])
+        elif line.startswith("mean: "):
+            f = line.split()
+            looks["mean"] = {"features": int(f[2]), "classify": int(f[4])}
+    return looks
+
+
+def picto_table(looks, lines):
+    """Appends picto_m4()'s figures: per box side, the box outline's and the triangle's."""
+    lines.append("  %-10s%20s%20s%20s" % ("box side", "features (box)", "features (triangle)", "classify"))
+    by_side = {}
+    for side, outline, feat, cls in looks["looks"]:
+        by_side.setdefault(side, {})[outline] = (feat, cls)
+    for side in sorted(by_side):
+        b = by_side[side]
+        lines.append("  %-10s%20s%20s%20s" % ("%d px" % side, "%.3f" % (b[0][0] / 1e6),
+                                              "%.3f" % (b[1][0] / 1e6), "%.3f" % (b[0][1] / 1e6)))
+
+
 def mega(v):
     return "%.1f" % (v / 1e6)
 
@@ -327,6 +362,13 @@ def main():
                      % (statistics.median(tot) / 1e9, m4[worst].get("total", 0) / 1e9, worst,
                         next(iter(m4.values())).get("workspace"), same, len(m4)))
         report["cortex_m4_median"] = statistics.median(tot)
+        looks = picto_m4(args, args.out)
+        if looks is not None:
+            report["cortex_m4_picto_look"] = looks
+            lines.append("")
+            lines.append("Cortex-M4F, one class-stage look (ports/cortex_m/sbr_picto_m4.c), millions of"
+                         " instructions:")
+            picto_table(looks, lines)
         if hostile_dir is not None:
             m4h = cortex_m4(args, args.out, hostile_dir)
             report["cortex_m4_hostile"] = m4h

@@ -77,6 +77,19 @@ def main():
             bad.append("Cortex-M4 status %s" % m4["status"])
         if not m4["same_as_host"] or m4["host_dets"] == 0:
             bad.append("Cortex-M4 detections differ from the host's (%d on the host)" % m4["host_dets"])
+        # one class-stage look: every box side and outline measured; the classifier does
+        # the same work whatever the box, the features' resampling grows with it
+        looks = rep.get("cortex_m4_picto_look", {}).get("looks", [])
+        if len(looks) != 18:
+            bad.append("Cortex-M4 class-stage looks measured: %d, not 18" % len(looks))
+        else:
+            cls = [lk[3] for lk in looks]
+            if min(cls) <= 0 or max(cls) > 1.01 * min(cls):
+                bad.append("Cortex-M4 classifier cost varies with the box: %s" % cls)
+            feat = {(lk[0], lk[1]): lk[2] for lk in looks}
+            if not feat[(144, 0)] > 2 * feat[(16, 0)]:
+                bad.append("Cortex-M4 features of a 144 px box (%d) not above twice a 16 px box's (%d)"
+                           % (feat[(144, 0)], feat[(16, 0)]))
     # the hostile frames: all five measured, each frame's stages adding up, the worst's
     # ratio to the GTSDB median reported (not asserted: a figure, not a timing)
     names = ["hostile_checker", "hostile_colour_blocks", "hostile_grey_blocks", "hostile_noise", "hostile_rings"]
