@@ -438,7 +438,7 @@ static void test_detect_ellipse_in_an_image(void)
     sbr_ellipse_detect_config_default(&cfg);
     cfg.mser.max_nodes = 6000u;
     need = sbr_ellipse_detect_workspace_size(&cfg, IW, IH);
-    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(IW, IH, 5u, 6000u, 1024u, 4096u),
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(IW, IH, 5u, 6000u, 0u, 1024u, 4096u),
                              (uint32_t)need);
     TEST_ASSERT_TRUE(need <= sizeof g_ws);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_ellipse_detect(&img, &cfg, g_ws, need, det, 8u, &n));
@@ -602,7 +602,7 @@ static void test_detect_workspace_macro_equals_function(void)
     for (i = 0u; i < 3u; i++) {
         cfg.mser.max_nodes = nodes[i];
         TEST_ASSERT_EQUAL_UINT32((uint32_t)sbr_ellipse_detect_workspace_size(&cfg, 7u, 7u),
-                                 (uint32_t)SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(7u, 7u, cfg.mser.delta, nodes[i],
+                                 (uint32_t)SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(7u, 7u, cfg.mser.delta, nodes[i], 0u,
                                                                              cfg.max_regions,
                                                                              cfg.max_contour_points));
     }

@@ -8,7 +8,7 @@
 
 #define W 32u
 #define H 32u
-#define WS_BYTES SBR_MSER_WORKSPACE_SIZE(W, H, SBR_MSER_MAX_DELTA, SBR_MSER_WORST_NODES(W, H))
+#define WS_BYTES SBR_MSER_WORKSPACE_SIZE(W, H, SBR_MSER_MAX_DELTA, SBR_MSER_WORST_NODES(W, H), 0u)
 
 static uint8_t g_map[H][W];
 static uint32_t g_ws[(WS_BYTES / 4u) + 1u];
@@ -334,15 +334,78 @@ static void test_mser_capacity_and_node_bound(void)
     /* a node bound of 1 cannot hold the tree: distinct status, smaller workspace */
     g_cfg.max_nodes = 1u;
     TEST_ASSERT_TRUE(sbr_mser_workspace_size(&g_cfg, W, H) <
-                     sbr_mser_workspace_size(&(sbr_mser_config_t){5u, 60u, 14400u, 0.25f, 0.2f, 3u, 0u, 255u, 0u}, W, H));
+                     sbr_mser_workspace_size(&(sbr_mser_config_t){5u, 60u, 14400u, 0.25f, 0.2f, 3u, 0u, 255u, 0u, 0u}, W, H));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, (int)detect(&n));
     /* the size macro and the size query agree */
-    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_MSER_WORKSPACE_SIZE(W, H, 5u, 1u),
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_MSER_WORKSPACE_SIZE(W, H, 5u, 1u, 0u),
                              (uint32_t)sbr_mser_workspace_size(&g_cfg, W, H));
     /* a sufficient bound gives the full result */
     g_cfg.max_nodes = 16u;
     TEST_ASSERT_EQUAL_INT(SBR_OK, (int)detect(&n));
     TEST_ASSERT_EQUAL_UINT32(4u, n);
+}
+
+/* The boundary heap's bound (config.max_heap): a map whose flood keeps many pixels
+   waiting (a snake of level 10 through walls of 200: every wall pixel beside the snake
+   waits until the whole snake is flooded), with dark and bright squares below it. A bound
+   above the most pixels waiting gives the worst case's regions exactly, in less memory;
+   a bound far below it completes with SBR_ERR_CAPACITY. */
+#define HW 256u
+#define HW_NODES 4000u
+static uint8_t g_big[HW][HW];
+static uint32_t g_bws[(SBR_MSER_WORKSPACE_SIZE(HW, HW, 5u, HW_NODES, 0u) / 4u) + 1u];
+static sbr_mser_region_t g_breg[2][128];
+
+static sbr_status_t big_detect(uint32_t max_heap, uint32_t k, uint32_t *n)
+{
+    const sbr_image_t v = {HW, HW, HW, SBR_PIXEL_GRAY8, &g_big[0][0]};
+    g_cfg.max_nodes = HW_NODES;
+    g_cfg.max_heap = max_heap;
+    memset(g_bws, 0xA5, sizeof g_bws); /* no state may survive from the previous call */
+    return sbr_mser_detect(&v, &g_cfg, g_bws, sbr_mser_workspace_size(&g_cfg, HW, HW), g_breg[k],
+                           128u, n);
+}
+
+static void test_mser_heap_bound(void)
+{
+    uint32_t nfull = 0u;
+    uint32_t n = 0u;
+    uint32_t x;
+    uint32_t y;
+    size_t worst;
+    memset(g_big, 200, sizeof g_big);
+    for (y = 1u; y < 160u; y += 4u) {
+        const uint32_t link = (((y / 4u) % 2u) == 0u) ? (HW - 2u) : 1u;
+        for (x = 1u; x < (HW - 1u); x++) {
+            g_big[y][x] = 10u;
+        }
+        for (x = 1u; (x < 4u) && ((y + x) < 160u); x++) {
+            g_big[y + x][link] = 10u;
+        }
+    }
+    for (x = 0u; x < 6u; x++) {
+        const uint32_t x0 = 8u + (x * 40u);
+        const uint8_t level = (uint8_t)(((x % 2u) == 0u) ? 60u : 240u);
+        for (y = 180u; y < (192u + (x * 4u)); y++) {
+            memset(&g_big[y][x0], level, 12u + (x * 4u));
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)big_detect(0u, 0u, &nfull));
+    TEST_ASSERT_TRUE(nfull >= 6u);
+    worst = sbr_mser_workspace_size(&g_cfg, HW, HW);
+    /* 30,000 of the 64,516 interior pixels: more than ever wait at once here */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, (int)big_detect(30000u, 1u, &n));
+    TEST_ASSERT_EQUAL_UINT32(nfull, n);
+    TEST_ASSERT_EQUAL_MEMORY(g_breg[0], g_breg[1], nfull * sizeof(sbr_mser_region_t));
+    TEST_ASSERT_TRUE(sbr_mser_workspace_size(&g_cfg, HW, HW) < worst);
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_MSER_WORKSPACE_SIZE(HW, HW, 5u, HW_NODES, 30000u),
+                             (uint32_t)sbr_mser_workspace_size(&g_cfg, HW, HW));
+    /* a bound of one pixel (the heap's least: a chunk per level) cannot hold the snake's
+       walls: the call completes and says so */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, (int)big_detect(1u, 1u, &n));
+    TEST_ASSERT_TRUE(n <= 128u);
+    g_cfg.max_heap = 0u;
+    g_cfg.max_nodes = 0u;
 }
 
 static void test_mser_bad_input(void)
@@ -450,6 +513,7 @@ int main(void)
     RUN_TEST(test_mser_random_regions_are_extremal);
     RUN_TEST(test_mser_level_limits);
     RUN_TEST(test_mser_capacity_and_node_bound);
+    RUN_TEST(test_mser_heap_bound);
     RUN_TEST(test_mser_bad_input);
     RUN_TEST(test_mser_region_mask_rejects_bad_regions);
     return UNITY_END();

@@ -347,14 +347,15 @@ static void test_map_polarity_per_kind(void)
 static void test_workspace_macro_equals_function(void)
 {
     static const size_t full = SBR_PARTS_WORKSPACE_SIZE(
-        1360u, 800u, 5u, SBR_PARTS_DEFAULT_MAX_NODES, SBR_PARTS_DEFAULT_MAX_REGIONS,
+        1360u, 800u, 5u, SBR_PARTS_DEFAULT_MAX_NODES, SBR_PARTS_DEFAULT_MAX_HEAP,
+        SBR_PARTS_DEFAULT_MAX_REGIONS,
         SBR_PARTS_DEFAULT_MAX_SIDE, SBR_PARTS_DEFAULT_MAX_CONTOUR, SBR_PARTS_DEFAULT_FD_N);
     sbr_parts_config_t c;
     sbr_parts_config_default(&c);
     TEST_ASSERT_EQUAL_UINT32(5u, c.mser.delta);
     TEST_ASSERT_EQUAL_UINT32((uint32_t)full, (uint32_t)sbr_parts_workspace_size(&c, 1360u, 800u));
     c.subsample = 4u;
-    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_PARTS_WORKSPACE_SIZE(340u, 200u, 5u, 68000u, 2048u,
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_PARTS_WORKSPACE_SIZE(340u, 200u, 5u, 68000u, SBR_PARTS_DEFAULT_MAX_HEAP, 2048u,
                                                                 160u, 2048u, 128u),
                              (uint32_t)sbr_parts_workspace_size(&c, 1360u, 800u));
     c.subsample = 1u;
@@ -362,13 +363,14 @@ static void test_workspace_macro_equals_function(void)
     c.maps = 1u << SBR_MAP_INTENSITY;
     c.mser.delta = 7u;
     c.mser.max_nodes = 0u;
+    c.mser.max_heap = 5000u;
     c.max_regions = 100u;
     c.max_side = 64u;
     c.max_contour = 300u;
     c.fd_n = 64u;
     c.fd_m = 8u;
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_parts_config_check(&c));
-    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_PARTS_WORKSPACE_SIZE(321u, 99u, 7u, 0u, 100u, 64u,
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_PARTS_WORKSPACE_SIZE(321u, 99u, 7u, 0u, 5000u, 100u, 64u,
                                                                 300u, 64u),
                              (uint32_t)sbr_parts_workspace_size(&c, 643u, 199u));
 }

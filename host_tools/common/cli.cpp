@@ -51,6 +51,8 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
     u("--maps", cfg.parts.maps, 1u, (1u << SBR_MAP_KINDS) - 1u,
       "parts.maps: bit k = map kind k of include/sbr/map.h (0x1 intensity only)");
     u("--max-nodes", cfg.parts.mser.max_nodes, 0u, 100000000u, "MSER tree nodes (0: the worst case)");
+    u("--max-heap", cfg.parts.mser.max_heap, 0u, 100000000u,
+      "MSER pixels waiting in the boundary heap at once (0: the worst case, every pixel)");
     u("--subsample", cfg.parts.subsample, 1u, SBR_MAP_MAX_SUBSAMPLE, "parts.subsample of every map");
     u("--grey-polarity", cfg.grey_polarity, 0u, 3u,
       "the intensity map's polarities on a grey frame (0: parts.mser's, 1 dark, 2 bright, 3 both)");

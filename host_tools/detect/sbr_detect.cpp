@@ -7,7 +7,7 @@
 //              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N] [--callgrind]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
 //              [--refine-first-score S] [--refine-score S] [--views N] [--view-score S] [--maps MASK]
-//              [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-candidates N]
+//              [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-heap N] [--max-candidates N]
 //              [--max-parts N] [--max-votes N] [--max-hypotheses N] [--gate 0|1] [--candidate-score S]
 //              [--candidate-iou U] [--triangle-view 0|1] [--triangle-score S]
 //
@@ -48,7 +48,8 @@
 //   given keep their defaults; an area or a polarity of 0 means the MSER default;
 //   polarity 1 dark, 2 bright, 3 both; the default is 2 for intensity: --map-polarity 3
 //   floods both), --grey-polarity the intensity map's polarities on a grey frame
-//   (default 0: both), --max-nodes parts.mser.max_nodes (MSER tree nodes, most of
+//   (default 0: both), --max-nodes parts.mser.max_nodes (MSER tree nodes) and
+//   --max-heap parts.mser.max_heap (MSER pixels waiting at once; with the nodes most of
 //   the workspace; 0 = the worst case), --max-candidates the class stage's candidate
 //   bound and --max-parts, --max-votes, --max-hypotheses the recogniser's bounds of those
 //   names (smaller: less workspace); --gate 0 turns the class stage's gate off (it is used
@@ -539,11 +540,12 @@ std::string bounds_text(const Options &o, const Tally &t) {
         s << ":\n    on those frames the last candidates kept the box, class and score of their last look";
     s << "\n";
     const char *names[4] = {"parts (--max-parts ", "votes (--max-votes ", "hypotheses (--max-hypotheses ",
-                            "MSER tree nodes (--max-nodes "};
+                            "MSER tree nodes or boundary heap (--max-nodes "};
     const uint32_t limits[4] = {o.cfg.max_parts, o.cfg.max_votes, o.cfg.max_hypotheses, o.cfg.parts.mser.max_nodes};
     std::string unreached;
     for (unsigned b = 0; b < 4; ++b) {
-        const std::string what = names[b] + std::to_string(limits[b]) + ")";
+        const std::string what = names[b] + std::to_string(limits[b]) +
+                                 (b == 3 ? ", --max-heap " + std::to_string(o.cfg.parts.mser.max_heap) : "") + ")";
         if (t.capacity_kind[b] == 0) {
             unreached += (unreached.empty() ? "" : ", ") + what;
             continue;

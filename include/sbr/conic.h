@@ -258,15 +258,16 @@ typedef struct sbr_ellipse_det_s {
 
 /**
  * @brief Workspace bytes of sbr_ellipse_detect() for a width x height image, as a constant
- *        expression: `delta` and `nodes` as for ::SBR_MSER_WORKSPACE_SIZE (nodes = the
- *        configuration's mser.max_nodes; 0 or a bound above the image's worst case
- *        reserve that worst case),
+ *        expression: `delta`, `nodes` and `heap` as for ::SBR_MSER_WORKSPACE_SIZE (the
+ *        configuration's mser.max_nodes and mser.max_heap; 0 or a bound above the
+ *        image's worst case reserve that worst case),
  *        `max_regions` and `max_points` as in the configuration. Equal to
  *        sbr_ellipse_detect_workspace_size() for that configuration.
  */
-#define SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(width, height, delta, nodes, max_regions, max_points) \
+#define SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(width, height, delta, nodes, heap, max_regions,       \
+                                          max_points)                                           \
     (SBR_WS_ALIGN8((size_t)(max_regions) * sizeof(sbr_mser_region_t)) +                          \
-     SBR_WS_MAX(SBR_WS_ALIGN8(SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes)),          \
+     SBR_WS_MAX(SBR_WS_ALIGN8(SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes, heap)),    \
                     SBR_WS_ALIGN8(SBR_MSER_MASK_WORKSPACE_SIZE(width, height)) +                  \
                         SBR_WS_ALIGN8((size_t)(width) * (size_t)(height)) +                       \
                         SBR_WS_ALIGN8(SBR_CONTOUR_WORKSPACE_SIZE(width, height)) +                \

@@ -33,14 +33,20 @@
  * sbr_mser_region_mask() rebuilds its pixels from the map as a mask of its bounding box,
  * ready for sbr_contour_find_external().
  *
- * Memory: sbr_mser_workspace_size() bytes, 4-byte aligned, of which about 5.1 bytes per
- * pixel (a copy of the map, a heap entry and a "reached" bit per pixel; a pixel waiting
- * in the heap carries the next neighbour to look at in its entry) and
- * ::SBR_MSER_NODE_BYTES per tree node of area >= min_area. The number of such nodes is
- * at most the number of interior pixels; natural scenes have far fewer (the host tool
- * `sbr_mser` prints the count). config.max_nodes bounds it: 0 reserves the worst case
- * (never runs out); a smaller bound saves RAM, and when a frame needs more nodes the
- * call still completes, returns ::SBR_ERR_CAPACITY and may miss regions.
+ * Memory: sbr_mser_workspace_size() bytes, 4-byte aligned: 2 bytes per pixel (the
+ * map's level with a "reached" bit), ::SBR_MSER_NODE_BYTES per tree node of area >=
+ * min_area, and the boundary heap, 4 bytes per pixel waiting in it (a pixel waiting
+ * carries the next neighbour to look at in its entry) in chunks of ::SBR_MSER_HEAP_CHUNK
+ * words. Two bounds size it:
+ * - config.max_nodes: the number of nodes is at most the number of interior pixels;
+ *   natural scenes have far fewer (the host tool `sbr_mser` prints the count);
+ * - config.max_heap: the pixels waiting in the heap at once, at most every interior
+ *   pixel; on natural scenes under a third of them (most of a bright or dark flood's
+ *   pixels are taken as soon as they are reached).
+ * 0 reserves the worst case (never runs out); a smaller bound saves RAM, and when a frame
+ * needs more the call still completes and returns ::SBR_ERR_CAPACITY: nodes beyond the
+ * bound are not kept (regions may be missed), pixels beyond the heap's bound are not
+ * flooded (as if walled off: regions through them are smaller or split).
  */
 #ifndef SBR_MSER_H
 #define SBR_MSER_H
@@ -58,16 +64,19 @@ extern "C" {
 #define SBR_MSER_NODE_BYTES 32u
 
 /** @name Blocks of the MSER workspace (for ::SBR_MSER_WORKSPACE_SIZE) @{ */
-/** The grey-level heap's header: a first and a last pointer for each of the 256 levels. */
-#define SBR_MSER_HEAP_HEADER_BYTES 2048u
+/** The boundary heap's header: for each of the 256 levels the place of its top entry. */
+#define SBR_MSER_HEAP_HEADER_BYTES 1024u
+/** Words of one chunk of the boundary heap (a power of two): ::SBR_MSER_HEAP_CHUNK - 1
+    entries and the link to the level's chunk below (or to the next free chunk). */
+#define SBR_MSER_HEAP_CHUNK 32u
 /** Depth of the component stack: every grey level, a sentinel and the root. */
 #define SBR_MSER_STACK 258u
 /** Bytes of one stack entry, without its history. */
 #define SBR_MSER_COMP_BYTES 24u
 /** Bytes of one history entry of a stack entry (size and level; delta + 1 of them). */
 #define SBR_MSER_HISTORY_BYTES 8u
-/** Bytes per pixel: its heap link (4) and the map's level or "reached" (2). */
-#define SBR_MSER_PIXEL_BYTES 6u
+/** Bytes per pixel: the map's level or "reached". */
+#define SBR_MSER_PIXEL_BYTES 2u
 /** Slack at the end of the workspace. */
 #define SBR_MSER_TAIL_BYTES 8u
 /** @} */
@@ -111,6 +120,10 @@ typedef struct sbr_mser_config_s {
         below it are never flooded, regions below bright_min + delta not reported). Default
         0 (no limit). */
     uint32_t bright_min;
+    /** Bound on pixels waiting in the boundary heap at once (per pass); 0 = the worst case
+        (every interior pixel, ::SBR_MSER_HEAP). Beyond it a pixel is not flooded and the
+        call returns ::SBR_ERR_CAPACITY. Default 0. */
+    uint32_t max_heap;
 } sbr_mser_config_t;
 
 /** One region. Its pixels: the 4-connected component of pixels of the map that pass the
@@ -136,17 +149,30 @@ typedef struct sbr_mser_region_s {
          ? SBR_MSER_WORST_NODES(width, height)                                      \
          : (size_t)(max_nodes))
 
+/** The pixels the boundary heap holds at once for a width x height map and
+    config.max_heap: the worst case (every interior pixel) when max_heap is 0 or larger. */
+#define SBR_MSER_HEAP(width, height, max_heap)                                    \
+    ((((size_t)(max_heap) - 1u) >= SBR_MSER_WORST_NODES(width, height)) /* 0 wraps */ \
+         ? SBR_MSER_WORST_NODES(width, height)                                    \
+         : (size_t)(max_heap))
+
+/** Chunks of the boundary heap for `entries` (::SBR_MSER_HEAP) pixels waiting at once:
+    every level but one chunk full, one partly filled chunk per level. */
+#define SBR_MSER_HEAP_CHUNKS(entries) \
+    ((((size_t)(entries) + (SBR_MSER_HEAP_CHUNK - 2u)) / (SBR_MSER_HEAP_CHUNK - 1u)) + 256u)
+
 /**
- * @brief Workspace bytes for a width x height map (>= 3 x 3), a delta and a node bound:
- *        `nodes` is config.max_nodes (0 or more than the worst case: the worst case,
- *        ::SBR_MSER_NODES), so the value equals sbr_mser_workspace_size() of that
- *        configuration.
+ * @brief Workspace bytes for a width x height map (>= 3 x 3), a delta and the bounds:
+ *        `nodes` is config.max_nodes and `heap` config.max_heap (0 or more than the worst
+ *        case: the worst case, ::SBR_MSER_NODES, ::SBR_MSER_HEAP), so the value equals
+ *        sbr_mser_workspace_size() of that configuration.
  */
-#define SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes)                               \
+#define SBR_MSER_WORKSPACE_SIZE(width, height, delta, nodes, heap)                         \
     ((size_t)SBR_MSER_HEAP_HEADER_BYTES +                                                   \
      ((size_t)SBR_MSER_STACK *                                                              \
       (SBR_MSER_COMP_BYTES + ((((size_t)(delta)) + 1u) * SBR_MSER_HISTORY_BYTES))) +        \
      (SBR_MSER_NODES(width, height, nodes) * SBR_MSER_NODE_BYTES) +                         \
+     (SBR_MSER_HEAP_CHUNKS(SBR_MSER_HEAP(width, height, heap)) * SBR_MSER_HEAP_CHUNK * 4u) + \
      ((((size_t)(width)) * ((size_t)(height))) * SBR_MSER_PIXEL_BYTES) + SBR_MSER_TAIL_BYTES)
 
 /**
@@ -187,8 +213,9 @@ size_t sbr_mser_workspace_size(const sbr_mser_config_t *cfg, uint32_t width, uin
  *         configuration; ::SBR_ERR_SIZE for a map below 3 x 3 or a capacity of 0 (and
  *         errors of sbr_image_check()); ::SBR_ERR_WORKSPACE if the workspace is too small or not
  *         4-byte aligned; ::SBR_ERR_CAPACITY if more regions were found than `capacity`
- *         (the first `capacity` are written) or the node bound was reached (regions may
- *         be missing; the others are exact).
+ *         (the first `capacity` are written), the node bound was reached (regions may
+ *         be missing; the others are exact) or the heap bound was (pixels left unflooded:
+ *         regions through them smaller or split).
  */
 sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cfg,
                              void *workspace, size_t workspace_size,

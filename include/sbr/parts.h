@@ -40,6 +40,7 @@ typedef struct sbr_part_s {
 
 /** @name Defaults that size the workspace (sbr_parts_config_default()) @{ */
 #define SBR_PARTS_DEFAULT_MAX_NODES 68000u  /**< mser.max_nodes */
+#define SBR_PARTS_DEFAULT_MAX_HEAP 384000u  /**< mser.max_heap */
 #define SBR_PARTS_DEFAULT_MAX_REGIONS 2048u /**< max_regions */
 #define SBR_PARTS_DEFAULT_MAX_SIDE 160u     /**< max_side */
 #define SBR_PARTS_DEFAULT_MAX_CONTOUR 2048u /**< max_contour */
@@ -133,16 +134,16 @@ size_t sbr_parts_workspace_size(const sbr_parts_config_t *cfg, uint32_t width, u
 /**
  * @brief sbr_parts_workspace_size() as a constant expression: `map_w` x `map_h` the finest
  *        selected map (the view divided by the smallest subsample x map_subsample[k]),
- *        `delta` and `nodes` the configuration's mser.delta and mser.max_nodes (0: none),
+ *        `delta`, `nodes` and `heap` the configuration's mser.delta, mser.max_nodes and
+ *        mser.max_heap (0: the worst case),
  *        the other arguments the configuration's fields of those names. Blocks in
  *        order: the map, MSER, the regions, a region's mask, its fill and trace scratch,
  *        its contour as integer and float points, the descriptor's transform.
  */
-#define SBR_PARTS_WORKSPACE_SIZE(map_w, map_h, delta, nodes, max_regions, max_side,          \
+#define SBR_PARTS_WORKSPACE_SIZE(map_w, map_h, delta, nodes, heap, max_regions, max_side,    \
                                  max_contour, fd_n)                                          \
     (SBR_WS_ALIGN8((size_t)(map_w) * (size_t)(map_h)) +                                      \
-     SBR_WS_ALIGN8(SBR_MSER_WORKSPACE_SIZE(map_w, map_h, delta,                              \
-                                           SBR_MSER_NODES(map_w, map_h, nodes))) +           \
+     SBR_WS_ALIGN8(SBR_MSER_WORKSPACE_SIZE(map_w, map_h, delta, nodes, heap)) +              \
      SBR_WS_ALIGN8((size_t)(max_regions) * sizeof(sbr_mser_region_t)) +                      \
      SBR_WS_ALIGN8((size_t)(max_side) * (size_t)(max_side)) +                                \
      SBR_WS_ALIGN8(SBR_MSER_MASK_WORKSPACE_SIZE(max_side, max_side)) +                       \

@@ -439,6 +439,7 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
 #define SBR_RECOG_WORKSPACE_DEFAULT_SIZE(width, height, s)                                     \
     (SBR_WS_MAX(SBR_WS_ALIGN8(SBR_PARTS_WORKSPACE_SIZE((width) / (s), (height) / (s),           \
                                             SBR_RECOG_DEFAULT_DELTA, SBR_PARTS_DEFAULT_MAX_NODES, \
+                                            SBR_PARTS_DEFAULT_MAX_HEAP,                          \
                                             SBR_PARTS_DEFAULT_MAX_REGIONS,                       \
                                             SBR_PARTS_DEFAULT_MAX_SIDE,                          \
                                             SBR_PARTS_DEFAULT_MAX_CONTOUR,                       \

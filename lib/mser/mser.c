@@ -20,6 +20,7 @@ void sbr_mser_config_default(sbr_mser_config_t *cfg)
         cfg->max_nodes = 0u;
         cfg->dark_max = 255u;
         cfg->bright_min = 0u;
+        cfg->max_heap = 0u;
     }
 }
 
@@ -55,6 +56,16 @@ static size_t mser_nodes_for(uint32_t width, uint32_t height, const sbr_mser_con
     return n;
 }
 
+/* Chunks of the boundary heap (SBR_MSER_HEAP_CHUNKS of SBR_MSER_HEAP). */
+static size_t mser_heap_chunks_for(uint32_t width, uint32_t height, const sbr_mser_config_t *cfg)
+{
+    size_t n = SBR_MSER_WORST_NODES(width, height);
+    if ((cfg->max_heap != 0u) && ((size_t)cfg->max_heap < n)) {
+        n = (size_t)cfg->max_heap;
+    }
+    return SBR_MSER_HEAP_CHUNKS(n);
+}
+
 size_t sbr_mser_workspace_size(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height)
 {
     if ((sbr_mser_config_check(cfg) != SBR_OK) || (width < 3u) || (height < 3u) ||
@@ -66,8 +77,9 @@ size_t sbr_mser_workspace_size(const sbr_mser_config_t *cfg, uint32_t width, uin
         const size_t nodes = mser_nodes_for(width, height, cfg) * (size_t)SBR_MSER_NODE_BYTES;
         const size_t ring = ((size_t)cfg->delta + 1u) * (size_t)SBR_MSER_HISTORY_BYTES;
         const size_t per_comp = (size_t)SBR_MSER_COMP_BYTES + ring;
+        const size_t heap = mser_heap_chunks_for(width, height, cfg) * (size_t)SBR_MSER_HEAP_CHUNK * 4u;
         return (size_t)SBR_MSER_HEAP_HEADER_BYTES + ((size_t)SBR_MSER_STACK * per_comp) + nodes +
-               (pixels * (size_t)SBR_MSER_PIXEL_BYTES) + (size_t)SBR_MSER_TAIL_BYTES;
+               heap + (pixels * (size_t)SBR_MSER_PIXEL_BYTES) + (size_t)SBR_MSER_TAIL_BYTES;
     }
 }
 
@@ -209,22 +221,73 @@ static void comp_merge(mser_ctx_t *c, uint32_t a, uint32_t b)
     ca->size += cb->size;
 }
 
-static void heap_push(mser_ctx_t *c, uint32_t level, uint32_t p)
+/* The boundary heap: one stack per level, each a list of chunks of HEAP_ENTRIES entries
+   taken from a shared pool, so that the pixels waiting at once, not the pixels of each
+   level, size it. heap_top[level] is the pool index of the level's next free slot in its
+   top chunk: at a chunk's link word (index & HEAP_LINK_MASK == HEAP_ENTRIES) when that
+   chunk is full, MSER_NONE (the same low bits) when the level has no chunk; either way
+   the next push takes a new chunk. A chunk emptied goes to the free list. */
+static uint32_t heap_chunk(mser_ctx_t *c, uint32_t i)
 {
-    c->heap[c->heap_base[level] + c->heap_top[level]] = p;
-    c->heap_top[level]++;
+    /* a new top chunk (a freed one, else the next unused one) linked to the full one at
+       i, or to none; its first slot, or MSER_NONE at the bound */
+    uint32_t fresh = c->heap_free;
+    uint32_t slot = MSER_NONE;
+    if (fresh != MSER_NONE) {
+        c->heap_free = c->heap[(fresh * SBR_MSER_HEAP_CHUNK) + HEAP_ENTRIES];
+    } else if (c->heap_next < c->heap_chunks) {
+        fresh = c->heap_next;
+        c->heap_next++;
+    } else {
+        c->overflow = 1; /* the bound: the pixel is left unflooded */
+    }
+    if (fresh != MSER_NONE) {
+        slot = fresh * SBR_MSER_HEAP_CHUNK;
+        c->heap[slot + HEAP_ENTRIES] = (i == MSER_NONE) ? MSER_NONE : (i / SBR_MSER_HEAP_CHUNK);
+    }
+    return slot;
 }
 
-static uint32_t heap_pop(mser_ctx_t *c, uint32_t level)
+static inline void heap_push(mser_ctx_t *c, uint32_t level, uint32_t e)
 {
-    c->heap_top[level]--;
-    return c->heap[c->heap_base[level] + c->heap_top[level]];
+    uint32_t i = c->heap_top[level];
+    if ((i & HEAP_LINK_MASK) == HEAP_ENTRIES) {
+        i = heap_chunk(c, i);
+    }
+    if (i != MSER_NONE) {
+        c->heap[i] = e;
+        c->heap_top[level] = i + 1u;
+    }
 }
 
-/* A pass's pixels beyond its level limit (values above `limit` of the possibly inverted
-   map): reached from the start like the border, so no flood enters them; the heap's layout
-   counts the interior pixels within the limit. */
-static void pass_walls(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, uint32_t limit)
+/* The emptied chunk of slot i to the free list; the one below it (full) becomes the
+   level's top, or the level has none. */
+static void heap_release(mser_ctx_t *c, uint32_t level, uint32_t i)
+{
+    const uint32_t below = c->heap[i + HEAP_ENTRIES];
+    c->heap_top[level] =
+        (below == MSER_NONE) ? MSER_NONE : ((below * SBR_MSER_HEAP_CHUNK) + HEAP_ENTRIES);
+    c->heap[i + HEAP_ENTRIES] = c->heap_free;
+    c->heap_free = i / SBR_MSER_HEAP_CHUNK;
+}
+
+/* The top entry of a level that has one (heap_top[level] != MSER_NONE). */
+static inline uint32_t heap_pop(mser_ctx_t *c, uint32_t level)
+{
+    const uint32_t i = c->heap_top[level] - 1u;
+    const uint32_t e = c->heap[i];
+    if ((i & HEAP_LINK_MASK) == 0u) {
+        heap_release(c, level, i);
+    } else {
+        c->heap_top[level] = i;
+    }
+    return e;
+}
+
+/* The (inverted) copy of the map; with a level limit (values above `limit` of the
+   possibly inverted map) those pixels are reached from the start like the border, so no
+   flood enters them. */
+static void pass_copy(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, uint32_t limit)
 {
     const uint32_t w = c->width;
     const uint32_t h = c->height;
@@ -233,85 +296,28 @@ static void pass_walls(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
         const uint8_t *src = &map->data[(size_t)y * map->stride];
         uint16_t *g = &c->lev[(size_t)y * w];
         uint32_t x;
-        for (x = 0u; x < w; x++) {
-            const uint32_t v = (uint32_t)src[x] ^ (uint32_t)xor_mask;
-            if (v > limit) {
-                g[x] = (uint16_t)MSER_REACHED;
-            } else {
-                g[x] = (uint16_t)v;
-                c->heap_top[v]++; /* count per level for now (the border taken off below) */
-            }
-        }
-        if ((y == 0u) || (y == (h - 1u))) {
+        if (limit < (MSER_LEVELS - 1u)) {
             for (x = 0u; x < w; x++) {
-                if ((uint32_t)g[x] < MSER_LEVELS) {
-                    c->heap_top[g[x]]--;
-                }
+                const uint32_t v = (uint32_t)src[x] ^ (uint32_t)xor_mask;
+                g[x] = (uint16_t)((v > limit) ? MSER_REACHED : v);
             }
         } else {
-            if ((uint32_t)g[0] < MSER_LEVELS) {
-                c->heap_top[g[0]]--;
-            }
-            if ((uint32_t)g[w - 1u] < MSER_LEVELS) {
-                c->heap_top[g[w - 1u]]--;
+            for (x = 0u; x < w; x++) {
+                g[x] = (uint16_t)((uint32_t)src[x] ^ (uint32_t)xor_mask);
             }
         }
     }
 }
 
-/* A pass without a level limit: the (inverted) copy of the map, its interior pixels
-   counted per level unless the second pass reads the counts off the first's layout. */
-static void pass_copy(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, int second)
+/* Prepare one pass: the (inverted) copy of the map with its border reached, and the heap
+   empty (every level without a chunk, every chunk unused). */
+static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, uint32_t limit)
 {
     const uint32_t w = c->width;
     const uint32_t h = c->height;
-    uint32_t y;
-    for (y = 0u; y < h; y++) {
-        const uint8_t *src = &map->data[(size_t)y * map->stride];
-        uint16_t *g = &c->lev[(size_t)y * w];
-        uint32_t x;
-        for (x = 0u; x < w; x++) {
-            g[x] = (uint16_t)((uint32_t)src[x] ^ (uint32_t)xor_mask);
-        }
-        if ((second == 0) && (y > 0u) && (y < (h - 1u))) {
-            for (x = 1u; x < (w - 1u); x++) {
-                c->heap_top[g[x]]++; /* count per level for now */
-            }
-        }
-    }
-}
-
-/* Prepare one pass: the (inverted) copy of the map with its border reached, and the heap layout. The
-   heap's layout needs the number of interior pixels per level: counted for the first
-   pass; the second pass (same map, inverted) reads them off the first pass's layout,
-   level v of the inverted map being level 255 - v of the map. With a level limit below
-   255 (pass_walls) the pixels beyond it are walls and the pass counts its own. */
-static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, int second,
-                       uint32_t limit)
-{
-    const uint32_t w = c->width;
-    const uint32_t h = c->height;
-    const uint32_t interior = (w - 2u) * (h - 2u);
     uint32_t v;
-    uint32_t acc = 0u;
 
-    if ((second != 0) && (limit >= (MSER_LEVELS - 1u))) {
-        /* heap_top[v] = count of level 255 - v of the first pass, from its layout */
-        for (v = 0u; v < MSER_LEVELS; v++) {
-            const uint32_t u = (MSER_LEVELS - 1u) - v;
-            const uint32_t end = (u == (MSER_LEVELS - 1u)) ? interior : c->heap_base[u + 1u];
-            c->heap_top[v] = end - c->heap_base[u];
-        }
-    } else {
-        for (v = 0u; v < MSER_LEVELS; v++) {
-            c->heap_top[v] = 0u;
-        }
-    }
-    if (limit < (MSER_LEVELS - 1u)) {
-        pass_walls(c, map, xor_mask, limit);
-    } else {
-        pass_copy(c, map, xor_mask, second);
-    }
+    pass_copy(c, map, xor_mask, limit);
     /* the border is reached from the start, so the flood never enters it */
     {
         uint32_t i;
@@ -326,10 +332,10 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
         }
     }
     for (v = 0u; v < MSER_LEVELS; v++) {
-        c->heap_base[v] = acc;
-        acc += c->heap_top[v];
-        c->heap_top[v] = 0u;
+        c->heap_top[v] = MSER_NONE;
     }
+    c->heap_free = MSER_NONE;
+    c->heap_next = 0u;
     c->node_count = 0u;
 }
 
@@ -381,11 +387,11 @@ static void flood_from(mser_ctx_t *c, uint32_t start)
         }
         comp_add_pixel(&c->comp[top], p);
         e = 0u;
-        if (c->heap_top[cur] > 0u) {
+        if (c->heap_top[cur] != MSER_NONE) {
             e = heap_pop(c, cur);
         } else {
             uint32_t lv = cur + 1u;
-            while ((lv < MSER_LEVELS) && (c->heap_top[lv] == 0u)) {
+            while ((lv < MSER_LEVELS) && (c->heap_top[lv] == MSER_NONE)) {
                 lv++;
             }
             if (lv >= MSER_LEVELS) {
@@ -447,13 +453,12 @@ static void pass_flood(mser_ctx_t *c, uint32_t limit)
 static void mser_ctx_init(mser_ctx_t *c, const sbr_image_t *map, const sbr_mser_config_t *cfg,
                           void *workspace)
 {
-    const size_t pixels = (size_t)map->width * (size_t)map->height;
     const size_t nodes = mser_nodes_for(map->width, map->height, cfg);
+    const size_t chunks = mser_heap_chunks_for(map->width, map->height, cfg);
     const uint64_t span = (uint64_t)map->width * (uint64_t)map->width * (uint64_t)map->height;
     uint8_t *base = (uint8_t *)workspace;
     uint32_t bits = 1u;
-    c->heap_base = (uint32_t *)(void *)base;
-    c->heap_top = &c->heap_base[MSER_LEVELS];
+    c->heap_top = (uint32_t *)(void *)base;
     base = &base[SBR_MSER_HEAP_HEADER_BYTES];
     c->comp = (mser_comp_t *)(void *)base;
     base = &base[(size_t)SBR_MSER_STACK * SBR_MSER_COMP_BYTES];
@@ -465,7 +470,8 @@ static void mser_ctx_init(mser_ctx_t *c, const sbr_image_t *map, const sbr_mser_
     c->node = (mser_node_t *)(void *)base;
     base = &base[nodes * SBR_MSER_NODE_BYTES];
     c->heap = (uint32_t *)(void *)base;
-    base = &base[pixels * 4u];
+    c->heap_chunks = (uint32_t)chunks;
+    base = &base[chunks * SBR_MSER_HEAP_CHUNK * 4u];
     c->lev = (uint16_t *)(void *)base;
     c->width = map->width;
     c->height = map->height;
@@ -490,7 +496,6 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     size_t need;
     int full = 0;
     int overflow = 0;
-    int counted = 0; /* the dark pass counted the levels */
 
     if ((map == NULL) || (cfg == NULL) || (regions == NULL) || (count == NULL)) {
         return SBR_ERR_NULL;
@@ -516,19 +521,16 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     }
     mser_ctx_init(&c, map, cfg, workspace);
     if ((cfg->polarity & (uint32_t)SBR_MSER_DARK) != 0u) {
-        pass_setup(&c, map, 0u, 0, cfg->dark_max);
+        pass_setup(&c, map, 0u, cfg->dark_max);
         pass_flood(&c, cfg->dark_max);
         sbr_mser_priv_pass_select(&c, cfg, (uint8_t)SBR_MSER_DARK, cfg->dark_max, regions,
                                   capacity, count, &full);
         overflow |= c.overflow;
-        if (cfg->dark_max >= 255u) {
-            counted = 1; /* the bright pass may read its level counts off this pass's */
-        }
     }
     if ((cfg->polarity & (uint32_t)SBR_MSER_BRIGHT) != 0u) {
         const uint32_t limit = 255u - cfg->bright_min; /* in the inverted map's values */
         c.overflow = 0;
-        pass_setup(&c, map, 0xFFu, counted, limit);
+        pass_setup(&c, map, 0xFFu, limit);
         pass_flood(&c, limit);
         sbr_mser_priv_pass_select(&c, cfg, (uint8_t)SBR_MSER_BRIGHT, limit, regions, capacity,
                                   count, &full);

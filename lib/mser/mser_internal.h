@@ -31,6 +31,13 @@
    SBR_IMAGE_MAX_DIM^2 = 2^28, so an entry fits 32 bits. */
 #define HEAP_DIR_BITS 3u
 #define HEAP_DIR_MASK 7u
+/* Entries of a heap chunk; its last word links to the chunk below it on its level (or to
+   the next free chunk). */
+#define HEAP_ENTRIES (SBR_MSER_HEAP_CHUNK - 1u)
+#define HEAP_LINK_MASK (SBR_MSER_HEAP_CHUNK - 1u) /* a slot's place in its chunk */
+/* the mask needs a power of two; MSER_NONE reads as a full chunk */
+typedef char mser_heap_chunk_check[(((SBR_MSER_HEAP_CHUNK & HEAP_LINK_MASK) == 0u) &&
+                                    ((MSER_NONE & HEAP_LINK_MASK) == HEAP_ENTRIES)) ? 1 : -1];
 
 #define NODE_SELECTED 1u
 
@@ -64,13 +71,16 @@ typedef char mser_node_size_check[(sizeof(mser_node_t) == SBR_MSER_NODE_BYTES) ?
 typedef char mser_comp_size_check[(sizeof(mser_comp_t) == SBR_MSER_COMP_BYTES) ? 1 : -1];
 
 typedef struct mser_ctx_s {
-    uint32_t *heap_base; /* [256] first heap slot of each level */
-    uint32_t *heap_top;  /* [256] entries on each level's stack */
+    uint32_t *heap_top;  /* [256] each level's next free slot in the heap, or MSER_NONE */
     mser_comp_t *comp;   /* [SBR_MSER_STACK] */
     uint32_t *ring_size; /* [SBR_MSER_STACK * ring_cap] main-chain areas */
     uint16_t *ring_val;  /* [SBR_MSER_STACK * ring_cap] their levels */
     mser_node_t *node;   /* [node_cap] */
-    uint32_t *heap;      /* [pixels] entries (HEAP_DIR_BITS) */
+    uint32_t *heap;      /* [heap_chunks * SBR_MSER_HEAP_CHUNK] the heap's chunks: entries
+                            (HEAP_DIR_BITS), the link last; after the flood a list */
+    uint32_t heap_chunks;
+    uint32_t heap_free;  /* first free chunk of the free list, or MSER_NONE */
+    uint32_t heap_next;  /* chunks below it have been used */
     uint16_t *lev;       /* [pixels] the map (inverted for the bright pass) with
                             LEV_REACHED once reached; the border MSER_REACHED */
     uint32_t width;

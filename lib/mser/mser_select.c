@@ -80,13 +80,16 @@ static void select_diverse(mser_ctx_t *c, float min_diversity)
 
 /* The bounding box of a node's pixels, after its pass's flood: the 4-connected pixels of
    level <= its level around its seed (the component the flood grew), found again by a
-   fill that lists them in the heap (free after the flood) and marks them LEV_BOXED until
-   it is done. The border (MSER_REACHED) has every bit set, so the fill never enters it. */
-static uint32_t box_visit(uint16_t *lev, uint32_t *list, uint32_t n, uint32_t q, uint32_t val)
+   fill that lists them in the heap's chunks (free after the flood) and marks them
+   LEV_BOXED until it is done. The border (MSER_REACHED) has every bit set, so the fill
+   never enters it. A node larger than the list (a heap bound below the node's area) gets
+   the box of the pixels the list holds, and the call reports the bound reached. */
+static uint32_t box_visit(uint16_t *lev, uint32_t *list, uint32_t n, uint32_t cap, uint32_t q,
+                          uint32_t val)
 {
     const uint32_t g = (uint32_t)lev[q];
     uint32_t m = n;
-    if ((g < LEV_BOXED) && ((g & LEV_LEVEL) <= val)) {
+    if ((g < LEV_BOXED) && ((g & LEV_LEVEL) <= val) && (n < cap)) {
         lev[q] = (uint16_t)(g | LEV_BOXED);
         list[n] = q;
         m = n + 1u;
@@ -98,6 +101,7 @@ static void node_bbox(mser_ctx_t *c, const mser_node_t *nd, sbr_rect_t *box)
 {
     uint16_t *const lev = c->lev;
     uint32_t *const list = c->heap;
+    const uint32_t cap = c->heap_chunks * SBR_MSER_HEAP_CHUNK;
     const uint32_t w = c->width;
     const uint32_t val = (uint32_t)nd->val;
     uint32_t x0 = 0xFFFFFFFFu;
@@ -119,13 +123,16 @@ static void node_bbox(mser_ctx_t *c, const mser_node_t *nd, sbr_rect_t *box)
         x1 = (x > x1) ? x : x1;
         p0 = (p < p0) ? p : p0;
         p1 = (p > p1) ? p : p1;
-        n = box_visit(lev, list, n, p + 1u, val);
-        n = box_visit(lev, list, n, p + w, val);
-        n = box_visit(lev, list, n, p - 1u, val);
-        n = box_visit(lev, list, n, p - w, val);
+        n = box_visit(lev, list, n, cap, p + 1u, val);
+        n = box_visit(lev, list, n, cap, p + w, val);
+        n = box_visit(lev, list, n, cap, p - 1u, val);
+        n = box_visit(lev, list, n, cap, p - w, val);
     }
     for (i = 0u; i < n; i++) {
         lev[list[i]] = (uint16_t)((uint32_t)lev[list[i]] & ~LEV_BOXED);
+    }
+    if (n >= cap) {
+        c->overflow = 1;
     }
     y0 = (uint32_t)(((uint64_t)p0 * c->div_magic) >> c->div_shift);
     y1 = (uint32_t)(((uint64_t)p1 * c->div_magic) >> c->div_shift);

@@ -26,6 +26,7 @@ void sbr_parts_config_default(sbr_parts_config_t *cfg)
         }
         sbr_mser_config_default(&cfg->mser);
         cfg->mser.max_nodes = SBR_PARTS_DEFAULT_MAX_NODES;
+        cfg->mser.max_heap = SBR_PARTS_DEFAULT_MAX_HEAP;
         cfg->max_regions = SBR_PARTS_DEFAULT_MAX_REGIONS;
         cfg->min_side = 6u;
         cfg->max_side = SBR_PARTS_DEFAULT_MAX_SIDE;

@@ -51,6 +51,8 @@ const std::map<std::string, Field> &fields() {
         {"subsample", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, subsample)}},
         {"max_nodes", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, mser) +
                                   offsetof(sbr_mser_config_t, max_nodes)}},
+        {"max_heap", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, mser) +
+                                 offsetof(sbr_mser_config_t, max_heap)}},
     };
     return f;
 }

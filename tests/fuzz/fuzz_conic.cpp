@@ -243,7 +243,7 @@ void fuzz_detect(FuzzedDataProvider &in)
     const size_t need = sbr_ellipse_detect_workspace_size(&cfg, img.width, img.height);
     if (need > 0u) {
         // conic.h: the macro equals the function for the configuration's values
-        FZ_CHECK(need == SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(img.width, img.height, cfg.mser.delta, cfg.mser.max_nodes,
+        FZ_CHECK(need == SBR_ELLIPSE_DETECT_WORKSPACE_SIZE(img.width, img.height, cfg.mser.delta, cfg.mser.max_nodes, cfg.mser.max_heap,
                                                              cfg.max_regions, cfg.max_contour_points));
     }
     if (!fz_workspace_fits(cs, need, 64u)) {

@@ -44,8 +44,8 @@ void fuzz_map_mser_contour(FuzzedDataProvider &in)
     FZ_CHECK((cs == SBR_OK) == header_ok);
     const size_t need = sbr_mser_workspace_size(&cfg, view.width, view.height);
     if (need > 0u) {
-        // the macro equals the function for the configuration's max_nodes
-        FZ_CHECK(need == SBR_MSER_WORKSPACE_SIZE(view.width, view.height, cfg.delta, cfg.max_nodes));
+        // the macro equals the function for the configuration's max_nodes and max_heap
+        FZ_CHECK(need == SBR_MSER_WORKSPACE_SIZE(view.width, view.height, cfg.delta, cfg.max_nodes, cfg.max_heap));
     }
     if (!fz_workspace_fits(cs, need, 64u)) {
         return;
