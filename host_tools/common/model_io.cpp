@@ -59,6 +59,37 @@ bool get(const std::string &s, size_t &off, T &v) {
     return true;
 }
 
+// A descriptor's record in the file: m, scale, cx, cy and room for 65 coefficients (M up
+// to 32, zeros beyond 2m + 1), whatever SBR_FD_MAX_M this build has; a build's smaller
+// SBR_FD_MAX_M reads a file's descriptors of m up to its own.
+constexpr uint32_t kFileFdCoeffs = 65u;
+constexpr size_t kFileFdBytes = 16u + size_t(kFileFdCoeffs) * sizeof(sbr_complex_t);
+static_assert(2u * SBR_FD_MAX_M + 1u <= kFileFdCoeffs, "descriptor records hold M up to 32");
+
+void put_fd(std::string &s, const sbr_fd_t &f) {
+    put(s, f.m);
+    put(s, f.scale);
+    put(s, f.cx);
+    put(s, f.cy);
+    const sbr_complex_t zero{0.0f, 0.0f};
+    for (uint32_t k = 0; k < kFileFdCoeffs; ++k) put(s, k < 2u * SBR_FD_MAX_M + 1u ? f.c[k] : zero);
+}
+
+// false for an m above this build's SBR_FD_MAX_M (or coefficients stored beyond 2m + 1)
+bool get_fd(const std::string &s, size_t &off, sbr_fd_t &f) {
+    f = sbr_fd_t{};
+    bool ok = get(s, off, f.m) && get(s, off, f.scale) && get(s, off, f.cx) && get(s, off, f.cy);
+    for (uint32_t k = 0; ok && k < kFileFdCoeffs; ++k) {
+        sbr_complex_t c{};
+        ok = get(s, off, c);
+        if (k < 2u * SBR_FD_MAX_M + 1u)
+            f.c[k] = c;
+        else if (c.re != 0.0f || c.im != 0.0f)
+            ok = false;
+    }
+    return ok && f.m >= 1u && f.m <= SBR_FD_MAX_M;
+}
+
 size_t picto_w1_len(uint32_t hidden) { return size_t(hidden) * (SBR_PICTO_FEATURES + 1u); }
 size_t picto_w2_len(uint32_t hidden, uint32_t classes) {
     return size_t(classes + 1u) * ((hidden > 0 ? hidden : SBR_PICTO_FEATURES) + 1u);
@@ -202,7 +233,7 @@ std::string model_bytes(const Model &m, std::string &s) {
     for (auto g : v.group_first) put(s, g);
     for (uint32_t c = 0; c <= v.class_count; ++c) put(s, v.class_first[c]);
     for (uint32_t c = 0; c < v.class_count; ++c) put(s, v.class_outline[c]);
-    for (const auto &f : m.fds) put(s, f);
+    for (const auto &f : m.fds) put_fd(s, f);
     for (const auto &p : m.protos) put(s, p);
     for (auto c : m.cascade) put(s, c);
     put(s, m.has_picto ? m.picto.hidden + 1u : 0u);
@@ -251,12 +282,14 @@ std::string parse_model(const std::string &s, const std::string &path, Model &m)
     for (uint32_t c = 0; c <= v.class_count; ++c) ok = ok && get(s, off, v.class_first[c]);
     for (uint32_t c = 0; c < v.class_count; ++c) ok = ok && get(s, off, v.class_outline[c]);
     if (!ok) return path + ": sizes: truncated header";
-    const size_t need = off + size_t(np) * (sizeof(sbr_fd_t) + sizeof(sbr_model_proto_t)) + size_t(nc) * 2u + 8u;
+    const size_t need = off + size_t(np) * (kFileFdBytes + sizeof(sbr_model_proto_t)) + size_t(nc) * 2u + 8u;
     if (need > s.size()) return path + ": sizes: file shorter than its counts";
     m.fds.resize(np);
     m.protos.resize(np);
     m.cascade.resize(nc);
-    for (auto &x : m.fds) get(s, off, x);
+    for (auto &x : m.fds)
+        if (!get_fd(s, off, x))
+            return path + ": descriptors: an order M above " + std::to_string(SBR_FD_MAX_M) + " (this build's largest)";
     for (auto &x : m.protos) get(s, off, x);
     for (auto &x : m.cascade) get(s, off, x);
     uint32_t picto = 0;

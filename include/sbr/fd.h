@@ -37,8 +37,11 @@
 extern "C" {
 #endif
 
-/** Largest number M of kept coefficients on each side. */
-#define SBR_FD_MAX_M 32u
+/** Largest number M of kept coefficients on each side: 16, enough for a match of the
+    FFT size 32 the recogniser uses (2M + 1 <= P keeps M <= 15; the recogniser's parts use
+    12) and it sizes every descriptor a frame holds (a part's record, the model's tables in
+    flash). */
+#define SBR_FD_MAX_M 16u
 /** Largest absolute coordinate accepted (keeps float arc lengths accurate). */
 #define SBR_FD_MAX_COORD 1.0e6f
 

@@ -270,6 +270,24 @@ int main(int argc, char **argv)
         s[36u + 2u * (SBR_MODEL_GROUPS + 1u) + 2u * (mv.class_count + 1u)] = 9;
         fix_crc(s);
         expect_refused(parse_model(s), "values", ".sbrm class outline 9, CRC fixed up");
+        // the first descriptor (after the outlines): m, scale, cx, cy and 65 coefficients
+        // whatever this build's SBR_FD_MAX_M, so files of any build have one layout; an
+        // order above this build's SBR_FD_MAX_M, or a coefficient beyond it, is refused
+        const size_t fd0 = 36u + 2u * (SBR_MODEL_GROUPS + 1u) + 2u * (mv.class_count + 1u) + mv.class_count;
+        uint32_t m0 = 0u;
+        std::memcpy(&m0, &model[fd0], 4u);
+        expect(m0 == mv.fds[0].m, ".sbrm first descriptor record where the format puts it");
+        expect(model.size() > fd0 + 16u + 65u * 8u, ".sbrm descriptor records of 65 coefficients");
+        s = model;
+        const uint32_t big = SBR_FD_MAX_M + 1u;
+        std::memcpy(&s[fd0], &big, 4u);
+        fix_crc(s);
+        expect_refused(parse_model(s), "descriptors", ".sbrm descriptor order above SBR_FD_MAX_M");
+        s = model;
+        const float one = 1.0f;
+        std::memcpy(&s[fd0 + 16u + 8u * (2u * SBR_FD_MAX_M + 1u)], &one, 4u);
+        fix_crc(s);
+        expect_refused(parse_model(s), "descriptors", ".sbrm coefficient beyond SBR_FD_MAX_M");
     }
 
     // ---- the tracker's text form
