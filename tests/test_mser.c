@@ -3,6 +3,7 @@
 #include "unity.h"
 #include "sbr/mser.h"
 #include "test_support.h"
+#include "../lib/mser/mser_internal.h" /* the part stage's in-place entry */
 
 #include <string.h>
 
@@ -408,6 +409,45 @@ static void test_mser_heap_bound(void)
     g_cfg.max_nodes = 0u;
 }
 
+/* The part stage's entry (lib/mser/mser_internal.h): the map written into the workspace's
+   slot gives sbr_mser_detect()'s regions of that map, and afterwards the same map, byte
+   for byte, at the start of the pixel words; for each polarity and with level limits
+   (walls keep their level for the next pass). */
+static void test_mser_in_place(void)
+{
+    static const uint32_t setups[4][3] = {
+        {SBR_MSER_BOTH, 255u, 0u}, {SBR_MSER_DARK, 255u, 0u}, {SBR_MSER_BRIGHT, 255u, 100u},
+        {SBR_MSER_BOTH, 150u, 100u}};
+    const sbr_image_t v = {HW, HW, HW, SBR_PIXEL_GRAY8, &g_big[0][0]};
+    uint32_t k;
+    test_mser_heap_bound(); /* fills g_big: the snake and the squares */
+    for (k = 0u; k < 4u; k++) {
+        sbr_image_t back;
+        uint8_t *slot;
+        uint32_t n = 0u;
+        uint32_t m = 0u;
+        size_t need;
+        g_cfg.polarity = setups[k][0];
+        g_cfg.dark_max = setups[k][1];
+        g_cfg.bright_min = setups[k][2];
+        g_cfg.max_nodes = HW_NODES;
+        need = sbr_mser_workspace_size(&g_cfg, HW, HW);
+        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_detect(&v, &g_cfg, g_bws, need, g_breg[0], 128u, &n));
+        TEST_ASSERT_TRUE(n >= 3u);
+        memset(g_bws, 0xA5, sizeof g_bws);
+        slot = sbr_mser_priv_map_slot(&g_cfg, HW, HW, g_bws);
+        memcpy(slot, g_big, sizeof g_big);
+        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_priv_detect_in_place(HW, HW, &g_cfg, g_bws, need,
+                                                                       g_breg[1], 128u, &m, &back));
+        TEST_ASSERT_EQUAL_UINT32(n, m);
+        TEST_ASSERT_EQUAL_MEMORY(g_breg[0], g_breg[1], n * sizeof(sbr_mser_region_t));
+        TEST_ASSERT_EQUAL_UINT32(HW, back.width);
+        TEST_ASSERT_EQUAL_UINT32(HW, back.stride);
+        TEST_ASSERT_EQUAL_MEMORY(&g_big[0][0], back.data, sizeof g_big);
+    }
+    g_cfg.max_nodes = 0u;
+}
+
 static void test_mser_bad_input(void)
 {
     uint32_t n = 7u;
@@ -514,6 +554,7 @@ int main(void)
     RUN_TEST(test_mser_level_limits);
     RUN_TEST(test_mser_capacity_and_node_bound);
     RUN_TEST(test_mser_heap_bound);
+    RUN_TEST(test_mser_in_place);
     RUN_TEST(test_mser_bad_input);
     RUN_TEST(test_mser_region_mask_rejects_bad_regions);
     return UNITY_END();

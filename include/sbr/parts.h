@@ -137,13 +137,13 @@ size_t sbr_parts_workspace_size(const sbr_parts_config_t *cfg, uint32_t width, u
  *        `delta`, `nodes` and `heap` the configuration's mser.delta, mser.max_nodes and
  *        mser.max_heap (0: the worst case),
  *        the other arguments the configuration's fields of those names. Blocks in
- *        order: the map, MSER, the regions, a region's mask, its fill and trace scratch,
- *        its contour as integer and float points, the descriptor's transform.
+ *        order: MSER (which holds each map too), the regions, a region's mask, its fill
+ *        and trace scratch, its contour as integer and float points, the descriptor's
+ *        transform.
  */
 #define SBR_PARTS_WORKSPACE_SIZE(map_w, map_h, delta, nodes, heap, max_regions, max_side,    \
                                  max_contour, fd_n)                                          \
-    (SBR_WS_ALIGN8((size_t)(map_w) * (size_t)(map_h)) +                                      \
-     SBR_WS_ALIGN8(SBR_MSER_WORKSPACE_SIZE(map_w, map_h, delta, nodes, heap)) +              \
+    (SBR_WS_ALIGN8(SBR_MSER_WORKSPACE_SIZE(map_w, map_h, delta, nodes, heap)) +              \
      SBR_WS_ALIGN8((size_t)(max_regions) * sizeof(sbr_mser_region_t)) +                      \
      SBR_WS_ALIGN8((size_t)(max_side) * (size_t)(max_side)) +                                \
      SBR_WS_ALIGN8(SBR_MSER_MASK_WORKSPACE_SIZE(max_side, max_side)) +                       \

@@ -285,8 +285,11 @@ static inline uint32_t heap_pop(mser_ctx_t *c, uint32_t level)
 }
 
 /* The (inverted) copy of the map; with a level limit (values above `limit` of the
-   possibly inverted map) those pixels are reached from the start like the border, so no
-   flood enters them. */
+   possibly inverted map) those pixels are walls, reached from the start like the border,
+   so no flood enters them. Walls keep their level under LEV_WALL. In place (map->data
+   the second half of c->lev, stride the width), every row is read before its words are
+   written: word i covers bytes 2i and 2i + 1 of the block, below the unread map bytes
+   from wh + i + 1 on. */
 static void pass_copy(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, uint32_t limit)
 {
     const uint32_t w = c->width;
@@ -299,7 +302,7 @@ static void pass_copy(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, u
         if (limit < (MSER_LEVELS - 1u)) {
             for (x = 0u; x < w; x++) {
                 const uint32_t v = (uint32_t)src[x] ^ (uint32_t)xor_mask;
-                g[x] = (uint16_t)((v > limit) ? MSER_REACHED : v);
+                g[x] = (uint16_t)((v > limit) ? (LEV_WALL | v) : v);
             }
         } else {
             for (x = 0u; x < w; x++) {
@@ -309,26 +312,45 @@ static void pass_copy(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, u
     }
 }
 
-/* Prepare one pass: the (inverted) copy of the map with its border reached, and the heap
-   empty (every level without a chunk, every chunk unused). */
-static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, uint32_t limit)
+/* The next pass's levels from the last pass's (its levels under the flags, `flip` the
+   change of inversion), walls as pass_copy(). */
+static void pass_relevel(mser_ctx_t *c, uint8_t flip, uint32_t limit)
+{
+    const size_t n = (size_t)c->width * (size_t)c->height;
+    size_t i;
+    for (i = 0u; i < n; i++) {
+        const uint32_t v = ((uint32_t)c->lev[i] & LEV_LEVEL) ^ (uint32_t)flip;
+        c->lev[i] = (uint16_t)(((limit < (MSER_LEVELS - 1u)) && (v > limit)) ? (LEV_WALL | v) : v);
+    }
+}
+
+/* Prepare one pass: the (inverted) levels with the border walled off, and the heap empty
+   (every level without a chunk, every chunk unused). map NULL: from the last pass's
+   levels in c->lev, inverted when `flip`. */
+static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, uint8_t flip,
+                       uint32_t limit)
 {
     const uint32_t w = c->width;
     const uint32_t h = c->height;
     uint32_t v;
 
-    pass_copy(c, map, xor_mask, limit);
-    /* the border is reached from the start, so the flood never enters it */
+    if (map != NULL) {
+        pass_copy(c, map, xor_mask, limit);
+    } else {
+        pass_relevel(c, flip, limit);
+    }
+    /* the border is reached from the start (a wall that keeps its level), so the flood
+       never enters it */
     {
         uint32_t i;
         uint32_t y;
         for (i = 0u; i < w; i++) {
-            c->lev[i] = (uint16_t)MSER_REACHED;
-            c->lev[((h - 1u) * w) + i] = (uint16_t)MSER_REACHED;
+            c->lev[i] = (uint16_t)((uint32_t)c->lev[i] | LEV_WALL);
+            c->lev[((h - 1u) * w) + i] = (uint16_t)((uint32_t)c->lev[((h - 1u) * w) + i] | LEV_WALL);
         }
         for (y = 1u; y < (h - 1u); y++) {
-            c->lev[y * w] = (uint16_t)MSER_REACHED;
-            c->lev[(y * w) + (w - 1u)] = (uint16_t)MSER_REACHED;
+            c->lev[y * w] = (uint16_t)((uint32_t)c->lev[y * w] | LEV_WALL);
+            c->lev[(y * w) + (w - 1u)] = (uint16_t)((uint32_t)c->lev[(y * w) + (w - 1u)] | LEV_WALL);
         }
     }
     for (v = 0u; v < MSER_LEVELS; v++) {
@@ -450,12 +472,12 @@ static void pass_flood(mser_ctx_t *c, uint32_t limit)
 
 /* The context of one detection over the workspace (layout of sbr_mser_workspace_size()),
    with the exact division by the width (2^shift > width^2 * height). */
-static void mser_ctx_init(mser_ctx_t *c, const sbr_image_t *map, const sbr_mser_config_t *cfg,
-                          void *workspace)
+static void mser_ctx_init(mser_ctx_t *c, uint32_t width, uint32_t height,
+                          const sbr_mser_config_t *cfg, void *workspace)
 {
-    const size_t nodes = mser_nodes_for(map->width, map->height, cfg);
-    const size_t chunks = mser_heap_chunks_for(map->width, map->height, cfg);
-    const uint64_t span = (uint64_t)map->width * (uint64_t)map->width * (uint64_t)map->height;
+    const size_t nodes = mser_nodes_for(width, height, cfg);
+    const size_t chunks = mser_heap_chunks_for(width, height, cfg);
+    const uint64_t span = (uint64_t)width * (uint64_t)width * (uint64_t)height;
     uint8_t *base = (uint8_t *)workspace;
     uint32_t bits = 1u;
     c->heap_top = (uint32_t *)(void *)base;
@@ -473,8 +495,8 @@ static void mser_ctx_init(mser_ctx_t *c, const sbr_image_t *map, const sbr_mser_
     c->heap_chunks = (uint32_t)chunks;
     base = &base[chunks * SBR_MSER_HEAP_CHUNK * 4u];
     c->lev = (uint16_t *)(void *)base;
-    c->width = map->width;
-    c->height = map->height;
+    c->width = width;
+    c->height = height;
     c->node_cap = (uint32_t)nodes;
     c->node_count = 0u;
     c->delta = cfg->delta;
@@ -484,7 +506,78 @@ static void mser_ctx_init(mser_ctx_t *c, const sbr_image_t *map, const sbr_mser_
         bits++;
     }
     c->div_shift = bits;
-    c->div_magic = ((((uint64_t)1u) << bits) / (uint64_t)map->width) + 1u;
+    c->div_magic = ((((uint64_t)1u) << bits) / (uint64_t)width) + 1u;
+}
+
+/* Both passes of a configuration over a prepared context. map NULL: the map is in place
+   (the second half of c->lev) and every pass after the first takes its levels from the
+   last pass's; afterwards the map is back at the start of c->lev (stride the width). */
+static sbr_status_t mser_run(mser_ctx_t *c, const sbr_image_t *map, const sbr_mser_config_t *cfg,
+                             sbr_mser_region_t *regions, uint32_t capacity, uint32_t *count)
+{
+    sbr_image_t in_place;
+    const sbr_image_t *src = map;
+    uint8_t last = 0u; /* the inversion the levels in c->lev have */
+    int full = 0;
+    int overflow = 0;
+    if (map == NULL) {
+        in_place.width = c->width;
+        in_place.height = c->height;
+        in_place.stride = c->width;
+        in_place.format = SBR_PIXEL_GRAY8;
+        in_place.data = &((const uint8_t *)(const void *)c->lev)[(size_t)c->width * c->height];
+        src = &in_place;
+    }
+    if ((cfg->polarity & (uint32_t)SBR_MSER_DARK) != 0u) {
+        pass_setup(c, src, 0u, 0u, cfg->dark_max);
+        pass_flood(c, cfg->dark_max);
+        sbr_mser_priv_pass_select(c, cfg, (uint8_t)SBR_MSER_DARK, cfg->dark_max, regions,
+                                  capacity, count, &full);
+        overflow |= c->overflow;
+        if (map == NULL) {
+            src = NULL; /* the map's bytes are the levels' now */
+        }
+    }
+    if ((cfg->polarity & (uint32_t)SBR_MSER_BRIGHT) != 0u) {
+        const uint32_t limit = 255u - cfg->bright_min; /* in the inverted map's values */
+        c->overflow = 0;
+        pass_setup(c, src, 0xFFu, 0xFFu, limit);
+        pass_flood(c, limit);
+        sbr_mser_priv_pass_select(c, cfg, (uint8_t)SBR_MSER_BRIGHT, limit, regions, capacity,
+                                  count, &full);
+        overflow |= c->overflow;
+        last = 0xFFu;
+    }
+    if (map == NULL) {
+        /* the map again, byte i from word i (bytes 2i and 2i + 1, not yet overwritten) */
+        uint8_t *const out = (uint8_t *)(void *)c->lev;
+        const size_t n = (size_t)c->width * (size_t)c->height;
+        size_t i;
+        for (i = 0u; i < n; i++) {
+            out[i] = (uint8_t)(((uint32_t)c->lev[i] & LEV_LEVEL) ^ (uint32_t)last);
+        }
+    }
+    return ((full != 0) || (overflow != 0)) ? SBR_ERR_CAPACITY : SBR_OK;
+}
+
+/* The checks sbr_mser_detect() documents after the map's: configuration, size, capacity,
+   workspace. */
+static sbr_status_t mser_args_check(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height,
+                                    uint32_t capacity, const void *workspace, size_t workspace_size)
+{
+    sbr_status_t st = sbr_mser_config_check(cfg);
+    if (st == SBR_OK) {
+        if ((width < 3u) || (height < 3u) || (capacity == 0u)) {
+            st = SBR_ERR_SIZE;
+        } else if ((workspace == NULL) ||
+                   (workspace_size < sbr_mser_workspace_size(cfg, width, height)) ||
+                   (sbr_util_aligned(workspace, 4u) == 0)) {
+            st = SBR_ERR_WORKSPACE;
+        } else {
+            /* fine */
+        }
+    }
+    return st;
 }
 
 sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cfg,
@@ -493,9 +586,6 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
 {
     sbr_status_t st;
     mser_ctx_t c;
-    size_t need;
-    int full = 0;
-    int overflow = 0;
 
     if ((map == NULL) || (cfg == NULL) || (regions == NULL) || (count == NULL)) {
         return SBR_ERR_NULL;
@@ -508,36 +598,38 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     if (map->format != SBR_PIXEL_GRAY8) {
         return SBR_ERR_RANGE;
     }
-    st = sbr_mser_config_check(cfg);
+    st = mser_args_check(cfg, map->width, map->height, capacity, workspace, workspace_size);
     if (st != SBR_OK) {
         return st;
     }
-    if ((map->width < 3u) || (map->height < 3u) || (capacity == 0u)) {
-        return SBR_ERR_SIZE;
+    mser_ctx_init(&c, map->width, map->height, cfg, workspace);
+    return mser_run(&c, map, cfg, regions, capacity, count);
+}
+
+uint8_t *sbr_mser_priv_map_slot(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height,
+                                void *workspace)
+{
+    mser_ctx_t c;
+    mser_ctx_init(&c, width, height, cfg, workspace);
+    return &((uint8_t *)(void *)c.lev)[(size_t)width * height];
+}
+
+sbr_status_t sbr_mser_priv_detect_in_place(uint32_t width, uint32_t height,
+                                           const sbr_mser_config_t *cfg, void *workspace,
+                                           size_t workspace_size, sbr_mser_region_t *regions,
+                                           uint32_t capacity, uint32_t *count, sbr_image_t *map)
+{
+    mser_ctx_t c;
+    sbr_status_t st = mser_args_check(cfg, width, height, capacity, workspace, workspace_size);
+    *count = 0u;
+    if (st == SBR_OK) {
+        mser_ctx_init(&c, width, height, cfg, workspace);
+        st = mser_run(&c, NULL, cfg, regions, capacity, count);
+        map->width = width;
+        map->height = height;
+        map->stride = width;
+        map->format = SBR_PIXEL_GRAY8;
+        map->data = (const uint8_t *)(const void *)c.lev;
     }
-    need = sbr_mser_workspace_size(cfg, map->width, map->height);
-    if ((workspace == NULL) || (workspace_size < need) || (sbr_util_aligned(workspace, 4u) == 0)) {
-        return SBR_ERR_WORKSPACE;
-    }
-    mser_ctx_init(&c, map, cfg, workspace);
-    if ((cfg->polarity & (uint32_t)SBR_MSER_DARK) != 0u) {
-        pass_setup(&c, map, 0u, cfg->dark_max);
-        pass_flood(&c, cfg->dark_max);
-        sbr_mser_priv_pass_select(&c, cfg, (uint8_t)SBR_MSER_DARK, cfg->dark_max, regions,
-                                  capacity, count, &full);
-        overflow |= c.overflow;
-    }
-    if ((cfg->polarity & (uint32_t)SBR_MSER_BRIGHT) != 0u) {
-        const uint32_t limit = 255u - cfg->bright_min; /* in the inverted map's values */
-        c.overflow = 0;
-        pass_setup(&c, map, 0xFFu, limit);
-        pass_flood(&c, limit);
-        sbr_mser_priv_pass_select(&c, cfg, (uint8_t)SBR_MSER_BRIGHT, limit, regions, capacity,
-                                  count, &full);
-        overflow |= c.overflow;
-    }
-    if ((full != 0) || (overflow != 0)) {
-        return SBR_ERR_CAPACITY;
-    }
-    return SBR_OK;
+    return st;
 }

@@ -14,15 +14,15 @@
 #define MSER_NONE 0xFFFFFFFFu
 #define MSER_LEVELS 256u
 #define MSER_SENTINEL 256u
-#define MSER_REACHED 0xFFFFu
+#define LEV_WALL 0xFF00u /* a wall or the border: every flag set over its level */
 #define LEV_REACHED 0x100u /* the pixel was reached by this pass's flood */
 #define LEV_BOXED 0x200u   /* the pixel is in the region whose box is being measured */
 #define LEV_LEVEL 0xFFu
 #define MSER_LIMIT_NONE 0xFFFFu /* no pass limit: every node's variation is known */
 
 /* The flood keeps one 16-bit word per pixel: the map's level (inverted for the bright
-   pass), with LEV_REACHED set once the pixel is reached (the image border is MSER_REACHED
-   from the start, which bounds the fill); one load tells whether a neighbour is new and
+   pass), with LEV_REACHED set once the pixel is reached (the image border and a pass's
+   walls are LEV_WALL over their level from the start, which bounds the fill); one load tells whether a neighbour is new and
    its level. The level stays, so after the flood a selected node's pixels can be found
    again (a fill from its seed over levels <= its own): its bounding box is measured then,
    for the few selected nodes, not kept up per pixel. What else a pixel waiting in the heap needs travels with its heap entry:
@@ -82,7 +82,8 @@ typedef struct mser_ctx_s {
     uint32_t heap_free;  /* first free chunk of the free list, or MSER_NONE */
     uint32_t heap_next;  /* chunks below it have been used */
     uint16_t *lev;       /* [pixels] the map (inverted for the bright pass) with
-                            LEV_REACHED once reached; the border MSER_REACHED */
+                            LEV_REACHED once reached; the border and walls
+                            LEV_WALL over their level */
     uint32_t width;
     uint32_t height;
     uint32_t ring_cap;   /* delta + 1 */
@@ -100,5 +101,18 @@ typedef struct mser_ctx_s {
 void sbr_mser_priv_pass_select(mser_ctx_t *c, const sbr_mser_config_t *cfg, uint8_t polarity,
                                uint32_t limit, sbr_mser_region_t *regions, uint32_t capacity,
                                uint32_t *count, int *full);
+
+/* The part stage's use without a map buffer of its own: the bytes where a width x height
+   map (stride the width) goes before sbr_mser_priv_detect_in_place() (the second half of
+   the pixel words of a workspace of sbr_mser_workspace_size(cfg, width, height)), and
+   sbr_mser_detect() of that map there; the workspace's own map is overwritten, and `map`
+   is then the same map at the start of the pixel words, valid until the workspace is
+   used again. Statuses as sbr_mser_detect() (count and map undefined on errors). */
+uint8_t *sbr_mser_priv_map_slot(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height,
+                                void *workspace);
+sbr_status_t sbr_mser_priv_detect_in_place(uint32_t width, uint32_t height,
+                                           const sbr_mser_config_t *cfg, void *workspace,
+                                           size_t workspace_size, sbr_mser_region_t *regions,
+                                           uint32_t capacity, uint32_t *count, sbr_image_t *map);
 
 #endif

@@ -81,8 +81,8 @@ static void select_diverse(mser_ctx_t *c, float min_diversity)
 /* The bounding box of a node's pixels, after its pass's flood: the 4-connected pixels of
    level <= its level around its seed (the component the flood grew), found again by a
    fill that lists them in the heap's chunks (free after the flood) and marks them
-   LEV_BOXED until it is done. The border (MSER_REACHED) has every bit set, so the fill
-   never enters it. A node larger than the list (a heap bound below the node's area) gets
+   LEV_BOXED until it is done. The border and walls (LEV_WALL) have LEV_BOXED set, so the
+   fill never enters them. A node larger than the list (a heap bound below the node's area) gets
    the box of the pixels the list holds, and the call reports the bound reached. */
 static uint32_t box_visit(uint16_t *lev, uint32_t *list, uint32_t n, uint32_t cap, uint32_t q,
                           uint32_t val)

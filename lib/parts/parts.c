@@ -8,6 +8,7 @@
 #include "sbr/contour.h"
 
 #include "../common/sbr_util.h"
+#include "../mser/mser_internal.h"
 
 #include <string.h>
 
@@ -76,8 +77,7 @@ sbr_status_t sbr_parts_config_check(const sbr_parts_config_t *cfg)
 
 /* Workspace layout (each piece 8-byte aligned). */
 typedef struct parts_layout_s {
-    size_t map;      /* map bytes */
-    size_t mser;     /* MSER workspace */
+    size_t mser;     /* MSER workspace (it holds each map too) */
     size_t regions;  /* region array */
     size_t mask;     /* region mask */
     size_t fill;     /* mask flood-fill stack */
@@ -124,7 +124,6 @@ static int parts_layout(uint32_t width, uint32_t height, const sbr_parts_config_
     if (ms == 0u) {
         return 0;
     }
-    l->map = SBR_WS_ALIGN8((size_t)mw * (size_t)mh);
     l->mser = SBR_WS_ALIGN8(ms);
     l->regions = SBR_WS_ALIGN8((size_t)cfg->max_regions * sizeof(sbr_mser_region_t));
     l->mask = SBR_WS_ALIGN8(side * side);
@@ -133,7 +132,7 @@ static int parts_layout(uint32_t width, uint32_t height, const sbr_parts_config_
     l->points = SBR_WS_ALIGN8((size_t)cfg->max_contour * sizeof(sbr_point_t));
     l->pointsf = SBR_WS_ALIGN8((size_t)cfg->max_contour * sizeof(sbr_pointf_t));
     l->fdwork = SBR_WS_ALIGN8((size_t)cfg->fd_n * sizeof(sbr_complex_t));
-    l->total = l->map + l->mser + l->regions + l->mask + l->fill + l->trace + l->points +
+    l->total = l->mser + l->regions + l->mask + l->fill + l->trace + l->points +
                l->pointsf + l->fdwork;
     return 1;
 }
@@ -170,7 +169,6 @@ static int region_ok(const sbr_mser_region_t *r, const sbr_parts_config_t *cfg)
 
 /* Scratch buffers of one call. */
 typedef struct parts_bufs_s {
-    uint8_t *map;
     uint8_t *mser;
     sbr_mser_region_t *regions;
     uint8_t *mask;
@@ -241,8 +239,6 @@ static int region_to_part(const sbr_image_t *map, const sbr_mser_region_t *r,
 static void parts_bufs(void *workspace, const parts_layout_t *l, parts_bufs_t *b)
 {
     uint8_t *base = (uint8_t *)workspace;
-    b->map = base;
-    base = &base[l->map];
     b->mser = base;
     b->mser_size = l->mser;
     base = &base[l->mser];
@@ -272,11 +268,12 @@ typedef struct parts_out_s {
     int full;
 } parts_out_t;
 
-/* The parts of one map: the map at its resolution, its regions, and each region that
-   passes the shape tests as a part while the output has room. */
+/* The parts of one map: the map at its resolution (made where the MSER workspace keeps
+   it, so it needs no buffer of its own), its regions, and each region that passes the
+   shape tests as a part while the output has room. */
 static sbr_status_t parts_of_map(const sbr_image_t *img, const sbr_parts_config_t *cfg,
                                  uint32_t kind, const sbr_fft_t *fft, parts_bufs_t *b,
-                                 size_t map_size, parts_out_t *o)
+                                 parts_out_t *o)
 {
     sbr_image_t map;
     sbr_mser_config_t mc = cfg->mser;
@@ -296,11 +293,17 @@ static sbr_status_t parts_of_map(const sbr_image_t *img, const sbr_parts_config_
     if (cfg->map_dark_max[kind] != 0u) {
         mc.dark_max = cfg->map_dark_max[kind];
     }
-    st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, b->map, img->width / sub, map_size, &map);
-    if (st != SBR_OK) {
-        return st;
+    {
+        const uint32_t mw = img->width / sub;
+        const uint32_t mh = img->height / sub;
+        uint8_t *slot = sbr_mser_priv_map_slot(&mc, mw, mh, b->mser);
+        st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, slot, mw, (size_t)mw * mh, &map);
+        if (st != SBR_OK) {
+            return st;
+        }
+        st = sbr_mser_priv_detect_in_place(mw, mh, &mc, b->mser, b->mser_size, b->regions,
+                                           cfg->max_regions, &nreg, &map);
     }
-    st = sbr_mser_detect(&map, &mc, b->mser, b->mser_size, b->regions, cfg->max_regions, &nreg);
     if (st == SBR_ERR_CAPACITY) {
         o->sx.capacity_hit = 1u;
     } else if (st != SBR_OK) {
@@ -368,7 +371,7 @@ sbr_status_t sbr_parts_extract(const sbr_image_t *img, const sbr_parts_config_t 
     o.count = count;
     for (kind = 0u; (kind < SBR_MAP_KINDS) && (o.full == 0); kind++) {
         if ((cfg->maps & (1u << kind)) != 0u) {
-            st = parts_of_map(img, cfg, kind, fft, &b, l.map, &o);
+            st = parts_of_map(img, cfg, kind, fft, &b, &o);
             if (st != SBR_OK) {
                 return st;
             }
