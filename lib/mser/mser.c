@@ -549,12 +549,26 @@ static sbr_status_t mser_run(mser_ctx_t *c, const sbr_image_t *map, const sbr_ms
         last = 0xFFu;
     }
     if (map == NULL) {
-        /* the map again, byte i from word i (bytes 2i and 2i + 1, not yet overwritten) */
+        /* the map again, byte i from word i (bytes 2i and 2i + 1, not yet overwritten:
+           four words are read before their four bytes, which lie in words below i, are
+           written) */
         uint8_t *const out = (uint8_t *)(void *)c->lev;
+        const uint16_t *const lev = c->lev;
         const size_t n = (size_t)c->width * (size_t)c->height;
+        const uint32_t x = (uint32_t)last;
         size_t i;
-        for (i = 0u; i < n; i++) {
-            out[i] = (uint8_t)(((uint32_t)c->lev[i] & LEV_LEVEL) ^ (uint32_t)last);
+        for (i = 0u; (i + 4u) <= n; i += 4u) {
+            const uint32_t v0 = ((uint32_t)lev[i] & LEV_LEVEL) ^ x;
+            const uint32_t v1 = ((uint32_t)lev[i + 1u] & LEV_LEVEL) ^ x;
+            const uint32_t v2 = ((uint32_t)lev[i + 2u] & LEV_LEVEL) ^ x;
+            const uint32_t v3 = ((uint32_t)lev[i + 3u] & LEV_LEVEL) ^ x;
+            out[i] = (uint8_t)v0;
+            out[i + 1u] = (uint8_t)v1;
+            out[i + 2u] = (uint8_t)v2;
+            out[i + 3u] = (uint8_t)v3;
+        }
+        for (; i < n; i++) {
+            out[i] = (uint8_t)(((uint32_t)lev[i] & LEV_LEVEL) ^ x);
         }
     }
     return ((full != 0) || (overflow != 0)) ? SBR_ERR_CAPACITY : SBR_OK;
