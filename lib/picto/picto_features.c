@@ -353,30 +353,22 @@ static void grey_normalise(float *g)
 
 /* One pixel's gradient into a cell's eight orientation bins: its projections p0..p3 on 0,
    45, 90 and 135 degrees, direction k getting a positive projection, k + 4 a negative
-   one (negated). The bins start at +0 and only grow, so the projection's other bin, which
-   would get +0, is left as it is. */
+   one (negated). Without a branch on the sign (a desktop CPU mispredicts half of them):
+   bin k gets max(p, 0), bin k + 4 gets max(p, 0) - p, which is -p or exactly 0. */
 static inline void orient_add(float *cell, float p0, float p1, float p2, float p3)
 {
-    if (p0 > 0.0f) {
-        cell[0] += p0;
-    } else {
-        cell[4] += -p0;
-    }
-    if (p1 > 0.0f) {
-        cell[1] += p1;
-    } else {
-        cell[5] += -p1;
-    }
-    if (p2 > 0.0f) {
-        cell[2] += p2;
-    } else {
-        cell[6] += -p2;
-    }
-    if (p3 > 0.0f) {
-        cell[3] += p3;
-    } else {
-        cell[7] += -p3;
-    }
+    const float q0 = (p0 > 0.0f) ? p0 : 0.0f;
+    const float q1 = (p1 > 0.0f) ? p1 : 0.0f;
+    const float q2 = (p2 > 0.0f) ? p2 : 0.0f;
+    const float q3 = (p3 > 0.0f) ? p3 : 0.0f;
+    cell[0] += q0;
+    cell[1] += q1;
+    cell[2] += q2;
+    cell[3] += q3;
+    cell[4] += q0 - p0;
+    cell[5] += q1 - p1;
+    cell[6] += q2 - p2;
+    cell[7] += q3 - p3;
 }
 
 /* Orientation histograms of the normalised grey patch: per cell, and per cell of the
