@@ -151,12 +151,14 @@ static void dot4(const float *w, size_t stride, const float *b, size_t n, float 
     float s1[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     float s2[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     float s3[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const size_t n4 = n - (n % 4u); /* the four-lane part; the tail loop is then visibly
+                                        bounded by n - n4 < 4 */
     size_t k;
 #if defined(__ARM_ARCH_PROFILE) && (__ARM_ARCH_PROFILE == 'M')
     /* M-profile cores have no vector unit: the lanes written out with constant indices,
        so that all sixteen sums stay in FPU registers (gcc does not unroll a lane loop
        there and kept them in memory: 2.5 times the instructions) */
-    for (k = 0u; (k + 4u) <= n; k += 4u) {
+    for (k = 0u; k < n4; k += 4u) {
         s0[0] += w0[k] * b[k];
         s0[1] += w0[k + 1u] * b[k + 1u];
         s0[2] += w0[k + 2u] * b[k + 2u];
@@ -176,7 +178,7 @@ static void dot4(const float *w, size_t stride, const float *b, size_t n, float 
     }
 #else
     /* SIMD hosts: a loop over the lanes, which the vectoriser makes one vector a row */
-    for (k = 0u; (k + 4u) <= n; k += 4u) {
+    for (k = 0u; k < n4; k += 4u) {
         uint32_t l;
         for (l = 0u; l < 4u; l++) {
             s0[l] += w0[k + l] * b[k + l];
@@ -192,12 +194,11 @@ static void dot4(const float *w, size_t stride, const float *b, size_t n, float 
         }
     }
 #endif
-    while (k < n) {
+    for (k = n4; k < n; k++) {
         s0[0] += w0[k] * b[k];
         s1[0] += w1[k] * b[k];
         s2[0] += w2[k] * b[k];
         s3[0] += w3[k] * b[k];
-        k++;
     }
     out[0] = (s0[0] + s0[1]) + (s0[2] + s0[3]);
     out[1] = (s1[0] + s1[1]) + (s1[2] + s1[3]);
