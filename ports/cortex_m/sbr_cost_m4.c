@@ -30,6 +30,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "sbr_bench_timer.h"
 #include "sbr/recog.h"
 
 #define PSRAM_BASE 0x21000000u
@@ -40,28 +41,11 @@
 
 static uint8_t g_frame[SRAM_FRAME_BYTES];
 
-/* CMSDK APB timer 0 */
-#define TIMER0_CTRL (*(volatile uint32_t *)0x40000000u)
-#define TIMER0_VALUE (*(volatile uint32_t *)0x40000004u)
-#define TIMER0_RELOAD (*(volatile uint32_t *)0x40000008u)
-
-static uint32_t ticks_now(void)
-{
-    return 0xFFFFFFFFu - TIMER0_VALUE;
-}
-
+/* The recogniser's stage clock: the bench timer (sbr_bench_timer.h). */
 static uint32_t timer_clock(void *ctx)
 {
     (void)ctx;
     return ticks_now();
-}
-
-/* Ticks for a loop of 2 * n instructions (subs + bne per iteration). */
-static uint32_t loop_ticks(uint32_t n)
-{
-    const uint32_t t0 = ticks_now();
-    __asm volatile("1: subs %0, %0, #1\n\tbne 1b" : "+r"(n) : : "cc");
-    return ticks_now() - t0;
 }
 
 static int read_token(FILE *f, uint32_t *v)
@@ -104,11 +88,7 @@ int main(void)
     float per_tick;
     sbr_status_t st;
 
-    TIMER0_CTRL = 0u;
-    TIMER0_RELOAD = 0xFFFFFFFFu;
-    TIMER0_VALUE = 0xFFFFFFFFu;
-    TIMER0_CTRL = 1u;
-    per_tick = (float)(2u * 2000000u) / (float)loop_ticks(2000000u);
+    per_tick = bench_timer_start();
     printf("calibration: %.3f\n", (double)per_tick);
 
     if ((f == NULL) || (fgetc(f) != 'P') || (fgetc(f) != '6') || !read_token(f, &w) ||

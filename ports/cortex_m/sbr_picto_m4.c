@@ -10,8 +10,7 @@
  *
  * The frame is synthetic (a fixed LCG's pixels, 200 x 200 RGB): the work of a look does
  * not depend on what the box holds, except for a few branches of the orientation bins.
- * The timer and its calibration are sbr_cost_m4's (CMSDK APB timer 0; with -icount
- * shift=0 one instruction is 1 ns of virtual time).
+ * The timer and its calibration: sbr_bench_timer.h, as sbr_cost_m4's.
  *
  * Output lines (parsed by host_tools/bench_cost/sbr_cost.py):
  *   calibration: <instructions per tick>
@@ -22,11 +21,8 @@
 #include <stdint.h>
 #include <stdio.h>
 
+#include "sbr_bench_timer.h"
 #include "sbr/picto.h"
-
-#define TIMER0_CTRL (*(volatile uint32_t *)0x40000000u)
-#define TIMER0_VALUE (*(volatile uint32_t *)0x40000004u)
-#define TIMER0_RELOAD (*(volatile uint32_t *)0x40000008u)
 
 #define FRAME_SIDE 200u
 
@@ -34,19 +30,6 @@ static uint8_t g_frame[FRAME_SIDE * FRAME_SIDE * 3u];
 static float g_feat[SBR_PICTO_FEATURES];
 static float g_prob[SBR_PICTO_MAX_OUTPUTS];
 static uint64_t g_ws[(SBR_PICTO_WORKSPACE_SIZE + 7u) / 8u];
-
-static uint32_t ticks_now(void)
-{
-    return 0xFFFFFFFFu - TIMER0_VALUE;
-}
-
-/* Ticks for a loop of 2 * n instructions (subs + bne per iteration). */
-static uint32_t loop_ticks(uint32_t n)
-{
-    const uint32_t t0 = ticks_now();
-    __asm volatile("1: subs %0, %0, #1\n\tbne 1b" : "+r"(n) : : "cc");
-    return ticks_now() - t0;
-}
 
 int main(void)
 {
@@ -60,11 +43,7 @@ int main(void)
     float sum_f = 0.0f;
     float sum_c = 0.0f;
 
-    TIMER0_CTRL = 0u;
-    TIMER0_RELOAD = 0xFFFFFFFFu;
-    TIMER0_VALUE = 0xFFFFFFFFu;
-    TIMER0_CTRL = 1u;
-    per_tick = (float)(2u * 2000000u) / (float)loop_ticks(2000000u);
+    per_tick = bench_timer_start();
     printf("calibration: %.3f\n", (double)per_tick);
 
     for (i = 0u; i < sizeof g_frame; i++) {
