@@ -409,6 +409,103 @@ static void test_mser_heap_bound(void)
     g_cfg.max_nodes = 0u;
 }
 
+/* The extremal component of a region's level around its seed (4-connected, the map's
+   interior: the border is never flooded), counted by a plain fill: the definition. */
+static uint32_t g_fill[HW * HW];
+static uint8_t g_seen[HW][HW];
+static uint32_t component_area(const sbr_mser_region_t *r)
+{
+    static const int32_t dx[4] = {1, -1, 0, 0};
+    static const int32_t dy[4] = {0, 0, 1, -1};
+    uint32_t n = 0u;
+    uint32_t h = 0u;
+    memset(g_seen, 0, sizeof g_seen);
+    g_fill[n++] = ((uint32_t)r->seed_y * HW) + r->seed_x;
+    g_seen[r->seed_y][r->seed_x] = 1u;
+    while (h < n) {
+        const uint32_t p = g_fill[h++];
+        uint32_t k;
+        for (k = 0u; k < 4u; k++) {
+            const int32_t x = (int32_t)(p % HW) + dx[k];
+            const int32_t y = (int32_t)(p / HW) + dy[k];
+            if ((x >= 1) && (y >= 1) && (x < (int32_t)HW - 1) && (y < (int32_t)HW - 1) &&
+                (g_seen[y][x] == 0u)) {
+                const uint8_t v = g_big[y][x];
+                if ((r->polarity == (uint8_t)SBR_MSER_DARK) ? (v <= r->level) : (v >= r->level)) {
+                    g_seen[y][x] = 1u;
+                    g_fill[n++] = ((uint32_t)y * HW) + (uint32_t)x;
+                }
+            }
+        }
+    }
+    return n;
+}
+
+/* A heap bound below what a textured map needs (waves plus noise): where the bound is
+   reached the flood stops, the call says so, writes nothing past the workspace it was
+   given, and every region it reports is part of its extremal component (all of it when
+   the call completes). Before the flood stopped, a lost heap entry could leave the
+   component stack out of level order: regions larger than their component, and on a
+   GTSDB frame a crash. Bounds from one chunk per level up to the worst case. */
+static void test_mser_heap_bound_texture(void)
+{
+    static const uint32_t bounds[5] = {1u, 40u, 300u, 3000u, 0u};
+    const sbr_image_t v = {HW, HW, HW, SBR_PIXEL_GRAY8, &g_big[0][0]};
+    uint32_t seed = 7920u;
+    uint32_t x;
+    uint32_t y;
+    uint32_t b;
+    for (y = 0u; y < HW; y++) {
+        for (x = 0u; x < HW; x++) {
+            /* triangle waves across x and y, and up to 127 levels of noise */
+            const uint32_t tx = (x * 3u) % 200u;
+            const uint32_t ty = ((y * 5u) + x) % 160u;
+            const uint32_t wx = (tx < 100u) ? tx : (200u - tx);
+            const uint32_t wy = (ty < 80u) ? ty : (160u - ty);
+            seed = (seed * 1664525u) + 1013904223u;
+            g_big[y][x] = (uint8_t)(((wx + wy) + ((seed >> 24) & 127u)) & 255u);
+        }
+    }
+    g_cfg.polarity = SBR_MSER_BOTH;
+    for (b = 0u; b < 5u; b++) {
+        const uint8_t *bytes = (const uint8_t *)(const void *)g_bws;
+        uint32_t n = 0u;
+        uint32_t i;
+        size_t need;
+        sbr_status_t st;
+        g_cfg.max_nodes = HW_NODES;
+        g_cfg.max_heap = bounds[b];
+        need = sbr_mser_workspace_size(&g_cfg, HW, HW);
+        TEST_ASSERT_TRUE((need > 0u) && (need <= sizeof g_bws));
+        memset(g_bws, 0xA5, sizeof g_bws);
+        st = sbr_mser_detect(&v, &g_cfg, g_bws, need, g_breg[0], 128u, &n);
+        if (bounds[b] == 0u) {
+            TEST_ASSERT_EQUAL_INT(SBR_OK, (int)st);
+            TEST_ASSERT_TRUE(n >= 10u);
+        } else if (bounds[b] <= 300u) {
+            TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, (int)st);
+        } else {
+            TEST_ASSERT_TRUE((st == SBR_OK) || (st == SBR_ERR_CAPACITY));
+        }
+        TEST_ASSERT_TRUE(n <= 128u);
+        for (i = need; i < sizeof g_bws; i++) {
+            TEST_ASSERT_EQUAL_HEX8(0xA5, bytes[i]);
+        }
+        for (i = 0u; i < n; i++) {
+            const sbr_mser_region_t *r = &g_breg[0][i];
+            const uint32_t whole = component_area(r);
+            TEST_ASSERT_TRUE(((r->bbox.x + r->bbox.width) <= HW) && ((r->bbox.y + r->bbox.height) <= HW));
+            TEST_ASSERT_TRUE(r->area >= g_cfg.min_area);
+            TEST_ASSERT_TRUE(r->area <= whole);
+            if (st == SBR_OK) {
+                TEST_ASSERT_EQUAL_UINT32(whole, r->area);
+            }
+        }
+    }
+    g_cfg.max_heap = 0u;
+    g_cfg.max_nodes = 0u;
+}
+
 /* The part stage's entry (lib/mser/mser_internal.h): the map written into the workspace's
    slot gives sbr_mser_detect()'s regions of that map, and afterwards the same map, byte
    for byte, at the start of the pixel words; for each polarity and with level limits
@@ -554,6 +651,7 @@ int main(void)
     RUN_TEST(test_mser_level_limits);
     RUN_TEST(test_mser_capacity_and_node_bound);
     RUN_TEST(test_mser_heap_bound);
+    RUN_TEST(test_mser_heap_bound_texture);
     RUN_TEST(test_mser_in_place);
     RUN_TEST(test_mser_bad_input);
     RUN_TEST(test_mser_region_mask_rejects_bad_regions);

@@ -45,8 +45,10 @@
  *   pixels are taken as soon as they are reached).
  * 0 reserves the worst case (never runs out); a smaller bound saves RAM, and when a frame
  * needs more the call still completes and returns ::SBR_ERR_CAPACITY: nodes beyond the
- * bound are not kept (regions may be missed), pixels beyond the heap's bound are not
- * flooded (as if walled off: regions through them are smaller or split).
+ * bound are not kept (regions may be missed); when the heap's bound is reached the flood
+ * in progress stops there and the pixels it has not taken stay unflooded (regions through
+ * them are smaller or missing; every region reported is still part of its extremal
+ * component).
  */
 #ifndef SBR_MSER_H
 #define SBR_MSER_H
@@ -121,8 +123,9 @@ typedef struct sbr_mser_config_s {
         0 (no limit). */
     uint32_t bright_min;
     /** Bound on pixels waiting in the boundary heap at once (per pass); 0 = the worst case
-        (every interior pixel, ::SBR_MSER_HEAP). Beyond it a pixel is not flooded and the
-        call returns ::SBR_ERR_CAPACITY. Default 0. */
+        (every interior pixel, ::SBR_MSER_HEAP). When it is reached the flood in progress
+        stops (what it has not taken stays unflooded) and the call returns
+        ::SBR_ERR_CAPACITY. Default 0. */
     uint32_t max_heap;
 } sbr_mser_config_t;
 

@@ -239,7 +239,8 @@ static uint32_t heap_chunk(mser_ctx_t *c, uint32_t i)
         fresh = c->heap_next;
         c->heap_next++;
     } else {
-        c->overflow = 1; /* the bound: the pixel is left unflooded */
+        c->overflow = 1; /* the bound: the flood stops (flood_from()) */
+        c->heap_full = 1;
     }
     if (fresh != MSER_NONE) {
         slot = fresh * SBR_MSER_HEAP_CHUNK;
@@ -358,6 +359,7 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     }
     c->heap_free = MSER_NONE;
     c->heap_next = 0u;
+    c->heap_full = 0;
     c->node_count = 0u;
 }
 
@@ -409,7 +411,11 @@ static void flood_from(mser_ctx_t *c, uint32_t start)
         }
         comp_add_pixel(&c->comp[top], p);
         e = 0u;
-        if (c->heap_top[cur] != MSER_NONE) {
+        if (c->heap_full != 0) {
+            /* the heap's bound: the flood stops here, before a lost entry could leave the
+               component stack out of level order; what it has not taken stays unflooded */
+            done = 1;
+        } else if (c->heap_top[cur] != MSER_NONE) {
             e = heap_pop(c, cur);
         } else {
             uint32_t lv = cur + 1u;
@@ -433,6 +439,21 @@ static void flood_from(mser_ctx_t *c, uint32_t start)
         }
         p = e >> HEAP_DIR_BITS;
         k = e & HEAP_DIR_MASK;
+    }
+    if (c->heap_full != 0) {
+        /* a stopped flood: the components still open join the ones below them (their
+           levels rise up the stack), and the heap is emptied for the next flood */
+        uint32_t v;
+        while (top > 1u) {
+            comp_merge(c, top - 1u, top);
+            top--;
+        }
+        for (v = 0u; v < MSER_LEVELS; v++) {
+            c->heap_top[v] = MSER_NONE;
+        }
+        c->heap_free = MSER_NONE;
+        c->heap_next = 0u;
+        c->heap_full = 0;
     }
     while ((top > 0u) && ((uint32_t)c->comp[top].level != MSER_SENTINEL)) {
         comp_grow(c, top, MSER_SENTINEL);
@@ -502,6 +523,7 @@ static void mser_ctx_init(mser_ctx_t *c, uint32_t width, uint32_t height,
     c->delta = cfg->delta;
     c->min_area = cfg->min_area;
     c->overflow = 0;
+    c->heap_full = 0;
     while ((bits < 63u) && ((((uint64_t)1u) << bits) <= span)) {
         bits++;
     }

@@ -94,6 +94,7 @@ typedef struct mser_ctx_s {
     uint32_t div_shift;  /* y = (p * div_magic) >> div_shift, exact for p < width * height */
     uint64_t div_magic;
     int overflow;
+    int heap_full;       /* the heap's bound was reached in the flood in progress */
 } mser_ctx_t;
 
 /* Variations, stable nodes, duplicates and the regions of one pass's tree (its pixels'
