@@ -429,12 +429,10 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
  * sbr_recog_workspace_size() of the default configuration (sbr_recog_config_default())
  * with parts.subsample = `s` (1..8), for frames up to width x height, as a constant
  * expression for static allocation on an ECU (equal to the function; checked by the unit
- * tests). Blocks in order: the parts stage (::SBR_PARTS_WORKSPACE_SIZE of the finest map,
- * intensity at `s`; after the part stage the same block holds the prototypes' coefficient
- * magnitudes for the matcher's screening, 2 fd_m + 1 floats per prototype, and the vote
- * grouping's index of hypotheses by column, width / 16 + 2 + 2 max_hypotheses words, and
- * is at least that large), the parts, their index, the match results, the matcher's scratch, the
- * votes, the hypotheses, the class stage.
+ * tests). Three blocks: the part stage's (::SBR_PARTS_WORKSPACE_SIZE of the finest map,
+ * intensity at `s`), which after that stage holds everything the later stages use but the
+ * parts and is at least that large (::SBR_RECOG_AFTER_PARTS_SIZE); the parts; the class
+ * stage's.
  */
 #define SBR_RECOG_WORKSPACE_DEFAULT_SIZE(width, height, s)                                     \
     (SBR_WS_MAX(SBR_WS_ALIGN8(SBR_PARTS_WORKSPACE_SIZE((width) / (s), (height) / (s),           \
@@ -444,19 +442,30 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
                                             SBR_PARTS_DEFAULT_MAX_SIDE,                          \
                                             SBR_PARTS_DEFAULT_MAX_CONTOUR,                       \
                                             SBR_PARTS_DEFAULT_FD_N)),                            \
-                SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS *                       \
-                              ((2u * SBR_PARTS_DEFAULT_FD_M) + 1u) * sizeof(float)) +            \
-                    SBR_WS_ALIGN8((((size_t)(width) / 16u) + 2u +                                \
-                                   (2u * (size_t)SBR_RECOG_DEFAULT_MAX_HYPOTHESES)) *           \
-                                  sizeof(uint32_t))) +                                           \
+                SBR_RECOG_AFTER_PARTS_SIZE(width, SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS,            \
+                                           SBR_RECOG_DEFAULT_MAX_PARTS,                          \
+                                           SBR_RECOG_DEFAULT_MAX_VOTES,                          \
+                                           SBR_RECOG_DEFAULT_MAX_HYPOTHESES)) +                  \
      SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_PARTS * sizeof(sbr_part_t)) +                   \
-     SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_PARTS * SBR_RECOG_INDEX_BYTES) +                \
-     SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS * sizeof(sbr_fd_match_t)) +        \
-     SBR_WS_ALIGN8((size_t)SBR_FD_TABLE_WORK_LEN(SBR_RECOG_DEFAULT_MATCH_P) *                    \
-                   sizeof(sbr_complex_t)) +                                                      \
-     SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_VOTES * SBR_RECOG_VOTE_BYTES) +                 \
-     SBR_WS_ALIGN8((size_t)SBR_RECOG_DEFAULT_MAX_HYPOTHESES * SBR_RECOG_HYP_BYTES) +             \
      SBR_RECOG_CLASS_BYTES)
+
+/**
+ * What the part stage's block holds after that stage, in bytes (default fd_m and
+ * match_p): the prototypes' coefficient magnitudes for the matcher's screening (2 fd_m + 1
+ * floats per prototype), the vote grouping's index of hypotheses by column (width / 16 +
+ * 2 + 2 hypotheses words), the part index, the match results, the matcher's scratch, the
+ * votes and the hypotheses.
+ */
+#define SBR_RECOG_AFTER_PARTS_SIZE(width, protos, parts, votes, hypotheses)                   \
+    (SBR_WS_ALIGN8((size_t)(protos) * ((2u * SBR_PARTS_DEFAULT_FD_M) + 1u) * sizeof(float)) + \
+     SBR_WS_ALIGN8((((size_t)(width) / 16u) + 2u + (2u * (size_t)(hypotheses))) *             \
+                   sizeof(uint32_t)) +                                                         \
+     SBR_WS_ALIGN8((size_t)(parts) * SBR_RECOG_INDEX_BYTES) +                                  \
+     SBR_WS_ALIGN8((size_t)(protos) * sizeof(sbr_fd_match_t)) +                                \
+     SBR_WS_ALIGN8((size_t)SBR_FD_TABLE_WORK_LEN(SBR_RECOG_DEFAULT_MATCH_P) *                  \
+                   sizeof(sbr_complex_t)) +                                                    \
+     SBR_WS_ALIGN8((size_t)(votes) * SBR_RECOG_VOTE_BYTES) +                                   \
+     SBR_WS_ALIGN8((size_t)(hypotheses) * SBR_RECOG_HYP_BYTES))
 
 /** A recogniser: the configuration, the library and the class stage it was initialised
     with, checked, and the caller's workspace. Fields are private; use the functions. The

@@ -221,28 +221,29 @@ int sbr_recog_priv_layout(uint32_t width, uint32_t height, const sbr_recog_confi
 {
     const uint32_t work_len = SBR_FD_TABLE_WORK_LEN(cfg->match_p);
     size_t after_parts;
-    /* after the part stage its block holds the prototypes' magnitudes (the matcher's
-       screening) and the vote grouping's grid of hypotheses */
+    /* after the part stage its block holds everything but the parts: the prototypes'
+       magnitudes (the matcher's screening), the vote grouping's grid of hypotheses, the
+       part index, the match results, the matcher's scratch, the votes and the hypotheses */
     l->mags = SBR_WS_ALIGN8((size_t)cfg->max_model_protos * ((2u * cfg->parts.fd_m) + 1u) *
                             sizeof(float));
     l->grid_cols = (width / 16u) + 2u;
-    after_parts = l->mags + SBR_WS_ALIGN8(((size_t)l->grid_cols + (2u * (size_t)cfg->max_hypotheses)) *
-                                          sizeof(uint32_t));
-    l->parts_ws = SBR_WS_ALIGN8(sbr_parts_workspace_size(&cfg->parts, width, height));
-    if (l->parts_ws == 0u) {
-        return 0;
-    }
-    l->parts_ws = SBR_WS_MAX(l->parts_ws, after_parts);
-    l->parts = SBR_WS_ALIGN8((size_t)cfg->max_parts * sizeof(sbr_part_t));
+    l->grid = SBR_WS_ALIGN8(((size_t)l->grid_cols + (2u * (size_t)cfg->max_hypotheses)) *
+                            sizeof(uint32_t));
     l->index = SBR_WS_ALIGN8((size_t)cfg->max_parts * SBR_RECOG_INDEX_BYTES);
     l->results = SBR_WS_ALIGN8((size_t)cfg->max_model_protos * sizeof(sbr_fd_match_t));
     /* the table matcher's four-lane scratch */
     l->work = SBR_WS_ALIGN8((size_t)work_len * sizeof(sbr_complex_t));
     l->votes = SBR_WS_ALIGN8((size_t)cfg->max_votes * SBR_RECOG_VOTE_BYTES);
     l->hyps = SBR_WS_ALIGN8((size_t)cfg->max_hypotheses * SBR_RECOG_HYP_BYTES);
+    after_parts = l->mags + l->grid + l->index + l->results + l->work + l->votes + l->hyps;
+    l->parts_ws = SBR_WS_ALIGN8(sbr_parts_workspace_size(&cfg->parts, width, height));
+    if (l->parts_ws == 0u) {
+        return 0;
+    }
+    l->parts_ws = SBR_WS_MAX(l->parts_ws, after_parts);
+    l->parts = SBR_WS_ALIGN8((size_t)cfg->max_parts * sizeof(sbr_part_t));
     l->picto = SBR_RECOG_CLASS_BYTES;
-    l->total = l->parts_ws + l->parts + l->index + l->results + l->work + l->votes + l->hyps +
-               l->picto;
+    l->total = l->parts_ws + l->parts + l->picto;
     return 1;
 }
 

@@ -68,8 +68,10 @@ typedef struct recog_layout_s {
     size_t hyps;
     size_t picto;
     size_t total;
-    size_t mags;        /* in the part stage's block after that stage: the prototypes'
-                           magnitudes, then the vote grouping's grid at this offset */
+    size_t mags;        /* in the part stage's block after that stage, in this order: the
+                           prototypes' magnitudes, the vote grouping's grid, the index,
+                           the results, the scratch, the votes, the hypotheses */
+    size_t grid;
     uint32_t grid_cols; /* the grid's columns: width / 16 + 2 (the last one also takes
                            what lies right of the view) */
 } recog_layout_t;

@@ -140,15 +140,16 @@ static sbr_status_t ctx_init(recog_ctx_t *c, const sbr_recog_t *rec, const recog
     c->mcfg.max_error = c->vote_error;   /* only matches up to these errors count */
     c->vcfg.max_error = cfg->verify_error;
     base = (uint8_t *)rec->workspace;
-    /* the part stage's block, after that stage: the prototypes' magnitudes, then the
-       vote grouping's grid */
+    c->parts = (sbr_part_t *)(void *)&base[l->parts_ws];
+    /* the part stage's block, after that stage: the prototypes' magnitudes, the vote
+       grouping's grid, the index, the results, the scratch, the votes, the hypotheses */
     c->pmag = (float *)(void *)base;
-    c->grid_head = (uint32_t *)(void *)&base[l->mags];
+    base = &base[l->mags];
+    c->grid_head = (uint32_t *)(void *)base;
     c->grid_cols = l->grid_cols;
     c->grid_next = &c->grid_head[c->grid_cols];
     c->grid_prev = &c->grid_next[cfg->max_hypotheses];
-    c->parts = (sbr_part_t *)(void *)&base[l->parts_ws];
-    base = &base[l->parts_ws + l->parts];
+    base = &base[l->grid];
     c->index = (recog_index_t *)(void *)base;
     base = &base[l->index];
     c->results = (sbr_fd_match_t *)(void *)base;

@@ -133,7 +133,7 @@ def test_bad_roi_order_and_config(rec):
     r = sbr.Recognizer({"views": 3}, max_candidates=128)
     assert r.config["views"] == 3 and r.config["max_candidates"] == 128
     assert set(sbr.CONFIG_FIELDS) == set(r.config)
-    assert r.workspace_size(1360, 800) == sbr.Recognizer().workspace_size(1360, 800) == 7985768
+    assert r.workspace_size(1360, 800) == sbr.Recognizer().workspace_size(1360, 800) == 7193960
 
 
 def test_gil_released_and_threads_agree():
