@@ -363,6 +363,29 @@ static void pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, 
     c->node_count = 0u;
 }
 
+/* After a flood: if the heap's bound stopped it (what it had not taken stays unflooded;
+   a lost entry would have left the component stack out of level order), the components
+   still open join the ones below them (their levels rise down the stack towards the
+   sentinel) and the heap is emptied for the next flood. Returns the new top. */
+static uint32_t flood_stopped(mser_ctx_t *c, uint32_t top)
+{
+    uint32_t t = top;
+    if (c->heap_full != 0) {
+        uint32_t v;
+        while (t > 1u) {
+            comp_merge(c, t - 1u, t);
+            t--;
+        }
+        for (v = 0u; v < MSER_LEVELS; v++) {
+            c->heap_top[v] = MSER_NONE;
+        }
+        c->heap_free = MSER_NONE;
+        c->heap_next = 0u;
+        c->heap_full = 0;
+    }
+    return t;
+}
+
 /* Build the tree of the pixels connected to p (not yet reached): the whole interior when
    no pass limit walls parts of it off. */
 static void flood_from(mser_ctx_t *c, uint32_t start)
@@ -412,9 +435,7 @@ static void flood_from(mser_ctx_t *c, uint32_t start)
         comp_add_pixel(&c->comp[top], p);
         e = 0u;
         if (c->heap_full != 0) {
-            /* the heap's bound: the flood stops here, before a lost entry could leave the
-               component stack out of level order; what it has not taken stays unflooded */
-            done = 1;
+            done = 1; /* the heap's bound: stop before a lost entry disorders the stack */
         } else if (c->heap_top[cur] != MSER_NONE) {
             e = heap_pop(c, cur);
         } else {
@@ -440,21 +461,7 @@ static void flood_from(mser_ctx_t *c, uint32_t start)
         p = e >> HEAP_DIR_BITS;
         k = e & HEAP_DIR_MASK;
     }
-    if (c->heap_full != 0) {
-        /* a stopped flood: the components still open join the ones below them (their
-           levels rise up the stack), and the heap is emptied for the next flood */
-        uint32_t v;
-        while (top > 1u) {
-            comp_merge(c, top - 1u, top);
-            top--;
-        }
-        for (v = 0u; v < MSER_LEVELS; v++) {
-            c->heap_top[v] = MSER_NONE;
-        }
-        c->heap_free = MSER_NONE;
-        c->heap_next = 0u;
-        c->heap_full = 0;
-    }
+    top = flood_stopped(c, top);
     while ((top > 0u) && ((uint32_t)c->comp[top].level != MSER_SENTINEL)) {
         comp_grow(c, top, MSER_SENTINEL);
         top--;
