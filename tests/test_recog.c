@@ -446,6 +446,92 @@ static void test_grey_frame(void)
 }
 
 /* Two signs, room for one: the distinct capacity status, and one detection written. */
+/* The strip configuration (sbr_recog_detect_strips()) on the 160 x 96 frame in bands of 64
+   rows overlapping by 40 (tops 0, 24, 32; cores [0, 44), [44, 68), [68, 96)). A sign of 36
+   px centred at row 50 lies wholly in the second and third bands and partly in the
+   first: it is reported once, by the band whose core holds its centre, as the whole
+   frame reports it. */
+static void test_strips(void)
+{
+    const sbr_image_t v = view();
+    sbr_recog_t rec;
+    sbr_recog_stats_t st;
+    sbr_recog_stats_t whole_st;
+    sbr_detection_t whole[4];
+    uint32_t n = 0u;
+    uint32_t m = 0u;
+    const size_t need = sbr_recog_strip_workspace_size(&g_cfg, W, H, 64u);
+    draw_sign(112.0f, 50.0f, 18.0f);
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)sbr_recog_workspace_size(&g_cfg, W, 64u), (uint32_t)need);
+    TEST_ASSERT_TRUE(need < sbr_recog_workspace_size(&g_cfg, W, H));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_init(&rec, &g_cfg, &g_model, &g_picto, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect(&rec, &v, NULL, whole, 4u, &m, &whole_st));
+    TEST_ASSERT_EQUAL_UINT32(1u, m);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_init(&rec, &g_cfg, &g_model, &g_picto, g_ws, need));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect_strips(&rec, &v, 64u, 40u, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_EQUAL_UINT32(whole[0].class_id, g_dets[0].class_id);
+    TEST_ASSERT_UINT32_WITHIN(1u, whole[0].box.x, g_dets[0].box.x);
+    TEST_ASSERT_UINT32_WITHIN(1u, whole[0].box.y, g_dets[0].box.y);
+    TEST_ASSERT_UINT32_WITHIN(1u, whole[0].box.width, g_dets[0].box.width);
+    TEST_ASSERT_UINT32_WITHIN(1u, whole[0].box.height, g_dets[0].box.height);
+    /* three bands' counters: the sign's parts come from the two bands that hold all of it
+       (and from the first, which holds part of it) */
+    TEST_ASSERT_TRUE(st.parts >= (2u * whole_st.parts));
+    TEST_ASSERT_EQUAL_UINT32(0u, st.capacity_hit);
+    /* a band no lower than the frame: one band, the whole frame's result, bit for bit */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_init(&rec, &g_cfg, &g_model, &g_picto, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect_strips(&rec, &v, H, 0u, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_TRUE(same_detection(&whole[0], &g_dets[0]));
+    TEST_ASSERT_EQUAL_MEMORY(&whole_st, &st, sizeof st);
+    /* a band too large for the workspace the recogniser was given */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_init(&rec, &g_cfg, &g_model, &g_picto, g_ws, need));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_WORKSPACE, sbr_recog_detect_strips(&rec, &v, 72u, 40u, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.parts);
+}
+
+/* Two signs in different bands' cores: both reported, highest score first; a capacity
+   of one keeps the better and says so; bad arguments get their statuses. */
+static void test_strips_capacity_and_input(void)
+{
+    sbr_image_t v = view();
+    sbr_recog_t rec;
+    sbr_recog_stats_t st;
+    uint32_t n = 9u;
+    draw_sign(40.0f, 22.0f, 14.0f);
+    draw_sign(112.0f, 74.0f, 16.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_init(&rec, &g_cfg, &g_model, &g_picto, g_ws, sizeof g_ws));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_recog_detect_strips(&rec, &v, 64u, 40u, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(2u, n);
+    TEST_ASSERT_TRUE(g_dets[0].score >= g_dets[1].score);
+    TEST_ASSERT_TRUE(((g_dets[0].box.y < 44u) && (g_dets[1].box.y > 44u)) ||
+                     ((g_dets[1].box.y < 44u) && (g_dets[0].box.y > 44u)));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_CAPACITY, sbr_recog_detect_strips(&rec, &v, 64u, 40u, g_dets, 1u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_TRUE(st.parts > 0u); /* counters written with the capacity status */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_recog_detect_strips(NULL, &v, 64u, 40u, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_recog_detect_strips(&rec, NULL, 64u, 40u, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_recog_detect_strips(&rec, &v, 64u, 40u, NULL, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_recog_detect_strips(&rec, &v, 64u, 40u, g_dets, 16u, NULL, &st));
+    n = 9u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect_strips(&rec, &v, 0u, 0u, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.parts);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_detect_strips(&rec, &v, 64u, 64u, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_recog_detect_strips(&rec, &v, 64u, 40u, g_dets, 0u, &n, &st));
+    v.stride = 1u; /* shorter than a row */
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, sbr_recog_detect_strips(&rec, &v, 64u, 40u, g_dets, 16u, &n, &st));
+    rec.check ^= 1u; /* a recogniser changed since its init */
+    v = view();
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_STATE, sbr_recog_detect_strips(&rec, &v, 64u, 40u, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_recog_strip_workspace_size(&g_cfg, W, H, 0u));
+    TEST_ASSERT_EQUAL_UINT32(0u, (uint32_t)sbr_recog_strip_workspace_size(NULL, W, H, 64u));
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)sbr_recog_workspace_size(&g_cfg, W, H),
+                             (uint32_t)sbr_recog_strip_workspace_size(&g_cfg, W, H, 1000u));
+}
+
 static void test_capacity(void)
 {
     const sbr_image_t v = view();
@@ -1087,6 +1173,18 @@ static void test_builtin_model_and_sizes(void)
                              (uint32_t)sbr_recog_workspace_size(&d, 333u, 251u));
     /* the workspace of the default at 1360 x 800 (docs/results/realtime.md) */
     TEST_ASSERT_EQUAL_UINT32(7193960u, (uint32_t)SBR_RECOG_WORKSPACE_DEFAULT_SIZE(1360u, 800u, 1u));
+    /* the strip configuration: one band's workspace, the macro equal to the function, in
+       the 2 MiB an MCU-class ECU's SRAM holds */
+    sbr_recog_config_strips(&d);
+    TEST_ASSERT_EQUAL_UINT32(SBR_RECOG_STRIP_MAX_CANDIDATES, d.max_candidates);
+    TEST_ASSERT_EQUAL_UINT32(SBR_RECOG_STRIP_MAX_NODES, d.parts.mser.max_nodes);
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_RECOG_WORKSPACE_STRIP_SIZE(1360u),
+                             (uint32_t)sbr_recog_strip_workspace_size(&d, 1360u, 800u, SBR_RECOG_STRIP_ROWS));
+    TEST_ASSERT_EQUAL_UINT32((uint32_t)SBR_RECOG_WORKSPACE_STRIP_SIZE(640u),
+                             (uint32_t)sbr_recog_strip_workspace_size(&d, 640u, 480u, SBR_RECOG_STRIP_ROWS));
+    TEST_ASSERT_EQUAL_UINT32(1939176u, (uint32_t)SBR_RECOG_WORKSPACE_STRIP_SIZE(1360u));
+    TEST_ASSERT_TRUE(SBR_RECOG_WORKSPACE_STRIP_SIZE(1360u) <= (2u * 1024u * 1024u));
+    sbr_recog_config_strips(NULL); /* no-op */
 }
 
 int main(void)
@@ -1097,6 +1195,8 @@ int main(void)
     RUN_TEST(test_cascade_finds_the_parts_that_did_not_vote);
     RUN_TEST(test_roi_offsets_boxes);
     RUN_TEST(test_capacity);
+    RUN_TEST(test_strips);
+    RUN_TEST(test_strips_capacity_and_input);
     RUN_TEST(test_grey_frame);
     RUN_TEST(test_bad_input);
     RUN_TEST(test_recog_object);

@@ -4,7 +4,7 @@
 //   sbr_detect --input DIR --detections FILE [--annotated DIR] [--overview FILE] [--gt FILE|none] [--canlog FILE]
 //              [--all-detections FILE] [--summary FILE] [--model FILE] [--picto FILE]
 //              [--no-picto] [--range A-B] [--grey]
-//              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--quiet] [--repeat N] [--callgrind]
+//              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--strips [--strip-bands ROWS,OVERLAP]] [--quiet] [--repeat N] [--callgrind]
 //              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
 //              [--refine-first-score S] [--refine-score S] [--views N] [--view-score S] [--maps MASK]
 //              [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-heap N] [--max-candidates N]
@@ -162,6 +162,9 @@ struct Options {
     std::vector<unsigned> roi_v;  // X, Y, W, H
     sbr_rect_t roi{};
     bool use_roi = false;
+    bool strips = false;
+    std::vector<unsigned> strips_v;  // ROWS, OVERLAP
+    uint32_t strip_rows = 0, strip_overlap = 0;  // rows 0: whole frames
     sbr_recog_config_t cfg{};
     RecogCli rc;
 };
@@ -169,6 +172,10 @@ struct Options {
 // -1: go on; otherwise the exit status.
 int parse_options(int argc, char **argv, Options &o) {
     sbr_recog_config_default(&o.cfg);
+    // --strips starts from the strip configuration's bounds; explicit --max-* options,
+    // parsed into the same fields afterwards, still override them
+    for (int i = 1; i < argc; ++i)
+        if (std::string(argv[i]) == "--strips") sbr_recog_config_strips(&o.cfg);
     CLI::App app{"sbr_detect: sbr's recogniser over a folder of recorded images (docs/usage/detect.md)"};
     app.add_option("--input", o.input, "folder of JPEG/PNG/PPM images (or a GTSDB folder)")->required();
     app.add_option("--detections", o.det_path,
@@ -188,10 +195,20 @@ int parse_options(int argc, char **argv, Options &o) {
     add_range_option(app, o.range, "keep images numbered A..B");
     app.add_option("--threshold", o.threshold, "operating point (default: the model's)")
         ->check(finite_range(0.0, 1.0));
-    app.add_option("--roi", o.roi_v, "run on this region of each image only")
+    auto *roi = app.add_option("--roi", o.roi_v, "run on this region of each image only")
+                    ->delimiter(',')
+                    ->expected(4)
+                    ->type_name("X,Y,W,H");
+    auto *strips = app.add_flag("--strips", o.strips,
+                                "the strip configuration: each frame in bands of 256 full rows overlapping by 128, "
+                                "the bands' bounds (sbr_recog_config_strips, sbr_recog_detect_strips; "
+                                "explicit --max-* options still apply)")
+                       ->excludes(roi);
+    app.add_option("--strip-bands", o.strips_v, "with --strips: bands of ROWS rows, neighbours sharing OVERLAP")
         ->delimiter(',')
-        ->expected(4)
-        ->type_name("X,Y,W,H");
+        ->expected(2)
+        ->type_name("ROWS,OVERLAP")
+        ->needs(strips);
     app.add_flag("--quiet", o.quiet, "no progress bar");
     app.add_flag("--grey", o.grey, "give the recogniser each image as a grey (GRAY8) frame");
     app.add_option("--repeat", o.repeat, "runs per frame; the fastest is reported")
@@ -211,6 +228,19 @@ int parse_options(int argc, char **argv, Options &o) {
         if (o.roi.width == 0 || o.roi.height == 0) {
             std::fprintf(stderr, "sbr_detect: --roi %u,%u,%u,%u: the width and height must be at least 1\n", o.roi.x,
                          o.roi.y, o.roi.width, o.roi.height);
+            return 2;
+        }
+    }
+    if (o.strips) {
+        o.strip_rows = SBR_RECOG_STRIP_ROWS;
+        o.strip_overlap = SBR_RECOG_STRIP_OVERLAP;
+    }
+    if (!o.strips_v.empty()) {
+        o.strip_rows = o.strips_v[0];
+        o.strip_overlap = o.strips_v[1];
+        if (o.strip_rows == 0 || o.strip_overlap >= o.strip_rows) {
+            std::fprintf(stderr, "sbr_detect: --strip-bands %u,%u: ROWS must be at least 1 and OVERLAP below ROWS\n",
+                         o.strip_rows, o.strip_overlap);
             return 2;
         }
     }
@@ -371,8 +401,12 @@ sbr_status_t detect_timed(const Options &o, CallgrindClock &cg, const std::strin
         (void)cg;
         (void)file;
 #endif
-        st = sbr_recog_detect(&t.rec, &v, o.use_roi ? &o.roi : nullptr, t.dets.data(), uint32_t(t.dets.size()), &n,
-                              &run_stats);
+        if (o.strip_rows != 0)
+            st = sbr_recog_detect_strips(&t.rec, &v, o.strip_rows, o.strip_overlap, t.dets.data(),
+                                         uint32_t(t.dets.size()), &n, &run_stats);
+        else
+            st = sbr_recog_detect(&t.rec, &v, o.use_roi ? &o.roi : nullptr, t.dets.data(), uint32_t(t.dets.size()),
+                                  &n, &run_stats);
 #ifdef SBR_HAVE_CALLGRIND
         if (o.callgrind) {
             const std::string label = "frame " + cg.frame + " end";
@@ -442,7 +476,8 @@ bool detect_image(const Options &o, const Models &m, CallgrindClock &cg, const s
     if (o.grey) cv::cvtColor(img, grey, cv::COLOR_BGR2GRAY);
     const sbr_image_t v = bgr_view(o.grey ? grey : img);
     const uint32_t w = o.use_roi ? o.roi.width : v.width, h = o.use_roi ? o.roi.height : v.height;
-    const size_t need = sbr_recog_workspace_size(&o.cfg, w, h);
+    const size_t need = o.strip_rows != 0 ? sbr_recog_strip_workspace_size(&o.cfg, w, h, o.strip_rows)
+                                          : sbr_recog_workspace_size(&o.cfg, w, h);
     if (!t.rec_ready || need > t.ws.size() * 8) {  // a larger workspace: the recogniser set up on it
         if (need > t.ws.size() * 8 || t.ws.empty()) t.ws.assign(need / 8 + 1, 0);
         const sbr_status_t ist = sbr_recog_init(&t.rec, &o.cfg, m.model, m.class_stage, t.ws.data(), t.ws.size() * 8);
@@ -526,7 +561,9 @@ bool run_image(const Options &o, const Models &m, CallgrindClock &cg, const std:
 std::string bounds_text(const Options &o, const Tally &t) {
     std::ostringstream s;
     const size_t fr = t.frames_run;
-    s << "internal bounds (each caps a frame's work and memory; docs/usage/detect.md):\n";
+    s << (o.strip_rows != 0 ? "internal bounds (each caps a band's work and memory, --strips; a frame counts when one "
+                              "of its bands reached it; docs/usage/detect.md):\n"
+                            : "internal bounds (each caps a frame's work and memory; docs/usage/detect.md):\n");
     s << "  class-stage candidates (--max-candidates " << o.cfg.max_candidates << "): reached on "
       << t.capacity_kind[4] << " of " << fr << " frames";
     if (t.capacity_kind[4] > 0)
@@ -589,8 +626,12 @@ std::string summary(const Options &o, const Models &m, const std::string &dir, s
                       percentile(t.ms_stage[k], 0.5), percentile(t.ms_stage[k], 0.95));
         s << buf;
     }
-    s << "workspace: " << t.ws_bytes << " bytes (" << (o.use_roi ? "ROI" : "frame") << ", subsample "
-      << o.cfg.parts.subsample << ")\n";
+    s << "workspace: " << t.ws_bytes << " bytes ("
+      << (o.use_roi ? std::string("ROI")
+                    : o.strip_rows != 0 ? "bands of " + std::to_string(o.strip_rows) + " rows overlapping by " +
+                                              std::to_string(o.strip_overlap)
+                                        : std::string("frame"))
+      << ", subsample " << o.cfg.parts.subsample << ")\n";
     s << bounds_text(o, t);
     if (t.frames_run > 0 && t.classified > 0) {
         const double fr = double(t.frames_run);

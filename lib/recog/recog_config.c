@@ -64,6 +64,17 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
     }
 }
 
+void sbr_recog_config_strips(sbr_recog_config_t *cfg)
+{
+    if (cfg != NULL) {
+        sbr_recog_config_default(cfg);
+        cfg->parts.mser.max_nodes = SBR_RECOG_STRIP_MAX_NODES;
+        cfg->parts.mser.max_heap = SBR_RECOG_STRIP_MAX_HEAP;
+        cfg->max_parts = SBR_RECOG_STRIP_MAX_PARTS;
+        cfg->max_candidates = SBR_RECOG_STRIP_MAX_CANDIDATES;
+    }
+}
+
 /* Is v in [lo, hi] (false for NaN)? */
 static int in_range(float v, float lo, float hi)
 {

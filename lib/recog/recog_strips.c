@@ -1,0 +1,180 @@
+/* SPDX-License-Identifier: MIT */
+/*
+ * The strip configuration (include/sbr/recog.h, sbr_recog_detect_strips()): the frame in
+ * bands of full rows that overlap, each band recognised as a region of interest, each
+ * detection kept by the one band whose core holds its centre.
+ */
+#include "recog_internal.h"
+
+#include <string.h>
+
+/* The bands of a frame `height` rows tall: band k starts at row min(k step, height - rows),
+   step = rows - overlap; a frame no taller than a band is one band. */
+static uint32_t strip_count(uint32_t height, uint32_t rows, uint32_t overlap)
+{
+    const uint32_t step = rows - overlap;
+    uint32_t n = 1u;
+    if (height > rows) {
+        n = ((((height - rows) + step) - 1u) / step) + 1u;
+    }
+    return n;
+}
+
+static uint32_t strip_top(uint32_t k, uint32_t height, uint32_t rows, uint32_t overlap)
+{
+    uint32_t y = 0u;
+    if (height > rows) {
+        y = k * (rows - overlap);
+        if (y > (height - rows)) {
+            y = height - rows;
+        }
+    }
+    return y;
+}
+
+/* Band k's core: the rows whose detections it keeps. The first core starts at row 0, the
+   last ends at the frame's bottom; in between a core ends half the overlap above its
+   band's bottom and the next core starts there. A sign at most `overlap` tall whose
+   centre lies in a core lies wholly inside that core's band. */
+static uint32_t core_end(uint32_t k, uint32_t bands, uint32_t height, uint32_t rows,
+                         uint32_t overlap)
+{
+    uint32_t e = height;
+    if ((k + 1u) < bands) {
+        e = (strip_top(k, height, rows, overlap) + rows) - (overlap / 2u);
+    }
+    return e;
+}
+
+/* Higher score first; equal scores in row, then column order (the same order on every
+   target). */
+static int det_before(const void *a, const void *b, int mode)
+{
+    const sbr_detection_t *da = (const sbr_detection_t *)a;
+    const sbr_detection_t *db = (const sbr_detection_t *)b;
+    int before = 0;
+    (void)mode;
+    if (da->score > db->score) {
+        before = 1;
+    } else if (da->score < db->score) {
+        /* after */
+    } else if (da->box.y < db->box.y) {
+        before = 1;
+    } else if ((da->box.y == db->box.y) && (da->box.x < db->box.x)) {
+        before = 1;
+    } else {
+        /* after, or the same place */
+    }
+    return before;
+}
+
+/* One band's counters added to the frame's. */
+static void stats_add(sbr_recog_stats_t *t, const sbr_recog_stats_t *s)
+{
+    uint32_t i;
+    t->parts_stats.regions += s->parts_stats.regions;
+    t->parts_stats.skipped_shape += s->parts_stats.skipped_shape;
+    t->parts_stats.skipped_contour += s->parts_stats.skipped_contour;
+    t->parts_stats.capacity_hit |= s->parts_stats.capacity_hit;
+    t->parts += s->parts;
+    t->matches += s->matches;
+    t->votes += s->votes;
+    t->hypotheses += s->hypotheses;
+    t->verified += s->verified;
+    t->rejected += s->rejected;
+    t->classified += s->classified;
+    t->refined += s->refined;
+    t->views += s->views;
+    t->extra_looks += s->extra_looks;
+    t->rim_rejected += s->rim_rejected;
+    t->gated += s->gated;
+    t->capacity_hit |= s->capacity_hit;
+    for (i = 0u; i < (uint32_t)SBR_RECOG_STAGES; i++) {
+        t->stage_ticks[i] += s->stage_ticks[i];
+    }
+}
+
+size_t sbr_recog_strip_workspace_size(const sbr_recog_config_t *cfg, uint32_t width,
+                                      uint32_t height, uint32_t rows)
+{
+    uint32_t h = height;
+    if (rows < h) {
+        h = rows;
+    }
+    return (rows == 0u) ? 0u : sbr_recog_workspace_size(cfg, width, h);
+}
+
+sbr_status_t sbr_recog_detect_strips(sbr_recog_t *rec, const sbr_image_t *img, uint32_t rows,
+                                     uint32_t overlap, sbr_detection_t *dets, uint32_t capacity,
+                                     uint32_t *count, sbr_recog_stats_t *stats)
+{
+    sbr_recog_stats_t total;
+    sbr_recog_stats_t band;
+    uint32_t bands;
+    uint32_t k;
+    uint32_t n = 0u;
+    int full = 0;
+    sbr_status_t st;
+
+    if (stats != NULL) {
+        (void)memset(stats, 0, sizeof *stats);
+    }
+    if ((rec == NULL) || (img == NULL) || (dets == NULL) || (count == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    *count = 0u;
+    st = sbr_image_check(img);
+    if (st != SBR_OK) {
+        return st;
+    }
+    if ((rows == 0u) || (overlap >= rows)) {
+        return SBR_ERR_RANGE;
+    }
+    if (capacity == 0u) {
+        return SBR_ERR_SIZE;
+    }
+    (void)memset(&total, 0, sizeof total);
+    bands = strip_count(img->height, rows, overlap);
+    for (k = 0u; k < bands; k++) {
+        const uint32_t lo = (k == 0u) ? 0u : core_end(k - 1u, bands, img->height, rows, overlap);
+        const uint32_t hi = core_end(k, bands, img->height, rows, overlap);
+        sbr_rect_t roi;
+        uint32_t got = 0u;
+        uint32_t base;
+        uint32_t i;
+        roi.x = 0u;
+        roi.y = strip_top(k, img->height, rows, overlap);
+        roi.width = img->width;
+        roi.height = (img->height < rows) ? img->height : rows;
+        if (n >= capacity) {
+            full = 1; /* no room left for this band's detections */
+            break;
+        }
+        st = sbr_recog_detect(rec, img, &roi, &dets[n], capacity - n, &got, &band);
+        if (st == SBR_ERR_CAPACITY) {
+            full = 1;
+        } else if (st != SBR_OK) {
+            *count = 0u;
+            return st;
+        } else {
+            /* complete */
+        }
+        stats_add(&total, &band);
+        /* keep the detections whose centre row lies in the band's core */
+        base = n;
+        for (i = 0u; i < got; i++) {
+            const sbr_detection_t d = dets[base + i];
+            const uint32_t cy = d.box.y + (d.box.height / 2u);
+            if ((cy >= lo) && (cy < hi)) {
+                dets[n] = d;
+                n++;
+            }
+        }
+    }
+    sbr_util_heap_sort((uint8_t *)(void *)dets, n, sizeof(sbr_detection_t), det_before, 0);
+    *count = n;
+    if (stats != NULL) {
+        *stats = total;
+    }
+    return (full != 0) ? SBR_ERR_CAPACITY : SBR_OK;
+}
