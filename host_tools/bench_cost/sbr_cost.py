@@ -13,14 +13,16 @@ Instructions per frame of sbr_recog_detect, which do not depend on the machine's
     the host's on the same pixels (box edges within 1 px, scores within 1e-3, the
     tolerance of the scene test, cmake/compare_scene.py);
 the Cortex-M4F's cost of one class-stage look (ports/cortex_m/sbr_picto_m4.c: features
-and classifier apart, per box side); and both on the hostile frames of sbr_hostile_frames (noise, a checkerboard, a grid of
+and classifier apart, per box side); the strip configuration (sbr_detect --strips; on the
+Cortex-M4F sbr_cost_m4_strips.elf beside the image, its workspace in the SRAM) on the same
+frames; and both on the hostile frames of sbr_hostile_frames (noise, a checkerboard, a grid of
 sign-like rings, random blocks: the worst case a schedule must allow for), next to
 wall-clock figures of sbr_detect --repeat N on the development split (these do depend on
 the machine; the fastest of N runs per frame).
 
 usage: sbr_cost.py --bin DIR --m4-elf ELF --gtsdb DIR [--range A-B] [--m4-range A-B]
                    [--wall-range A-B] [--repeat N] [--out DIR] [--no-wall] [--no-m4]
-                   [--no-hostile] [-- sbr_detect options...]
+                   [--no-hostile] [--no-strips] [-- sbr_detect options...]
 Options after -- (e.g. --model F --picto F, --max-candidates N) go to the host runs; the
 Cortex-M4 image always runs the built-in model with the default options.
 Prints the tables and writes cost.txt and cost.json into --out.
@@ -174,18 +176,22 @@ def hostile_frames(args, work):
     return d
 
 
-def cortex_m4(args, work, ppm_dir=None):
-    """Per-frame Cortex-M4 figures on the GTSDB frames of --m4-range (converted to PPM), or
-    on the PPM frames of ppm_dir."""
+def cortex_m4(args, work, ppm_dir=None, elf=None, host_opts=()):
+    """Per-frame Cortex-M4 figures of the bench image `elf` (default --m4-elf) on the GTSDB
+    frames of --m4-range (converted to PPM), or on the PPM frames of ppm_dir; host_opts:
+    the sbr_detect options of the same configuration on the host."""
+    elf = elf or args.m4_elf
     if ppm_dir is None:
         ppm_dir = os.path.join(work, "ppm")
-        shutil.rmtree(ppm_dir, ignore_errors=True)
-        files = frames_of(args.gtsdb, args.m4_range)
-        run([os.path.join(args.bin, "sbr_to_ppm"), "--out", ppm_dir] + files)
-    # the host's detections on the same pixels, built-in model, default options (floor 0.3)
-    host_det = os.path.join(work, "m4_%s_host_detections.txt" % os.path.basename(ppm_dir))
+        if not os.path.isdir(ppm_dir):
+            files = frames_of(args.gtsdb, args.m4_range)
+            run([os.path.join(args.bin, "sbr_to_ppm"), "--out", ppm_dir] + files)
+    # the host's detections on the same pixels, built-in model, the configuration's options
+    # (floor 0.3)
+    tag = os.path.basename(ppm_dir) + ("_strips" if "--strips" in host_opts else "")
+    host_det = os.path.join(work, "m4_%s_host_detections.txt" % tag)
     run([os.path.join(args.bin, "sbr_detect"), "--input", ppm_dir, "--detections", host_det,
-         "--threshold", "0.3", "--min-score", "0.3", "--quiet"])
+         "--threshold", "0.3", "--min-score", "0.3", "--quiet"] + list(host_opts))
     host = {}
     with open(host_det) as f:
         for line in f:
@@ -201,7 +207,7 @@ def cortex_m4(args, work, ppm_dir=None):
         os.symlink(os.path.abspath(os.path.join(ppm_dir, name)), link)
         out = run(["qemu-system-arm", "-M", "mps2-an386", "-cpu", "cortex-m4", "-nographic",
                    "-icount", "shift=0", "-semihosting-config", "enable=on,target=native",
-                   "-kernel", os.path.abspath(args.m4_elf)], cwd=run_dir, timeout=1800)
+                   "-kernel", os.path.abspath(elf)], cwd=run_dir, timeout=1800)
         fr = {"stages": {}, "dets": []}
         for line in out.splitlines():
             if line.startswith("stage "):
@@ -297,6 +303,37 @@ def m4_table(m4, lines):
     return [m4[n].get("total", 0) for n in m4]
 
 
+def strips(args, extra, lines, report, host_med):
+    """The strip configuration (sbr_detect --strips; sbr_cost_m4_strips.elf) on the frames
+    of --range and --m4-range: tables and medians into lines and report."""
+    st = host_callgrind(args, ["--strips"] + extra, args.out, name="callgrind_strips")
+    report["host_strips"] = st
+    lines.append("")
+    lines.append("the strip configuration (--strips: bands of 256 rows overlapping by 128, one band's workspace), "
+                 "x86-64, millions of instructions:")
+    smed, _ = host_table(st, lines, True)
+    report["host_strips_median"] = smed
+    worst = max(st, key=lambda n: st[n]["total"])
+    lines.append("host median, strips: %.3f x 10^9 instructions per frame (worst %.3f x 10^9, %s), %.2f x the whole "
+                 "frame's" % (smed["total"] / 1e9, st[worst]["total"] / 1e9, worst, smed["total"] / host_med["total"]))
+    elf = os.path.join(os.path.dirname(os.path.abspath(args.m4_elf or ".")), "sbr_cost_m4_strips.elf")
+    if args.no_m4 or not args.m4_elf or not os.path.exists(elf):
+        return
+    m4 = cortex_m4(args, args.out, elf=elf, host_opts=["--strips"])
+    report["cortex_m4_strips"] = m4
+    lines.append("")
+    lines.append("the strip configuration on the Cortex-M4F (sbr_cost_m4_strips.elf, workspace in the SRAM), "
+                 "frames %05d-%05d, millions of instructions:" % args.m4_range)
+    tot = m4_table(m4, lines)
+    same = sum(1 for n in m4 if m4[n]["same_as_host"])
+    worst = max(m4, key=lambda n: m4[n].get("total", 0))
+    report["cortex_m4_strips_median"] = statistics.median(tot)
+    lines.append("Cortex-M4 median, strips: %.3f x 10^9 instructions per frame (worst %.3f x 10^9, %s); workspace %s"
+                 " bytes; detections the same as the host's --strips on %d of %d frames"
+                 % (statistics.median(tot) / 1e9, m4[worst].get("total", 0) / 1e9, worst,
+                    next(iter(m4.values())).get("workspace"), same, len(m4)))
+
+
 def main():
     argv = sys.argv[1:]
     extra = []
@@ -315,6 +352,7 @@ def main():
     ap.add_argument("--no-wall", action="store_true")
     ap.add_argument("--no-m4", action="store_true")
     ap.add_argument("--no-hostile", action="store_true", help="skip the hostile frames")
+    ap.add_argument("--no-strips", action="store_true", help="skip the strip configuration")
     args = ap.parse_args(argv)
     if args.m4_range is None:
         args.m4_range = args.range
@@ -387,6 +425,9 @@ def main():
             lines.append("sbr_recog_init (once, not per frame: the configuration and models checked): "
                          "%.2f x 10^6 instructions" % (statistics.median(inits) / 1e6))
             report["cortex_m4_init"] = statistics.median(inits)
+
+    if not args.no_strips:
+        strips(args, extra, lines, report, med)
 
     if not args.no_wall:
         w = wall_clock(args, extra, args.out)

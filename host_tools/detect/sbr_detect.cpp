@@ -122,9 +122,11 @@ struct CallgrindClock {
 uint32_t callgrind_clock(void *ctx) {
     auto *c = static_cast<CallgrindClock *>(ctx);
 #ifdef SBR_HAVE_CALLGRIND
-    // the first call ends the set-up (checks, workspace layout), call k + 1 ends stage k
+    // per sbr_recog_detect call (one per band with --strips): the first call ends the
+    // set-up (checks, workspace layout), call k + 1 ends stage k
+    const uint32_t k = c->tick % (uint32_t(SBR_RECOG_STAGES) + 1u);
     const std::string label =
-        "frame " + c->frame + (c->tick == 0 ? std::string(" setup") : " stage " + std::to_string(c->tick - 1));
+        "frame " + c->frame + (k == 0 ? std::string(" setup") : " stage " + std::to_string(k - 1));
     CALLGRIND_DUMP_STATS_AT(label.c_str());
 #endif
     return ++c->tick;

@@ -9,7 +9,14 @@
  * workspace; the recogniser's workspace takes the PSRAM. When frame and workspace do not
  * fit, the largest band of full rows (centred vertically) that fits is processed and said
  * so. The recogniser runs with its defaults
- * and the built-in model (lib/models), its stage clock reading the CMSDK APB timer 0
+ * and the built-in model (lib/models).
+ *
+ * Built with SBR_BENCH_STRIPS (sbr_cost_m4_strips.elf): the strip configuration
+ * (sbr_recog_config_strips(), sbr_recog_detect_strips()) on the whole frame, the frame in
+ * the PSRAM (a camera's frame buffer) and the workspace, SBR_RECOG_WORKSPACE_STRIP_SIZE
+ * for frames up to 1360 wide, a static array in the SRAM (what an MCU-class ECU has).
+ *
+ * Either way its stage clock reads the CMSDK APB timer 0
  * (25 MHz, counting down). With -icount shift=0 qemu advances virtual time by 1 ns per
  * instruction, so a timer tick is a fixed number of instructions: it is calibrated at
  * start against a loop of known length (2 instructions per iteration) and every figure is
@@ -39,7 +46,13 @@
    image's data, its heap and its stack). */
 #define SRAM_FRAME_BYTES (3u * 1024u * 1024u + 512u * 1024u)
 
+#if defined(SBR_BENCH_STRIPS)
+#define BENCH_MAX_WIDTH 1360u
+/* the strip configuration's workspace in the SRAM */
+static uint64_t g_ws[(SBR_RECOG_WORKSPACE_STRIP_SIZE(BENCH_MAX_WIDTH) / 8u) + 1u];
+#else
 static uint8_t g_frame[SRAM_FRAME_BYTES];
+#endif
 
 /* The recogniser's stage clock: the bench timer (sbr_bench_timer.h). */
 static uint32_t timer_clock(void *ctx)
@@ -98,19 +111,54 @@ int main(void)
         return 1;
     }
     frame_bytes = (size_t)w * h * 3u;
+#if !defined(SBR_BENCH_STRIPS)
     if (frame_bytes <= SRAM_FRAME_BYTES) {
         frame = g_frame;
     }
+#endif
     if ((frame_bytes >= PSRAM_BYTES) || (fread(frame, 1u, frame_bytes, f) != frame_bytes)) {
         printf("error: frame.ppm too large or short\n");
         return 1;
     }
     (void)fclose(f);
 
-    sbr_recog_config_default(&cfg);
-    cfg.clock = timer_clock;
     (void)sbr_model_gtsdb(&model);
     (void)sbr_picto_gtsdb(&picto);
+    img.data = frame;
+    img.width = w;
+    img.height = h;
+    img.stride = w * 3u;
+    img.format = SBR_PIXEL_RGB888;
+#if defined(SBR_BENCH_STRIPS)
+    sbr_recog_config_strips(&cfg);
+    cfg.clock = timer_clock;
+    ws_bytes = sbr_recog_strip_workspace_size(&cfg, w, h, SBR_RECOG_STRIP_ROWS);
+    if ((ws_bytes == 0u) || (ws_bytes > sizeof g_ws)) {
+        printf("error: the strip configuration of a %u-wide frame needs %u bytes, the bench has %u\n",
+               (unsigned)w, (unsigned)ws_bytes, (unsigned)sizeof g_ws);
+        return 1;
+    }
+    printf("view: strips of %u rows overlapping by %u, %u x %u in SRAM\n", (unsigned)SBR_RECOG_STRIP_ROWS,
+           (unsigned)SBR_RECOG_STRIP_OVERLAP, (unsigned)w, (unsigned)h);
+    printf("workspace: %u\n", (unsigned)ws_bytes);
+    t0 = ticks_now();
+    st = sbr_recog_init(&rec, &cfg, &model, &picto, g_ws, ws_bytes);
+    t1 = ticks_now();
+    printf("init: %.0f\n", (double)((float)(t1 - t0) * per_tick));
+    if (st != SBR_OK) {
+        printf("status: %s\n", sbr_status_str(st));
+        return 1;
+    }
+    (void)band;
+    (void)roi;
+    (void)ws_off;
+    t0 = ticks_now();
+    st = sbr_recog_detect_strips(&rec, &img, SBR_RECOG_STRIP_ROWS, SBR_RECOG_STRIP_OVERLAP, dets, 64u, &n,
+                                 &stats);
+    t1 = ticks_now();
+#else
+    sbr_recog_config_default(&cfg);
+    cfg.clock = timer_clock;
     ws_off = (frame == g_frame) ? 0u : ((frame_bytes + 7u) & ~(size_t)7u);
     /* the largest band of full rows whose workspace fits beside the frame */
     for (band = h; band >= 16u; band -= 8u) {
@@ -123,11 +171,6 @@ int main(void)
         printf("error: no band of the frame fits in the PSRAM\n");
         return 1;
     }
-    img.data = frame;
-    img.width = w;
-    img.height = h;
-    img.stride = w * 3u;
-    img.format = SBR_PIXEL_RGB888;
     roi.x = 0u;
     roi.y = (h - band) / 2u;
     roi.width = w;
@@ -147,6 +190,7 @@ int main(void)
     t0 = ticks_now();
     st = sbr_recog_detect(&rec, &img, (band == h) ? NULL : &roi, dets, 64u, &n, &stats);
     t1 = ticks_now();
+#endif
     printf("status: %s\n", sbr_status_str(st));
     for (k = 0u; k < (uint32_t)SBR_RECOG_STAGES; k++) {
         printf("stage %u: %.0f\n", (unsigned)k, (double)((float)stats.stage_ticks[k] * per_tick));

@@ -14,7 +14,10 @@ Checks what the figures must satisfy whatever the code's speed (no timing is ass
     most the call's total, the whole frame fitted, and the detections are the host's on
     the same pixels;
   - the five hostile frames measured on both (every stage adding up; on the Cortex-M4F
-    the whole frame, a status of success or of a bound reached).
+    the whole frame, a status of success or of a bound reached);
+  - the strip configuration on both: every stage adding up, more instructions than the
+    whole frame's (its bands overlap), and on the Cortex-M4F a workspace within 2 MiB,
+    success, and the host's --strips detections.
 Exit 0 on success, 1 on a failed check, 77 (skipped) without valgrind.
 """
 import argparse
@@ -108,6 +111,26 @@ def main():
         for n, hf in m4h.items():
             if hf.get("status") not in ("SBR_OK", "SBR_ERR_CAPACITY") or not hf["view"].startswith("0 0 1360 800"):
                 bad.append("Cortex-M4 %s: status %s, view %s" % (n, hf.get("status"), hf.get("view")))
+    # the strip configuration
+    sf = rep.get("host_strips", {}).get("00400")
+    if sf is None:
+        bad.append("no strip configuration figures for frame 00400")
+    else:
+        if sf["total"] != sum(sf[s] for s in stages + ["set-up+output"]) or min(sf[s] for s in stages) <= 0:
+            bad.append("strip configuration: stages missing or not adding up to the total")
+        if not sf["total"] > fr["total"]:
+            bad.append("strip configuration: %d instructions, not above the whole frame's %d" % (sf["total"], fr["total"]))
+    if "cortex_m4" in rep:
+        m4s = rep.get("cortex_m4_strips", {}).get("00400")
+        if m4s is None:
+            bad.append("no Cortex-M4 strip configuration figures")
+        else:
+            if not 0 < m4s.get("workspace", 0) <= 2 * 1024 * 1024:
+                bad.append("Cortex-M4 strip workspace %s bytes, not within 2 MiB" % m4s.get("workspace"))
+            if m4s.get("status") != "SBR_OK" or not m4s["view"].startswith("strips of 256 rows"):
+                bad.append("Cortex-M4 strips: status %s, view %s" % (m4s.get("status"), m4s.get("view")))
+            if not m4s["same_as_host"] or m4s["host_dets"] == 0:
+                bad.append("Cortex-M4 strip detections differ from the host's --strips")
     for b in bad:
         print("FAIL: " + b)
     if not bad:
