@@ -619,8 +619,10 @@ size_t sbr_recog_strip_workspace_size(const sbr_recog_config_t *cfg, uint32_t wi
  * @param[out] stats   the bands' counters summed (capacity_hit: any band's); may be NULL.
  *                     Zeroed first; all zero after a status other than ::SBR_OK and
  *                     ::SBR_ERR_CAPACITY.
- * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE for rows 0 or overlap >= rows; the
- *         statuses of sbr_recog_detect() for the frame or a band (::SBR_ERR_WORKSPACE when
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_STATE (`rec` not initialised, or changed
+ *         since); the frame's status (sbr_image_check()); ::SBR_ERR_RANGE for rows 0 or
+ *         overlap >= rows; ::SBR_ERR_SIZE for a capacity of 0; the
+ *         statuses of sbr_recog_detect() for a band (::SBR_ERR_WORKSPACE when
  *         a band needs more than the recogniser's workspace), `count` 0 then;
  *         ::SBR_ERR_CAPACITY when `dets` ran full (those written are the best of each band
  *         that fitted in what the bands before it left).

@@ -123,6 +123,9 @@ sbr_status_t sbr_recog_detect_strips(sbr_recog_t *rec, const sbr_image_t *img, u
         return SBR_ERR_NULL;
     }
     *count = 0u;
+    if (sbr_recog_priv_ready(rec) == 0) {
+        return SBR_ERR_STATE;
+    }
     st = sbr_image_check(img);
     if (st != SBR_OK) {
         return st;

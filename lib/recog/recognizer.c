@@ -53,6 +53,11 @@ static uint32_t recog_checksum(const sbr_recog_t *rec)
     return h;
 }
 
+int sbr_recog_priv_ready(const sbr_recog_t *rec)
+{
+    return ((rec->magic == RECOG_MAGIC) && (rec->check == recog_checksum(rec))) ? 1 : 0;
+}
+
 /* The configuration, the library and the class stage, checked against each other. */
 static sbr_status_t init_check(const sbr_recog_config_t *cfg, const sbr_model_t *model,
                                const sbr_picto_model_t *picto)
@@ -303,7 +308,7 @@ sbr_status_t sbr_recog_detect(sbr_recog_t *rec, const sbr_image_t *img, const sb
         return SBR_ERR_NULL;
     }
     *count = 0u;
-    if ((rec->magic != RECOG_MAGIC) || (rec->check != recog_checksum(rec))) {
+    if (sbr_recog_priv_ready(rec) == 0) {
         return SBR_ERR_STATE;
     }
     st = detect_view(img, roi, &view, &ox, &oy);

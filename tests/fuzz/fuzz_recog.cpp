@@ -2,8 +2,9 @@
 // Fuzz harness: the recogniser. Configuration fields overwritten from the input, the
 // built-in models (with or without the class stage), sbr_recog_init() on a workspace of
 // the size the view needs (or one byte short); then frames from the input (size, stride,
-// format, pixels), a ROI, a result array of some capacity, and sometimes one byte of the
-// recogniser changed after init. A configuration sbr_recog_config_check() refuses is
+// format, pixels), a ROI or bands of rows (sbr_recog_detect_strips(), the workspace one
+// band's), a result array of some capacity, and sometimes one byte of the recogniser
+// changed after init. A configuration sbr_recog_config_check() refuses is
 // refused by init; a changed recogniser gives SBR_ERR_STATE. On SBR_OK / SBR_ERR_CAPACITY:
 // count <= capacity, every box inside the frame (and the ROI), scores finite in [0, 1],
 // classes of the model; after any other status the statistics are all zero.
@@ -38,11 +39,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     roi.y = fz_u32(in, 0u, img.height);
     roi.width = fz_u32(in, 1u, img.width);
     roi.height = fz_u32(in, 1u, img.height);
+    const bool use_strips = !use_roi && in.ConsumeBool();
+    const uint32_t rows = fz_u32(in, 0u, img.height + 8u);
+    const uint32_t overlap = fz_u32(in, 0u, rows + 1u);
     const uint32_t w = use_roi ? roi.width : img.width;
     const uint32_t h = use_roi ? roi.height : img.height;
     const sbr_status_t cs = sbr_recog_config_check(&cfg);
     FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE);
-    size_t need = sbr_recog_workspace_size(&cfg, w, h);
+    size_t need = use_strips ? sbr_recog_strip_workspace_size(&cfg, w, h, rows) : sbr_recog_workspace_size(&cfg, w, h);
+    if (use_strips && rows > 0u) {
+        FZ_CHECK(need == sbr_recog_workspace_size(&cfg, w, rows < h ? rows : h));
+    }
     if (!fz_workspace_fits(cs, need, 256u)) {
         return 0;
     }
@@ -66,8 +73,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     sbr_detection_t dets[16];
     uint32_t count = 12345u;
     sbr_recog_stats_t stats;
-    const sbr_status_t st = sbr_recog_detect(&rec, &img, use_roi ? &roi : nullptr, capacity > 0u ? dets : nullptr,
-                                             capacity, &count, &stats);
+    const sbr_status_t st =
+        use_strips ? sbr_recog_detect_strips(&rec, &img, rows, overlap, capacity > 0u ? dets : nullptr, capacity,
+                                             &count, &stats)
+                   : sbr_recog_detect(&rec, &img, use_roi ? &roi : nullptr, capacity > 0u ? dets : nullptr, capacity,
+                                      &count, &stats);
+    if (use_strips && capacity > 0u && is == SBR_OK && !tamper && (rows == 0u || overlap >= rows)) {
+        FZ_CHECK(st != SBR_OK && st != SBR_ERR_CAPACITY); // RANGE, or the frame's own status first
+    }
     FZ_STATUS(st, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE, SBR_ERR_STATE, SBR_ERR_SIZE, SBR_ERR_ALIGN,
               SBR_ERR_WORKSPACE, SBR_ERR_CAPACITY);
     if (capacity > 0u && (is != SBR_OK || tamper)) {
@@ -78,7 +91,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     if (st == SBR_OK || st == SBR_ERR_CAPACITY) {
         FZ_CHECK(count <= capacity);
-        if (st == SBR_ERR_CAPACITY) {
+        if (st == SBR_ERR_CAPACITY && !use_strips) {
             FZ_CHECK(count == capacity); // the best `capacity` are written
         }
         for (uint32_t i = 0u; i < count; i++) {
