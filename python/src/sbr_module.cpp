@@ -124,7 +124,9 @@ sbr_image_t image_view(const Image &a, bool bgr) {
 
 class Recognizer {
 public:
-    Recognizer(nb::dict config, const std::string &model_path, const std::string &picto_path, bool no_picto) {
+    Recognizer(nb::dict config, const std::string &model_path, const std::string &picto_path, bool no_picto,
+               bool strips)
+        : strips_(strips) {
         sbr_model_gtsdb(&builtin_);
         sbr_picto_gtsdb(&builtin_picto_);
         model_ = builtin_;
@@ -143,7 +145,10 @@ public:
             class_stage_ = nullptr;
         }
         threshold_ = class_stage_ != nullptr ? class_stage_->threshold : model_.score_threshold;
-        sbr_recog_config_default(&cfg_);
+        if (strips_)
+            sbr_recog_config_strips(&cfg_);  // a band's bounds (fields given below still apply)
+        else
+            sbr_recog_config_default(&cfg_);
         cfg_.min_score = std::min(cfg_.min_score, threshold_);  // as sbr_detect
         for (auto kv : config) set_field(cfg_, nb::cast<std::string>(kv.first), kv.second);
         check_config(config);
@@ -160,6 +165,7 @@ public:
         const sbr_image_t v = image_view(image, bgr);
         sbr_rect_t r{};
         const bool use_roi = !roi.is_none();
+        if (use_roi && strips_) throw nb::value_error("roi: not with strips (the bands cover the whole frame)");
         if (use_roi) {
             const auto t = nb::cast<std::vector<long long>>(roi);
             if (t.size() != 4) throw nb::value_error("roi: (x, y, width, height)");
@@ -167,7 +173,9 @@ public:
                 if (x < 0 || x > 0xFFFFFFFFll) throw nb::value_error("roi: values out of range");
             r = {uint32_t(t[0]), uint32_t(t[1]), uint32_t(t[2]), uint32_t(t[3])};
         }
-        const size_t need = sbr_recog_workspace_size(&cfg_, use_roi ? r.width : v.width, use_roi ? r.height : v.height);
+        const size_t need = strips_ ? sbr_recog_strip_workspace_size(&cfg_, v.width, v.height, SBR_RECOG_STRIP_ROWS)
+                                    : sbr_recog_workspace_size(&cfg_, use_roi ? r.width : v.width,
+                                                               use_roi ? r.height : v.height);
         if (need == 0) throw nb::value_error("image: too small for the configuration's maps");
         Workspace ws = acquire(need);
         std::vector<sbr_detection_t> dets(256);
@@ -176,8 +184,12 @@ public:
         sbr_status_t st;
         {
             nb::gil_scoped_release release;
-            st = sbr_recog_detect(&ws.rec, &v, use_roi ? &r : nullptr, dets.data(), uint32_t(dets.size()), &n,
-                                  &stats);
+            if (strips_)
+                st = sbr_recog_detect_strips(&ws.rec, &v, SBR_RECOG_STRIP_ROWS, SBR_RECOG_STRIP_OVERLAP, dets.data(),
+                                             uint32_t(dets.size()), &n, &stats);
+            else
+                st = sbr_recog_detect(&ws.rec, &v, use_roi ? &r : nullptr, dets.data(), uint32_t(dets.size()), &n,
+                                      &stats);
         }
         release(std::move(ws));
         if (st != SBR_OK && st != SBR_ERR_CAPACITY) raise_status("detect", st);
@@ -192,7 +204,8 @@ public:
     }
 
     size_t workspace_size(uint32_t width, uint32_t height) const {
-        return sbr_recog_workspace_size(&cfg_, width, height);
+        return strips_ ? sbr_recog_strip_workspace_size(&cfg_, width, height, SBR_RECOG_STRIP_ROWS)
+                       : sbr_recog_workspace_size(&cfg_, width, height);
     }
     float threshold() const { return threshold_; }
     nb::dict config() const {
@@ -264,6 +277,7 @@ private:
     sbr_recog_config_t cfg_{};
     sbr_recog_stats_t last_{};
     float threshold_ = 0.5f;
+    bool strips_ = false;  // the strip configuration (sbr_recog_config_strips, sbr_recog_detect_strips)
 };
 
 }  // namespace
@@ -271,8 +285,8 @@ private:
 NB_MODULE(_sbr, m) {
     m.doc() = "sbr's C core (see the sbr package for the documented API)";
     nb::class_<Recognizer>(m, "Recognizer")
-        .def(nb::init<nb::dict, const std::string &, const std::string &, bool>(), nb::arg("config"),
-             nb::arg("model"), nb::arg("picto"), nb::arg("no_picto"))
+        .def(nb::init<nb::dict, const std::string &, const std::string &, bool, bool>(), nb::arg("config"),
+             nb::arg("model"), nb::arg("picto"), nb::arg("no_picto"), nb::arg("strips"))
         .def("detect", &Recognizer::detect, nb::arg("image").noconvert(), nb::arg("bgr"), nb::arg("roi").none())
         .def("workspace_size", &Recognizer::workspace_size)
         .def_prop_ro("threshold", &Recognizer::threshold)

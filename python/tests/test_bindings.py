@@ -64,6 +64,24 @@ def test_detections_byte_identical_to_sbr_detect(tmp_path):
 
 
 @need_data
+def test_strips_byte_identical_to_sbr_detect(tmp_path):
+    """The strip configuration (strips=True) writes sbr_detect --strips's lines."""
+    first, last = 400, 404
+    subprocess.run([DETECT, "--input", DATA, "--range", f"{first}-{last}", "--quiet", "--strips",
+                    "--detections", str(tmp_path / "det.txt"), "--all-detections", str(tmp_path / "all.txt")],
+                   check=True, stdout=subprocess.DEVNULL)
+    r = sbr.Recognizer(strips=True, min_score=0.05)
+    lines = [d.gtsdb_line(f"{n:05d}.jpg") for n in range(first, last + 1) for d in r.detect(load(n), order="rgb")]
+    want = (tmp_path / "all.txt").read_text()
+    assert want.count("\n") >= 5, "too few detections to compare"
+    assert "".join(l + "\n" for l in lines) == want
+    assert r.config["max_candidates"] == 96 and r.config["max_heap"] == 70000
+    assert r.workspace_size(1360, 800) == 1939176
+    with pytest.raises(ValueError, match="roi"):
+        r.detect(load(first), roi=(0, 0, 100, 100))
+
+
+@need_data
 def test_orders_grey_crops_and_roi_agree(rec):
     rgb = np.ascontiguousarray(load(444))
     bgr = np.ascontiguousarray(rgb[:, :, ::-1])
