@@ -238,9 +238,18 @@ static uint32_t heap_chunk(mser_ctx_t *c, uint32_t i)
     } else if (c->heap_next < c->heap_chunks) {
         fresh = c->heap_next;
         c->heap_next++;
-    } else {
-        c->overflow = 1; /* the bound: the flood stops (flood_from()) */
+    } else if (c->heap_full == 0) {
+        /* the bound: the flood stops at its next pop, which finds every level empty (no
+           test per pixel); a lost entry could otherwise leave the component stack out of
+           level order. heap_next stays at the bound until flood_stopped(). */
+        uint32_t v;
+        for (v = 0u; v < MSER_LEVELS; v++) {
+            c->heap_top[v] = MSER_NONE;
+        }
+        c->overflow = 1;
         c->heap_full = 1;
+    } else {
+        /* stopped already */
     }
     if (fresh != MSER_NONE) {
         slot = fresh * SBR_MSER_HEAP_CHUNK;
@@ -434,9 +443,7 @@ static void flood_from(mser_ctx_t *c, uint32_t start)
         }
         comp_add_pixel(&c->comp[top], p);
         e = 0u;
-        if (c->heap_full != 0) {
-            done = 1; /* the heap's bound: stop before a lost entry disorders the stack */
-        } else if (c->heap_top[cur] != MSER_NONE) {
+        if (c->heap_top[cur] != MSER_NONE) {
             e = heap_pop(c, cur);
         } else {
             uint32_t lv = cur + 1u;
