@@ -303,9 +303,10 @@ def m4_table(m4, lines):
     return [m4[n].get("total", 0) for n in m4]
 
 
-def strips(args, extra, lines, report, host_med):
+def strips(args, extra, lines, report, host_med, hostile_dir):
     """The strip configuration (sbr_detect --strips; sbr_cost_m4_strips.elf) on the frames
-    of --range and --m4-range: tables and medians into lines and report."""
+    of --range and --m4-range, and on the hostile frames (hostile_dir, unless None): tables
+    and medians into lines and report."""
     st = host_callgrind(args, ["--strips"] + extra, args.out, name="callgrind_strips")
     report["host_strips"] = st
     lines.append("")
@@ -316,6 +317,16 @@ def strips(args, extra, lines, report, host_med):
     worst = max(st, key=lambda n: st[n]["total"])
     lines.append("host median, strips: %.3f x 10^9 instructions per frame (worst %.3f x 10^9, %s), %.2f x the whole "
                  "frame's" % (smed["total"] / 1e9, st[worst]["total"] / 1e9, worst, smed["total"] / host_med["total"]))
+    if hostile_dir is not None:
+        hh = host_callgrind(args, ["--strips"] + extra, args.out, ["--input", hostile_dir], "callgrind_strips_hostile")
+        report["host_strips_hostile"] = hh
+        lines.append("")
+        lines.append("the strip configuration, x86-64, the hostile frames, millions of instructions:")
+        host_table(hh, lines, False)
+        hw = max(hh, key=lambda n: hh[n]["total"])
+        report["host_strips_hostile_worst_ratio"] = hh[hw]["total"] / smed["total"]
+        lines.append("host hostile worst, strips: %.3f x 10^9 instructions (%s), %.2f x the strips' GTSDB median"
+                     % (hh[hw]["total"] / 1e9, hw, hh[hw]["total"] / smed["total"]))
     elf = os.path.join(os.path.dirname(os.path.abspath(args.m4_elf or ".")), "sbr_cost_m4_strips.elf")
     if args.no_m4 or not args.m4_elf or not os.path.exists(elf):
         return
@@ -332,6 +343,19 @@ def strips(args, extra, lines, report, host_med):
                  " bytes; detections the same as the host's --strips on %d of %d frames"
                  % (statistics.median(tot) / 1e9, m4[worst].get("total", 0) / 1e9, worst,
                     next(iter(m4.values())).get("workspace"), same, len(m4)))
+    if hostile_dir is not None:
+        m4h = cortex_m4(args, args.out, hostile_dir, elf=elf, host_opts=["--strips"])
+        report["cortex_m4_strips_hostile"] = m4h
+        lines.append("")
+        lines.append("the strip configuration on the Cortex-M4F, the hostile frames, millions of instructions:")
+        m4_table(m4h, lines)
+        hw = max(m4h, key=lambda n: m4h[n].get("total", 0))
+        ratio = m4h[hw].get("total", 0) / statistics.median(tot)
+        report["cortex_m4_strips_hostile_worst_ratio"] = ratio
+        lines.append("Cortex-M4 hostile worst, strips: %.3f x 10^9 instructions (%s), %.2f x the strips' GTSDB median;"
+                     " detections the same as the host's on %d of %d frames"
+                     % (m4h[hw].get("total", 0) / 1e9, hw, ratio,
+                        sum(1 for n in m4h if m4h[n]["same_as_host"]), len(m4h)))
 
 
 def main():
@@ -427,7 +451,7 @@ def main():
             report["cortex_m4_init"] = statistics.median(inits)
 
     if not args.no_strips:
-        strips(args, extra, lines, report, med)
+        strips(args, extra, lines, report, med, hostile_dir)
 
     if not args.no_wall:
         w = wall_clock(args, extra, args.out)
