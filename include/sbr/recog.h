@@ -479,16 +479,19 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
 #define SBR_RECOG_STRIP_MAX_HEAP 70000u      /**< parts.mser.max_heap of a band */
 #define SBR_RECOG_STRIP_MAX_PARTS 1024u      /**< max_parts of a band */
 #define SBR_RECOG_STRIP_MAX_CANDIDATES 96u   /**< max_candidates of a band */
+#define SBR_RECOG_STRIP_BAND_DETECTIONS 128u /**< detections kept of one band (its best;
+                                                  more are flagged by ::SBR_ERR_CAPACITY) */
 /** @} */
 
 /**
  * sbr_recog_strip_workspace_size() of the strip configuration (sbr_recog_config_strips())
  * for frames `width` wide in bands of ::SBR_RECOG_STRIP_ROWS rows, as a constant
- * expression: 1,939,176 bytes at 1360 (checked by the unit tests).
+ * expression: 1,942,760 bytes at 1360 (checked by the unit tests).
  */
 #define SBR_RECOG_WORKSPACE_STRIP_SIZE(width)                                                  \
-    SBR_RECOG_WORKSPACE_BOUNDS_SIZE(width, SBR_RECOG_STRIP_ROWS, 1u, SBR_RECOG_STRIP_MAX_NODES, \
-                                    SBR_RECOG_STRIP_MAX_HEAP, SBR_RECOG_STRIP_MAX_PARTS)
+    (SBR_RECOG_WORKSPACE_BOUNDS_SIZE(width, SBR_RECOG_STRIP_ROWS, 1u, SBR_RECOG_STRIP_MAX_NODES, \
+                                     SBR_RECOG_STRIP_MAX_HEAP, SBR_RECOG_STRIP_MAX_PARTS) +      \
+     SBR_WS_ALIGN8((size_t)SBR_RECOG_STRIP_BAND_DETECTIONS * sizeof(sbr_detection_t)))
 
 /**
  * What the part stage's block holds after that stage, in bytes (default fd_m and
@@ -582,7 +585,8 @@ sbr_status_t sbr_recog_detect(sbr_recog_t *rec, const sbr_image_t *img, const sb
 /**
  * @brief Workspace bytes of a recogniser that sees a width x height frame in bands of
  *        `rows` rows (sbr_recog_detect_strips()): sbr_recog_workspace_size() of one band
- *        (of the frame when it is no taller).
+ *        (of the frame when it is no taller) and room for a band's detections
+ *        (::SBR_RECOG_STRIP_BAND_DETECTIONS).
  * @param[in] cfg    the configuration (e.g. sbr_recog_config_strips()).
  * @param[in] width  frame width.
  * @param[in] height frame height.
@@ -622,10 +626,12 @@ size_t sbr_recog_strip_workspace_size(const sbr_recog_config_t *cfg, uint32_t wi
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_STATE (`rec` not initialised, or changed
  *         since); the frame's status (sbr_image_check()); ::SBR_ERR_RANGE for rows 0 or
  *         overlap >= rows; ::SBR_ERR_SIZE for a capacity of 0; the
- *         statuses of sbr_recog_detect() for a band (::SBR_ERR_WORKSPACE when
- *         a band needs more than the recogniser's workspace), `count` 0 then;
- *         ::SBR_ERR_CAPACITY when `dets` ran full (those written are the best of each band
- *         that fitted in what the bands before it left).
+ *         statuses of sbr_recog_detect() for a band, `count` 0 then; ::SBR_ERR_SIZE also
+ *         for a frame too small for the maps; ::SBR_ERR_WORKSPACE when the recogniser's
+ *         workspace is below sbr_recog_strip_workspace_size(); ::SBR_ERR_CAPACITY when a
+ *         detection did not fit: `dets` ran full (the best `capacity` of all bands are
+ *         written) or a band had more than ::SBR_RECOG_STRIP_BAND_DETECTIONS (its best
+ *         are kept). Every band is processed either way.
  */
 sbr_status_t sbr_recog_detect_strips(sbr_recog_t *rec, const sbr_image_t *img, uint32_t rows,
                                      uint32_t overlap, sbr_detection_t *dets, uint32_t capacity,

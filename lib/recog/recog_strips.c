@@ -94,14 +94,47 @@ static void stats_add(sbr_recog_stats_t *t, const sbr_recog_stats_t *s)
     }
 }
 
+/* The band's detections kept (centre in its core) go into the frame's, dets[0 .. *n)
+   sorted by det_before(), at most `capacity`: a better one takes the worst's place when
+   full. Returns 1 when a detection was dropped (the new one or the worst). */
+static int det_insert(sbr_detection_t *dets, uint32_t *n, uint32_t capacity, const sbr_detection_t *d)
+{
+    uint32_t pos = *n;
+    int dropped = 0;
+    if (*n < capacity) {
+        (*n)++;
+    } else if (det_before(d, &dets[capacity - 1u], 0) != 0) {
+        pos = capacity - 1u;
+        dropped = 1;
+    } else {
+        pos = capacity; /* not among the best `capacity` */
+        dropped = 1;
+    }
+    if (pos < capacity) {
+        while ((pos > 0u) && (det_before(d, &dets[pos - 1u], 0) != 0)) {
+            dets[pos] = dets[pos - 1u];
+            pos--;
+        }
+        dets[pos] = *d;
+    }
+    return dropped;
+}
+
+/* Bytes of one band's detections after the band's workspace. */
+#define STRIP_DETS_BYTES SBR_WS_ALIGN8((size_t)SBR_RECOG_STRIP_BAND_DETECTIONS * sizeof(sbr_detection_t))
+
 size_t sbr_recog_strip_workspace_size(const sbr_recog_config_t *cfg, uint32_t width,
                                       uint32_t height, uint32_t rows)
 {
     uint32_t h = height;
+    size_t need = 0u;
     if (rows < h) {
         h = rows;
     }
-    return (rows == 0u) ? 0u : sbr_recog_workspace_size(cfg, width, h);
+    if (rows != 0u) {
+        need = sbr_recog_workspace_size(cfg, width, h);
+    }
+    return (need == 0u) ? 0u : (need + STRIP_DETS_BYTES);
 }
 
 sbr_status_t sbr_recog_detect_strips(sbr_recog_t *rec, const sbr_image_t *img, uint32_t rows,
@@ -110,7 +143,10 @@ sbr_status_t sbr_recog_detect_strips(sbr_recog_t *rec, const sbr_image_t *img, u
 {
     sbr_recog_stats_t total;
     sbr_recog_stats_t band;
+    sbr_detection_t *got_dets;
+    size_t need;
     uint32_t bands;
+    uint32_t band_rows;
     uint32_t k;
     uint32_t n = 0u;
     int full = 0;
@@ -133,9 +169,16 @@ sbr_status_t sbr_recog_detect_strips(sbr_recog_t *rec, const sbr_image_t *img, u
     if ((rows == 0u) || (overlap >= rows)) {
         return SBR_ERR_RANGE;
     }
-    if (capacity == 0u) {
+    band_rows = (img->height < rows) ? img->height : rows;
+    need = sbr_recog_workspace_size(&rec->cfg, img->width, band_rows);
+    if ((need == 0u) || (capacity == 0u)) {
         return SBR_ERR_SIZE;
     }
+    if (rec->workspace_size < (need + STRIP_DETS_BYTES)) {
+        return SBR_ERR_WORKSPACE;
+    }
+    /* a band's detections: after what sbr_recog_detect() uses of the workspace */
+    got_dets = (sbr_detection_t *)(void *)&((uint8_t *)rec->workspace)[need];
     (void)memset(&total, 0, sizeof total);
     bands = strip_count(img->height, rows, overlap);
     for (k = 0u; k < bands; k++) {
@@ -143,17 +186,12 @@ sbr_status_t sbr_recog_detect_strips(sbr_recog_t *rec, const sbr_image_t *img, u
         const uint32_t hi = core_end(k, bands, img->height, rows, overlap);
         sbr_rect_t roi;
         uint32_t got = 0u;
-        uint32_t base;
         uint32_t i;
         roi.x = 0u;
         roi.y = strip_top(k, img->height, rows, overlap);
         roi.width = img->width;
-        roi.height = (img->height < rows) ? img->height : rows;
-        if (n >= capacity) {
-            full = 1; /* no room left for this band's detections */
-            break;
-        }
-        st = sbr_recog_detect(rec, img, &roi, &dets[n], capacity - n, &got, &band);
+        roi.height = band_rows;
+        st = sbr_recog_detect(rec, img, &roi, got_dets, SBR_RECOG_STRIP_BAND_DETECTIONS, &got, &band);
         if (st == SBR_ERR_CAPACITY) {
             full = 1;
         } else if (st != SBR_OK) {
@@ -164,17 +202,13 @@ sbr_status_t sbr_recog_detect_strips(sbr_recog_t *rec, const sbr_image_t *img, u
         }
         stats_add(&total, &band);
         /* keep the detections whose centre row lies in the band's core */
-        base = n;
         for (i = 0u; i < got; i++) {
-            const sbr_detection_t d = dets[base + i];
-            const uint32_t cy = d.box.y + (d.box.height / 2u);
-            if ((cy >= lo) && (cy < hi)) {
-                dets[n] = d;
-                n++;
+            const uint32_t cy = got_dets[i].box.y + (got_dets[i].box.height / 2u);
+            if ((cy >= lo) && (cy < hi) && (det_insert(dets, &n, capacity, &got_dets[i]) != 0)) {
+                full = 1;
             }
         }
     }
-    sbr_util_heap_sort((uint8_t *)(void *)dets, n, sizeof(sbr_detection_t), det_before, 0);
     *count = n;
     if (stats != NULL) {
         *stats = total;

@@ -96,7 +96,7 @@ class Recognizer:
     no_picto: without the class stage. As sbr_detect, min_score defaults to the operating
     point (`threshold`) unless given. strips: the strip configuration (sbr_detect --strips):
     each frame in bands of 256 rows overlapping by 128, with a band's bounds and workspace
-    (1,939,176 bytes at 1360 wide); fields given still apply.
+    (1,942,760 bytes at 1360 wide); fields given still apply.
     """
 
     def __init__(self, config: Optional[dict] = None, model: Optional[str] = None,

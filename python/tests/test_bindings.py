@@ -76,7 +76,7 @@ def test_strips_byte_identical_to_sbr_detect(tmp_path):
     assert want.count("\n") >= 5, "too few detections to compare"
     assert "".join(l + "\n" for l in lines) == want
     assert r.config["max_candidates"] == 96 and r.config["max_heap"] == 70000
-    assert r.workspace_size(1360, 800) == 1939176
+    assert r.workspace_size(1360, 800) == 1942760
     with pytest.raises(ValueError, match="roi"):
         r.detect(load(first), roi=(0, 0, 100, 100))
 

@@ -48,7 +48,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE);
     size_t need = use_strips ? sbr_recog_strip_workspace_size(&cfg, w, h, rows) : sbr_recog_workspace_size(&cfg, w, h);
     if (use_strips && rows > 0u) {
-        FZ_CHECK(need == sbr_recog_workspace_size(&cfg, w, rows < h ? rows : h));
+        // one band's workspace and room for a band's detections
+        const size_t band = sbr_recog_workspace_size(&cfg, w, rows < h ? rows : h);
+        FZ_CHECK(need == (band == 0u ? 0u
+                                     : band + SBR_WS_ALIGN8(SBR_RECOG_STRIP_BAND_DETECTIONS * sizeof(sbr_detection_t))));
     }
     if (!fz_workspace_fits(cs, need, 256u)) {
         return 0;
