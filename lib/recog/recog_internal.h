@@ -147,8 +147,12 @@ void sbr_recog_priv_score_hyps(recog_ctx_t *c);
 void sbr_recog_priv_hyp_box(const recog_hyp_t *h, uint32_t vw, uint32_t vh, float b[4]);
 
 /* Move the kept hypotheses to the front, sorted best first; returns their count. */
-/* 1 when rec comes from a successful sbr_recog_init() and is unchanged since. */
-int sbr_recog_priv_ready(const sbr_recog_t *rec);
+/* The checks a detect call starts with, in sbr_recog_detect()'s documented order: stats
+   zeroed, SBR_ERR_NULL for a missing pointer (else *count = 0), SBR_ERR_STATE unless rec
+   comes from a successful sbr_recog_init() and is unchanged since. */
+sbr_status_t sbr_recog_priv_begin(const sbr_recog_t *rec, const sbr_image_t *img,
+                                  const sbr_detection_t *dets, uint32_t *count,
+                                  sbr_recog_stats_t *stats);
 uint32_t sbr_recog_priv_compact(recog_ctx_t *c);
 
 /* Greedy non-maximum suppression over the first n (sorted) hypotheses: one overlapping

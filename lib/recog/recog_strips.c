@@ -48,19 +48,16 @@ static uint32_t core_end(uint32_t k, uint32_t bands, uint32_t height, uint32_t r
 
 /* Higher score first; equal scores in row, then column order (the same order on every
    target). */
-static int det_before(const void *a, const void *b, int mode)
+static int det_before(const sbr_detection_t *a, const sbr_detection_t *b)
 {
-    const sbr_detection_t *da = (const sbr_detection_t *)a;
-    const sbr_detection_t *db = (const sbr_detection_t *)b;
     int before = 0;
-    (void)mode;
-    if (da->score > db->score) {
+    if (a->score > b->score) {
         before = 1;
-    } else if (da->score < db->score) {
+    } else if (a->score < b->score) {
         /* after */
-    } else if (da->box.y < db->box.y) {
+    } else if (a->box.y < b->box.y) {
         before = 1;
-    } else if ((da->box.y == db->box.y) && (da->box.x < db->box.x)) {
+    } else if ((a->box.y == b->box.y) && (a->box.x < b->box.x)) {
         before = 1;
     } else {
         /* after, or the same place */
@@ -103,7 +100,7 @@ static int det_insert(sbr_detection_t *dets, uint32_t *n, uint32_t capacity, con
     int dropped = 0;
     if (*n < capacity) {
         (*n)++;
-    } else if (det_before(d, &dets[capacity - 1u], 0) != 0) {
+    } else if (det_before(d, &dets[capacity - 1u]) != 0) {
         pos = capacity - 1u;
         dropped = 1;
     } else {
@@ -111,7 +108,7 @@ static int det_insert(sbr_detection_t *dets, uint32_t *n, uint32_t capacity, con
         dropped = 1;
     }
     if (pos < capacity) {
-        while ((pos > 0u) && (det_before(d, &dets[pos - 1u], 0) != 0)) {
+        while ((pos > 0u) && (det_before(d, &dets[pos - 1u]) != 0)) {
             dets[pos] = dets[pos - 1u];
             pos--;
         }
@@ -152,15 +149,9 @@ sbr_status_t sbr_recog_detect_strips(sbr_recog_t *rec, const sbr_image_t *img, u
     int full = 0;
     sbr_status_t st;
 
-    if (stats != NULL) {
-        (void)memset(stats, 0, sizeof *stats);
-    }
-    if ((rec == NULL) || (img == NULL) || (dets == NULL) || (count == NULL)) {
-        return SBR_ERR_NULL;
-    }
-    *count = 0u;
-    if (sbr_recog_priv_ready(rec) == 0) {
-        return SBR_ERR_STATE;
+    st = sbr_recog_priv_begin(rec, img, dets, count, stats);
+    if (st != SBR_OK) {
+        return st;
     }
     st = sbr_image_check(img);
     if (st != SBR_OK) {

@@ -53,9 +53,20 @@ static uint32_t recog_checksum(const sbr_recog_t *rec)
     return h;
 }
 
-int sbr_recog_priv_ready(const sbr_recog_t *rec)
+sbr_status_t sbr_recog_priv_begin(const sbr_recog_t *rec, const sbr_image_t *img,
+                                  const sbr_detection_t *dets, uint32_t *count,
+                                  sbr_recog_stats_t *stats)
 {
-    return ((rec->magic == RECOG_MAGIC) && (rec->check == recog_checksum(rec))) ? 1 : 0;
+    sbr_status_t st = SBR_ERR_NULL;
+    if (stats != NULL) {
+        (void)memset(stats, 0, sizeof *stats);
+    }
+    if ((rec != NULL) && (img != NULL) && (dets != NULL) && (count != NULL)) {
+        *count = 0u;
+        st = ((rec->magic == RECOG_MAGIC) && (rec->check == recog_checksum(rec))) ? SBR_OK
+                                                                                  : SBR_ERR_STATE;
+    }
+    return st;
 }
 
 /* The configuration, the library and the class stage, checked against each other. */
@@ -301,15 +312,9 @@ sbr_status_t sbr_recog_detect(sbr_recog_t *rec, const sbr_image_t *img, const sb
     int full;
     sbr_status_t st;
 
-    if (stats != NULL) {
-        (void)memset(stats, 0, sizeof *stats);
-    }
-    if ((rec == NULL) || (img == NULL) || (dets == NULL) || (count == NULL)) {
-        return SBR_ERR_NULL;
-    }
-    *count = 0u;
-    if (sbr_recog_priv_ready(rec) == 0) {
-        return SBR_ERR_STATE;
+    st = sbr_recog_priv_begin(rec, img, dets, count, stats);
+    if (st != SBR_OK) {
+        return st;
     }
     st = detect_view(img, roi, &view, &ox, &oy);
     if (st != SBR_OK) {
