@@ -303,6 +303,35 @@ def m4_table(m4, lines):
     return [m4[n].get("total", 0) for n in m4]
 
 
+def host_hostile(args, opts, hostile_dir, name, title, what, median, lines):
+    """x86-64 on the hostile frames with sbr_detect options opts: the table under `title`,
+    the worst frame's line (`what`: whose median it is set against). Returns the frames
+    and the worst one's ratio to `median` (instructions)."""
+    hh = host_callgrind(args, opts, args.out, ["--input", hostile_dir], name)
+    lines.append("")
+    lines.append(title)
+    host_table(hh, lines, False)
+    hw = max(hh, key=lambda n: hh[n]["total"])
+    ratio = hh[hw]["total"] / median
+    lines.append("%s: %.3f x 10^9 instructions (%s), %.2f x the %s" % (what[0], hh[hw]["total"] / 1e9, hw, ratio,
+                                                                      what[1]))
+    return hh, ratio
+
+
+def m4_hostile(args, hostile_dir, elf, host_opts, title, what, median, lines):
+    """The Cortex-M4F image `elf` on the hostile frames, as host_hostile()."""
+    m4h = cortex_m4(args, args.out, hostile_dir, elf=elf, host_opts=host_opts)
+    lines.append("")
+    lines.append(title)
+    m4_table(m4h, lines)
+    hw = max(m4h, key=lambda n: m4h[n].get("total", 0))
+    ratio = m4h[hw].get("total", 0) / median
+    lines.append("%s: %.3f x 10^9 instructions (%s), %.2f x the %s; detections the same as the host's on %d of %d"
+                 " frames" % (what[0], m4h[hw].get("total", 0) / 1e9, hw, ratio, what[1],
+                              sum(1 for n in m4h if m4h[n]["same_as_host"]), len(m4h)))
+    return m4h, ratio
+
+
 def strips(args, extra, lines, report, host_med, hostile_dir):
     """The strip configuration (sbr_detect --strips; sbr_cost_m4_strips.elf) on the frames
     of --range and --m4-range, and on the hostile frames (hostile_dir, unless None): tables
@@ -318,15 +347,10 @@ def strips(args, extra, lines, report, host_med, hostile_dir):
     lines.append("host median, strips: %.3f x 10^9 instructions per frame (worst %.3f x 10^9, %s), %.2f x the whole "
                  "frame's" % (smed["total"] / 1e9, st[worst]["total"] / 1e9, worst, smed["total"] / host_med["total"]))
     if hostile_dir is not None:
-        hh = host_callgrind(args, ["--strips"] + extra, args.out, ["--input", hostile_dir], "callgrind_strips_hostile")
-        report["host_strips_hostile"] = hh
-        lines.append("")
-        lines.append("the strip configuration, x86-64, the hostile frames, millions of instructions:")
-        host_table(hh, lines, False)
-        hw = max(hh, key=lambda n: hh[n]["total"])
-        report["host_strips_hostile_worst_ratio"] = hh[hw]["total"] / smed["total"]
-        lines.append("host hostile worst, strips: %.3f x 10^9 instructions (%s), %.2f x the strips' GTSDB median"
-                     % (hh[hw]["total"] / 1e9, hw, hh[hw]["total"] / smed["total"]))
+        report["host_strips_hostile"], report["host_strips_hostile_worst_ratio"] = host_hostile(
+            args, ["--strips"] + extra, hostile_dir, "callgrind_strips_hostile",
+            "the strip configuration, x86-64, the hostile frames, millions of instructions:",
+            ("host hostile worst, strips", "strips' GTSDB median"), smed["total"], lines)
     elf = os.path.join(os.path.dirname(os.path.abspath(args.m4_elf or ".")), "sbr_cost_m4_strips.elf")
     if args.no_m4 or not args.m4_elf or not os.path.exists(elf):
         return
@@ -344,18 +368,10 @@ def strips(args, extra, lines, report, host_med, hostile_dir):
                  % (statistics.median(tot) / 1e9, m4[worst].get("total", 0) / 1e9, worst,
                     next(iter(m4.values())).get("workspace"), same, len(m4)))
     if hostile_dir is not None:
-        m4h = cortex_m4(args, args.out, hostile_dir, elf=elf, host_opts=["--strips"])
-        report["cortex_m4_strips_hostile"] = m4h
-        lines.append("")
-        lines.append("the strip configuration on the Cortex-M4F, the hostile frames, millions of instructions:")
-        m4_table(m4h, lines)
-        hw = max(m4h, key=lambda n: m4h[n].get("total", 0))
-        ratio = m4h[hw].get("total", 0) / statistics.median(tot)
-        report["cortex_m4_strips_hostile_worst_ratio"] = ratio
-        lines.append("Cortex-M4 hostile worst, strips: %.3f x 10^9 instructions (%s), %.2f x the strips' GTSDB median;"
-                     " detections the same as the host's on %d of %d frames"
-                     % (m4h[hw].get("total", 0) / 1e9, hw, ratio,
-                        sum(1 for n in m4h if m4h[n]["same_as_host"]), len(m4h)))
+        report["cortex_m4_strips_hostile"], report["cortex_m4_strips_hostile_worst_ratio"] = m4_hostile(
+            args, hostile_dir, elf, ["--strips"],
+            "the strip configuration on the Cortex-M4F, the hostile frames, millions of instructions:",
+            ("Cortex-M4 hostile worst, strips", "strips' GTSDB median"), statistics.median(tot), lines)
 
 
 def main():
@@ -400,15 +416,10 @@ def main():
     hostile_dir = None
     if not args.no_hostile:
         hostile_dir = hostile_frames(args, args.out)
-        hh = host_callgrind(args, extra, args.out, ["--input", hostile_dir], "callgrind_hostile")
-        report["host_hostile"] = hh
-        lines.append("")
-        lines.append("x86-64, the hostile frames (sbr_hostile_frames), millions of instructions:")
-        host_table(hh, lines, False)
-        hw = max(hh, key=lambda n: hh[n]["total"])
-        report["host_hostile_worst_ratio"] = hh[hw]["total"] / med["total"]
-        lines.append("host hostile worst: %.3f x 10^9 instructions (%s), %.2f x the GTSDB median"
-                     % (hh[hw]["total"] / 1e9, hw, hh[hw]["total"] / med["total"]))
+        report["host_hostile"], report["host_hostile_worst_ratio"] = host_hostile(
+            args, extra, hostile_dir, "callgrind_hostile",
+            "x86-64, the hostile frames (sbr_hostile_frames), millions of instructions:",
+            ("host hostile worst", "GTSDB median"), med["total"], lines)
 
     if not args.no_m4 and args.m4_elf:
         m4 = cortex_m4(args, args.out)
@@ -432,18 +443,9 @@ def main():
                          " instructions:")
             picto_table(looks, lines)
         if hostile_dir is not None:
-            m4h = cortex_m4(args, args.out, hostile_dir)
-            report["cortex_m4_hostile"] = m4h
-            lines.append("")
-            lines.append("Cortex-M4F, the hostile frames, millions of instructions:")
-            m4_table(m4h, lines)
-            hw = max(m4h, key=lambda n: m4h[n].get("total", 0))
-            ratio = m4h[hw].get("total", 0) / statistics.median(tot)
-            report["cortex_m4_hostile_worst_ratio"] = ratio
-            lines.append("Cortex-M4 hostile worst: %.3f x 10^9 instructions (%s), %.2f x the GTSDB median;"
-                         " detections the same as the host's on %d of %d frames"
-                         % (m4h[hw].get("total", 0) / 1e9, hw, ratio,
-                            sum(1 for n in m4h if m4h[n]["same_as_host"]), len(m4h)))
+            report["cortex_m4_hostile"], report["cortex_m4_hostile_worst_ratio"] = m4_hostile(
+                args, hostile_dir, args.m4_elf, (), "Cortex-M4F, the hostile frames, millions of instructions:",
+                ("Cortex-M4 hostile worst", "GTSDB median"), statistics.median(tot), lines)
         inits = [m4[n]["init"] for n in m4 if "init" in m4[n]]
         if inits:
             lines.append("sbr_recog_init (once, not per frame: the configuration and models checked): "
