@@ -395,78 +395,100 @@ static uint32_t flood_stopped(mser_ctx_t *c, uint32_t top)
     return t;
 }
 
+/* A neighbour q of the pixel being visited: when not yet reached it is marked, and when
+   lower than the current level `cur` its level is returned (the flood descends into it);
+   otherwise it waits in the heap at its level. MSER_NONE: no descent. */
+static inline uint32_t flood_look(mser_ctx_t *c, uint16_t *lev, uint32_t cur, uint32_t q)
+{
+    const uint32_t g = (uint32_t)lev[q];
+    uint32_t lower = MSER_NONE;
+    if (g < LEV_REACHED) {
+        lev[q] = (uint16_t)(g | LEV_REACHED);
+        if (g < cur) {
+            lower = g;
+        } else {
+            heap_push(c, g, (q << HEAP_DIR_BITS) | 1u);
+        }
+    }
+    return lower;
+}
+
 /* Build the tree of the pixels connected to p (not yet reached): the whole interior when
-   no pass limit walls parts of it off. */
+   no pass limit walls parts of it off. A pixel's neighbours are looked at in the order
+   right, below, left, above, from its entry's k (1..4; 5: none left); the flood comes
+   back to a pixel it left for a lower neighbour at the next one. */
 static void flood_from(mser_ctx_t *c, uint32_t start)
 {
     const uint32_t w = c->width;
     uint16_t *const lev = c->lev;
-    uint32_t off[5];
     uint32_t p = start;
     uint32_t k = 1u;
     uint32_t cur = (uint32_t)c->lev[p];
     uint32_t top = 1u;
     int done = 0;
 
-    off[0] = 0u;
-    off[1] = 1u;
-    off[2] = w;
-    off[3] = 0xFFFFFFFFu;       /* unsigned wrap-around: adds -1 */
-    off[4] = (0xFFFFFFFFu - w) + 1u; /* adds -w */
-
     comp_init(c, 0u, MSER_SENTINEL);
     comp_init(c, 1u, cur);
     c->lev[p] = (uint16_t)(cur | LEV_REACHED);
     while (done == 0) {
-        uint32_t e; /* the next heap entry */
-        while (k <= 4u) {
-            const uint32_t q = p + off[k];
-            const uint32_t g = (uint32_t)lev[q];
-            if (g < LEV_REACHED) {
-                lev[q] = (uint16_t)(g | LEV_REACHED);
-                if (g < cur) {
-                    /* a lower neighbour: come back to p later (at its next neighbour),
-                       descend into q */
-                    heap_push(c, cur, (p << HEAP_DIR_BITS) | (k + 1u));
-                    p = q;
-                    top++;
-                    comp_init(c, top, g);
-                    cur = g;
-                    k = 1u;
-                } else {
-                    heap_push(c, g, (q << HEAP_DIR_BITS) | 1u);
-                    k++;
-                }
-            } else {
-                k++;
-            }
+        uint32_t q = 0u;
+        uint32_t g = MSER_NONE; /* a lower neighbour's level */
+        if (k <= 1u) {
+            q = p + 1u;
+            g = flood_look(c, lev, cur, q);
+            k = 2u;
         }
-        comp_add_pixel(&c->comp[top], p);
-        e = 0u;
-        if (c->heap_top[cur] != MSER_NONE) {
-            e = heap_pop(c, cur);
+        if ((g == MSER_NONE) && (k <= 2u)) {
+            q = p + w;
+            g = flood_look(c, lev, cur, q);
+            k = 3u;
+        }
+        if ((g == MSER_NONE) && (k <= 3u)) {
+            q = p - 1u;
+            g = flood_look(c, lev, cur, q);
+            k = 4u;
+        }
+        if ((g == MSER_NONE) && (k <= 4u)) {
+            q = p - w;
+            g = flood_look(c, lev, cur, q);
+            k = 5u;
+        }
+        if (g != MSER_NONE) {
+            /* come back to p later (at its next neighbour), descend into q */
+            heap_push(c, cur, (p << HEAP_DIR_BITS) | k);
+            p = q;
+            top++;
+            comp_init(c, top, g);
+            cur = g;
+            k = 1u;
         } else {
-            uint32_t lv = cur + 1u;
-            while ((lv < MSER_LEVELS) && (c->heap_top[lv] == MSER_NONE)) {
-                lv++;
-            }
-            if (lv >= MSER_LEVELS) {
-                done = 1;
+            uint32_t e = 0u; /* the next heap entry */
+            comp_add_pixel(&c->comp[top], p);
+            if (c->heap_top[cur] != MSER_NONE) {
+                e = heap_pop(c, cur);
             } else {
-                e = heap_pop(c, lv);
-                if (lv < (uint32_t)c->comp[top - 1u].level) {
-                    comp_grow(c, top, lv);
-                } else {
-                    /* the component below is at exactly this level (its pixel waits in
-                       the heap): merge the top into it */
-                    comp_merge(c, top - 1u, top);
-                    top--;
+                uint32_t lv = cur + 1u;
+                while ((lv < MSER_LEVELS) && (c->heap_top[lv] == MSER_NONE)) {
+                    lv++;
                 }
-                cur = lv;
+                if (lv >= MSER_LEVELS) {
+                    done = 1;
+                } else {
+                    e = heap_pop(c, lv);
+                    if (lv < (uint32_t)c->comp[top - 1u].level) {
+                        comp_grow(c, top, lv);
+                    } else {
+                        /* the component below is at exactly this level (its pixel waits
+                           in the heap): merge the top into it */
+                        comp_merge(c, top - 1u, top);
+                        top--;
+                    }
+                    cur = lv;
+                }
             }
+            p = e >> HEAP_DIR_BITS;
+            k = e & HEAP_DIR_MASK;
         }
-        p = e >> HEAP_DIR_BITS;
-        k = e & HEAP_DIR_MASK;
     }
     top = flood_stopped(c, top);
     while ((top > 0u) && ((uint32_t)c->comp[top].level != MSER_SENTINEL)) {
