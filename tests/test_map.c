@@ -3,6 +3,7 @@
    colour-opponent formulas on known pixels, block averaging, and bad input. */
 #include "unity.h"
 #include "sbr/map.h"
+#include "../lib/map/map_internal.h" /* the part stage's bright-only map */
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -126,6 +127,60 @@ static void test_map_subsample2_colour_blocks(void)
     }
 }
 
+/* The part stage's map for a bright-only pass with a floor above 128: every pixel whose
+   red map value is above 128 as sbr_map_make() gives it, every other one exactly 128 (on
+   the red map at subsample 1); other kinds and subsamples as sbr_map_make(). */
+static void test_map_bright_only_red(void)
+{
+    static uint8_t px[9u * 64u];
+    static uint8_t exact[9u * 21u];
+    static uint8_t bright[9u * 21u];
+    uint32_t state = 7u;
+    uint32_t i;
+    uint32_t f;
+    uint32_t k;
+    uint32_t above = 0u;
+    for (i = 0u; i < sizeof px; i++) {
+        state = (state * 1664525u) + 1013904223u;
+        px[i] = (uint8_t)(state >> 24);
+    }
+    for (f = 0u; f < 2u; f++) {
+        const sbr_pixel_format_t fmt = (f == 0u) ? SBR_PIXEL_RGB888 : SBR_PIXEL_BGR888;
+        const sbr_image_t src = {20u, 9u, 64u, fmt, px}; /* stride 64 > 60 */
+        for (k = 0u; k < SBR_MAP_KINDS; k++) {
+            uint32_t sub;
+            for (sub = 1u; sub <= 2u; sub++) {
+                sbr_image_t ov;
+                TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, (sbr_map_kind_t)k, sub, exact, 21u,
+                                                                sizeof exact, NULL));
+                TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_priv_make_bright(&src, (sbr_map_kind_t)k, sub,
+                                                                            bright, 21u, sizeof bright, &ov));
+                TEST_ASSERT_EQUAL_UINT32(20u / sub, ov.width);
+                TEST_ASSERT_EQUAL_UINT32(9u / sub, ov.height);
+                for (i = 0u; i < ((9u / sub) * 21u); i++) {
+                    if ((i % 21u) >= (20u / sub)) {
+                        continue; /* the stride's padding */
+                    }
+                    if ((k == (uint32_t)SBR_MAP_RED) && (sub == 1u) && (exact[i] <= 128u)) {
+                        TEST_ASSERT_EQUAL_UINT8(128u, bright[i]);
+                    } else {
+                        TEST_ASSERT_EQUAL_UINT8(exact[i], bright[i]);
+                        above += ((k == (uint32_t)SBR_MAP_RED) && (sub == 1u)) ? 1u : 0u;
+                    }
+                }
+            }
+        }
+    }
+    TEST_ASSERT_TRUE(above > 20u); /* random colours: some pixels are red */
+    {
+        const sbr_image_t src = {20u, 9u, 64u, SBR_PIXEL_RGB888, px};
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_map_priv_make_bright(NULL, SBR_MAP_RED, 1u, bright, 21u,
+                                                                          sizeof bright, NULL));
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_map_priv_make_bright(&src, SBR_MAP_RED, 1u, bright, 21u,
+                                                                           20u, NULL));
+    }
+}
+
 static void test_map_tone_curve_every_level(void)
 {
     /* a grey ramp 0..255: the intensity map is T(c) = round(sqrt(255 c)), checked in
@@ -179,6 +234,7 @@ int main(void)
     RUN_TEST(test_map_formulas_on_known_colours);
     RUN_TEST(test_map_subsample_averages_blocks);
     RUN_TEST(test_map_subsample2_colour_blocks);
+    RUN_TEST(test_map_bright_only_red);
     RUN_TEST(test_map_tone_curve_every_level);
     RUN_TEST(test_map_bad_input);
     return UNITY_END();

@@ -2,6 +2,7 @@
 /* Channel maps (include/sbr/map.h): the u8 intensity and chromaticity maps of a frame,
    with optional block subsampling. */
 #include "sbr/map.h"
+#include "map_internal.h"
 
 #include "../common/sbr_util.h"
 
@@ -78,6 +79,22 @@ static uint8_t map_value(sbr_map_kind_t kind, uint32_t mr, uint32_t mg, uint32_t
 
 /* One row at subsample 1: map_value() of each pixel, without the block means' divisions;
    one loop per kind (the same formulas as map_value(), the choice made once per row). */
+/* One row of the red map whose pixels with a colour difference d <= 0 (value at most
+   128) get 128: map_make() for sbr_map_priv_make_bright(). */
+static void map_row_red_bright(const uint8_t *row, uint32_t ri, uint32_t bi, uint32_t n,
+                               uint8_t *dst)
+{
+    uint32_t x;
+    for (x = 0u; x < n; x++) {
+        const uint8_t *px = &row[x * 3u];
+        const uint32_t ur = (uint32_t)px[ri];
+        const uint32_t ug = (uint32_t)px[1];
+        const uint32_t ub = (uint32_t)px[bi];
+        const int32_t d = ((2 * (int32_t)ur) - (int32_t)ug) - (int32_t)ub;
+        dst[x] = (d > 0) ? chroma_value(d, (ur + ug) + ub) : 128u;
+    }
+}
+
 static void map_row(sbr_map_kind_t kind, const uint8_t *row, uint32_t bpp, uint32_t ri,
                     uint32_t bi, uint32_t n, uint8_t *dst)
 {
@@ -187,9 +204,10 @@ static void map_block_row(const sbr_image_t *src, sbr_map_kind_t kind, const map
     }
 }
 
-sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t subsample,
-                          uint8_t *out, uint32_t out_stride, size_t out_size,
-                          sbr_image_t *out_view)
+/* sbr_map_make(); bright != 0: sbr_map_priv_make_bright(). */
+static sbr_status_t map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t subsample,
+                             uint8_t *out, uint32_t out_stride, size_t out_size,
+                             sbr_image_t *out_view, int bright)
 {
     sbr_status_t st;
     map_read_t rd;
@@ -242,7 +260,10 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
         }
     }
     for (y = 0u; y < oh; y++) {
-        if (subsample == 1u) {
+        if ((subsample == 1u) && (bright != 0) && (kind == SBR_MAP_RED)) {
+            map_row_red_bright(&src->data[(size_t)y * src->stride], rd.ri, rd.bi, ow,
+                               &out[(size_t)y * out_stride]);
+        } else if (subsample == 1u) {
             map_row(kind, &src->data[(size_t)y * src->stride], rd.bpp, rd.ri, rd.bi, ow,
                     &out[(size_t)y * out_stride]);
         } else if ((subsample == 2u) && (rd.bpp == 3u)) {
@@ -259,4 +280,18 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
         out_view->data = out;
     }
     return SBR_OK;
+}
+
+sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t subsample,
+                          uint8_t *out, uint32_t out_stride, size_t out_size,
+                          sbr_image_t *out_view)
+{
+    return map_make(src, kind, subsample, out, out_stride, out_size, out_view, 0);
+}
+
+sbr_status_t sbr_map_priv_make_bright(const sbr_image_t *src, sbr_map_kind_t kind,
+                                      uint32_t subsample, uint8_t *out, uint32_t out_stride,
+                                      size_t out_size, sbr_image_t *out_view)
+{
+    return map_make(src, kind, subsample, out, out_stride, out_size, out_view, 1);
 }

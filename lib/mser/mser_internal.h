@@ -97,6 +97,16 @@ typedef struct mser_ctx_s {
     int heap_full;       /* the heap's bound was reached in the flood in progress */
 } mser_ctx_t;
 
+/* Prepare one pass (mser_levels.c): the (inverted: xor_mask 0xFF) levels of `map`, or
+   with map NULL the last pass's levels in c->lev inverted when `flip`; values above
+   `limit` walls, the border walled off; the heap empty, no nodes. */
+void sbr_mser_priv_pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, uint8_t flip,
+                              uint32_t limit);
+
+/* After the last pass of an in-place detection: the map back at the start of c->lev, a
+   byte a pixel (`last`: the inversion the levels have). */
+void sbr_mser_priv_map_back(mser_ctx_t *c, uint8_t last);
+
 /* Variations, stable nodes, duplicates and the regions of one pass's tree (its pixels'
    levels still in c->lev); limit: the pass's level limit (0xFFFF none). */
 void sbr_mser_priv_pass_select(mser_ctx_t *c, const sbr_mser_config_t *cfg, uint8_t polarity,

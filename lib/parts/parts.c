@@ -8,6 +8,7 @@
 #include "sbr/contour.h"
 
 #include "../common/sbr_util.h"
+#include "../map/map_internal.h"
 #include "../mser/mser_internal.h"
 
 #include <string.h>
@@ -297,7 +298,13 @@ static sbr_status_t parts_of_map(const sbr_image_t *img, const sbr_parts_config_
         const uint32_t mw = img->width / sub;
         const uint32_t mh = img->height / sub;
         uint8_t *slot = sbr_mser_priv_map_slot(&mc, mw, mh, b->mser);
-        st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, slot, mw, (size_t)mw * mh, &map);
+        if ((mc.polarity == (uint32_t)SBR_MSER_BRIGHT) && (mc.bright_min > 128u)) {
+            /* only values above 128 are flooded: the others need not be exact */
+            st = sbr_map_priv_make_bright(img, (sbr_map_kind_t)kind, sub, slot, mw,
+                                          (size_t)mw * mh, &map);
+        } else {
+            st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, slot, mw, (size_t)mw * mh, &map);
+        }
         if (st != SBR_OK) {
             return st;
         }
