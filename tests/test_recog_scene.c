@@ -358,7 +358,8 @@ static void test_scene_grey(void)
     TEST_ASSERT_TRUE_MESSAGE(sign > clutter, "clutter scored above the prohibitory sign in the grey frame");
 }
 
-/* The class stage's gate: one that passes everything gives the detections without it,
+/* The class stage's gate: the built-in one keeps the drawn sign and gates candidates
+   away; one that passes everything gives the detections without a gate (cfg.gate = 0),
    one that passes nothing leaves no detection and counts every candidate as gated,
    cfg.gate = 0 ignores it, and a corrupted gate is refused. */
 static void test_scene_gate(void)
@@ -377,10 +378,17 @@ static void test_scene_gate(void)
     scene_setup(&v, &c);
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_model_gtsdb(&m));
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_gtsdb(&p));
-    TEST_ASSERT_NULL(p.gate); /* the built-in class stage has none */
+    TEST_ASSERT_NOT_NULL(p.gate); /* the built-in class stage has one */
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, g_dets, CAP, &n, &st));
+    TEST_ASSERT_TRUE(n >= 1u);
+    TEST_ASSERT_TRUE(st.gated >= 1u);
+    TEST_ASSERT_TRUE(st.gated < st.classified); /* the sign's candidates pass */
+    c.gate = 0u;
     TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &c, &m, &p, g_ws, sizeof g_ws, plain, CAP, &n0, &st0));
+    c.gate = 1u;
     TEST_ASSERT_TRUE(n0 >= 1u);
     TEST_ASSERT_EQUAL_UINT32(0u, st0.gated);
+    TEST_ASSERT_EQUAL_INT(g_dets[0].class_id, plain[0].class_id);
     for (i = 0u; i < SBR_PICTO_GATE_WEIGHTS(2u); i++) {
         gate[i] = 0.01f * (float)((int)(i % 5u) - 2);
     }

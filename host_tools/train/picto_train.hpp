@@ -45,8 +45,8 @@ struct Options {
     int rounds = 2, rare = 0;
     std::vector<int> rim_classes{13};  // --rim-check: classes that get a colour check
     std::string from_picto;        // --from-picto: only the colour check, added to this file
-    bool gate = false;             // --gate: learn the class stage's gate (with --from-picto)
-    float gate_recall = 0.995f;    // --gate-recall: share of positive candidates it passes
+    bool gate = true;              // --gate / --no-gate: learn the class stage's gate
+    float gate_recall = 0.95f;     // --gate-recall: share of positive candidates it passes
     int gate_hidden = 32;          // --gate-hidden: its rectified units (0: linear)
     bool box = true, exposure = false, mirror = true, rotate = true, tview = true;
     BgSwap bg_swap = BgSwap::round, bg_fill = BgSwap::off;

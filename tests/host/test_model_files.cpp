@@ -149,8 +149,13 @@ int main(int argc, char **argv)
     {
         // the colour check's tables (picto.h rim_shape, rim_floor; flags bit 1): they
         // load and save back; without them the file is the same minus the tables (older
-        // files load); damaged tables are refused
-        sbr_host::Picto with = sbr_host::picto_from_view(pv), without = with;
+        // files load); damaged tables are refused. Without a gate (the built-in class
+        // stage has one), so that the tables end the file.
+        sbr_host::Picto with = sbr_host::picto_from_view(pv);
+        with.gate.clear();
+        with.gate_hidden = 0u;
+        with.gate_threshold = 0.0f;
+        sbr_host::Picto without = with;
         const uint32_t K = pv.classes;
         with.rim_shape.assign(K, uint8_t(SBR_PICTO_RIM_NONE));
         with.rim_floor.assign(K, -2.0f);
