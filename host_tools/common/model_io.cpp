@@ -497,6 +497,12 @@ void parts_at_full_resolution(sbr_parts_config_t &parts) {
     }
 }
 
+void training_bounds(sbr_recog_config_t &rc) {
+    rc.max_parts = 4096u;
+    rc.parts.mser.max_heap = 0u;
+    rc.max_extra_looks = 1000000u;
+}
+
 void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts) {
     for (size_t k = 0; k < fe.sub.size(); ++k) parts.map_subsample[k] = fe.sub[k];
     for (size_t k = 0; k < fe.area.size(); ++k) parts.map_min_area[k] = fe.area[k];

@@ -78,6 +78,7 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     // candidates (the recogniser's default runs the blue map at half resolution; the class
     // stage learned this way scores the same there, see docs/results/recognition.md)
     parts_at_full_resolution(rc.parts);
+    training_bounds(rc);
     // the intensity and blue maps, as the committed class stage was learned (the
     // recogniser's default adds the red map's bright regions; measured with the class
     // stage learned so, docs/results/realtime.md)

@@ -521,6 +521,7 @@ sbr_recog_config_t training_config(const Options &o) {
     sbr_recog_config_default(&cfg);
     cfg.parts.maps = 0x7u;
     parts_at_full_resolution(cfg.parts);
+    training_bounds(cfg);
     apply_front_end(o.front_end, cfg.parts);
     return cfg;
 }
