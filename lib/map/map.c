@@ -77,8 +77,6 @@ static uint8_t map_value(sbr_map_kind_t kind, uint32_t mr, uint32_t mg, uint32_t
     return v;
 }
 
-/* One row at subsample 1: map_value() of each pixel, without the block means' divisions;
-   one loop per kind (the same formulas as map_value(), the choice made once per row). */
 /* One row of the red map whose pixels with a colour difference d <= 0 (value at most
    128) get 128: map_make() for sbr_map_priv_make_bright(). */
 static void map_row_red_bright(const uint8_t *row, uint32_t ri, uint32_t bi, uint32_t n,
@@ -95,6 +93,8 @@ static void map_row_red_bright(const uint8_t *row, uint32_t ri, uint32_t bi, uin
     }
 }
 
+/* One row at subsample 1: map_value() of each pixel, without the block means' divisions;
+   one loop per kind (the same formulas as map_value(), the choice made once per row). */
 static void map_row(sbr_map_kind_t kind, const uint8_t *row, uint32_t bpp, uint32_t ri,
                     uint32_t bi, uint32_t n, uint8_t *dst)
 {
