@@ -333,6 +333,22 @@ def m4_hostile(args, hostile_dir, elf, host_opts, title, what, median, lines):
     return m4h, ratio
 
 
+def m4_summary(m4, heading, label, same_as, lines):
+    """The Cortex-M4F's table of frames under `heading` and its summary line; returns the
+    median instructions per frame."""
+    lines.append("")
+    lines.append(heading)
+    tot = m4_table(m4, lines)
+    same = sum(1 for n in m4 if m4[n]["same_as_host"])
+    worst = max(m4, key=lambda n: m4[n].get("total", 0))
+    median = statistics.median(tot)
+    lines.append("%s: %.3f x 10^9 instructions per frame (worst %.3f x 10^9, %s); workspace %s bytes;"
+                 " detections the same as %s on %d of %d frames"
+                 % (label, median / 1e9, m4[worst].get("total", 0) / 1e9, worst,
+                    next(iter(m4.values())).get("workspace"), same_as, same, len(m4)))
+    return median
+
+
 def strips(args, extra, lines, report, host_med, hostile_dir):
     """The strip configuration (sbr_detect --strips; sbr_cost_m4_strips.elf) on the frames
     of --range and --m4-range, and on the hostile frames (hostile_dir, unless None): tables
@@ -357,22 +373,15 @@ def strips(args, extra, lines, report, host_med, hostile_dir):
         return
     m4 = cortex_m4(args, args.out, elf=elf, host_opts=["--strips"])
     report["cortex_m4_strips"] = m4
-    lines.append("")
-    lines.append("the strip configuration on the Cortex-M4F (sbr_cost_m4_strips.elf, workspace in the SRAM), "
-                 "frames %05d-%05d, millions of instructions:" % args.m4_range)
-    tot = m4_table(m4, lines)
-    same = sum(1 for n in m4 if m4[n]["same_as_host"])
-    worst = max(m4, key=lambda n: m4[n].get("total", 0))
-    report["cortex_m4_strips_median"] = statistics.median(tot)
-    lines.append("Cortex-M4 median, strips: %.3f x 10^9 instructions per frame (worst %.3f x 10^9, %s); workspace %s"
-                 " bytes; detections the same as the host's --strips on %d of %d frames"
-                 % (statistics.median(tot) / 1e9, m4[worst].get("total", 0) / 1e9, worst,
-                    next(iter(m4.values())).get("workspace"), same, len(m4)))
+    median = m4_summary(m4, "the strip configuration on the Cortex-M4F (sbr_cost_m4_strips.elf, workspace in the "
+                        "SRAM), frames %05d-%05d, millions of instructions:" % args.m4_range,
+                        "Cortex-M4 median, strips", "the host's --strips", lines)
+    report["cortex_m4_strips_median"] = median
     if hostile_dir is not None:
         report["cortex_m4_strips_hostile"], report["cortex_m4_strips_hostile_worst_ratio"] = m4_hostile(
             args, hostile_dir, elf, ["--strips"],
             "the strip configuration on the Cortex-M4F, the hostile frames, millions of instructions:",
-            ("Cortex-M4 hostile worst, strips", "strips' GTSDB median"), statistics.median(tot), lines)
+            ("Cortex-M4 hostile worst, strips", "strips' GTSDB median"), median, lines)
 
 
 def main():
@@ -425,17 +434,10 @@ def main():
     if not args.no_m4 and args.m4_elf:
         m4 = cortex_m4(args, args.out)
         report["cortex_m4"] = m4
-        lines.append("")
-        lines.append("Cortex-M4F (qemu mps2-an386, -icount shift=0), built-in model, default options,"
-                     " frames %05d-%05d, millions of instructions:" % args.m4_range)
-        tot = m4_table(m4, lines)
-        same = sum(1 for n in m4 if m4[n]["same_as_host"])
-        worst = max(m4, key=lambda n: m4[n].get("total", 0))
-        lines.append("Cortex-M4 median: %.3f x 10^9 instructions per frame (worst %.3f x 10^9, %s); workspace %s bytes;"
-                     " detections the same as the host's (1 px, 1e-3) on %d of %d frames"
-                     % (statistics.median(tot) / 1e9, m4[worst].get("total", 0) / 1e9, worst,
-                        next(iter(m4.values())).get("workspace"), same, len(m4)))
-        report["cortex_m4_median"] = statistics.median(tot)
+        median = m4_summary(m4, "Cortex-M4F (qemu mps2-an386, -icount shift=0), built-in model, default options,"
+                            " frames %05d-%05d, millions of instructions:" % args.m4_range,
+                            "Cortex-M4 median", "the host's (1 px, 1e-3)", lines)
+        report["cortex_m4_median"] = median
         looks = picto_m4(args, args.out)
         if looks is not None:
             report["cortex_m4_picto_look"] = looks
@@ -446,7 +448,7 @@ def main():
         if hostile_dir is not None:
             report["cortex_m4_hostile"], report["cortex_m4_hostile_worst_ratio"] = m4_hostile(
                 args, hostile_dir, args.m4_elf, (), "Cortex-M4F, the hostile frames, millions of instructions:",
-                ("Cortex-M4 hostile worst", "GTSDB median"), statistics.median(tot), lines)
+                ("Cortex-M4 hostile worst", "GTSDB median"), median, lines)
         inits = [m4[n]["init"] for n in m4 if "init" in m4[n]]
         if inits:
             lines.append("sbr_recog_init (once, not per frame: the configuration and models checked): "
