@@ -3,6 +3,7 @@
    colour-opponent formulas on known pixels, block averaging, and bad input. */
 #include "unity.h"
 #include "sbr/map.h"
+#include "test_support.h"
 #include "../lib/map/map_internal.h" /* the part stage's bright-only map */
 
 void setUp(void) {}
@@ -88,14 +89,9 @@ static void test_map_subsample2_colour_blocks(void)
 {
     static uint8_t px[7u * 40u];
     static uint8_t out[3u * 8u];
-    uint32_t state = 99u;
-    uint32_t i;
     uint32_t f;
     uint32_t k;
-    for (i = 0u; i < sizeof px; i++) {
-        state = (state * 1664525u) + 1013904223u;
-        px[i] = (uint8_t)(state >> 24);
-    }
+    tsup_fill_bytes(px, sizeof px, 99u);
     for (f = 0u; f < 2u; f++) {
         const sbr_pixel_format_t fmt = (f == 0u) ? SBR_PIXEL_RGB888 : SBR_PIXEL_BGR888;
         const sbr_image_t src = {13u, 7u, 40u, fmt, px}; /* 13 x 7, stride 40 > 39 */
@@ -135,15 +131,11 @@ static void test_map_bright_only_red(void)
     static uint8_t px[9u * 64u];
     static uint8_t exact[9u * 21u];
     static uint8_t bright[9u * 21u];
-    uint32_t state = 7u;
     uint32_t i;
     uint32_t f;
     uint32_t k;
     uint32_t above = 0u;
-    for (i = 0u; i < sizeof px; i++) {
-        state = (state * 1664525u) + 1013904223u;
-        px[i] = (uint8_t)(state >> 24);
-    }
+    tsup_fill_bytes(px, sizeof px, 7u);
     for (f = 0u; f < 2u; f++) {
         const sbr_pixel_format_t fmt = (f == 0u) ? SBR_PIXEL_RGB888 : SBR_PIXEL_BGR888;
         const sbr_image_t src = {20u, 9u, 64u, fmt, px}; /* stride 64 > 60 */

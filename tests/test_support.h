@@ -15,6 +15,17 @@ static inline float tsup_uniform(tsup_rng_t *r, float lo, float hi)
     return lo + (hi - lo) * (float)(r->s >> 8) * (1.0f / 16777216.0f);
 }
 
+/* n pseudo-random bytes (the same LCG's top 8 bits) from `seed`. */
+static inline void tsup_fill_bytes(uint8_t *p, size_t n, uint32_t seed)
+{
+    uint32_t state = seed;
+    size_t i;
+    for (i = 0u; i < n; i++) {
+        state = (state * 1664525u) + 1013904223u;
+        p[i] = (uint8_t)(state >> 24);
+    }
+}
+
 /* Approximately standard normal: the sum of 12 uniforms minus 6. */
 static inline float tsup_gauss(tsup_rng_t *r)
 {
