@@ -3,6 +3,7 @@
 #include "unity.h"
 #include "sbr/fd.h"
 #include "test_support.h"
+#include "../lib/fd/fd_match.h" /* the table matcher's four-lane refinement */
 
 #include <math.h>
 #include <string.h>
@@ -292,6 +293,61 @@ static void test_table(void)
 
 /* The four-lane table path (scratch of SBR_FD_TABLE_WORK_LEN(P)) gives every prototype the
    match sbr_fd_match() gives it, in all three modes, with a partial last block (7 = 4 + 3). */
+/* The table matcher refines four pairs at once (sbr_fd_priv_corr_at_lanes()): each lane's
+   correlation at its refined lag, and the result built from it, equal the one-pair
+   refinement's bit for bit, whatever the lags and prototypes of the other lanes. */
+static void test_refinement_lanes_equal_one_pair(void)
+{
+    sbr_fd_t protos[4];
+    const sbr_fd_t *lane[4];
+    float lag[4];
+    sbr_complex_t at_d[4];
+    sbr_fd_t q;
+    uint32_t refined = 0u;
+    uint32_t b;
+    uint32_t t;
+    for (b = 0u; b < 4u; b++) {
+        transform((float)b * 11.0f * DEG, 1.0f + 0.5f * (float)b, 0.0f, 0.0f, 5u * b);
+        protos[b] = fd_of(g_tmp, NPTS);
+        protos[b].c[M + 2u].re += 0.03f * (float)b;
+        lane[b] = &protos[b];
+    }
+    transform(17.0f * DEG, 1.5f, 1.0f, 2.0f, 3u);
+    q = fd_of(g_tmp, NPTS);
+    for (t = 0u; t < 6u; t++) {
+        sbr_complex_t around[4][3];
+        int found[4];
+        int need[4];
+        for (b = 0u; b < 4u; b++) {
+            float d = 0.0f;
+            const float base = 0.7f + (0.05f * (float)b) - (0.02f * (float)t);
+            /* a concave triple (refined) except lane t % 4, a convex one (not refined) */
+            around[b][0].re = base - 0.03f - (0.01f * (float)t);
+            around[b][0].im = 0.01f * (float)b;
+            around[b][1].re = (b == (t % 4u)) ? base - 0.1f : base;
+            around[b][1].im = -0.02f;
+            around[b][2].re = base - 0.05f + (0.004f * (float)b);
+            around[b][2].im = 0.03f;
+            found[b] = 1;
+            need[b] = sbr_fd_priv_refine_offset(&g_cov, found[b], around[b], &d);
+            lag[b] = (float)(3u * t + b) + d;
+            refined += (uint32_t)need[b];
+        }
+        sbr_fd_priv_corr_at_lanes(&q, lane, lag, 64u, at_d);
+        for (b = 0u; b < 4u; b++) {
+            sbr_fd_match_t one;
+            sbr_fd_match_t four;
+            sbr_fd_priv_finish_match(64u, &g_cov, &q, &protos[b], found[b], 3u * t + b, around[b],
+                                     NULL, &one);
+            sbr_fd_priv_finish_match(64u, &g_cov, &q, &protos[b], found[b], 3u * t + b, around[b],
+                                     (need[b] != 0) ? &at_d[b] : NULL, &four);
+            TEST_ASSERT_EQUAL_MEMORY(&one, &four, sizeof one);
+            TEST_ASSERT_TRUE(one.error < 4.0f);
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32(18u, refined); /* three of four lanes refined each time */
+}
+
 static void test_table_lanes_equal_single_matches(void)
 {
     sbr_fd_t protos[7];
@@ -757,6 +813,7 @@ int main(void)
     RUN_TEST(test_integer_points);
     RUN_TEST(test_smooth);
     RUN_TEST(test_table);
+    RUN_TEST(test_refinement_lanes_equal_one_pair);
     RUN_TEST(test_table_lanes_equal_single_matches);
     RUN_TEST(test_table_lanes_refuse_corrupt_prototypes);
     RUN_TEST(test_screening_keeps_every_match_up_to_max_error);

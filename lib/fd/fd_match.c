@@ -67,6 +67,82 @@ static sbr_complex_t corr_at(const sbr_fd_t *q, const sbr_fd_t *p, float lag, ui
     return r;
 }
 
+/* corr_at() of FD_LANES prototypes at their own lags, the same operations in the same order
+   on each lane (whole-lane steps, which compilers pack into vectors on SIMD hosts), so
+   each lane's value equals corr_at()'s bit for bit. */
+void sbr_fd_priv_corr_at_lanes(const sbr_fd_t *q, const sbr_fd_t *const p[FD_LANES],
+                               const float lag[FD_LANES], uint32_t size, sbr_complex_t out[FD_LANES])
+{
+    const uint32_t m = q->m;
+    float wr[FD_LANES];
+    float wi[FD_LANES];
+    float nr[FD_LANES]; /* w^n */
+    float ni[FD_LANES];
+    float rr[FD_LANES];
+    float ri[FD_LANES];
+    uint32_t b;
+    uint32_t n;
+
+    for (b = 0u; b < FD_LANES; b++) {
+        const float a = (SBR_TWO_PI_F * lag[b]) / (float)size;
+        wr[b] = cosf(a);
+        wi[b] = sinf(a);
+        nr[b] = wr[b];
+        ni[b] = wi[b];
+        rr[b] = 0.0f;
+        ri[b] = 0.0f;
+    }
+    for (n = 1u; n <= m; n++) {
+        const sbr_complex_t qp = q->c[m + n];
+        const sbr_complex_t qn = q->c[m - n];
+        const float cpr[FD_LANES] = {p[0]->c[m + n].re, p[1]->c[m + n].re, p[2]->c[m + n].re,
+                                     p[3]->c[m + n].re};
+        const float cpi[FD_LANES] = {p[0]->c[m + n].im, p[1]->c[m + n].im, p[2]->c[m + n].im,
+                                     p[3]->c[m + n].im};
+        const float cnr[FD_LANES] = {p[0]->c[m - n].re, p[1]->c[m - n].re, p[2]->c[m - n].re,
+                                     p[3]->c[m - n].re};
+        const float cni[FD_LANES] = {p[0]->c[m - n].im, p[1]->c[m - n].im, p[2]->c[m - n].im,
+                                     p[3]->c[m - n].im};
+        float pr[FD_LANES];
+        float pim[FD_LANES];
+        float xr[FD_LANES];
+        float xim[FD_LANES];
+        float t[FD_LANES];
+        /* conj(Q) C for +n and -n */
+        for (b = 0u; b < FD_LANES; b++) {
+            pr[b] = (qp.re * cpr[b]) + (qp.im * cpi[b]);
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            pim[b] = (qp.re * cpi[b]) - (qp.im * cpr[b]);
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            xr[b] = (qn.re * cnr[b]) + (qn.im * cni[b]);
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            xim[b] = (qn.re * cni[b]) - (qn.im * cnr[b]);
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            rr[b] += ((pr[b] * nr[b]) - (pim[b] * ni[b])) + ((xr[b] * nr[b]) + (xim[b] * ni[b]));
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            ri[b] += ((pr[b] * ni[b]) + (pim[b] * nr[b])) + ((xim[b] * nr[b]) - (xr[b] * ni[b]));
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            t[b] = (nr[b] * wr[b]) - (ni[b] * wi[b]);
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            ni[b] = (nr[b] * wi[b]) + (ni[b] * wr[b]);
+        }
+        for (b = 0u; b < FD_LANES; b++) {
+            nr[b] = t[b];
+        }
+    }
+    for (b = 0u; b < FD_LANES; b++) {
+        out[b].re = rr[b];
+        out[b].im = ri[b];
+    }
+}
+
 /* Objective of a correlation value in the given mode (|r|^2 is avoided: the parabola
    fit needs the objective itself). */
 static float objective(sbr_fd_mode_t mode, sbr_complex_t r)
@@ -253,17 +329,49 @@ float sbr_fd_priv_rotation_cos_bound(const sbr_fd_match_config_t *cfg)
     return cb;
 }
 
-/* Refinement and the result, given the grid peak `best` (found = 0: no admissible peak)
-   and r at best - 1, best, best + 1. */
+/* Whether a pair is refined (an admissible grid peak, refine on, the parabola through r at
+   best - 1, best, best + 1 concave) and the refined lag's offset d from best, |d| <= 1/2
+   (0 when not refined). */
+int sbr_fd_priv_refine_offset(const sbr_fd_match_config_t *cfg, int found,
+                              const sbr_complex_t around[3], float *d)
+{
+    int refined = 0;
+    *d = 0.0f;
+    if ((found != 0) && (cfg->refine != 0)) {
+        const float val = objective(cfg->mode, around[1]);
+        const float fa = objective(cfg->mode, around[0]);
+        const float fb = objective(cfg->mode, around[2]);
+        const float den = fa - (2.0f * val) + fb;
+        if (den < 0.0f) {
+            float x = 0.5f * (fa - fb) / den;
+            if (x > 0.5f) {
+                x = 0.5f;
+            }
+            if (x < -0.5f) {
+                x = -0.5f;
+            }
+            *d = x;
+            refined = 1;
+        }
+    }
+    return refined;
+}
+
+/* Refinement and the result, given the grid peak `best` (found = 0: no admissible peak),
+   r at best - 1, best, best + 1, and r at the refined lag when the caller has it (`at_d`,
+   corr_at() of best + d, d from sbr_fd_priv_refine_offset(); NULL: found here). */
 void sbr_fd_priv_finish_match(uint32_t size, const sbr_fd_match_config_t *cfg,
                               const sbr_fd_t *query, const sbr_fd_t *proto, int found,
-                              uint32_t best, const sbr_complex_t around[3], sbr_fd_match_t *result)
+                              uint32_t best, const sbr_complex_t around[3],
+                              const sbr_complex_t *at_d, sbr_fd_match_t *result)
 {
     int bounded = 0;
     sbr_complex_t r;
     float lag;
     float val;
     float rot;
+    float level;
+    float d;
 
     if ((cfg->mode == SBR_FD_ROTATION_COVARIANT) && (cfg->max_rotation < SBR_PI_F)) {
         bounded = 1;
@@ -278,29 +386,25 @@ void sbr_fd_priv_finish_match(uint32_t size, const sbr_fd_match_config_t *cfg,
     r = around[1];
     lag = (float)best;
     val = objective(cfg->mode, r);
-    if (cfg->refine != 0) {
-        const float fa = objective(cfg->mode, around[0]);
-        const float fb = objective(cfg->mode, around[2]);
-        const float den = fa - (2.0f * val) + fb;
-        if (den < 0.0f) {
-            float d = 0.5f * (fa - fb) / den;
-            sbr_complex_t rr;
-            float vv;
-            if (d > 0.5f) {
-                d = 0.5f;
-            }
-            if (d < -0.5f) {
-                d = -0.5f;
-            }
-            rr = corr_at(query, proto, (float)best + d, size);
-            vv = objective(cfg->mode, rr);
-            rot = sbr_util_atan2f(rr.im, rr.re);
-            if ((vv >= val) && ((bounded == 0) || (fabsf(rot) <= cfg->max_rotation))) {
-                r = rr;
-                val = vv;
-                lag = (float)best + d;
-            }
+    level = sbr_fd_priv_screen_level(cfg);
+    if (sbr_fd_priv_refine_offset(cfg, found, around, &d) != 0) {
+        const sbr_complex_t rr = (at_d != NULL) ? *at_d : corr_at(query, proto, (float)best + d, size);
+        const float vv = objective(cfg->mode, rr);
+        rot = sbr_util_atan2f(rr.im, rr.re);
+        if ((vv >= val) && ((bounded == 0) || (fabsf(rot) <= cfg->max_rotation))) {
+            r = rr;
+            val = vv;
+            lag = (float)best + d;
         }
+    }
+    if ((level > 0.0f) && (val < level)) {
+        /* below the screening's level (max_error > 0): the error is above max_error by more
+           than the margin, so the pair gets the no-match result, as the screening before
+           the transform gives it (the rotation and shift need not be found) */
+        result->error = 4.0f;
+        result->rotation = 0.0f;
+        result->shift = 0.0f;
+        return;
     }
     result->error = 2.0f - (2.0f * val);
     if (result->error < 0.0f) {
@@ -480,7 +584,7 @@ static sbr_status_t match_core(const sbr_fft_t *fft, const sbr_fd_match_config_t
             around[l].im *= scale;
         }
         sbr_fd_priv_finish_match(size, cfg, query, proto, (best_val > FD_OUTSIDE) ? 1 : 0, best, around,
-                                 result);
+                                 NULL, result);
     }
     return SBR_OK;
 }
@@ -554,9 +658,11 @@ void sbr_fd_priv_lanes_peaks(uint32_t size, int inv, float cb, const float *re, 
             for (b = 0u; b < FD_LANES; b++) {
                 const float xr = re[(l * FD_LANES) + b];
                 const float xi = im[(l * FD_LANES) + b];
-                const float v = peak_value_fast(cb, xr, xi);
-                if (v > bv[b]) {
-                    bv[b] = v;
+                /* peak_value_fast() is xr or FD_OUTSIDE (the start value), so only a lag
+                   whose xr beats the best so far can change the best: the bound's square
+                   root is taken for those alone (a NaN xr beats nothing, as before) */
+                if ((xr > bv[b]) && (peak_value_fast(cb, xr, xi) > bv[b])) {
+                    bv[b] = xr;
                     bl[b] = fl;
                 }
                 check[b] += (xr * xr) + (xi * xi);

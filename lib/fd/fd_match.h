@@ -43,10 +43,18 @@ void sbr_fd_priv_product_positions(uint32_t m, uint32_t size, const uint16_t *bi
 /* conj(Q(n)) C(n) at the given positions. */
 void sbr_fd_priv_write_products(const sbr_fd_t *query, const sbr_fd_t *proto, const uint32_t *pos,
                                 float *re, float *im);
-/* Refinement and the result, given the grid peak and r at best - 1, best, best + 1. */
+/* Whether a pair is refined and the refined lag's offset d from the grid peak. */
+int sbr_fd_priv_refine_offset(const sbr_fd_match_config_t *cfg, int found,
+                              const sbr_complex_t around[3], float *d);
+/* r at a fractional lag of FD_LANES prototypes, each lane equal to the one-pair value. */
+void sbr_fd_priv_corr_at_lanes(const sbr_fd_t *q, const sbr_fd_t *const p[FD_LANES],
+                               const float lag[FD_LANES], uint32_t size, sbr_complex_t out[FD_LANES]);
+/* Refinement and the result, given the grid peak, r at best - 1, best, best + 1 and r at
+   the refined lag when the caller found it (at_d; NULL: found here). */
 void sbr_fd_priv_finish_match(uint32_t size, const sbr_fd_match_config_t *cfg,
                               const sbr_fd_t *query, const sbr_fd_t *proto, int found,
-                              uint32_t best, const sbr_complex_t around[3], sbr_fd_match_t *result);
+                              uint32_t best, const sbr_complex_t around[3],
+                              const sbr_complex_t *at_d, sbr_fd_match_t *result);
 /* 1 for the rotation-invariant mode. */
 int sbr_fd_priv_mode_invariant(const sbr_fd_match_config_t *cfg);
 /* cos of the rotation bound, or -2 (no bound). */

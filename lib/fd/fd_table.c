@@ -76,24 +76,49 @@ static void lanes_fill(const sbr_fft_t *fft, const sbr_fd_t *query, const lane_b
 }
 
 /* The results of a transformed batch from each lane's correlation peak and its two
-   neighbours. */
+   neighbours; the refined lags' correlations of the batch in one four-lane evaluation
+   (lanes not refined evaluate lag 0 of the first prototype, unused). */
 static void lanes_finish(uint32_t size, const sbr_fd_match_config_t *cfg, const sbr_fd_t *query,
                          const lane_batch_t *bt, int inv, float cb, const float *re,
                          const float *im, const uint32_t *best, sbr_fd_match_t *results)
 {
+    sbr_complex_t around[FD_LANES][3];
+    int found[FD_LANES];
+    int refined[FD_LANES];
+    const sbr_fd_t *lane[FD_LANES];
+    float lag[FD_LANES];
+    sbr_complex_t at_d[FD_LANES];
+    uint32_t any = 0u;
     uint32_t b;
     uint32_t k;
-    for (b = 0u; b < bt->valid; b++) {
-        sbr_complex_t around[3];
-        /* size is a power of two (a valid FFT instance) */
-        const uint32_t at[3] = {(best[b] + size - 1u) & (size - 1u), best[b],
-                                (best[b] + 1u) & (size - 1u)};
-        for (k = 0u; k < 3u; k++) {
-            around[k].re = re[(at[k] * FD_LANES) + b];
-            around[k].im = im[(at[k] * FD_LANES) + b];
+    for (b = 0u; b < FD_LANES; b++) {
+        float d = 0.0f;
+        lane[b] = bt->lane[0];
+        lag[b] = 0.0f;
+        refined[b] = 0;
+        if (b < bt->valid) {
+            /* size is a power of two (a valid FFT instance) */
+            const uint32_t at[3] = {(best[b] + size - 1u) & (size - 1u), best[b],
+                                    (best[b] + 1u) & (size - 1u)};
+            for (k = 0u; k < 3u; k++) {
+                around[b][k].re = re[(at[k] * FD_LANES) + b];
+                around[b][k].im = im[(at[k] * FD_LANES) + b];
+            }
+            found[b] = sbr_fd_priv_found_any(inv, cb, around[b][1]);
+            refined[b] = sbr_fd_priv_refine_offset(cfg, found[b], around[b], &d);
+            if (refined[b] != 0) {
+                lane[b] = bt->lane[b];
+                lag[b] = (float)best[b] + d;
+                any++;
+            }
         }
-        sbr_fd_priv_finish_match(size, cfg, query, bt->lane[b], sbr_fd_priv_found_any(inv, cb, around[1]), best[b],
-                     around, &results[bt->idx[b]]);
+    }
+    if (any > 0u) {
+        sbr_fd_priv_corr_at_lanes(query, lane, lag, size, at_d);
+    }
+    for (b = 0u; b < bt->valid; b++) {
+        sbr_fd_priv_finish_match(size, cfg, query, bt->lane[b], found[b], best[b], around[b],
+                                 (refined[b] != 0) ? &at_d[b] : NULL, &results[bt->idx[b]]);
     }
 }
 
