@@ -509,38 +509,51 @@ static void test_mser_heap_bound_texture(void)
 /* The part stage's entry (lib/mser/mser_internal.h): the map written into the workspace's
    slot gives sbr_mser_detect()'s regions of that map, and afterwards the same map, byte
    for byte, at the start of the pixel words; for each polarity and with level limits
-   (walls keep their level for the next pass). */
+   (walls keep their level for the next pass); on the whole 256 x 256 map and on a 251 x
+   250 part of it (the level loops work in blocks of 16 pixels: rows and pixel counts that
+   are not a multiple of it leave pixels to their one-by-one tails). */
 static void test_mser_in_place(void)
 {
     static const uint32_t setups[4][3] = {
         {SBR_MSER_BOTH, 255u, 0u}, {SBR_MSER_DARK, 255u, 0u}, {SBR_MSER_BRIGHT, 255u, 100u},
         {SBR_MSER_BOTH, 150u, 100u}};
-    const sbr_image_t v = {HW, HW, HW, SBR_PIXEL_GRAY8, &g_big[0][0]};
+    static const uint32_t sizes[2][2] = {{HW, HW}, {HW - 5u, HW - 6u}};
     uint32_t k;
+    uint32_t z;
     test_mser_heap_bound(); /* fills g_big: the snake and the squares */
-    for (k = 0u; k < 4u; k++) {
-        sbr_image_t back;
-        uint8_t *slot;
-        uint32_t n = 0u;
-        uint32_t m = 0u;
-        size_t need;
-        g_cfg.polarity = setups[k][0];
-        g_cfg.dark_max = setups[k][1];
-        g_cfg.bright_min = setups[k][2];
-        g_cfg.max_nodes = HW_NODES;
-        need = sbr_mser_workspace_size(&g_cfg, HW, HW);
-        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_detect(&v, &g_cfg, g_bws, need, g_breg[0], 128u, &n));
-        TEST_ASSERT_TRUE(n >= 3u);
-        memset(g_bws, 0xA5, sizeof g_bws);
-        slot = sbr_mser_priv_map_slot(&g_cfg, HW, HW, g_bws);
-        memcpy(slot, g_big, sizeof g_big);
-        TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_priv_detect_in_place(HW, HW, &g_cfg, g_bws, need,
-                                                                       g_breg[1], 128u, &m, &back));
-        TEST_ASSERT_EQUAL_UINT32(n, m);
-        TEST_ASSERT_EQUAL_MEMORY(g_breg[0], g_breg[1], n * sizeof(sbr_mser_region_t));
-        TEST_ASSERT_EQUAL_UINT32(HW, back.width);
-        TEST_ASSERT_EQUAL_UINT32(HW, back.stride);
-        TEST_ASSERT_EQUAL_MEMORY(&g_big[0][0], back.data, sizeof g_big);
+    for (z = 0u; z < 2u; z++) {
+        const uint32_t w = sizes[z][0];
+        const uint32_t h = sizes[z][1];
+        const sbr_image_t v = {w, h, HW, SBR_PIXEL_GRAY8, &g_big[0][0]};
+        for (k = 0u; k < 4u; k++) {
+            sbr_image_t back;
+            uint8_t *slot;
+            uint32_t n = 0u;
+            uint32_t m = 0u;
+            uint32_t y;
+            size_t need;
+            g_cfg.polarity = setups[k][0];
+            g_cfg.dark_max = setups[k][1];
+            g_cfg.bright_min = setups[k][2];
+            g_cfg.max_nodes = HW_NODES;
+            need = sbr_mser_workspace_size(&g_cfg, w, h);
+            TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_detect(&v, &g_cfg, g_bws, need, g_breg[0], 128u, &n));
+            TEST_ASSERT_TRUE(n >= 3u);
+            memset(g_bws, 0xA5, sizeof g_bws);
+            slot = sbr_mser_priv_map_slot(&g_cfg, w, h, g_bws);
+            for (y = 0u; y < h; y++) {
+                memcpy(&slot[(size_t)y * w], g_big[y], w);
+            }
+            TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_priv_detect_in_place(w, h, &g_cfg, g_bws, need,
+                                                                           g_breg[1], 128u, &m, &back));
+            TEST_ASSERT_EQUAL_UINT32(n, m);
+            TEST_ASSERT_EQUAL_MEMORY(g_breg[0], g_breg[1], n * sizeof(sbr_mser_region_t));
+            TEST_ASSERT_EQUAL_UINT32(w, back.width);
+            TEST_ASSERT_EQUAL_UINT32(w, back.stride);
+            for (y = 0u; y < h; y++) {
+                TEST_ASSERT_EQUAL_MEMORY(g_big[y], &back.data[(size_t)y * w], w);
+            }
+        }
     }
     g_cfg.max_nodes = 0u;
 }

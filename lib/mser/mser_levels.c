@@ -3,30 +3,49 @@
    walls and the border, and the map written back after the last pass. */
 #include "mser_internal.h"
 
+/* Pixels a block of the level loops below: fixed-size blocks through local arrays, which
+   compilers turn into vector code on SIMD hosts (16 pixels: one 16-byte load, two 16-byte
+   stores), the pixels left over one by one with the same arithmetic. */
+#define LEV_BLOCK 16u
+
+/* One pixel's level word: v (a level, possibly inverted) over the wall flags when v is
+   above `limit` (a level; 255: no wall). */
+static uint16_t level_word(uint8_t v, uint8_t limit)
+{
+    const uint8_t hi = (v > limit) ? (uint8_t)(LEV_WALL >> 8u) : 0u;
+    return (uint16_t)(((uint32_t)hi << 8u) | (uint32_t)v);
+}
+
 /* The (inverted) copy of the map; with a level limit (values above `limit` of the
    possibly inverted map) those pixels are walls, reached from the start like the border,
    so no flood enters them. Walls keep their level under LEV_WALL. In place (map->data
    the second half of c->lev, stride the width), every row is read before its words are
-   written: word i covers bytes 2i and 2i + 1 of the block, below the unread map bytes
-   from wh + i + 1 on. */
+   written: a block's 16 bytes are read before its 16 words are written, which lie below
+   the unread map bytes (word i covers bytes 2i and 2i + 1, below byte wh + i + 1). */
 static void pass_copy(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, uint32_t limit)
 {
     const uint32_t w = c->width;
     const uint32_t h = c->height;
+    const uint8_t lim = (uint8_t)((limit < (MSER_LEVELS - 1u)) ? limit : (MSER_LEVELS - 1u));
     uint32_t y;
     for (y = 0u; y < h; y++) {
         const uint8_t *src = &map->data[(size_t)y * map->stride];
         uint16_t *g = &c->lev[(size_t)y * w];
-        uint32_t x;
-        if (limit < (MSER_LEVELS - 1u)) {
-            for (x = 0u; x < w; x++) {
-                const uint32_t v = (uint32_t)src[x] ^ (uint32_t)xor_mask;
-                g[x] = (uint16_t)((v > limit) ? (LEV_WALL | v) : v);
+        uint32_t x = 0u;
+        while ((x + LEV_BLOCK) <= w) {
+            uint8_t t[LEV_BLOCK];
+            uint16_t o[LEV_BLOCK];
+            uint32_t i;
+            (void)memcpy(t, &src[x], sizeof t);
+            for (i = 0u; i < LEV_BLOCK; i++) {
+                o[i] = level_word((uint8_t)(t[i] ^ xor_mask), lim);
             }
-        } else {
-            for (x = 0u; x < w; x++) {
-                g[x] = (uint16_t)((uint32_t)src[x] ^ (uint32_t)xor_mask);
-            }
+            (void)memcpy(&g[x], o, sizeof o);
+            x += LEV_BLOCK;
+        }
+        while (x < w) {
+            g[x] = level_word((uint8_t)(src[x] ^ xor_mask), lim);
+            x++;
         }
     }
 }
@@ -36,10 +55,21 @@ static void pass_copy(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, u
 static void pass_relevel(mser_ctx_t *c, uint8_t flip, uint32_t limit)
 {
     const size_t n = (size_t)c->width * (size_t)c->height;
-    size_t i;
-    for (i = 0u; i < n; i++) {
-        const uint32_t v = ((uint32_t)c->lev[i] & LEV_LEVEL) ^ (uint32_t)flip;
-        c->lev[i] = (uint16_t)(((limit < (MSER_LEVELS - 1u)) && (v > limit)) ? (LEV_WALL | v) : v);
+    const uint8_t lim = (uint8_t)((limit < (MSER_LEVELS - 1u)) ? limit : (MSER_LEVELS - 1u));
+    size_t i = 0u;
+    while ((i + LEV_BLOCK) <= n) {
+        uint16_t t[LEV_BLOCK];
+        uint32_t j;
+        (void)memcpy(t, &c->lev[i], sizeof t);
+        for (j = 0u; j < LEV_BLOCK; j++) {
+            t[j] = level_word((uint8_t)(((uint32_t)t[j] & LEV_LEVEL) ^ (uint32_t)flip), lim);
+        }
+        (void)memcpy(&c->lev[i], t, sizeof t);
+        i += LEV_BLOCK;
+    }
+    while (i < n) {
+        c->lev[i] = level_word((uint8_t)(((uint32_t)c->lev[i] & LEV_LEVEL) ^ (uint32_t)flip), lim);
+        i++;
     }
 }
 
@@ -82,26 +112,26 @@ void sbr_mser_priv_pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor
 }
 
 /* After the last pass: the map back at the start of c->lev, byte i from word i (bytes
-   2i and 2i + 1, not yet overwritten: four words are read before their four bytes, which
-   lie in words below i, are written); `last` the inversion the levels have. */
+   2i and 2i + 1: a block's 16 words are read before its 16 bytes, which lie below them
+   or in them, are written); `last` the inversion the levels have. */
 void sbr_mser_priv_map_back(mser_ctx_t *c, uint8_t last)
 {
     uint8_t *const out = (uint8_t *)(void *)c->lev;
-    const uint16_t *const lev = c->lev;
     const size_t n = (size_t)c->width * (size_t)c->height;
-    const uint32_t x = (uint32_t)last;
-    size_t i;
-    for (i = 0u; (i + 4u) <= n; i += 4u) {
-        const uint32_t v0 = ((uint32_t)lev[i] & LEV_LEVEL) ^ x;
-        const uint32_t v1 = ((uint32_t)lev[i + 1u] & LEV_LEVEL) ^ x;
-        const uint32_t v2 = ((uint32_t)lev[i + 2u] & LEV_LEVEL) ^ x;
-        const uint32_t v3 = ((uint32_t)lev[i + 3u] & LEV_LEVEL) ^ x;
-        out[i] = (uint8_t)v0;
-        out[i + 1u] = (uint8_t)v1;
-        out[i + 2u] = (uint8_t)v2;
-        out[i + 3u] = (uint8_t)v3;
+    size_t i = 0u;
+    while ((i + LEV_BLOCK) <= n) {
+        uint16_t t[LEV_BLOCK];
+        uint8_t o[LEV_BLOCK];
+        uint32_t j;
+        (void)memcpy(t, &c->lev[i], sizeof t);
+        for (j = 0u; j < LEV_BLOCK; j++) {
+            o[j] = (uint8_t)((uint32_t)t[j] ^ (uint32_t)last);
+        }
+        (void)memcpy(&out[i], o, sizeof o);
+        i += LEV_BLOCK;
     }
-    for (; i < n; i++) {
-        out[i] = (uint8_t)(((uint32_t)lev[i] & LEV_LEVEL) ^ x);
+    while (i < n) {
+        out[i] = (uint8_t)(((uint32_t)c->lev[i] & LEV_LEVEL) ^ (uint32_t)last);
+        i++;
     }
 }
