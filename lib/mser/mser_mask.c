@@ -23,22 +23,31 @@ static int mser_pass_level(uint8_t v, const sbr_mser_region_t *r)
     return in;
 }
 
+/* The fill's view of a region: its box's first map pixel and mask byte, the strides, and
+   its level test as one comparison (bright: v >= level is 255 - v <= 255 - level). */
+typedef struct mask_fill_s {
+    const uint8_t *map;  /* the map pixel at the box's top left */
+    uint8_t *mask;
+    size_t map_stride;
+    size_t mask_stride;
+    uint32_t *stack;
+    uint32_t sp;
+    uint32_t filled;
+    uint8_t flip;        /* 0 dark, 0xFF bright */
+    uint8_t level;       /* in the flipped values */
+} mask_fill_t;
+
 /* One neighbour (nx, ny) of the region mask's fill: marked and stacked if it is in the
    region and not marked yet. */
-static void mask_grow(const sbr_image_t *map, const sbr_mser_region_t *r, uint8_t *mask,
-                      uint32_t mask_stride, uint32_t nx, uint32_t ny, uint32_t *stack,
-                      uint32_t *sp, uint32_t *filled)
+static inline void mask_grow(mask_fill_t *f, uint32_t nx, uint32_t ny)
 {
-    uint8_t *m = &mask[((size_t)ny * mask_stride) + nx];
-    if (*m == 0u) {
-        const uint8_t v =
-            map->data[((size_t)(ny + r->bbox.y) * map->stride) + (size_t)(nx + r->bbox.x)];
-        if (mser_pass_level(v, r) != 0) {
-            *m = 255u;
-            stack[*sp] = (ny << 16) | nx;
-            (*sp)++;
-            (*filled)++;
-        }
+    uint8_t *m = &f->mask[((size_t)ny * f->mask_stride) + nx];
+    if ((*m == 0u) &&
+        ((uint8_t)(f->map[((size_t)ny * f->map_stride) + nx] ^ f->flip) <= f->level)) {
+        *m = 255u;
+        f->stack[f->sp] = (ny << 16) | nx;
+        f->sp++;
+        f->filled++;
     }
 }
 
@@ -72,29 +81,38 @@ static uint32_t mask_fill(const sbr_image_t *map, const sbr_mser_region_t *regio
                           uint32_t mask_stride, uint32_t *stack)
 {
     const sbr_rect_t *b = &region->bbox;
-    uint32_t sp = 1u;
-    uint32_t filled = 1u;
-    while (sp > 0u) {
+    const uint8_t flip = (region->polarity == (uint8_t)SBR_MSER_DARK) ? 0u : 0xFFu;
+    mask_fill_t f;
+    f.map = &map->data[((size_t)b->y * map->stride) + b->x];
+    f.mask = mask;
+    f.map_stride = map->stride;
+    f.mask_stride = mask_stride;
+    f.stack = stack;
+    f.sp = 1u;
+    f.filled = 1u;
+    f.flip = flip;
+    f.level = (uint8_t)(region->level ^ flip);
+    while (f.sp > 0u) {
         /* stack entries pack (y, x) in 16 bits each (region boxes are below 65536 px) */
         uint32_t lx;
         uint32_t ly;
-        sp--;
-        ly = stack[sp] >> 16;
-        lx = stack[sp] & 0xFFFFu;
+        f.sp--;
+        ly = stack[f.sp] >> 16;
+        lx = stack[f.sp] & 0xFFFFu;
         if ((lx + 1u) < b->width) {
-            mask_grow(map, region, mask, mask_stride, lx + 1u, ly, stack, &sp, &filled);
+            mask_grow(&f, lx + 1u, ly);
         }
         if ((ly + 1u) < b->height) {
-            mask_grow(map, region, mask, mask_stride, lx, ly + 1u, stack, &sp, &filled);
+            mask_grow(&f, lx, ly + 1u);
         }
         if (lx > 0u) {
-            mask_grow(map, region, mask, mask_stride, lx - 1u, ly, stack, &sp, &filled);
+            mask_grow(&f, lx - 1u, ly);
         }
         if (ly > 0u) {
-            mask_grow(map, region, mask, mask_stride, lx, ly - 1u, stack, &sp, &filled);
+            mask_grow(&f, lx, ly - 1u);
         }
     }
-    return filled;
+    return f.filled;
 }
 
 sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_t *region,
