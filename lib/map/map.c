@@ -151,8 +151,24 @@ typedef struct map_read_s {
     uint32_t shift;
 } map_read_t;
 
+/* The rounded means of one 2 x 2 block's channels (a: its top row's pixels, b: the
+   bottom row's; ri, bi: the red and blue offsets). */
+static inline void block2_means(const uint8_t *a, const uint8_t *b, uint32_t ri, uint32_t bi,
+                                uint32_t mean[3])
+{
+    const uint32_t sr = (((uint32_t)a[ri] + (uint32_t)a[3u + ri]) + (uint32_t)b[ri]) +
+                        (uint32_t)b[3u + ri];
+    const uint32_t sg = (((uint32_t)a[1] + (uint32_t)a[4]) + (uint32_t)b[1]) + (uint32_t)b[4];
+    const uint32_t sb = (((uint32_t)a[bi] + (uint32_t)a[3u + bi]) + (uint32_t)b[bi]) +
+                        (uint32_t)b[3u + bi];
+    mean[0] = (sr + 2u) >> 2u;
+    mean[1] = (sg + 2u) >> 2u;
+    mean[2] = (sb + 2u) >> 2u;
+}
+
 /* Output row y of a map at subsample 2 from a colour frame (the recogniser's blue map):
-   the same block means as map_block_row(), the four pixels of a block read directly. */
+   the same block means as map_block_row(), the four pixels of a block read directly; the
+   blue map's loop with its kind fixed (so that map_value() is inlined there). */
 static void map_block2_row(const sbr_image_t *src, sbr_map_kind_t kind, const map_read_t *rd,
                            uint32_t y, uint32_t ow, uint8_t *dst)
 {
@@ -161,15 +177,17 @@ static void map_block2_row(const sbr_image_t *src, sbr_map_kind_t kind, const ma
     const uint32_t ri = rd->ri;
     const uint32_t bi = rd->bi;
     uint32_t x;
-    for (x = 0u; x < ow; x++) {
-        const uint8_t *a = &r0[(size_t)x * 6u];
-        const uint8_t *b = &r1[(size_t)x * 6u];
-        const uint32_t sr = (((uint32_t)a[ri] + (uint32_t)a[3u + ri]) + (uint32_t)b[ri]) +
-                            (uint32_t)b[3u + ri];
-        const uint32_t sg = (((uint32_t)a[1] + (uint32_t)a[4]) + (uint32_t)b[1]) + (uint32_t)b[4];
-        const uint32_t sb = (((uint32_t)a[bi] + (uint32_t)a[3u + bi]) + (uint32_t)b[bi]) +
-                            (uint32_t)b[3u + bi];
-        dst[x] = map_value(kind, (sr + 2u) >> 2u, (sg + 2u) >> 2u, (sb + 2u) >> 2u);
+    uint32_t m[3];
+    if (kind == SBR_MAP_BLUE) {
+        for (x = 0u; x < ow; x++) {
+            block2_means(&r0[(size_t)x * 6u], &r1[(size_t)x * 6u], ri, bi, m);
+            dst[x] = map_value(SBR_MAP_BLUE, m[0], m[1], m[2]);
+        }
+    } else {
+        for (x = 0u; x < ow; x++) {
+            block2_means(&r0[(size_t)x * 6u], &r1[(size_t)x * 6u], ri, bi, m);
+            dst[x] = map_value(kind, m[0], m[1], m[2]);
+        }
     }
 }
 
