@@ -7,6 +7,15 @@
 
 #include <math.h>
 
+/* 1 on cores without a vector unit (Arm M-profile): there the whole-lane loops that
+   compilers turn into SIMD code on hosts (blocks through local arrays, four lanes side by
+   side) cost more than the one-at-a-time loops, so those keep the simple form. */
+#if defined(__ARM_ARCH_PROFILE) && (__ARM_ARCH_PROFILE == 'M')
+#define SBR_UTIL_SCALAR_CORE 1
+#else
+#define SBR_UTIL_SCALAR_CORE 0
+#endif
+
 /* pi and 2 pi as float (every file of the core uses these). */
 #define SBR_PI_F 3.14159265f
 #define SBR_TWO_PI_F 6.28318531f

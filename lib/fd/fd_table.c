@@ -75,6 +75,7 @@ static void lanes_fill(const sbr_fft_t *fft, const sbr_fd_t *query, const lane_b
     }
 }
 
+#if SBR_UTIL_SCALAR_CORE == 0
 /* The results of a transformed batch from each lane's correlation peak and its two
    neighbours; the refined lags' correlations of the batch in one four-lane evaluation
    (lanes not refined evaluate lag 0 of the first prototype, unused). */
@@ -121,6 +122,31 @@ static void lanes_finish(uint32_t size, const sbr_fd_match_config_t *cfg, const 
                                  (refined[b] != 0) ? &at_d[b] : NULL, &results[bt->idx[b]]);
     }
 }
+#else
+/* The results of a transformed batch from each lane's correlation peak and its two
+   neighbours, each pair refined on its own (a core without a vector unit, where four
+   lanes side by side cost more). */
+static void lanes_finish(uint32_t size, const sbr_fd_match_config_t *cfg, const sbr_fd_t *query,
+                         const lane_batch_t *bt, int inv, float cb, const float *re,
+                         const float *im, const uint32_t *best, sbr_fd_match_t *results)
+{
+    uint32_t b;
+    uint32_t k;
+    for (b = 0u; b < bt->valid; b++) {
+        sbr_complex_t around[3];
+        /* size is a power of two (a valid FFT instance) */
+        const uint32_t at[3] = {(best[b] + size - 1u) & (size - 1u), best[b],
+                                (best[b] + 1u) & (size - 1u)};
+        for (k = 0u; k < 3u; k++) {
+            around[k].re = re[(at[k] * FD_LANES) + b];
+            around[k].im = im[(at[k] * FD_LANES) + b];
+        }
+        sbr_fd_priv_finish_match(size, cfg, query, bt->lane[b],
+                                 sbr_fd_priv_found_any(inv, cb, around[1]), best[b], around, NULL,
+                                 &results[bt->idx[b]]);
+    }
+}
+#endif
 
 static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                       const sbr_fd_t *query, const sbr_fd_t *protos,

@@ -5,7 +5,8 @@
 
 /* Pixels a block of the level loops below: fixed-size blocks through local arrays, which
    compilers turn into vector code on SIMD hosts (16 pixels: one 16-byte load, two 16-byte
-   stores), the pixels left over one by one with the same arithmetic. */
+   stores), the pixels left over one by one with the same arithmetic; on a core without
+   SIMD (SBR_UTIL_SCALAR_CORE) every pixel one by one. */
 #define LEV_BLOCK 16u
 
 /* One pixel's level word: v (a level, possibly inverted) over the wall flags when v is
@@ -32,6 +33,7 @@ static void pass_copy(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, u
         const uint8_t *src = &map->data[(size_t)y * map->stride];
         uint16_t *g = &c->lev[(size_t)y * w];
         uint32_t x = 0u;
+#if SBR_UTIL_SCALAR_CORE == 0
         while ((x + LEV_BLOCK) <= w) {
             uint8_t t[LEV_BLOCK];
             uint16_t o[LEV_BLOCK];
@@ -43,9 +45,17 @@ static void pass_copy(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor_mask, u
             (void)memcpy(&g[x], o, sizeof o);
             x += LEV_BLOCK;
         }
-        while (x < w) {
-            g[x] = level_word((uint8_t)(src[x] ^ xor_mask), lim);
-            x++;
+#endif
+        if (lim < (uint8_t)(MSER_LEVELS - 1u)) {
+            while (x < w) {
+                g[x] = level_word((uint8_t)(src[x] ^ xor_mask), lim);
+                x++;
+            }
+        } else {
+            while (x < w) {
+                g[x] = (uint16_t)(uint8_t)(src[x] ^ xor_mask); /* no walls */
+                x++;
+            }
         }
     }
 }
@@ -57,6 +67,7 @@ static void pass_relevel(mser_ctx_t *c, uint8_t flip, uint32_t limit)
     const size_t n = (size_t)c->width * (size_t)c->height;
     const uint8_t lim = (uint8_t)((limit < (MSER_LEVELS - 1u)) ? limit : (MSER_LEVELS - 1u));
     size_t i = 0u;
+#if SBR_UTIL_SCALAR_CORE == 0
     while ((i + LEV_BLOCK) <= n) {
         uint16_t t[LEV_BLOCK];
         uint32_t j;
@@ -67,6 +78,7 @@ static void pass_relevel(mser_ctx_t *c, uint8_t flip, uint32_t limit)
         (void)memcpy(&c->lev[i], t, sizeof t);
         i += LEV_BLOCK;
     }
+#endif
     while (i < n) {
         c->lev[i] = level_word((uint8_t)(((uint32_t)c->lev[i] & LEV_LEVEL) ^ (uint32_t)flip), lim);
         i++;
@@ -119,6 +131,7 @@ void sbr_mser_priv_map_back(mser_ctx_t *c, uint8_t last)
     uint8_t *const out = (uint8_t *)(void *)c->lev;
     const size_t n = (size_t)c->width * (size_t)c->height;
     size_t i = 0u;
+#if SBR_UTIL_SCALAR_CORE == 0
     while ((i + LEV_BLOCK) <= n) {
         uint16_t t[LEV_BLOCK];
         uint8_t o[LEV_BLOCK];
@@ -130,6 +143,7 @@ void sbr_mser_priv_map_back(mser_ctx_t *c, uint8_t last)
         (void)memcpy(&out[i], o, sizeof o);
         i += LEV_BLOCK;
     }
+#endif
     while (i < n) {
         out[i] = (uint8_t)(((uint32_t)c->lev[i] & LEV_LEVEL) ^ (uint32_t)last);
         i++;
