@@ -15,6 +15,7 @@
 #define MAXP 32u
 
 static uint8_t g_rgb[H][W][3];
+static uint8_t g_grey[H][W]; /* a grey copy of the picture (test_class_stage) */
 static uint8_t g_grey[H][W];
 static uint64_t g_ws[700000u / 8u];
 static sbr_part_t g_parts[128];
@@ -858,7 +859,8 @@ static void test_class_stage(void)
            one refine_score: a first gate above that probability moves nothing, whatever
            the second; a first gate below it and a second above it move the box once. */
         TEST_ASSERT_EQUAL_UINT32(2u, g_cfg.refine_steps);
-        TEST_ASSERT_EQUAL_FLOAT(0.0003f, g_cfg.refine_first_score);
+        TEST_ASSERT_EQUAL_FLOAT(0.01f, g_cfg.refine_first_score);
+        TEST_ASSERT_EQUAL_FLOAT(0.0003f, g_cfg.grey_refine_first_score);
         TEST_ASSERT_EQUAL_FLOAT(0.001f, g_cfg.refine_score);
         rc.refine_steps = 2u;
         rc.refine_first_score = 0.995f;
@@ -882,6 +884,40 @@ static void test_class_stage(void)
                                                        &n, &st));
         TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.2f * w0), box_cx(&g_dets[0]));
+        /* a grey frame (the same picture) takes grey_refine_first_score: above the signs'
+           probability nothing moves there whatever refine_first_score says, below it the
+           box moves */
+        {
+            sbr_image_t gv = v;
+            uint32_t x;
+            uint32_t y;
+            for (y = 0u; y < H; y++) {
+                for (x = 0u; x < W; x++) {
+                    g_grey[y][x] = (uint8_t)(((uint32_t)g_rgb[y][x][0] + g_rgb[y][x][1] + g_rgb[y][x][2]) / 3u);
+                }
+            }
+            gv.format = SBR_PIXEL_GRAY8;
+            gv.stride = W;
+            gv.data = &g_grey[0][0];
+            rc.refine_score = 0.0f;
+            rc.refine_first_score = 0.0f;
+            rc.grey_refine_first_score = 0.995f;
+            TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&gv, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
+                                                           16u, &n, &st));
+            TEST_ASSERT_TRUE(st.classified >= 1u);
+            TEST_ASSERT_EQUAL_UINT32(0u, st.refined);
+            rc.refine_first_score = 0.995f;
+            rc.grey_refine_first_score = 0.0f;
+            TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&gv, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
+                                                           16u, &n, &st));
+            TEST_ASSERT_TRUE(st.refined >= 1u);
+            rc.grey_refine_first_score = NAN;
+            TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+            rc.grey_refine_first_score = 1.5f;
+            TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, recog_run(&gv, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws,
+                                                                  g_dets, 16u, &n, &st));
+            rc.grey_refine_first_score = 0.0003f;
+        }
         /* out of [0, 1] or NaN: refused */
         rc.refine_first_score = NAN;
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));

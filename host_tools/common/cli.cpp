@@ -33,7 +33,10 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
     f("--vote-error", cfg.vote_error, 0.0, 4.0, "largest FD error of a vote (0: the model's)");
     f("--verify-error", cfg.verify_error, 1e-6, 4.0, "largest FD error in the cascade");
     u("--refine-steps", cfg.refine_steps, 0u, SBR_RECOG_MAX_REFINE, "class-stage box refinements");
-    f("--refine-first-score", cfg.refine_first_score, 0.0, 1.0, "sign probability to start refining");
+    f("--refine-first-score", cfg.refine_first_score, 0.0, 1.0,
+      "sign probability to start refining (colour frames)");
+    f("--grey-refine-first-score", cfg.grey_refine_first_score, 0.0, 1.0,
+      "sign probability to start refining on a grey frame");
     f("--refine-score", cfg.refine_score, 0.0, 1.0, "sign probability to go on refining");
     u("--views", cfg.views, 1u, SBR_RECOG_MAX_VIEWS, "views averaged by the class stage");
     f("--view-score", cfg.view_score, 0.0, 1.0, "sign probability for the extra views");

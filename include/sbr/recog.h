@@ -260,13 +260,17 @@ typedef struct sbr_recog_config_s {
         part model put them. Each step costs one more pictogram and the regression. */
     uint32_t refine_steps;
     /** The first refinement needs the sign classes together to be at least this probable
-        at the part model's box, [0, 1]. Default 0.0003: the candidates the classifier
-        finds at least that sign-like are refined (the others, most of the background, are
-        not moved; 0: every candidate is refined once, for boxes a fifth of a sign's size
-        off that it calls "no sign" yet whose regression still points at the sign). Each
-        refinement costs one pictogram; higher: less work, fewer badly placed signs
-        recovered (docs/results/realtime.md). */
+        at the part model's box, [0, 1], on a colour frame. Default 0.01: the candidates
+        the classifier finds at least that sign-like are refined (the others, most of the
+        background, are not moved; 0: every candidate is refined once, for boxes a fifth of
+        a sign's size off that it calls "no sign" yet whose regression still points at the
+        sign). Each refinement costs one pictogram; higher: less work, fewer badly placed
+        signs recovered (docs/results/realtime.md, 2026-12-05, seventh part). */
     float refine_first_score;
+    /** refine_first_score on a grey (::SBR_PIXEL_GRAY8) frame, [0, 1]. Default 0.0003:
+        without colour the class stage's first look at a sign is often far less sure, and
+        only the refined box finds it. */
+    float grey_refine_first_score;
     /** Further refinements (steps 2 .. refine_steps) only while the sign classes together
         are at least this probable, [0, 1]. Default 0.001 (after one move, a box near a
         sign is seldom less likely than that; background stays below it and is not moved

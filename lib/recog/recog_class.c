@@ -139,7 +139,7 @@ static int spend_look(sbr_recog_stats_t *st, uint32_t budget, uint32_t n)
 }
 
 /* The class stage on one hypothesis: classify its box; if the signs are at least
-   refine_first_score probable, and then while they are at least refine_score probable
+   refine_first_score probable (grey_refine_first_score on a grey frame), and then while they are at least refine_score probable
    (at most refine_steps times in all), move the box by the classifier's box regression
    and classify again there; the box is the last one, and so are class
    and score unless the candidate, still view_score likely, gets the mean of
@@ -153,6 +153,8 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     float box[4];
     float signs; /* the sign classes' probability at the current box */
     float danger; /* the upward-triangle classes' probability at the first box */
+    const float first = (view->format == SBR_PIXEL_GRAY8) ? cfg->grey_refine_first_score
+                                                          : cfg->refine_first_score;
     uint32_t step = 0u;
     uint32_t steps = 0u;
     centre_box(h, box);
@@ -161,7 +163,7 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     }
     danger = (cfg->triangle_view != 0u) ? triangle_mass(b) : 0.0f;
     signs = take_class(h, b->prob, b->classes);
-    if ((signs >= cfg->refine_first_score) && (pm->w3 != NULL)) {
+    if ((signs >= first) && (pm->w3 != NULL)) {
         steps = cfg->refine_steps;
     }
     while (step < steps) {

@@ -48,7 +48,8 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->candidate_score = 0.0f;
         cfg->max_candidates = 256u;
         cfg->refine_steps = 2u;
-        cfg->refine_first_score = 0.0003f;
+        cfg->refine_first_score = 0.01f;
+        cfg->grey_refine_first_score = 0.0003f;
         cfg->refine_score = 0.001f;
         cfg->views = 5u;
         cfg->view_score = 0.1f;
@@ -118,6 +119,7 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (in_range(cfg->candidate_score, 0.0f, 0.999999f) == 0) ||
         (in_range(cfg->refine_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->refine_first_score, 0.0f, 1.0f) == 0) ||
+        (in_range(cfg->grey_refine_first_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->view_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->triangle_score, 0.0f, 1.0f) == 0) ||
         (in_range(cfg->nms_iou, 1.0e-6f, 1.0f) == 0) ||

@@ -44,7 +44,7 @@ const std::map<std::string, Field> &fields() {
         SBR_U(match_p), SBR_U(max_parts), SBR_U(max_votes), SBR_U(max_hypotheses), SBR_U(max_model_protos),
         SBR_F(vote_error), SBR_F(verify_error), SBR_F(max_rotation), SBR_F(min_size), SBR_F(max_size),
         SBR_F(centre_tol), SBR_F(size_tol), SBR_U(cascade_depth), SBR_U(min_parts), SBR_F(candidate_score),
-        SBR_U(max_candidates), SBR_U(refine_steps), SBR_F(refine_first_score), SBR_F(refine_score), SBR_U(views),
+        SBR_U(max_candidates), SBR_U(refine_steps), SBR_F(refine_first_score), SBR_F(grey_refine_first_score), SBR_F(refine_score), SBR_U(views),
         SBR_F(view_score), SBR_U(triangle_view), SBR_F(triangle_score), SBR_F(min_score), SBR_F(nms_iou),
         SBR_F(candidate_iou), SBR_U(gate), SBR_U(grey_polarity), SBR_U(max_extra_looks),
         {"maps", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, maps)}},
