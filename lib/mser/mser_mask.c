@@ -8,23 +8,16 @@
 
 #include <string.h>
 
-static int mser_pass_level(uint8_t v, const sbr_mser_region_t *r)
+/* A region's level test as one comparison: v is in the region when (v ^ flip) <= the
+   returned level (dark: v <= level; bright, flip 0xFF: 255 - v <= 255 - level). */
+static uint8_t region_flip(const sbr_mser_region_t *r, uint8_t *flip)
 {
-    int in = 0;
-    if (r->polarity == (uint8_t)SBR_MSER_DARK) {
-        if (v <= r->level) {
-            in = 1;
-        }
-    } else {
-        if (v >= r->level) {
-            in = 1;
-        }
-    }
-    return in;
+    *flip = (r->polarity == (uint8_t)SBR_MSER_DARK) ? 0u : 0xFFu;
+    return (uint8_t)(r->level ^ *flip);
 }
 
 /* The fill's view of a region: its box's first map pixel and mask byte, the strides, and
-   its level test as one comparison (bright: v >= level is 255 - v <= 255 - level). */
+   its level test (region_flip()). */
 typedef struct mask_fill_s {
     const uint8_t *map;  /* the map pixel at the box's top left */
     uint8_t *mask;
@@ -81,7 +74,6 @@ static uint32_t mask_fill(const sbr_image_t *map, const sbr_mser_region_t *regio
                           uint32_t mask_stride, uint32_t *stack)
 {
     const sbr_rect_t *b = &region->bbox;
-    const uint8_t flip = (region->polarity == (uint8_t)SBR_MSER_DARK) ? 0u : 0xFFu;
     mask_fill_t f;
     f.map = &map->data[((size_t)b->y * map->stride) + b->x];
     f.mask = mask;
@@ -90,8 +82,7 @@ static uint32_t mask_fill(const sbr_image_t *map, const sbr_mser_region_t *regio
     f.stack = stack;
     f.sp = 1u;
     f.filled = 1u;
-    f.flip = flip;
-    f.level = (uint8_t)(region->level ^ flip);
+    f.level = region_flip(region, &f.flip);
     while (f.sp > 0u) {
         /* stack entries pack (y, x) in 16 bits each (region boxes are below 65536 px) */
         uint32_t lx;
@@ -151,9 +142,13 @@ sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_
     for (y = 0u; y < b->height; y++) {
         (void)memset(&mask[(size_t)y * mask_stride], 0, (size_t)b->width);
     }
-    if (mser_pass_level(map->data[((size_t)region->seed_y * map->stride) + region->seed_x],
-                        region) == 0) {
-        return SBR_ERR_CORRUPT;
+    {
+        uint8_t flip;
+        const uint8_t level = region_flip(region, &flip);
+        if ((uint8_t)(map->data[((size_t)region->seed_y * map->stride) + region->seed_x] ^ flip) >
+            level) {
+            return SBR_ERR_CORRUPT;
+        }
     }
     sx = (uint32_t)region->seed_x - b->x;
     sy = (uint32_t)region->seed_y - b->y;

@@ -154,7 +154,7 @@ static void dot4(const float *w, size_t stride, const float *b, size_t n, float 
     const size_t n4 = n - (n % 4u); /* the four-lane part; the tail loop is then visibly
                                         bounded by n - n4 < 4 */
     size_t k;
-#if defined(__ARM_ARCH_PROFILE) && (__ARM_ARCH_PROFILE == 'M')
+#if SBR_UTIL_SCALAR_CORE != 0
     /* M-profile cores have no vector unit: the lanes written out with constant indices,
        so that all sixteen sums stay in FPU registers (gcc does not unroll a lane loop
        there and kept them in memory: 2.5 times the instructions) */

@@ -139,8 +139,9 @@ static int spend_look(sbr_recog_stats_t *st, uint32_t budget, uint32_t n)
 }
 
 /* The class stage on one hypothesis: classify its box; if the signs are at least
-   refine_first_score probable (grey_refine_first_score on a grey frame), and then while they are at least refine_score probable
-   (at most refine_steps times in all), move the box by the classifier's box regression
+   refine_first_score probable (grey_refine_first_score on a grey frame), and then while
+   they are at least refine_score probable (at most refine_steps times in all), move the
+   box by the classifier's box regression
    and classify again there; the box is the last one, and so are class
    and score unless the candidate, still view_score likely, gets the mean of
    config.views views (average_views()).
