@@ -43,32 +43,50 @@ static uint32_t gate_prev(uint32_t i)
     return r;
 }
 
-/* Mean of the image over the 2 x 2 bilinear samples of grid cell (u, v), per channel (r,
-   g, b order): tx, ty the taps of the grid's sub-samples (sbr_picto_priv_taps(), 2 per cell). */
-static void gate_cell(const sbr_image_t *img, const picto_tap_t *tx, const picto_tap_t *ty,
-                      uint32_t u, uint32_t v, const picto_px_t *px, float out[3])
+/* The bilinear value of one channel between bytes a, b (weight fx of b) of the top row
+   and d, e of the bottom row (weight fy of the bottom). */
+static inline float gate_bilinear(uint8_t a, uint8_t b, uint8_t d, uint8_t e, float fx, float fy)
 {
-    uint32_t i;
+    const float top = (float)a + (fx * ((float)b - (float)a));
+    const float bot = (float)d + (fx * ((float)e - (float)d));
+    return top + (fy * (bot - top));
+}
+
+/* Grid row v's cells: per cell the mean of the image over its 2 x 2 bilinear samples, per
+   channel (r, g, b order); tx, ty the taps of the grid's sub-samples
+   (sbr_picto_priv_taps(), 2 per cell). Each cell sums its samples sub-row by sub-row, each
+   left to right; a sub-row's two source rows and every sub-column's byte offsets are
+   found once. */
+static void gate_row(const sbr_image_t *img, const picto_tap_t *tx, const picto_tap_t *ty,
+                     uint32_t v, const picto_px_t *px, float cells[GG][3])
+{
+    const uint32_t c0 = px->ch[0];
+    const uint32_t c1 = px->ch[1];
+    const uint32_t c2 = px->ch[2];
+    const uint32_t bpp = px->bpp;
     uint32_t j;
-    out[0] = 0.0f;
-    out[1] = 0.0f;
-    out[2] = 0.0f;
+    uint32_t s;
+    for (s = 0u; s < GG; s++) {
+        cells[s][0] = 0.0f;
+        cells[s][1] = 0.0f;
+        cells[s][2] = 0.0f;
+    }
     for (j = 0u; j < 2u; j++) {
         const picto_tap_t *yt = &ty[(v * 2u) + j];
         const uint8_t *r0 = &img->data[(size_t)yt->lo * img->stride];
         const uint8_t *r1 = &img->data[(size_t)yt->hi * img->stride];
-        for (i = 0u; i < 2u; i++) {
-            const picto_tap_t *xt = &tx[(u * 2u) + i];
-            uint32_t c;
-            for (c = 0u; c < 3u; c++) {
-                const float a = (float)r0[(xt->lo * px->bpp) + px->ch[c]];
-                const float b = (float)r0[(xt->hi * px->bpp) + px->ch[c]];
-                const float d = (float)r1[(xt->lo * px->bpp) + px->ch[c]];
-                const float e = (float)r1[(xt->hi * px->bpp) + px->ch[c]];
-                const float top = a + (xt->f * (b - a));
-                const float bot = d + (xt->f * (e - d));
-                out[c] += 0.25f * (top + (yt->f * (bot - top)));
-            }
+        const float fy = yt->f;
+        for (s = 0u; s < (2u * GG); s++) {
+            const picto_tap_t *xt = &tx[s];
+            const uint8_t *a = &r0[xt->lo * bpp];
+            const uint8_t *b = &r0[xt->hi * bpp];
+            const uint8_t *d = &r1[xt->lo * bpp];
+            const uint8_t *e = &r1[xt->hi * bpp];
+            const float fx = xt->f;
+            float *cell = cells[s / 2u];
+            cell[0] += 0.25f * gate_bilinear(a[c0], b[c0], d[c0], e[c0], fx, fy);
+            cell[1] += 0.25f * gate_bilinear(a[c1], b[c1], d[c1], e[c1], fx, fy);
+            cell[2] += 0.25f * gate_bilinear(a[c2], b[c2], d[c2], e[c2], fx, fy);
         }
     }
 }
@@ -112,6 +130,7 @@ sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4],
     float sd;
     picto_px_t px;
     uint32_t i;
+    uint32_t v;
     sbr_status_t st;
     if (feat == NULL) {
         return SBR_ERR_NULL;
@@ -136,18 +155,20 @@ sbr_status_t sbr_picto_gate_features(const sbr_image_t *img, const float box[4],
     for (i = 0u; i < 32u; i++) {
         feat[G_COLOUR + i] = 0.0f;
     }
-    for (i = 0u; i < (GG * GG); i++) {
-        const uint32_t u = i % GG;
-        const uint32_t v = i / GG;
-        float c[3];
-        float sum;
-        float *col = &feat[G_COLOUR + ((((v / 3u) * 4u) + (u / 3u)) * 2u)];
-        gate_cell(img, tx, ty, u, v, &px, c);
-        sum = (c[0] + c[1]) + c[2];
-        g[i] = sum * (1.0f / 3.0f);
-        mean += g[i];
-        col[0] += (c[0] / (sum + 30.0f)) * (1.0f / 9.0f);
-        col[1] += (c[2] / (sum + 30.0f)) * (1.0f / 9.0f);
+    for (v = 0u; v < GG; v++) {
+        float cells[GG][3];
+        uint32_t u;
+        gate_row(img, tx, ty, v, &px, cells);
+        for (u = 0u; u < GG; u++) {
+            const float *c = cells[u];
+            const float sum = (c[0] + c[1]) + c[2];
+            float *col = &feat[G_COLOUR + ((((v / 3u) * 4u) + (u / 3u)) * 2u)];
+            i = (v * GG) + u;
+            g[i] = sum * (1.0f / 3.0f);
+            mean += g[i];
+            col[0] += (c[0] / (sum + 30.0f)) * (1.0f / 9.0f);
+            col[1] += (c[2] / (sum + 30.0f)) * (1.0f / 9.0f);
+        }
     }
     mean *= 1.0f / GG_CELLS;
     for (i = 0u; i < (GG * GG); i++) {
