@@ -351,51 +351,69 @@ static void grey_normalise(float *g)
     }
 }
 
-/* One pixel's gradient into a cell's eight orientation bins: its projections p0..p3 on 0,
-   45, 90 and 135 degrees, direction k getting a positive projection, k + 4 a negative
-   one (negated). Without a branch on the sign (a desktop CPU mispredicts half of them):
-   bin k gets max(p, 0), bin k + 4 gets max(p, 0) - p, which is -p or exactly 0. */
-static inline void orient_add(float *cell, float p0, float p1, float p2, float p3)
+/* Patch row v's gradients as orientation-bin contributions, per pixel eight: its
+   projections p0..p3 on 0, 45, 90 and 135 degrees, bin k getting max(p, 0) and bin k + 4
+   max(p, 0) - p (which is -p or exactly 0): a positive projection counts in direction k,
+   a negative one (negated) in k + 4. Without a branch on the sign (a desktop CPU
+   mispredicts half of them). */
+static void orient_row(const float *g, uint32_t v, float bins[PS][ORIENT])
 {
-    const float q0 = (p0 > 0.0f) ? p0 : 0.0f;
-    const float q1 = (p1 > 0.0f) ? p1 : 0.0f;
-    const float q2 = (p2 > 0.0f) ? p2 : 0.0f;
-    const float q3 = (p3 > 0.0f) ? p3 : 0.0f;
-    cell[0] += q0;
-    cell[1] += q1;
-    cell[2] += q2;
-    cell[3] += q3;
-    cell[4] += q0 - p0;
-    cell[5] += q1 - p1;
-    cell[6] += q2 - p2;
-    cell[7] += q3 - p3;
+    const float *row = &g[v * PS];
+    const float *up = &g[nb_lo(v) * PS];
+    const float *down = &g[nb_hi(v) * PS];
+    uint32_t u;
+    for (u = 0u; u < PS; u++) {
+        const float gx = row[nb_hi(u)] - row[nb_lo(u)];
+        const float gy = down[u] - up[u];
+        const float p[4] = {gx, DIAG * (gx + gy), gy, DIAG * (gy - gx)};
+        uint32_t k;
+        for (k = 0u; k < 4u; k++) {
+            const float q = (p[k] > 0.0f) ? p[k] : 0.0f;
+            bins[u][k] = q;
+            bins[u][k + 4u] = q - p[k];
+        }
+    }
+}
+
+/* Pixels [u0, u0 + n * width) of a row's bin contributions (bins: ORIENT a pixel) into n cells of `width` pixels
+   (cells: n x ORIENT bins), each cell's pixels added left to right. */
+static void orient_cells(const float *bins, uint32_t u0, uint32_t n, uint32_t width,
+                         float *cells)
+{
+    uint32_t c;
+    for (c = 0u; c < n; c++) {
+        float acc[ORIENT];
+        float *cell = &cells[c * ORIENT];
+        uint32_t t;
+        uint32_t k;
+        for (k = 0u; k < ORIENT; k++) {
+            acc[k] = cell[k];
+        }
+        for (t = 0u; t < width; t++) {
+            const float *b = &bins[(u0 + (c * width) + t) * ORIENT];
+            for (k = 0u; k < ORIENT; k++) {
+                acc[k] += b[k];
+            }
+        }
+        for (k = 0u; k < ORIENT; k++) {
+            cell[k] = acc[k];
+        }
+    }
 }
 
 /* Orientation histograms of the normalised grey patch: per cell, and per cell of the
-   finer centre grid; each unit-normalised. Pixels are visited in raster order, so every
-   bin sums its pixels in the same order whichever way the cells are indexed. */
+   finer centre grid; each unit-normalised. Every bin sums its pixels in raster order (row
+   by row, each row's pixels left to right). */
 static void orient_features(const float *g, float *feat)
 {
     uint32_t v;
     for (v = 0u; v < PS; v++) {
-        const float *row = &g[v * PS];
-        const float *up = &g[nb_lo(v) * PS];
-        const float *down = &g[nb_hi(v) * PS];
-        float *cells = &feat[F_HOG + ((v / CELL) * CELLS * ORIENT)];
-        float *fine = NULL; /* the centre grid's row of cells, for rows of the centre */
-        uint32_t u;
+        float bins[PS][ORIENT];
+        orient_row(g, v, bins);
+        orient_cells(&bins[0][0], 0u, CELLS, CELL, &feat[F_HOG + ((v / CELL) * CELLS * ORIENT)]);
         if ((v >= CENTRE_LO) && (v < (PS - CENTRE_LO))) {
-            fine = &feat[F_CENTRE + (((v - CENTRE_LO) / CENTRE_CELL) * CENTRE_CELLS * ORIENT)];
-        }
-        for (u = 0u; u < PS; u++) {
-            const float gx = row[nb_hi(u)] - row[nb_lo(u)];
-            const float gy = down[u] - up[u];
-            const float p1 = DIAG * (gx + gy);
-            const float p3 = DIAG * (gy - gx);
-            orient_add(&cells[(u / CELL) * ORIENT], gx, p1, gy, p3);
-            if ((fine != NULL) && (u >= CENTRE_LO) && (u < (PS - CENTRE_LO))) {
-                orient_add(&fine[((u - CENTRE_LO) / CENTRE_CELL) * ORIENT], gx, p1, gy, p3);
-            }
+            orient_cells(&bins[0][0], CENTRE_LO, CENTRE_CELLS, CENTRE_CELL,
+                         &feat[F_CENTRE + (((v - CENTRE_LO) / CENTRE_CELL) * CENTRE_CELLS * ORIENT)]);
         }
     }
     sbr_picto_priv_unit_norm(&feat[F_HOG], CELLS * CELLS * ORIENT);
