@@ -106,7 +106,8 @@ typedef struct picto_rows_s {
 typedef char picto_ws_fits[((((4u * PS * PS) + (2u * ROW_FLOATS)) * sizeof(float)) <=
                             SBR_PICTO_WORKSPACE_SIZE) ? 1 : -1];
 
-/* The slot holding source row r (filled if need be, never slot `keep`). */
+/* The slot holding source row r (filled if need be, never slot `keep`); tx: the x taps
+   as byte offsets in a row. */
 static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uint32_t n,
                               const picto_px_t *px, uint32_t r, uint32_t keep,
                               picto_rows_t *rows, uint32_t *slot)
@@ -121,7 +122,6 @@ static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uin
         const uint32_t c0 = px->ch[0];
         const uint32_t c1 = px->ch[1];
         const uint32_t c2 = px->ch[2];
-        const uint32_t bpp = px->bpp;
         uint32_t i;
         if (keep == 0u) {
             k = 1u;
@@ -134,8 +134,8 @@ static const float *picto_row(const sbr_image_t *img, const picto_tap_t *tx, uin
             uint32_t u;
             for (u = 0u; u < PS; u++) {
                 const picto_tap_t *xt = &tx[(u * n) + i];
-                const uint8_t *pa = &src[xt->lo * bpp];
-                const uint8_t *pb = &src[xt->hi * bpp];
+                const uint8_t *pa = &src[xt->lo];
+                const uint8_t *pb = &src[xt->hi];
                 const float f = xt->f;
                 float a = (float)pa[c0];
                 float b = (float)pb[c0];
@@ -181,7 +181,8 @@ static void picto_accumulate(const float *h0, const float *h1, float fy, uint32_
 static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap_t *taps,
                            picto_rows_t *rows, float *g, float *cr, float *cb)
 {
-    float acc[3][PS]; /* a local array: the compiler knows the rows do not alias it */
+    float acc[3][PS]; /* local arrays: the compiler knows the rows do not alias them */
+    float out[3][PS];
     const float sx = (box[2] - box[0]) / (float)PS;
     const float sy = (box[3] - box[1]) / (float)PS;
     const uint32_t nx = (uint32_t)sbr_util_clampf(ceilf(sx), 1.0f, 4.0f);
@@ -194,6 +195,11 @@ static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap
     sbr_picto_priv_colour_channels(img, &px);
     sbr_picto_priv_taps(box[0], sx, nx, img->width, PS, &taps[0]);
     sbr_picto_priv_taps(box[1], sy, ny, img->height, PS, &taps[PS * 4u]);
+    for (v = 0u; v < (PS * nx); v++) {
+        /* the x taps as byte offsets in a row (what picto_row() reads) */
+        taps[v].lo *= px.bpp;
+        taps[v].hi *= px.bpp;
+    }
     rows->tag[0] = PICTO_NO_ROW;
     rows->tag[1] = PICTO_NO_ROW;
     for (v = 0u; v < PS; v++) {
@@ -218,10 +224,13 @@ static void picto_resample(const sbr_image_t *img, const float box[4], picto_tap
             const float a1 = acc[1][u] * inv;
             const float a2 = acc[2][u] * inv;
             const float sum = a0 + a1 + a2;
-            g[(v * PS) + u] = sum * (1.0f / 3.0f);
-            cr[(v * PS) + u] = a0 / (sum + 30.0f);
-            cb[(v * PS) + u] = a2 / (sum + 30.0f);
+            out[0][u] = sum * (1.0f / 3.0f);
+            out[1][u] = a0 / (sum + 30.0f);
+            out[2][u] = a2 / (sum + 30.0f);
         }
+        (void)memcpy(&g[v * PS], out[0], sizeof(out[0]));
+        (void)memcpy(&cr[v * PS], out[1], sizeof(out[1]));
+        (void)memcpy(&cb[v * PS], out[2], sizeof(out[2]));
     }
 }
 
@@ -420,20 +429,32 @@ static void orient_features(const float *g, float *feat)
     sbr_picto_priv_unit_norm(&feat[F_CENTRE], CENTRE_CELLS * CENTRE_CELLS * ORIENT);
 }
 
-/* The grey thumbnail and the chromaticity per colour cell (means). */
+/* One patch row's pixels into n cells of `width` pixels (sums[c * step] the sum of cell
+   c), each cell's pixels added left to right. */
+static void row_cell_sums(const float *row, uint32_t n, uint32_t width, float *sums, uint32_t step)
+{
+    uint32_t c;
+    for (c = 0u; c < n; c++) {
+        float acc = sums[c * step];
+        uint32_t t;
+        for (t = 0u; t < width; t++) {
+            acc += row[(c * width) + t];
+        }
+        sums[c * step] = acc;
+    }
+}
+
+/* The grey thumbnail and the chromaticity per colour cell (means); every cell sums its
+   pixels in raster order. */
 static void thumb_colour_features(const float *g, const float *cr, const float *cb, float *feat)
 {
     uint32_t i;
-    uint32_t u;
     uint32_t v;
     for (v = 0u; v < PS; v++) {
-        for (u = 0u; u < PS; u++) {
-            const uint32_t p = (v * PS) + u;
-            const uint32_t c = ((v / CCELL) * CCELLS) + (u / CCELL);
-            feat[F_THUMB + (((v / THUMB_CELL) * THUMB) + (u / THUMB_CELL))] += g[p];
-            feat[F_COLOUR + (2u * c)] += cr[p];
-            feat[F_COLOUR + (2u * c) + 1u] += cb[p];
-        }
+        float *colour = &feat[F_COLOUR + (2u * (v / CCELL) * CCELLS)];
+        row_cell_sums(&g[v * PS], THUMB, THUMB_CELL, &feat[F_THUMB + ((v / THUMB_CELL) * THUMB)], 1u);
+        row_cell_sums(&cr[v * PS], CCELLS, CCELL, colour, 2u);
+        row_cell_sums(&cb[v * PS], CCELLS, CCELL, &colour[1], 2u);
     }
     for (i = 0u; i < (THUMB * THUMB); i++) {
         feat[F_THUMB + i] *= 1.0f / (THUMB_AREA);
