@@ -258,14 +258,14 @@ static uint32_t heap_chunk(mser_ctx_t *c, uint32_t i)
     return slot;
 }
 
-static inline void heap_push(mser_ctx_t *c, uint32_t level, uint32_t e)
+static inline void heap_push(mser_ctx_t *c, uint32_t *heap, uint32_t level, uint32_t e)
 {
     uint32_t i = c->heap_top[level];
     if ((i & HEAP_LINK_MASK) == HEAP_ENTRIES) {
         i = heap_chunk(c, i);
     }
     if (i != MSER_NONE) {
-        c->heap[i] = e;
+        heap[i] = e;
         c->heap_top[level] = i + 1u;
     }
 }
@@ -320,7 +320,8 @@ static uint32_t flood_stopped(mser_ctx_t *c, uint32_t top)
 /* A neighbour q of the pixel being visited: when not yet reached it is marked, and when
    lower than the current level `cur` its level is returned (the flood descends into it);
    otherwise it waits in the heap at its level. MSER_NONE: no descent. */
-static inline uint32_t flood_look(mser_ctx_t *c, uint16_t *lev, uint32_t cur, uint32_t q)
+static inline uint32_t flood_look(mser_ctx_t *c, uint16_t *lev, uint32_t *heap, uint32_t cur,
+                                  uint32_t q)
 {
     const uint32_t g = (uint32_t)lev[q];
     uint32_t lower = MSER_NONE;
@@ -329,7 +330,7 @@ static inline uint32_t flood_look(mser_ctx_t *c, uint16_t *lev, uint32_t cur, ui
         if (g < cur) {
             lower = g;
         } else {
-            heap_push(c, g, (q << HEAP_DIR_BITS) | 1u);
+            heap_push(c, heap, g, (q << HEAP_DIR_BITS) | 1u);
         }
     }
     return lower;
@@ -343,10 +344,12 @@ static void flood_from(mser_ctx_t *c, uint32_t start)
 {
     const uint32_t w = c->width;
     uint16_t *const lev = c->lev;
+    uint32_t *const heap = c->heap; /* a local: heap_chunk() cannot change it */
     uint32_t p = start;
     uint32_t k = 1u;
     uint32_t cur = (uint32_t)c->lev[p];
     uint32_t top = 1u;
+    mser_comp_t *tc = &c->comp[1]; /* the top component, &c->comp[top] */
     int done = 0;
 
     comp_init(c, 0u, MSER_SENTINEL);
@@ -357,35 +360,36 @@ static void flood_from(mser_ctx_t *c, uint32_t start)
         uint32_t g = MSER_NONE; /* a lower neighbour's level */
         if (k <= 1u) {
             q = p + 1u;
-            g = flood_look(c, lev, cur, q);
+            g = flood_look(c, lev, heap, cur, q);
             k = 2u;
         }
         if ((g == MSER_NONE) && (k <= 2u)) {
             q = p + w;
-            g = flood_look(c, lev, cur, q);
+            g = flood_look(c, lev, heap, cur, q);
             k = 3u;
         }
         if ((g == MSER_NONE) && (k <= 3u)) {
             q = p - 1u;
-            g = flood_look(c, lev, cur, q);
+            g = flood_look(c, lev, heap, cur, q);
             k = 4u;
         }
         if ((g == MSER_NONE) && (k <= 4u)) {
             q = p - w;
-            g = flood_look(c, lev, cur, q);
+            g = flood_look(c, lev, heap, cur, q);
             k = 5u;
         }
         if (g != MSER_NONE) {
             /* come back to p later (at its next neighbour), descend into q */
-            heap_push(c, cur, (p << HEAP_DIR_BITS) | k);
+            heap_push(c, heap, cur, (p << HEAP_DIR_BITS) | k);
             p = q;
             top++;
+            tc = &c->comp[top];
             comp_init(c, top, g);
             cur = g;
             k = 1u;
         } else {
             uint32_t e = 0u; /* the next heap entry */
-            comp_add_pixel(&c->comp[top], p);
+            comp_add_pixel(tc, p);
             if (c->heap_top[cur] != MSER_NONE) {
                 e = heap_pop(c, cur);
             } else {
@@ -404,6 +408,7 @@ static void flood_from(mser_ctx_t *c, uint32_t start)
                            in the heap): merge the top into it */
                         comp_merge(c, top - 1u, top);
                         top--;
+                        tc = &c->comp[top];
                     }
                     cur = lv;
                 }
