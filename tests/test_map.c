@@ -201,6 +201,84 @@ static void test_map_tone_curve_every_level(void)
     TEST_ASSERT_EQUAL_UINT8(255u, out[255]);
 }
 
+/* The integer nearest sqrt(255 c) (the tone curve's definition, map.h). */
+static uint32_t tone_def(uint32_t c)
+{
+    uint32_t v = 0u;
+    while ((((2u * v) + 1u) * ((2u * v) + 1u)) <= (1020u * c)) {
+        v++;
+    }
+    return v;
+}
+
+/* 128 + 128 d / (sum + 60), truncated towards zero, clamped to 0..255 (map.h). */
+static uint8_t chroma_def(int32_t d, int32_t sum)
+{
+    int32_t v = 128 + ((128 * d) / (sum + 60));
+    v = (v < 0) ? 0 : v;
+    v = (v > 255) ? 255 : v;
+    return (uint8_t)v;
+}
+
+static void test_map_rows_every_width(void)
+{
+    /* random colour rows of every width 1..11 (the makers work in steps of four pixels
+       and a tail), both channel orders: every map value against the formulas of map.h,
+       and the part stage's bright-only red map (128 where 2R - G - B <= 0) */
+    static uint8_t px[3u * 11u * 2u];
+    uint8_t out[2u * 11u];
+    uint8_t bright[2u * 11u];
+    uint32_t w;
+    uint32_t f;
+    uint32_t k;
+    uint32_t checked = 0u;
+    tsup_fill_bytes(px, sizeof px, 11u);
+    px[0] = 250u; /* a strong red first pixel: the red map above 128 */
+    px[1] = 10u;
+    px[2] = 10u;
+    for (w = 1u; w <= 11u; w++) {
+        for (f = 0u; f < 2u; f++) {
+            const sbr_pixel_format_t fmt = (f == 0u) ? SBR_PIXEL_RGB888 : SBR_PIXEL_BGR888;
+            const sbr_image_t src = {w, 2u, 33u, fmt, px};
+            for (k = 0u; k < SBR_MAP_KINDS; k++) {
+                uint32_t y;
+                TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, (sbr_map_kind_t)k, 1u, out, 11u,
+                                                                sizeof out, NULL));
+                TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_priv_make_bright(&src, (sbr_map_kind_t)k, 1u,
+                                                                            bright, 11u, sizeof bright, NULL));
+                for (y = 0u; y < 2u; y++) {
+                    uint32_t x;
+                    for (x = 0u; x < w; x++) {
+                        const uint8_t *q = &px[(y * 33u) + (x * 3u)];
+                        const int32_t r = (f == 0u) ? (int32_t)q[0] : (int32_t)q[2];
+                        const int32_t g = (int32_t)q[1];
+                        const int32_t b = (f == 0u) ? (int32_t)q[2] : (int32_t)q[0];
+                        uint8_t want;
+                        if (k == (uint32_t)SBR_MAP_INTENSITY) {
+                            want = (uint8_t)((tone_def((uint32_t)r) + tone_def((uint32_t)g) +
+                                              tone_def((uint32_t)b) + 1u) / 3u);
+                        } else if (k == (uint32_t)SBR_MAP_RED) {
+                            want = chroma_def((2 * r) - g - b, r + g + b);
+                        } else if (k == (uint32_t)SBR_MAP_BLUE) {
+                            want = chroma_def((2 * b) - r - g, r + g + b);
+                        } else {
+                            want = chroma_def((r + g) - (2 * b), r + g + b);
+                        }
+                        TEST_ASSERT_EQUAL_UINT8(want, out[(y * 11u) + x]);
+                        if ((k == (uint32_t)SBR_MAP_RED) && (want <= 128u)) {
+                            want = 128u;
+                        }
+                        TEST_ASSERT_EQUAL_UINT8(want, bright[(y * 11u) + x]);
+                        checked++;
+                    }
+                }
+            }
+        }
+    }
+    TEST_ASSERT_EQUAL_UINT32(2u * 2u * SBR_MAP_KINDS * 66u, checked);
+    TEST_ASSERT_EQUAL_UINT8(0u, out[0]); /* the last map made: yellow of (10, 10, 250) (BGR) */
+}
+
 static void test_map_bad_input(void)
 {
     static uint8_t buf[16];
@@ -227,6 +305,7 @@ int main(void)
     RUN_TEST(test_map_subsample_averages_blocks);
     RUN_TEST(test_map_subsample2_colour_blocks);
     RUN_TEST(test_map_bright_only_red);
+    RUN_TEST(test_map_rows_every_width);
     RUN_TEST(test_map_tone_curve_every_level);
     RUN_TEST(test_map_bad_input);
     return UNITY_END();
