@@ -91,10 +91,50 @@ sbr_status_t sbr_recog_priv_cast_votes(recog_ctx_t *c, uint32_t pi)
     return SBR_OK;
 }
 
+/* Swap two votes. */
+static inline void vote_swap(recog_vote_t *a, recog_vote_t *b)
+{
+    const recog_vote_t t = *a;
+    *a = *b;
+    *b = t;
+}
+
+/* sbr_util_heap_sort() of the votes, written out for their type: the same steps (so the
+   same order, ties included) with the comparison inlined and whole-struct swaps. */
 void sbr_recog_priv_sort_votes(recog_ctx_t *c, int mode)
 {
-    sbr_util_heap_sort((uint8_t *)(void *)c->votes, c->nvotes, sizeof(recog_vote_t), vote_before,
-                       mode);
+    recog_vote_t *const v = c->votes;
+    const uint32_t n = c->nvotes;
+    uint32_t end;
+    uint32_t start;
+    if (n < 2u) {
+        return;
+    }
+    start = n / 2u;
+    end = n;
+    while (end > 1u) {
+        uint32_t root;
+        if (start > 0u) {
+            start--;
+            root = start;
+        } else {
+            end--;
+            vote_swap(&v[0], &v[end]);
+            root = 0u;
+        }
+        while (((2u * root) + 1u) < end) {
+            uint32_t child = (2u * root) + 1u;
+            if (((child + 1u) < end) && (vote_before(&v[child], &v[child + 1u], mode) != 0)) {
+                child++;
+            }
+            if (vote_before(&v[root], &v[child], mode) != 0) {
+                vote_swap(&v[root], &v[child]);
+                root = child;
+            } else {
+                root = end; /* in place: stop */
+            }
+        }
+    }
 }
 
 /* Does a (centre, size) agree with a hypothesis's current mean? */
