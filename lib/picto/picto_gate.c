@@ -47,8 +47,10 @@ static uint32_t gate_prev(uint32_t i)
    and d, e of the bottom row (weight fy of the bottom). */
 static inline float gate_bilinear(uint8_t a, uint8_t b, uint8_t d, uint8_t e, float fx, float fy)
 {
-    const float top = (float)a + (fx * ((float)b - (float)a));
-    const float bot = (float)d + (fx * ((float)e - (float)d));
+    const float fa = sbr_picto_priv_u8f[a];
+    const float fd = sbr_picto_priv_u8f[d];
+    const float top = fa + (fx * (sbr_picto_priv_u8f[b] - fa));
+    const float bot = fd + (fx * (sbr_picto_priv_u8f[e] - fd));
     return top + (fy * (bot - top));
 }
 

@@ -62,6 +62,10 @@ typedef struct picto_px_s {
 
 int sbr_picto_priv_finite4(const float b[4]);
 
+/* The float value of every byte, 0.0f .. 255.0f: the resamplers read a channel byte's
+   value with one load instead of an integer-to-float conversion. */
+extern const float sbr_picto_priv_u8f[256];
+
 void sbr_picto_priv_colour_channels(const sbr_image_t *img, picto_px_t *px);
 
 /* 1 for the formats the class stage's features read (RGB888, BGR888, GRAY8). */
