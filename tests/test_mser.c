@@ -204,6 +204,22 @@ static void test_mser_random_regions_are_extremal(void)
         uint32_t x;
         uint32_t y;
         TEST_ASSERT_EQUAL_UINT32(r->area, mask_of(r));
+        {
+            /* the box is tight: the region touches its first and last row and column */
+            uint32_t top = 0u;
+            uint32_t bottom = 0u;
+            uint32_t left = 0u;
+            uint32_t right = 0u;
+            for (x = 0u; x < r->bbox.width; x++) {
+                top += g_mask[x];
+                bottom += g_mask[((r->bbox.height - 1u) * r->bbox.width) + x];
+            }
+            for (y = 0u; y < r->bbox.height; y++) {
+                left += g_mask[y * r->bbox.width];
+                right += g_mask[(y * r->bbox.width) + r->bbox.width - 1u];
+            }
+            TEST_ASSERT_TRUE((top > 0u) && (bottom > 0u) && (left > 0u) && (right > 0u));
+        }
         for (y = 1u; y < H - 1u; y++) {
             for (x = 1u; x < W - 1u; x++) {
                 const int inbox = (x >= r->bbox.x) && (y >= r->bbox.y) &&

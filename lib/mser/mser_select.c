@@ -97,6 +97,140 @@ static uint32_t box_visit(uint16_t *lev, uint32_t *list, uint32_t n, uint32_t ca
     return m;
 }
 
+/* Is a pixel of value g (lev[]) in the region of level val and not yet boxed: no flag but
+   LEV_REACHED set, its level <= val? (One comparison: with LEV_REACHED set in both, any
+   other flag makes g the larger.) */
+static inline int box_in(uint32_t g, uint32_t val)
+{
+    return ((g | LEV_REACHED) <= (val | LEV_REACHED)) ? 1 : 0;
+}
+
+/* The run fill's state: the pending seeds at the list's start (list[0, sp)), the runs
+   found at its end (list[rn, cap): first pixel, last pixel), the box so far. */
+typedef struct box_runs_s {
+    uint32_t *list;
+    uint32_t cap;
+    uint32_t sp;
+    uint32_t rn;
+    uint32_t x0;
+    uint32_t x1;
+    uint32_t p0;
+    uint32_t p1;
+} box_runs_t;
+
+/* Push a seed for every stretch of region pixels among [a, b] (a row above or below a
+   run); 0 when the list is full. */
+static int box_seeds(const uint16_t *lev, uint32_t a, uint32_t b, uint32_t val, box_runs_t *f)
+{
+    uint32_t q = a;
+    int ok = 1;
+    while (q <= b) {
+        if (box_in((uint32_t)lev[q], val) == 0) {
+            q++;
+        } else {
+            /* a stretch starts at q: one seed for it */
+            if (f->sp >= f->rn) {
+                ok = 0;
+            } else {
+                f->list[f->sp] = q;
+                f->sp++;
+            }
+            q++;
+            while ((q <= b) && (box_in((uint32_t)lev[q], val) != 0)) {
+                q++;
+            }
+        }
+    }
+    return ok;
+}
+
+/* Clear LEV_BOXED on the runs found. */
+static void box_unmark(uint16_t *lev, const box_runs_t *f)
+{
+    uint32_t i;
+    for (i = f->rn; i < f->cap; i += 2u) {
+        uint32_t q;
+        for (q = f->list[i]; q <= f->list[i + 1u]; q++) {
+            lev[q] = (uint16_t)((uint32_t)lev[q] & ~LEV_BOXED);
+        }
+    }
+}
+
+/* node_bbox() by runs: the same pixels (the 4-connected pixels of level <= the node's
+   around its seed) found a row stretch at a time, each stretch marked, measured and its
+   neighbour rows searched once, instead of pixel by pixel. 0 when the list is too small
+   for its seeds and runs (nothing left marked; node_bbox() then fills pixel by pixel). */
+static int node_bbox_runs(mser_ctx_t *c, const mser_node_t *nd, sbr_rect_t *box)
+{
+    uint16_t *const lev = c->lev;
+    const uint32_t w = c->width;
+    const uint32_t val = (uint32_t)nd->val;
+    box_runs_t f;
+    int ok = 1;
+    f.list = c->heap;
+    f.cap = c->heap_chunks * SBR_MSER_HEAP_CHUNK;
+    f.sp = 0u;
+    f.rn = f.cap;
+    f.x0 = 0xFFFFFFFFu;
+    f.x1 = 0u;
+    f.p0 = 0xFFFFFFFFu;
+    f.p1 = 0u;
+    if (f.cap < 3u) {
+        return 0;
+    }
+    f.list[0] = nd->seed;
+    f.sp = 1u;
+    while ((f.sp > 0u) && (ok != 0)) {
+        uint32_t l;
+        uint32_t r;
+        f.sp--;
+        l = f.list[f.sp];
+        r = l;
+        if ((box_in((uint32_t)lev[l], val) != 0) && ((f.rn - f.sp) >= 2u)) {
+            uint32_t q;
+            uint32_t y;
+            uint32_t x;
+            /* the border and walls are never in a region: the stretch ends inside the map */
+            while (box_in((uint32_t)lev[l - 1u], val) != 0) {
+                l--;
+            }
+            while (box_in((uint32_t)lev[r + 1u], val) != 0) {
+                r++;
+            }
+            for (q = l; q <= r; q++) {
+                lev[q] = (uint16_t)((uint32_t)lev[q] | LEV_BOXED);
+            }
+            f.rn -= 2u;
+            f.list[f.rn] = l;
+            f.list[f.rn + 1u] = r;
+            y = (uint32_t)(((uint64_t)l * c->div_magic) >> c->div_shift);
+            x = l - (y * w);
+            f.x0 = (x < f.x0) ? x : f.x0;
+            f.x1 = ((x + (r - l)) > f.x1) ? (x + (r - l)) : f.x1;
+            f.p0 = (l < f.p0) ? l : f.p0;
+            f.p1 = (r > f.p1) ? r : f.p1;
+            ok = box_seeds(lev, l - w, r - w, val, &f);
+            if (ok != 0) {
+                ok = box_seeds(lev, l + w, r + w, val, &f);
+            }
+        } else if (box_in((uint32_t)lev[l], val) != 0) {
+            ok = 0; /* no room for the run */
+        } else {
+            /* boxed by an earlier run since it was pushed */
+        }
+    }
+    box_unmark(lev, &f);
+    if (ok != 0) {
+        const uint32_t y0 = (uint32_t)(((uint64_t)f.p0 * c->div_magic) >> c->div_shift);
+        const uint32_t y1 = (uint32_t)(((uint64_t)f.p1 * c->div_magic) >> c->div_shift);
+        box->x = f.x0;
+        box->y = y0;
+        box->width = (f.x1 - f.x0) + 1u;
+        box->height = (y1 - y0) + 1u;
+    }
+    return ok;
+}
+
 static void node_bbox(mser_ctx_t *c, const mser_node_t *nd, sbr_rect_t *box)
 {
     uint16_t *const lev = c->lev;
@@ -147,7 +281,9 @@ static void select_region(mser_ctx_t *c, const mser_node_t *nd, uint8_t polarity
                           sbr_mser_region_t *r)
 {
     const uint32_t sy = (uint32_t)(((uint64_t)nd->seed * c->div_magic) >> c->div_shift);
-    node_bbox(c, nd, &r->bbox);
+    if (node_bbox_runs(c, nd, &r->bbox) == 0) {
+        node_bbox(c, nd, &r->bbox);
+    }
     r->area = nd->size;
     r->variation = nd->var;
     r->seed_x = (uint16_t)(nd->seed - (sy * c->width));
