@@ -106,6 +106,86 @@ static uint32_t mask_fill(const sbr_image_t *map, const sbr_mser_region_t *regio
     return f.filled;
 }
 
+/* Is box pixel (x, y) in the region and not yet in the mask? */
+static inline int run_in(const mask_fill_t *f, uint32_t x, uint32_t y)
+{
+    return ((f->mask[((size_t)y * f->mask_stride) + x] == 0u) &&
+            ((uint8_t)(f->map[((size_t)y * f->map_stride) + x] ^ f->flip) <= f->level))
+               ? 1
+               : 0;
+}
+
+/* A seed for every stretch of region pixels among columns [l, r] of box row y; 0 when the
+   stack (cap entries) is full. */
+static int run_seeds(mask_fill_t *f, uint32_t l, uint32_t r, uint32_t y, uint32_t cap)
+{
+    uint32_t x = l;
+    int ok = 1;
+    while (x <= r) {
+        if (run_in(f, x, y) == 0) {
+            x++;
+        } else {
+            if (f->sp >= cap) {
+                ok = 0;
+            } else {
+                f->stack[f->sp] = (y << 16) | x;
+                f->sp++;
+            }
+            x++;
+            while ((x <= r) && (run_in(f, x, y) != 0)) {
+                x++;
+            }
+        }
+    }
+    return ok;
+}
+
+/* mask_fill() a row stretch at a time: each stretch of the region is filled in the mask
+   and its neighbour rows searched once (the same pixels as the pixel-by-pixel fill).
+   Returns the pixels filled, or 0 when the stack (cap entries) ran out. */
+static uint32_t mask_fill_runs(const sbr_image_t *map, const sbr_mser_region_t *region,
+                               uint8_t *mask, uint32_t mask_stride, uint32_t *stack, uint32_t cap)
+{
+    const sbr_rect_t *b = &region->bbox;
+    mask_fill_t f;
+    int ok = 1;
+    f.map = &map->data[((size_t)b->y * map->stride) + b->x];
+    f.mask = mask;
+    f.map_stride = map->stride;
+    f.mask_stride = mask_stride;
+    f.stack = stack;
+    f.sp = 1u;
+    f.filled = 0u;
+    f.level = region_flip(region, &f.flip);
+    stack[0] = (((uint32_t)region->seed_y - b->y) << 16) | ((uint32_t)region->seed_x - b->x);
+    while ((f.sp > 0u) && (ok != 0)) {
+        uint32_t y;
+        uint32_t l;
+        uint32_t r;
+        f.sp--;
+        y = stack[f.sp] >> 16;
+        l = stack[f.sp] & 0xFFFFu;
+        r = l;
+        if (run_in(&f, l, y) != 0) {
+            while ((l > 0u) && (run_in(&f, l - 1u, y) != 0)) {
+                l--;
+            }
+            while (((r + 1u) < b->width) && (run_in(&f, r + 1u, y) != 0)) {
+                r++;
+            }
+            (void)memset(&mask[((size_t)y * mask_stride) + l], 255, (size_t)(r - l) + 1u);
+            f.filled += (r - l) + 1u;
+            if (y > 0u) {
+                ok = run_seeds(&f, l, r, y - 1u, cap);
+            }
+            if ((ok != 0) && ((y + 1u) < b->height)) {
+                ok = run_seeds(&f, l, r, y + 1u, cap);
+            }
+        }
+    }
+    return (ok != 0) ? f.filled : 0u;
+}
+
 sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_t *region,
                                   void *workspace, size_t workspace_size, uint8_t *mask,
                                   uint32_t mask_stride, size_t mask_size)
@@ -116,6 +196,7 @@ sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_
     uint32_t y;
     uint32_t sx;
     uint32_t sy;
+    uint32_t filled;
 
     if ((map == NULL) || (region == NULL) || (mask == NULL)) {
         return SBR_ERR_NULL;
@@ -150,11 +231,20 @@ sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_
             return SBR_ERR_CORRUPT;
         }
     }
-    sx = (uint32_t)region->seed_x - b->x;
-    sy = (uint32_t)region->seed_y - b->y;
-    mask[((size_t)sy * mask_stride) + sx] = 255u;
-    stack[0] = (sy << 16) | sx;
-    if (mask_fill(map, region, mask, mask_stride, stack) != region->area) {
+    filled = mask_fill_runs(map, region, mask, mask_stride, stack,
+                            (uint32_t)((size_t)b->width * (size_t)b->height));
+    if (filled == 0u) {
+        /* the stretches' seeds did not fit: the pixel-by-pixel fill, from a clear mask */
+        for (y = 0u; y < b->height; y++) {
+            (void)memset(&mask[(size_t)y * mask_stride], 0, (size_t)b->width);
+        }
+        sx = (uint32_t)region->seed_x - b->x;
+        sy = (uint32_t)region->seed_y - b->y;
+        mask[((size_t)sy * mask_stride) + sx] = 255u;
+        stack[0] = (sy << 16) | sx;
+        filled = mask_fill(map, region, mask, mask_stride, stack);
+    }
+    if (filled != region->area) {
         return SBR_ERR_CORRUPT;
     }
     return SBR_OK;
