@@ -157,6 +157,78 @@ static void test_capacity(void)
     TEST_ASSERT_EQUAL_UINT32(1u, n);
 }
 
+/* Random blobs (overlapping rectangles, random non-zero bytes) of every width 1..40 in a
+   frame of 48 columns: the contours equal those of the same mask as 0/255 bytes (any
+   non-zero byte is foreground), and those of the mask with 1..8 more background columns
+   on its right (the scan skips runs of equal pixels eight at a time, and the copy reads
+   eight bytes at a time: every alignment of a transition is met). */
+static void test_random_masks_every_width(void)
+{
+    static uint8_t m[H][48];
+    static uint8_t bin[H][48];
+    static uint8_t ws[SBR_CONTOUR_WORKSPACE_SIZE(48u, H)];
+    static sbr_point_t pa[2048];
+    static sbr_point_t pb[2048];
+    sbr_contour_t ca[32];
+    sbr_contour_t cb[32];
+    tsup_rng_t rng = {777u};
+    uint32_t w;
+    uint32_t total = 0u;
+    for (w = 1u; w <= 40u; w++) {
+        uint32_t k;
+        uint32_t extra;
+        uint32_t na = 0u;
+        memset(m, 0, sizeof m);
+        for (k = 0u; k < 5u; k++) {
+            const uint32_t x0 = (uint32_t)tsup_uniform(&rng, 0.0f, (float)w);
+            const uint32_t y0 = (uint32_t)tsup_uniform(&rng, 0.0f, (float)H);
+            const uint32_t bw = 1u + (uint32_t)tsup_uniform(&rng, 0.0f, 9.0f);
+            const uint32_t bh = 1u + (uint32_t)tsup_uniform(&rng, 0.0f, 5.0f);
+            uint32_t x;
+            uint32_t y;
+            for (y = y0; (y < (y0 + bh)) && (y < H); y++) {
+                for (x = x0; (x < (x0 + bw)) && (x < w); x++) {
+                    m[y][x] = (uint8_t)(1u + (uint32_t)tsup_uniform(&rng, 0.0f, 254.0f));
+                }
+            }
+        }
+        for (k = 0u; k < (H * 48u); k++) {
+            (&bin[0][0])[k] = ((&m[0][0])[k] != 0u) ? 255u : 0u;
+        }
+        {
+            const sbr_image_t va = {w, H, 48u, SBR_PIXEL_GRAY8, &m[0][0]};
+            TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_contour_find_external(&va, ws, sizeof ws, pa, 2048u,
+                                                                         ca, 32u, &na));
+            TEST_ASSERT_TRUE(na >= 1u);
+            for (k = 0u; k < na; k++) {
+                /* a contour starts where a row enters its blob: a foreground pixel whose
+                   left neighbour is background */
+                const sbr_point_t p0 = pa[ca[k].first];
+                TEST_ASSERT_TRUE(m[p0.y][p0.x] != 0u);
+                TEST_ASSERT_TRUE((p0.x == 0) || (m[p0.y][p0.x - 1] == 0u));
+            }
+        }
+        for (extra = 0u; extra <= 8u; extra++) {
+            const sbr_image_t vb = {w + extra, H, 48u, SBR_PIXEL_GRAY8,
+                                    (extra == 0u) ? &bin[0][0] : &m[0][0]};
+            uint32_t nb = 0u;
+            uint32_t c;
+            TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_contour_find_external(&vb, ws, sizeof ws, pb, 2048u,
+                                                                         cb, 32u, &nb));
+            TEST_ASSERT_EQUAL_UINT32(na, nb);
+            for (c = 0u; c < na; c++) {
+                TEST_ASSERT_EQUAL_UINT32(ca[c].length, cb[c].length);
+                TEST_ASSERT_EQUAL_UINT32(ca[c].bbox.x, cb[c].bbox.x);
+                TEST_ASSERT_EQUAL_UINT32(ca[c].bbox.width, cb[c].bbox.width);
+                TEST_ASSERT_EQUAL_MEMORY(&pa[ca[c].first], &pb[cb[c].first],
+                                         ca[c].length * sizeof(sbr_point_t));
+            }
+        }
+        total += na;
+    }
+    TEST_ASSERT_TRUE(total > 40u);
+}
+
 static void test_bad_input(void)
 {
     sbr_image_t v = mask_view();
@@ -194,6 +266,7 @@ int main(void)
     RUN_TEST(test_external_only_and_connectivity);
     RUN_TEST(test_roi_and_stride);
     RUN_TEST(test_capacity);
+    RUN_TEST(test_random_masks_every_width);
     RUN_TEST(test_bad_input);
     return UNITY_END();
 }

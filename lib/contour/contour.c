@@ -3,6 +3,8 @@
    map. */
 #include "sbr/contour.h"
 
+#include <string.h>
+
 /* Label map values: background, unvisited foreground, visited border pixel, visited border
    pixel whose right neighbour is background (the "right bound" of Suzuki-Abe). */
 #define LBL_BG 0
@@ -142,9 +144,22 @@ static void pad_mask(const sbr_image_t *mask, int8_t *map, size_t pitch)
     for (y = 0u; y < mask->height; y++) {
         const uint8_t *row = &mask->data[(size_t)y * mask->stride];
         int8_t *m = &map[((size_t)y + 1u) * pitch];
+        const uint32_t w8 = mask->width - (mask->width % 8u);
         m[0] = LBL_BG;
         m[pitch - 1u] = LBL_BG;
-        for (x = 0u; x < mask->width; x++) {
+        for (x = 0u; x < w8; x += 8u) {
+            /* eight bytes at once: each byte's bits or-ed down into its lowest bit (the
+               shifts move bits within a byte for that bit), so 1 (LBL_FG) where the mask
+               byte is not 0 */
+            uint64_t v;
+            (void)memcpy(&v, &row[x], sizeof v);
+            v |= v >> 4u;
+            v |= v >> 2u;
+            v |= v >> 1u;
+            v &= UINT64_C(0x0101010101010101);
+            (void)memcpy(&m[x + 1u], &v, sizeof v);
+        }
+        for (x = w8; x < mask->width; x++) {
             m[x + 1u] = (row[x] != 0u) ? (int8_t)LBL_FG : (int8_t)LBL_BG;
         }
     }
@@ -245,6 +260,17 @@ sbr_status_t sbr_contour_find_external(const sbr_image_t *mask, void *workspace,
         int8_t lnbd = LBL_BG; /* label of the last border pixel passed on this row */
         for (x = 1u; x <= mask->width; x++) {
             const int8_t p = sc.map[row + x];
+            if ((p == prev) && ((x + 8u) <= mask->width)) {
+                /* nothing happens at a pixel equal to the one before: skip eight such at
+                   a time (the loop's x++ moves past the eighth) */
+                const uint64_t same = (uint64_t)(uint8_t)prev * UINT64_C(0x0101010101010101);
+                uint64_t v;
+                (void)memcpy(&v, &sc.map[row + x + 1u], sizeof v);
+                if (v == same) {
+                    x += 8u;
+                }
+                continue;
+            }
             /* An outer border starts at an unvisited pixel after background, unless the
                last border passed is a left (non-right-bound) border: then we are inside a
                blob's hole, which RETR_EXTERNAL skips. */
