@@ -70,16 +70,16 @@ static void fd_resample(const sbr_point_t *pi, const sbr_pointf_t *pf, uint32_t 
     float acc = 0.0f; /* arc length at the start of segment i */
     uint32_t i = 0u;
     uint32_t k;
+    float xa;
+    float ya;
+    float xb;
+    float yb;
+    float seg; /* segment i: from (xa, ya) to (xb, yb), its length */
+    get_point(pi, pf, 0u, &xa, &ya);
+    get_point(pi, pf, next_index(0u, count), &xb, &yb);
+    seg = hypotf(xb - xa, yb - ya);
     for (k = 0u; k < n; k++) {
         const float t = step * (float)k;
-        float xa;
-        float ya;
-        float xb;
-        float yb;
-        float seg;
-        get_point(pi, pf, i, &xa, &ya);
-        get_point(pi, pf, next_index(i, count), &xb, &yb);
-        seg = hypotf(xb - xa, yb - ya);
         while ((i + 1u) < count) {
             if ((acc + seg) >= t) {
                 break;
