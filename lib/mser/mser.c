@@ -227,7 +227,7 @@ static void comp_merge(mser_ctx_t *c, uint32_t a, uint32_t b)
    top chunk: at a chunk's link word (index & HEAP_LINK_MASK == HEAP_ENTRIES) when that
    chunk is full, MSER_NONE (the same low bits) when the level has no chunk; either way
    the next push takes a new chunk. A chunk emptied goes to the free list. */
-static uint32_t heap_chunk(mser_ctx_t *c, uint32_t i)
+static uint32_t heap_chunk(mser_ctx_t *c, uint32_t i, uint32_t level)
 {
     /* a new top chunk (a freed one, else the next unused one) linked to the full one at
        i, or to none; its first slot, or MSER_NONE at the bound */
@@ -242,10 +242,7 @@ static uint32_t heap_chunk(mser_ctx_t *c, uint32_t i)
         /* the bound: the flood stops at its next pop, which finds every level empty (no
            test per pixel); a lost entry could otherwise leave the component stack out of
            level order. heap_next stays at the bound until flood_stopped(). */
-        uint32_t v;
-        for (v = 0u; v < MSER_LEVELS; v++) {
-            c->heap_top[v] = MSER_NONE;
-        }
+        mser_heap_clear(c);
         c->overflow = 1;
         c->heap_full = 1;
     } else {
@@ -253,7 +250,12 @@ static uint32_t heap_chunk(mser_ctx_t *c, uint32_t i)
     }
     if (fresh != MSER_NONE) {
         slot = fresh * SBR_MSER_HEAP_CHUNK;
-        c->heap[slot + HEAP_ENTRIES] = (i == MSER_NONE) ? MSER_NONE : (i / SBR_MSER_HEAP_CHUNK);
+        if (i == MSER_NONE) {
+            c->heap[slot + HEAP_ENTRIES] = MSER_NONE;
+            c->busy[level / 32u] |= 1u << (level % 32u); /* the level's first chunk */
+        } else {
+            c->heap[slot + HEAP_ENTRIES] = i / SBR_MSER_HEAP_CHUNK;
+        }
     }
     return slot;
 }
@@ -262,7 +264,7 @@ static inline void heap_push(mser_ctx_t *c, uint32_t *heap, uint32_t level, uint
 {
     uint32_t i = c->heap_top[level];
     if ((i & HEAP_LINK_MASK) == HEAP_ENTRIES) {
-        i = heap_chunk(c, i);
+        i = heap_chunk(c, i, level);
     }
     if (i != MSER_NONE) {
         heap[i] = e;
@@ -294,6 +296,47 @@ static inline uint32_t heap_pop(mser_ctx_t *c, uint32_t level)
     return e;
 }
 
+/* The index of the lowest set bit of x != 0 (a de Bruijn sequence: x & -x times the
+   constant has a distinct top five bits for each of the 32 powers of two). */
+static uint32_t lowest_bit(uint32_t x)
+{
+    static const uint8_t k_pos[32] = {0u,  1u,  28u, 2u,  29u, 14u, 24u, 3u,  30u, 22u, 20u,
+                                      15u, 25u, 17u, 4u,  8u,  31u, 27u, 13u, 23u, 21u, 19u,
+                                      16u, 7u,  26u, 12u, 18u, 6u,  11u, 5u,  10u, 9u};
+    return (uint32_t)k_pos[((x & (0u - x)) * 0x077CB531u) >> 27];
+}
+
+/* The lowest level >= from with waiting pixels, or MSER_LEVELS if none: the first v >=
+   from with heap_top[v] != MSER_NONE. busy[] has the bit of every such level (set with a
+   level's first chunk) and may keep the bits of levels emptied since: those are cleared
+   here when met. */
+static uint32_t next_busy(mser_ctx_t *c, uint32_t from)
+{
+    uint32_t r = MSER_LEVELS;
+    uint32_t v = from;
+    while (v < MSER_LEVELS) {
+        uint32_t wi = v / 32u;
+        uint32_t word = c->busy[wi] & (0xFFFFFFFFu << (v % 32u));
+        while ((word == 0u) && ((wi + 1u) < (MSER_LEVELS / 32u))) {
+            wi++;
+            word = c->busy[wi];
+        }
+        if (word == 0u) {
+            v = MSER_LEVELS; /* none */
+        } else {
+            v = (wi * 32u) + lowest_bit(word);
+            if (c->heap_top[v] != MSER_NONE) {
+                r = v;
+                v = MSER_LEVELS; /* found */
+            } else {
+                c->busy[wi] &= ~(1u << (v % 32u)); /* emptied since its bit was set */
+                v++;
+            }
+        }
+    }
+    return r;
+}
+
 /* After a flood: if the heap's bound stopped it (what it had not taken stays unflooded;
    a lost entry would have left the component stack out of level order), the components
    still open join the ones below them (their levels rise down the stack towards the
@@ -302,14 +345,11 @@ static uint32_t flood_stopped(mser_ctx_t *c, uint32_t top)
 {
     uint32_t t = top;
     if (c->heap_full != 0) {
-        uint32_t v;
         while (t > 1u) {
             comp_merge(c, t - 1u, t);
             t--;
         }
-        for (v = 0u; v < MSER_LEVELS; v++) {
-            c->heap_top[v] = MSER_NONE;
-        }
+        mser_heap_clear(c);
         c->heap_free = MSER_NONE;
         c->heap_next = 0u;
         c->heap_full = 0;
@@ -393,10 +433,7 @@ static void flood_from(mser_ctx_t *c, uint32_t start)
             if (c->heap_top[cur] != MSER_NONE) {
                 e = heap_pop(c, cur);
             } else {
-                uint32_t lv = cur + 1u;
-                while ((lv < MSER_LEVELS) && (c->heap_top[lv] == MSER_NONE)) {
-                    lv++;
-                }
+                const uint32_t lv = next_busy(c, cur + 1u);
                 if (lv >= MSER_LEVELS) {
                     done = 1;
                 } else {

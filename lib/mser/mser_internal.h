@@ -95,7 +95,21 @@ typedef struct mser_ctx_s {
     uint64_t div_magic;
     int overflow;
     int heap_full;       /* the heap's bound was reached in the flood in progress */
+    uint32_t busy[MSER_LEVELS / 32u]; /* bit v of word v / 32 set: heap_top[v] != MSER_NONE
+                                         (the next level with waiting pixels in a few steps) */
 } mser_ctx_t;
+
+/* Every level's stack empty (heap_top[] all MSER_NONE, busy[] clear). */
+static inline void mser_heap_clear(mser_ctx_t *c)
+{
+    uint32_t v;
+    for (v = 0u; v < MSER_LEVELS; v++) {
+        c->heap_top[v] = MSER_NONE;
+    }
+    for (v = 0u; v < (MSER_LEVELS / 32u); v++) {
+        c->busy[v] = 0u;
+    }
+}
 
 /* Prepare one pass (mser_levels.c): the (inverted: xor_mask 0xFF) levels of `map`, or
    with map NULL the last pass's levels in c->lev inverted when `flip`; values above

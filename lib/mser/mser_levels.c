@@ -93,7 +93,6 @@ void sbr_mser_priv_pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor
 {
     const uint32_t w = c->width;
     const uint32_t h = c->height;
-    uint32_t v;
 
     if (map != NULL) {
         pass_copy(c, map, xor_mask, limit);
@@ -114,9 +113,7 @@ void sbr_mser_priv_pass_setup(mser_ctx_t *c, const sbr_image_t *map, uint8_t xor
             c->lev[(y * w) + (w - 1u)] = (uint16_t)((uint32_t)c->lev[(y * w) + (w - 1u)] | LEV_WALL);
         }
     }
-    for (v = 0u; v < MSER_LEVELS; v++) {
-        c->heap_top[v] = MSER_NONE;
-    }
+    mser_heap_clear(c);
     c->heap_free = MSER_NONE;
     c->heap_next = 0u;
     c->heap_full = 0;
