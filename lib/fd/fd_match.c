@@ -387,9 +387,20 @@ void sbr_fd_priv_magnitudes(const sbr_fd_t *query, float *qmag)
 static int screened_out_mag(const float *qmag, const float *pmag, uint32_t m, float level)
 {
     const uint32_t n = (2u * m) + 1u;
+    const uint32_t n4 = n - (n % 4u);
     float sum = 0.0f;
     uint32_t k = 0u;
     int out = 0;
+    /* The level tested every four terms: the partial sums are the same, and a sum that
+       reached the level stays there (the terms are >= 0; a NaN term keeps the pair in,
+       as before), so the verdict is the same as with a test after every term. */
+    while ((k < n4) && (!(sum >= level))) {
+        sum += qmag[k] * pmag[k];
+        sum += qmag[k + 1u] * pmag[k + 1u];
+        sum += qmag[k + 2u] * pmag[k + 2u];
+        sum += qmag[k + 3u] * pmag[k + 3u];
+        k += 4u;
+    }
     while ((k < n) && (!(sum >= level))) {
         sum += qmag[k] * pmag[k];
         k++;
