@@ -592,17 +592,16 @@ void sbr_fd_priv_lanes_peaks(uint32_t size, int inv, float cb, const float *re, 
             const float fl = (float)l;
             for (b = 0u; b < FD_LANES; b++) {
                 const float xr = re[(l * FD_LANES) + b];
-                const float xi = im[(l * FD_LANES) + b];
                 /* peak_value_fast() is xr or FD_OUTSIDE (the start value), so only a lag
                    whose xr beats the best so far can change the best: the bound's square
                    root is taken for those alone (a NaN xr beats nothing, as before) */
-                if ((xr > bv[b]) && (peak_value_fast(cb, xr, xi) > bv[b])) {
+                if ((xr > bv[b]) && (peak_value_fast(cb, xr, im[(l * FD_LANES) + b]) > bv[b])) {
                     bv[b] = xr;
                     bl[b] = fl;
                 }
-                check[b] += (xr * xr) + (xi * xi);
             }
         }
+        sbr_fd_priv_lanes_energy(size, re, im, check);
         for (b = 0u; b < FD_LANES; b++) {
             if (rescan(bv[b], cb) != 0) {
                 /* rare: the careful test */

@@ -46,6 +46,10 @@ void sbr_fd_priv_write_products(const sbr_fd_t *query, const sbr_fd_t *proto, co
 /* Whether a pair is refined and the refined lag's offset d from the grid peak. */
 int sbr_fd_priv_refine_offset(const sbr_fd_match_config_t *cfg, int found,
                               const sbr_complex_t around[3], float *d);
+/* Each lane's energy over `size` lags (re, im: lag l of lane b at l FD_LANES + b), summed
+   in lag order (fd_lanes.c). */
+void sbr_fd_priv_lanes_energy(uint32_t size, const float *re, const float *im,
+                              float check[FD_LANES]);
 /* r at a fractional lag of FD_LANES prototypes, each lane equal to the one-pair value. */
 void sbr_fd_priv_corr_at_lanes(const sbr_fd_t *q, const sbr_fd_t *const p[FD_LANES],
                                const float lag[FD_LANES], uint32_t size, sbr_complex_t out[FD_LANES]);
