@@ -68,6 +68,21 @@ static int region_in_map(const sbr_image_t *map, const sbr_mser_region_t *region
     return ok;
 }
 
+/* The fill's view of a region's box (one entry on the stack, nothing filled yet). */
+static void mask_fill_init(mask_fill_t *f, const sbr_image_t *map, const sbr_mser_region_t *region,
+                           uint8_t *mask, uint32_t mask_stride, uint32_t *stack)
+{
+    const sbr_rect_t *b = &region->bbox;
+    f->map = &map->data[((size_t)b->y * map->stride) + b->x];
+    f->mask = mask;
+    f->map_stride = map->stride;
+    f->mask_stride = mask_stride;
+    f->stack = stack;
+    f->sp = 1u;
+    f->filled = 0u;
+    f->level = region_flip(region, &f->flip);
+}
+
 /* Flood fill of the region's pixels from its seed (already set in the mask and pushed);
    returns the number of pixels filled. */
 static uint32_t mask_fill(const sbr_image_t *map, const sbr_mser_region_t *region, uint8_t *mask,
@@ -75,14 +90,8 @@ static uint32_t mask_fill(const sbr_image_t *map, const sbr_mser_region_t *regio
 {
     const sbr_rect_t *b = &region->bbox;
     mask_fill_t f;
-    f.map = &map->data[((size_t)b->y * map->stride) + b->x];
-    f.mask = mask;
-    f.map_stride = map->stride;
-    f.mask_stride = mask_stride;
-    f.stack = stack;
-    f.sp = 1u;
+    mask_fill_init(&f, map, region, mask, mask_stride, stack);
     f.filled = 1u;
-    f.level = region_flip(region, &f.flip);
     while (f.sp > 0u) {
         /* stack entries pack (y, x) in 16 bits each (region boxes are below 65536 px) */
         uint32_t lx;
@@ -149,14 +158,7 @@ static uint32_t mask_fill_runs(const sbr_image_t *map, const sbr_mser_region_t *
     const sbr_rect_t *b = &region->bbox;
     mask_fill_t f;
     int ok = 1;
-    f.map = &map->data[((size_t)b->y * map->stride) + b->x];
-    f.mask = mask;
-    f.map_stride = map->stride;
-    f.mask_stride = mask_stride;
-    f.stack = stack;
-    f.sp = 1u;
-    f.filled = 0u;
-    f.level = region_flip(region, &f.flip);
+    mask_fill_init(&f, map, region, mask, mask_stride, stack);
     stack[0] = (((uint32_t)region->seed_y - b->y) << 16) | ((uint32_t)region->seed_x - b->x);
     while ((f.sp > 0u) && (ok != 0)) {
         uint32_t y;

@@ -136,6 +136,18 @@ static sbr_status_t run_check(const sbr_picto_model_t *model, const float *feat,
     return SBR_OK;
 }
 
+#if SBR_UTIL_SCALAR_CORE == 0
+/* One group of four inputs into a row's four partial sums (a loop over the lanes, which
+   the vectoriser makes one vector operation on SIMD hosts). */
+static inline void lane4(float s[4], const float *w, const float *b)
+{
+    uint32_t l;
+    for (l = 0u; l < 4u; l++) {
+        s[l] += w[l] * b[l];
+    }
+}
+#endif
+
 /* sbr_util_dot() of four rows (w, w + stride, ...) with the same b at once: each row's sum
    is the same sequence of operations as sbr_util_dot()'s (bit for bit), but the four rows'
    additions are independent, so the FPU overlaps them instead of waiting on one chain. */
@@ -177,21 +189,12 @@ static void dot4(const float *w, size_t stride, const float *b, size_t n, float 
         s3[3] += w3[k + 3u] * b[k + 3u];
     }
 #else
-    /* SIMD hosts: a loop over the lanes, which the vectoriser makes one vector a row */
+    /* SIMD hosts: one vector a row (lane4()) */
     for (k = 0u; k < n4; k += 4u) {
-        uint32_t l;
-        for (l = 0u; l < 4u; l++) {
-            s0[l] += w0[k + l] * b[k + l];
-        }
-        for (l = 0u; l < 4u; l++) {
-            s1[l] += w1[k + l] * b[k + l];
-        }
-        for (l = 0u; l < 4u; l++) {
-            s2[l] += w2[k + l] * b[k + l];
-        }
-        for (l = 0u; l < 4u; l++) {
-            s3[l] += w3[k + l] * b[k + l];
-        }
+        lane4(s0, &w0[k], &b[k]);
+        lane4(s1, &w1[k], &b[k]);
+        lane4(s2, &w2[k], &b[k]);
+        lane4(s3, &w3[k], &b[k]);
     }
 #endif
     for (k = n4; k < n; k++) {
@@ -230,31 +233,14 @@ static void dot8(const float *w, size_t stride, const float *b, size_t n, float 
     const size_t n4 = n - (n % 4u);
     size_t k;
     for (k = 0u; k < n4; k += 4u) {
-        uint32_t l;
-        for (l = 0u; l < 4u; l++) {
-            s0[l] += w0[k + l] * b[k + l];
-        }
-        for (l = 0u; l < 4u; l++) {
-            s1[l] += w1[k + l] * b[k + l];
-        }
-        for (l = 0u; l < 4u; l++) {
-            s2[l] += w2[k + l] * b[k + l];
-        }
-        for (l = 0u; l < 4u; l++) {
-            s3[l] += w3[k + l] * b[k + l];
-        }
-        for (l = 0u; l < 4u; l++) {
-            s4[l] += w4[k + l] * b[k + l];
-        }
-        for (l = 0u; l < 4u; l++) {
-            s5[l] += w5[k + l] * b[k + l];
-        }
-        for (l = 0u; l < 4u; l++) {
-            s6[l] += w6[k + l] * b[k + l];
-        }
-        for (l = 0u; l < 4u; l++) {
-            s7[l] += w7[k + l] * b[k + l];
-        }
+        lane4(s0, &w0[k], &b[k]);
+        lane4(s1, &w1[k], &b[k]);
+        lane4(s2, &w2[k], &b[k]);
+        lane4(s3, &w3[k], &b[k]);
+        lane4(s4, &w4[k], &b[k]);
+        lane4(s5, &w5[k], &b[k]);
+        lane4(s6, &w6[k], &b[k]);
+        lane4(s7, &w7[k], &b[k]);
     }
     for (k = n4; k < n; k++) {
         s0[0] += w0[k] * b[k];
