@@ -386,49 +386,67 @@ static void grey_normalise(float *g)
     }
 }
 
-/* Patch row v's gradients as orientation-bin contributions, per pixel eight: its
-   projections p0..p3 on 0, 45, 90 and 135 degrees, bin k getting max(p, 0) and bin k + 4
-   max(p, 0) - p (which is -p or exactly 0): a positive projection counts in direction k,
-   a negative one (negated) in k + 4. Without a branch on the sign (a desktop CPU
-   mispredicts half of them). */
-static void orient_row(const float *g, uint32_t v, float bins[PS][ORIENT])
+/* One pixel's projections p into a cell's eight sums: bin k gets max(p[k], 0), bin k + 4
+   max(p[k], 0) - p[k]. */
+static inline void orient_add(float acc[ORIENT], const float p[4])
+{
+#if SBR_UTIL_SCALAR_CORE == 0
+    /* SIMD hosts: whole-lane steps (one vector operation each) */
+    float q[4];
+    uint32_t k;
+    for (k = 0u; k < 4u; k++) {
+        q[k] = (p[k] > 0.0f) ? p[k] : 0.0f;
+    }
+    for (k = 0u; k < 4u; k++) {
+        acc[k] += q[k];
+    }
+    for (k = 0u; k < 4u; k++) {
+        acc[k + 4u] += q[k] - p[k];
+    }
+#else
+    /* M-profile cores: straight-line code, the sums kept in FPU registers */
+    const float q0 = (p[0] > 0.0f) ? p[0] : 0.0f;
+    const float q1 = (p[1] > 0.0f) ? p[1] : 0.0f;
+    const float q2 = (p[2] > 0.0f) ? p[2] : 0.0f;
+    const float q3 = (p[3] > 0.0f) ? p[3] : 0.0f;
+    acc[0] += q0;
+    acc[1] += q1;
+    acc[2] += q2;
+    acc[3] += q3;
+    acc[4] += q0 - p[0];
+    acc[5] += q1 - p[1];
+    acc[6] += q2 - p[2];
+    acc[7] += q3 - p[3];
+#endif
+}
+
+/* Patch row v's pixels [u0, u0 + n * width) into n cells of `width` pixels (cells: n x 8
+   bins), each cell's pixels added left to right in local sums. A pixel's gradient
+   projections p on 0, 45, 90 and 135 degrees: bin k gets max(p, 0) and bin k + 4
+   max(p, 0) - p (which is -p or exactly 0), so a positive projection counts in direction
+   k, a negative one (negated) in k + 4, without a branch on the sign (a desktop CPU
+   mispredicts half of them; orient_add()). */
+static void orient_cells(const float *g, uint32_t v, uint32_t u0, uint32_t n, uint32_t width,
+                         float *cells)
 {
     const float *row = &g[v * PS];
     const float *up = &g[nb_lo(v) * PS];
     const float *down = &g[nb_hi(v) * PS];
-    uint32_t u;
-    for (u = 0u; u < PS; u++) {
-        const float gx = row[nb_hi(u)] - row[nb_lo(u)];
-        const float gy = down[u] - up[u];
-        const float p[4] = {gx, DIAG * (gx + gy), gy, DIAG * (gy - gx)};
-        uint32_t k;
-        for (k = 0u; k < 4u; k++) {
-            const float q = (p[k] > 0.0f) ? p[k] : 0.0f;
-            bins[u][k] = q;
-            bins[u][k + 4u] = q - p[k];
-        }
-    }
-}
-
-/* Pixels [u0, u0 + n * width) of a row's bin contributions (bins: ORIENT a pixel) into n cells of `width` pixels
-   (cells: n x ORIENT bins), each cell's pixels added left to right. */
-static void orient_cells(const float *bins, uint32_t u0, uint32_t n, uint32_t width,
-                         float *cells)
-{
     uint32_t c;
     for (c = 0u; c < n; c++) {
-        float acc[ORIENT];
         float *cell = &cells[c * ORIENT];
+        float acc[ORIENT]; /* the cell's sums: a local array the rows cannot alias */
         uint32_t t;
         uint32_t k;
         for (k = 0u; k < ORIENT; k++) {
             acc[k] = cell[k];
         }
         for (t = 0u; t < width; t++) {
-            const float *b = &bins[(u0 + (c * width) + t) * ORIENT];
-            for (k = 0u; k < ORIENT; k++) {
-                acc[k] += b[k];
-            }
+            const uint32_t u = u0 + (c * width) + t;
+            const float gx = row[nb_hi(u)] - row[nb_lo(u)];
+            const float gy = down[u] - up[u];
+            const float p[4] = {gx, DIAG * (gx + gy), gy, DIAG * (gy - gx)};
+            orient_add(acc, p);
         }
         for (k = 0u; k < ORIENT; k++) {
             cell[k] = acc[k];
@@ -443,11 +461,9 @@ static void orient_features(const float *g, float *feat)
 {
     uint32_t v;
     for (v = 0u; v < PS; v++) {
-        float bins[PS][ORIENT];
-        orient_row(g, v, bins);
-        orient_cells(&bins[0][0], 0u, CELLS, CELL, &feat[F_HOG + ((v / CELL) * CELLS * ORIENT)]);
+        orient_cells(g, v, 0u, CELLS, CELL, &feat[F_HOG + ((v / CELL) * CELLS * ORIENT)]);
         if ((v >= CENTRE_LO) && (v < (PS - CENTRE_LO))) {
-            orient_cells(&bins[0][0], CENTRE_LO, CENTRE_CELLS, CENTRE_CELL,
+            orient_cells(g, v, CENTRE_LO, CENTRE_CELLS, CENTRE_CELL,
                          &feat[F_CENTRE + (((v - CENTRE_LO) / CENTRE_CELL) * CENTRE_CELLS * ORIENT)]);
         }
     }
