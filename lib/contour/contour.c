@@ -3,8 +3,6 @@
    map. */
 #include "sbr/contour.h"
 
-#include <string.h>
-
 /* Label map values: background, unvisited foreground, visited border pixel, visited border
    pixel whose right neighbour is background (the "right bound" of Suzuki-Abe). */
 #define LBL_BG 0
@@ -131,6 +129,28 @@ static void follow(int8_t *map, ptrdiff_t i0, int16_t x0, int16_t y0, const int3
     }
 }
 
+/* Eight bytes as one word (byte i in bits 8i..8i+7, whatever the CPU's byte order;
+   compilers make it one load on little-endian targets). */
+static inline uint64_t load8(const uint8_t *b)
+{
+    return ((uint64_t)b[0] | ((uint64_t)b[1] << 8u) | ((uint64_t)b[2] << 16u) |
+            ((uint64_t)b[3] << 24u) | ((uint64_t)b[4] << 32u) | ((uint64_t)b[5] << 40u) |
+            ((uint64_t)b[6] << 48u) | ((uint64_t)b[7] << 56u));
+}
+
+/* load8()'s inverse into a label map. */
+static inline void store8(int8_t *b, uint64_t v)
+{
+    b[0] = (int8_t)(uint8_t)v;
+    b[1] = (int8_t)(uint8_t)(v >> 8u);
+    b[2] = (int8_t)(uint8_t)(v >> 16u);
+    b[3] = (int8_t)(uint8_t)(v >> 24u);
+    b[4] = (int8_t)(uint8_t)(v >> 32u);
+    b[5] = (int8_t)(uint8_t)(v >> 40u);
+    b[6] = (int8_t)(uint8_t)(v >> 48u);
+    b[7] = (int8_t)(uint8_t)(v >> 56u);
+}
+
 /* The padded binary copy of the mask in map (pitch = width + 2): a frame of background
    around it. */
 static void pad_mask(const sbr_image_t *mask, int8_t *map, size_t pitch)
@@ -151,13 +171,12 @@ static void pad_mask(const sbr_image_t *mask, int8_t *map, size_t pitch)
             /* eight bytes at once: each byte's bits or-ed down into its lowest bit (the
                shifts move bits within a byte for that bit), so 1 (LBL_FG) where the mask
                byte is not 0 */
-            uint64_t v;
-            (void)memcpy(&v, &row[x], sizeof v);
+            uint64_t v = load8(&row[x]);
             v |= v >> 4u;
             v |= v >> 2u;
             v |= v >> 1u;
             v &= UINT64_C(0x0101010101010101);
-            (void)memcpy(&m[x + 1u], &v, sizeof v);
+            store8(&m[x + 1u], v);
         }
         for (x = w8; x < mask->width; x++) {
             m[x + 1u] = (row[x] != 0u) ? (int8_t)LBL_FG : (int8_t)LBL_BG;
@@ -221,8 +240,8 @@ sbr_status_t sbr_contour_find_external(const sbr_image_t *mask, void *workspace,
 {
     sbr_status_t st = sbr_image_check(mask);
     contour_scan_t sc;
+    const uint8_t *bytes;
     size_t pitch;
-    uint32_t x;
     uint32_t y;
 
     if (contour_count != NULL) {
@@ -254,35 +273,35 @@ sbr_status_t sbr_contour_find_external(const sbr_image_t *mask, void *workspace,
     sc.used = 0u;
     sc.overflow = 0;
 
+    bytes = (const uint8_t *)sc.map; /* the labels' bytes, compared eight at a time */
     for (y = 1u; y <= mask->height; y++) {
         const size_t row = (size_t)y * pitch;
         int8_t prev = LBL_BG;
         int8_t lnbd = LBL_BG; /* label of the last border pixel passed on this row */
-        for (x = 1u; x <= mask->width; x++) {
+        uint32_t x = 1u;
+        while (x <= mask->width) {
             const int8_t p = sc.map[row + x];
-            if ((p == prev) && ((x + 8u) <= mask->width)) {
-                /* nothing happens at a pixel equal to the one before: skip eight such at
-                   a time (the loop's x++ moves past the eighth) */
-                const uint64_t same = (uint64_t)(uint8_t)prev * UINT64_C(0x0101010101010101);
-                uint64_t v;
-                (void)memcpy(&v, &sc.map[row + x + 1u], sizeof v);
-                if (v == same) {
+            if (p == prev) {
+                /* nothing happens at a pixel equal to the one before: past it, and past
+                   the next eight when they equal it too */
+                if (((x + 8u) <= mask->width) &&
+                    (load8(&bytes[row + x + 1u]) ==
+                     ((uint64_t)(uint8_t)prev * UINT64_C(0x0101010101010101)))) {
                     x += 8u;
                 }
-                continue;
-            }
-            /* An outer border starts at an unvisited pixel after background, unless the
-               last border passed is a left (non-right-bound) border: then we are inside a
-               blob's hole, which RETR_EXTERNAL skips. */
-            if ((p != prev) && (prev == LBL_BG) && (p == LBL_FG) && (lnbd <= 0)) {
-                trace_border(&sc, row + x, x - 1u, y - 1u);
-            }
-            if (p != prev) {
+            } else {
+                /* An outer border starts at an unvisited pixel after background, unless
+                   the last border passed is a left (non-right-bound) border: then we are
+                   inside a blob's hole, which RETR_EXTERNAL skips. */
+                if ((prev == LBL_BG) && (p == LBL_FG) && (lnbd <= 0)) {
+                    trace_border(&sc, row + x, x - 1u, y - 1u);
+                }
                 prev = sc.map[row + x]; /* as the trace labelled it */
                 if ((prev != LBL_BG) && (prev != LBL_FG)) {
                     lnbd = prev;
                 }
             }
+            x++;
         }
     }
     *contour_count = sc.n;

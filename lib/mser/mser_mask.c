@@ -175,7 +175,7 @@ static uint32_t mask_fill_runs(const sbr_image_t *map, const sbr_mser_region_t *
             while (((r + 1u) < b->width) && (run_in(&f, r + 1u, y) != 0)) {
                 r++;
             }
-            (void)memset(&mask[((size_t)y * mask_stride) + l], 255, (size_t)(r - l) + 1u);
+            (void)memset(&mask[((size_t)y * mask_stride) + l], 255, ((size_t)r - (size_t)l) + 1u);
             f.filled += (r - l) + 1u;
             if (y > 0u) {
                 ok = run_seeds(&f, l, r, y - 1u, cap);
@@ -196,8 +196,6 @@ sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_
     const sbr_rect_t *b;
     uint32_t *stack;
     uint32_t y;
-    uint32_t sx;
-    uint32_t sy;
     uint32_t filled;
 
     if ((map == NULL) || (region == NULL) || (mask == NULL)) {
@@ -237,11 +235,11 @@ sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_
                             (uint32_t)((size_t)b->width * (size_t)b->height));
     if (filled == 0u) {
         /* the stretches' seeds did not fit: the pixel-by-pixel fill, from a clear mask */
+        const uint32_t sx = (uint32_t)region->seed_x - b->x;
+        const uint32_t sy = (uint32_t)region->seed_y - b->y;
         for (y = 0u; y < b->height; y++) {
             (void)memset(&mask[(size_t)y * mask_stride], 0, (size_t)b->width);
         }
-        sx = (uint32_t)region->seed_x - b->x;
-        sy = (uint32_t)region->seed_y - b->y;
         mask[((size_t)sy * mask_stride) + sx] = 255u;
         stack[0] = (sy << 16) | sx;
         filled = mask_fill(map, region, mask, mask_stride, stack);

@@ -176,10 +176,11 @@ static int node_bbox_runs(mser_ctx_t *c, const mser_node_t *nd, sbr_rect_t *box)
     f.p0 = 0xFFFFFFFFu;
     f.p1 = 0u;
     if (f.cap < 3u) {
-        return 0;
+        ok = 0; /* no room for the seed and a stretch */
+    } else {
+        f.list[0] = nd->seed;
+        f.sp = 1u;
     }
-    f.list[0] = nd->seed;
-    f.sp = 1u;
     while ((f.sp > 0u) && (ok != 0)) {
         uint32_t l;
         uint32_t r;

@@ -105,13 +105,8 @@ void sbr_recog_priv_sort_votes(recog_ctx_t *c, int mode)
 {
     recog_vote_t *const v = c->votes;
     const uint32_t n = c->nvotes;
-    uint32_t end;
-    uint32_t start;
-    if (n < 2u) {
-        return;
-    }
-    start = n / 2u;
-    end = n;
+    uint32_t start = n / 2u;
+    uint32_t end = (n < 2u) ? 1u : n; /* fewer than two: nothing to do */
     while (end > 1u) {
         uint32_t root;
         if (start > 0u) {
