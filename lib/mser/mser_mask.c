@@ -30,14 +30,21 @@ typedef struct mask_fill_s {
     uint8_t level;       /* in the flipped values */
 } mask_fill_t;
 
-/* One neighbour (nx, ny) of the region mask's fill: marked and stacked if it is in the
-   region and not marked yet. */
+/* Is box pixel (x, y) in the region and not yet in the mask? */
+static inline int run_in(const mask_fill_t *f, uint32_t x, uint32_t y)
+{
+    return ((f->mask[((size_t)y * f->mask_stride) + x] == 0u) &&
+            ((uint8_t)(f->map[((size_t)y * f->map_stride) + x] ^ f->flip) <= f->level))
+               ? 1
+               : 0;
+}
+
+/* One neighbour (nx, ny) of the region mask's pixel fill: marked and stacked if it is in
+   the region and not marked yet. */
 static inline void mask_grow(mask_fill_t *f, uint32_t nx, uint32_t ny)
 {
-    uint8_t *m = &f->mask[((size_t)ny * f->mask_stride) + nx];
-    if ((*m == 0u) &&
-        ((uint8_t)(f->map[((size_t)ny * f->map_stride) + nx] ^ f->flip) <= f->level)) {
-        *m = 255u;
+    if (run_in(f, nx, ny) != 0) {
+        f->mask[((size_t)ny * f->mask_stride) + nx] = 255u;
         f->stack[f->sp] = (ny << 16) | nx;
         f->sp++;
         f->filled++;
@@ -115,14 +122,6 @@ static uint32_t mask_fill(const sbr_image_t *map, const sbr_mser_region_t *regio
     return f.filled;
 }
 
-/* Is box pixel (x, y) in the region and not yet in the mask? */
-static inline int run_in(const mask_fill_t *f, uint32_t x, uint32_t y)
-{
-    return ((f->mask[((size_t)y * f->mask_stride) + x] == 0u) &&
-            ((uint8_t)(f->map[((size_t)y * f->map_stride) + x] ^ f->flip) <= f->level))
-               ? 1
-               : 0;
-}
 
 /* A seed for every stretch of region pixels among columns [l, r] of box row y; 0 when the
    stack (cap entries) is full. */

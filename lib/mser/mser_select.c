@@ -84,19 +84,6 @@ static void select_diverse(mser_ctx_t *c, float min_diversity)
    LEV_BOXED until it is done. The border and walls (LEV_WALL) have LEV_BOXED set, so the
    fill never enters them. A node larger than the list (a heap bound below the node's area) gets
    the box of the pixels the list holds, and the call reports the bound reached. */
-static uint32_t box_visit(uint16_t *lev, uint32_t *list, uint32_t n, uint32_t cap, uint32_t q,
-                          uint32_t val)
-{
-    const uint32_t g = (uint32_t)lev[q];
-    uint32_t m = n;
-    if ((g < LEV_BOXED) && ((g & LEV_LEVEL) <= val) && (n < cap)) {
-        lev[q] = (uint16_t)(g | LEV_BOXED);
-        list[n] = q;
-        m = n + 1u;
-    }
-    return m;
-}
-
 /* Is a pixel of value g (lev[]) in the region of level val and not yet boxed: no flag but
    LEV_REACHED set, its level <= val? (One comparison: with LEV_REACHED set in both, any
    other flag makes g the larger.) */
@@ -104,6 +91,20 @@ static inline int box_in(uint32_t g, uint32_t val)
 {
     return ((g | LEV_REACHED) <= (val | LEV_REACHED)) ? 1 : 0;
 }
+
+static uint32_t box_visit(uint16_t *lev, uint32_t *list, uint32_t n, uint32_t cap, uint32_t q,
+                          uint32_t val)
+{
+    const uint32_t g = (uint32_t)lev[q];
+    uint32_t m = n;
+    if ((box_in(g, val) != 0) && (n < cap)) {
+        lev[q] = (uint16_t)(g | LEV_BOXED);
+        list[n] = q;
+        m = n + 1u;
+    }
+    return m;
+}
+
 
 /* The run fill's state: the pending seeds at the list's start (list[0, sp)), the runs
    found at its end (list[rn, cap): first pixel, last pixel), the box so far. */
