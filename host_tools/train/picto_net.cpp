@@ -5,8 +5,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <thread>
+
+#include <unistd.h>
 
 namespace sbr_host::picto_train {
 
@@ -184,6 +189,91 @@ void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, i
         if (e % 5 == 4 || e + 1 == epochs)
             std::fprintf(stderr, "sbr_train_picto: epoch %d loss %.4f\n", e + 1, loss / std::max(wsum, 1e-9));
     }
+}
+
+namespace {
+
+template <typename T>
+void put(std::ofstream &f, const T *p, size_t n) {
+    f.write(reinterpret_cast<const char *>(p), std::streamsize(n * sizeof(T)));
+}
+
+// The samples file of picto_fit.py (its docstring has the format).
+bool write_samples(const std::string &path, const std::vector<Sample> &s, const std::vector<float> &sw) {
+    std::ofstream f(path, std::ios::binary);
+    const int32_t head[4] = {int32_t(s.size()), kF, kK, kR};
+    f.write("SBRSMP01", 8);
+    put(f, head, 4);
+    for (const Sample &x : s) put(f, x.f.data(), size_t(kF));
+    for (const Sample &x : s) {
+        const int32_t l = x.label;
+        put(f, &l, 1);
+    }
+    put(f, sw.data(), sw.size());
+    for (const Sample &x : s) {
+        const uint8_t b = x.has_box ? 1u : 0u;
+        put(f, &b, 1);
+    }
+    for (const Sample &x : s) {
+        const uint8_t b = x.hard ? 1u : 0u;
+        put(f, &b, 1);
+    }
+    for (const Sample &x : s) {
+        float t[kR];
+        for (int c = 0; c < kR; ++c) t[c] = x.t[c] / kTargetScale;
+        put(f, t, size_t(kR));
+    }
+    return bool(f);
+}
+
+// The weights file picto_fit.py writes, into n (hidden units as asked).
+bool read_weights(const std::string &path, int hidden, Net &n) {
+    std::ifstream f(path, std::ios::binary);
+    char magic[8];
+    int32_t head[4];
+    if (!f.read(magic, 8) || std::string(magic, 8) != "SBRNET01" ||
+        !f.read(reinterpret_cast<char *>(head), sizeof head) || head[0] != hidden || head[1] != kF || head[2] != kK ||
+        head[3] != kR)
+        return false;
+    n.h = hidden;
+    n.w1.assign(size_t(hidden) * (kF + 1), 0.0f);
+    n.w2.assign(size_t(kK) * (hidden + 1), 0.0f);
+    n.w3.assign(size_t(kR) * (hidden + 1), 0.0f);
+    for (std::vector<float> *w : {&n.w1, &n.w2, &n.w3})
+        if (!f.read(reinterpret_cast<char *>(w->data()), std::streamsize(w->size() * sizeof(float)))) return false;
+    char extra;
+    return !f.read(&extra, 1);
+}
+
+}  // namespace
+
+bool train_library(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, const LibraryFit &lf) {
+    namespace fs = std::filesystem;
+    if (lf.hidden <= 0) {
+        std::fprintf(stderr, "sbr_train_picto: --trainer sklearn needs hidden units (--hidden >= 1)\n");
+        return false;
+    }
+    static int calls = 0;  // host tool, one thread calls this
+    const fs::path dir = fs::temp_directory_path() /
+                         ("sbr_picto_fit_" + std::to_string(getpid()) + "_" + std::to_string(++calls));
+    fs::create_directories(dir);
+    const std::string samples = (dir / "samples.bin").string(), weights = (dir / "weights.bin").string();
+    bool ok = write_samples(samples, s, sw);
+    if (!ok) std::fprintf(stderr, "sbr_train_picto: cannot write %s\n", samples.c_str());
+    if (ok) {
+        char nums[160];
+        std::snprintf(nums, sizeof nums, " --hidden %d --epochs %d --seed %u --bg-fraction %g", lf.hidden, lf.epochs,
+                      lf.seed, double(lf.bg_fraction));
+        const std::string cmd = "'" + lf.python + "' '" + lf.script + "' --samples '" + samples + "' --out '" +
+                                weights + "'" + nums + (lf.args.empty() ? "" : " " + lf.args);
+        std::fprintf(stderr, "sbr_train_picto: %s\n", cmd.c_str());
+        const int rc = std::system(cmd.c_str());
+        ok = rc == 0 && read_weights(weights, lf.hidden, n);
+        if (!ok) std::fprintf(stderr, "sbr_train_picto: the library trainer failed (status %d)\n", rc);
+    }
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    return ok;
 }
 
 }  // namespace sbr_host::picto_train

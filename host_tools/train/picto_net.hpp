@@ -2,6 +2,7 @@
 // sbr_train_picto's network trainer: one layer of rectified units, a softmax over the 43
 // classes and "no sign", and the box outputs, trained by minibatch SGD (deterministic).
 #pragma once
+#include <string>
 #include <vector>
 
 #include "picto_train.hpp"
@@ -20,5 +21,17 @@ struct Net {
 // each minibatch and their gradients are added in a fixed order: deterministic.
 void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, int epochs, unsigned seed, float lr0,
            float bg_fraction, float rate, float decay);
+
+// The library trainer (--trainer sklearn): the samples and their weights go to a file, the
+// Python script (picto_fit.py: scikit-learn's MLPClassifier for the classifier, a ridge
+// regression on its hidden units for the box outputs) fits them and writes the weights in
+// Net's layout. False, with the reason printed, when it cannot run or its file is wrong.
+struct LibraryFit {
+    std::string python, script, args;  // interpreter, picto_fit.py, --trainer-args
+    int hidden = 128, epochs = 20;
+    unsigned seed = 1;
+    float bg_fraction = 0.3f;
+};
+bool train_library(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, const LibraryFit &lf);
 
 }  // namespace sbr_host::picto_train

@@ -57,6 +57,9 @@ struct Options {
     int gtsrb_copies = 2;   // --gtsrb-copies: jittered copies of each crop besides itself
     int gtsrb_synth = 0;    // --gtsrb-synth: synthetic copies of each crop (synth_copy())
     FrontEnd front_end;     // --map-subsample, --map-min-area: the part stage of the candidates
+    std::string trainer = "hand";            // --trainer: hand (picto_net.cpp) or sklearn (picto_fit.py)
+    std::string python = SBR_PICTO_PYTHON;   // --python: the interpreter of --trainer sklearn
+    std::string trainer_args;                // --trainer-args: more options for picto_fit.py
 };
 
 // One training box: its features, its class (or -1: box regression only) and, for boxes

@@ -13,11 +13,13 @@
 //                   [--gtsrb-cap N] [--gtsrb-copies N] [--out-c FILE] [--out FILE]
 //                   [--eval-range A-B] [--from-picto FILE] [--no-gate] [--gate-hidden H] [--gate-recall R]
 //                   [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y]
+//                   [--trainer hand|sklearn] [--python PY] [--trainer-args "..."]
 //
 // What each option does and how the training works: docs/usage/train.md; the
 // measurements behind the defaults and the variants tried and dropped:
 // docs/results/class_stage.md. The parts: picto_samples.* (the samples), picto_augment.*
-// (the synthetic copies of a sign), picto_net.* (the network trainer), picto_checks.*
+// (the synthetic copies of a sign), picto_net.* (the network trainer; picto_fit.py the
+// library one, --trainer sklearn), picto_checks.*
 // (the colour check and the gate); this file reads the options and runs the rounds.
 #include <algorithm>
 #include <chrono>
@@ -106,6 +108,12 @@ int parse_options(int argc, char **argv, Options &o) {
     app.add_option("--gtsrb-copies", o.gtsrb_copies, "jittered copies of each GTSRB crop")
         ->check(CLI::Range(0, 1000))
         ->capture_default_str();
+    app.add_option("--trainer", o.trainer,
+                   "the network's trainer: hand (SGD with dropout, picto_net.cpp) or sklearn (picto_fit.py)")
+        ->check(CLI::IsMember({"hand", "sklearn"}))
+        ->capture_default_str();
+    app.add_option("--python", o.python, "Python with scikit-learn for --trainer sklearn")->capture_default_str();
+    app.add_option("--trainer-args", o.trainer_args, "more options for picto_fit.py (--trainer sklearn), e.g. \"--alpha 0.01\"");
     add_front_end_options(app, o.front_end);
     const int parsed = parse_cli(app, argc, argv);
     if (parsed >= 0) return parsed;
@@ -145,7 +153,19 @@ bool fit(const Options &o, const std::vector<Sample> &samples, const Counts &n, 
     const std::vector<float> sw = sample_weights(samples, n, o.balance);
     Net net;
     net.h = o.hidden;
-    train(net, samples, sw, o.epochs, o.seed, o.lr, o.bg_fraction, o.dropout, o.decay);
+    if (o.trainer == "sklearn") {
+        LibraryFit lf;
+        lf.python = o.python;
+        lf.script = SBR_PICTO_FIT_SCRIPT;
+        lf.args = o.trainer_args;
+        lf.hidden = o.hidden;
+        lf.epochs = o.epochs;
+        lf.seed = o.seed;
+        lf.bg_fraction = o.bg_fraction;
+        if (!train_library(net, samples, sw, lf)) return false;
+    } else {
+        train(net, samples, sw, o.epochs, o.seed, o.lr, o.bg_fraction, o.dropout, o.decay);
+    }
     std::fprintf(stderr, "sbr_train_picto: trained (%.1f s)\n",
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     out.hidden = uint32_t(o.hidden);
@@ -194,6 +214,8 @@ std::string c_header(const Options &o, const Counts &n) {
     std::string swap_flag = std::string(" --bg-swap ") + mode_name(o.bg_swap);
     if (o.bg_fill != BgSwap::off) swap_flag += std::string(" --bg-fill ") + mode_name(o.bg_fill);
     if (!o.tview) swap_flag += " --no-triangle-view";
+    if (o.trainer != "hand")
+        swap_flag += " --trainer " + o.trainer + (o.trainer_args.empty() ? "" : " --trainer-args \"" + o.trainer_args + "\"");
     if (!o.gtsrb.empty())
         swap_flag += " --gtsrb GTSRB --gtsrb-cap " + std::to_string(o.gtsrb_cap) + " --gtsrb-copies " +
                      std::to_string(o.gtsrb_copies) +
