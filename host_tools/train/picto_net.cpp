@@ -27,19 +27,32 @@ bool dropped(uint64_t key, int j, float rate) {
     return float(z >> 40) * (1.0f / 16777216.0f) < rate;
 }
 
-// Class probabilities p and box outputs r (in target units) of x; a = hidden units. With
-// rate > 0 (training), hidden units are dropped at that rate (mask from key) and the
-// others scaled by 1 / (1 - rate).
-void forward(const Net &n, const float *x, std::vector<float> &a, std::vector<float> &p, float r[kR],
-             float rate = 0.0f, uint64_t key = 0) {
+// The first layer's weights by feature (w1t[k * h + j] = w1[j][k]), so that the forward
+// pass adds feature k to every hidden unit at once: each unit still sums its bias and then
+// w[k] * x[k] in the order of k, so its value is the same as a unit-by-unit dot product's.
+void transpose_w1(const Net &n, std::vector<float> &w1t) {
+    w1t.resize(size_t(n.h) * kF);
+    for (int j = 0; j < n.h; ++j)
+        for (int k = 0; k < kF; ++k) w1t[size_t(k) * n.h + j] = n.w1[size_t(j) * (kF + 1) + k];
+}
+
+// Class probabilities p and box outputs r (in target units) of x; a = hidden units (w1t:
+// transpose_w1() of n). With rate > 0 (training), hidden units are dropped at that rate
+// (mask from key) and the others scaled by 1 / (1 - rate).
+void forward(const Net &n, const std::vector<float> &w1t, const float *x, std::vector<float> &a,
+             std::vector<float> &p, float r[kR], float rate = 0.0f, uint64_t key = 0) {
     const float *in = x;
     if (n.h > 0) {
         a.resize(n.h);
+        float *s = a.data();
+        for (int j = 0; j < n.h; ++j) s[j] = n.w1[size_t(j) * (kF + 1) + kF];
+        for (int k = 0; k < kF; ++k) {
+            const float xk = x[k];
+            const float *wk = &w1t[size_t(k) * n.h];
+            for (int j = 0; j < n.h; ++j) s[j] += wk[j] * xk;
+        }
         for (int j = 0; j < n.h; ++j) {
-            const float *w = &n.w1[size_t(j) * (kF + 1)];
-            float s = w[kF];
-            for (int k = 0; k < kF; ++k) s += w[k] * x[k];
-            a[j] = s > 0 ? s : 0;
+            a[j] = s[j] > 0 ? s[j] : 0;
             if (rate > 0.0f) a[j] = dropped(key, j, rate) ? 0.0f : a[j] / (1.0f - rate);
         }
         in = a.data();
@@ -70,8 +83,8 @@ struct Grad {
     double loss = 0, weight = 0;
 };
 
-void backprop(const Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, const size_t *idx,
-              size_t count, float rate, uint64_t epoch, Grad &out) {
+void backprop(const Net &n, const std::vector<float> &w1t, const std::vector<Sample> &s, const std::vector<float> &sw,
+              const size_t *idx, size_t count, float rate, uint64_t epoch, Grad &out) {
     const int ni = n.nin();
     const size_t o2 = n.w1.size(), o3 = o2 + n.w2.size();
     std::fill(out.g.begin(), out.g.end(), 0.0f);
@@ -82,7 +95,7 @@ void backprop(const Net &n, const std::vector<Sample> &s, const std::vector<floa
         const Sample &x = s[idx[bi]];
         const float w = sw[idx[bi]];
         float r[kR];
-        forward(n, x.f.data(), a, p, r, rate, (epoch << 32) ^ uint64_t(idx[bi]));
+        forward(n, w1t, x.f.data(), a, p, r, rate, (epoch << 32) ^ uint64_t(idx[bi]));
         const float *in = n.h > 0 ? a.data() : x.f.data();
         if (n.h > 0) std::fill(da.begin(), da.end(), 0.0f);
         auto add_row = [&](size_t off, const std::vector<float> &wm, int c, float d) {
@@ -158,6 +171,7 @@ void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, i
     Grad part[2];
     for (auto &g : part) g.g.assign(nw, 0.0f);
     std::vector<size_t> order;
+    std::vector<float> w1t;
     for (int e = 0; e < epochs; ++e) {
         const float lr = lr0 * 0.5f * (1.0f + std::cos(3.14159265f * float(e) / float(epochs)));
         std::shuffle(bg.begin(), bg.end(), rng);
@@ -167,8 +181,9 @@ void train(Net &n, const std::vector<Sample> &s, const std::vector<float> &sw, i
         double loss = 0, wsum = 0;
         for (size_t b0 = 0; b0 < order.size(); b0 += batch) {
             const size_t cnt = std::min(order.size(), b0 + batch) - b0, half = cnt / 2;
-            std::thread t1([&]() { backprop(n, s, w, &order[b0], half, rate, uint64_t(e), part[0]); });
-            backprop(n, s, w, &order[b0 + half], cnt - half, rate, uint64_t(e), part[1]);
+            if (n.h > 0) transpose_w1(n, w1t);
+            std::thread t1([&]() { backprop(n, w1t, s, w, &order[b0], half, rate, uint64_t(e), part[0]); });
+            backprop(n, w1t, s, w, &order[b0 + half], cnt - half, rate, uint64_t(e), part[1]);
             t1.join();
             const double bw = part[0].weight + part[1].weight;
             loss += part[0].loss + part[1].loss;
