@@ -4,7 +4,7 @@
 by scikit-learn instead of the hand-written trainer of picto_net.cpp.
 
     picto_fit.py --samples FILE --out FILE [--hidden 128] [--epochs 20] [--seed 1]
-                 [--lr 0.001] [--alpha A] [--batch 64] [--bg-fraction 0.3]
+                 [--lr 0.001] [--alpha 0.1] [--batch 256] [--bg-fraction 0.3]
                  [--box-alpha 1.0] [--threads 2]
 
 Reads the standardised training samples sbr_train_picto writes (format below), fits
@@ -117,8 +117,9 @@ def main(argv=None):
     p.add_argument("--epochs", type=int, default=20)
     p.add_argument("--seed", type=int, default=1)
     p.add_argument("--lr", type=float, default=0.001, help="Adam's learning rate")
-    p.add_argument("--alpha", type=float, default=0.0064, help="L2 penalty (sklearn's alpha)")
-    p.add_argument("--batch", type=int, default=64)
+    # the best of the configurations measured on the cross-validation (docs/results/crossval.md)
+    p.add_argument("--alpha", type=float, default=0.1, help="L2 penalty (sklearn's alpha)")
+    p.add_argument("--batch", type=int, default=256)
     p.add_argument("--bg-fraction", type=float, default=0.3)
     p.add_argument("--box-alpha", type=float, default=1.0, help="ridge penalty of the box outputs")
     p.add_argument("--threads", type=int, default=2)
