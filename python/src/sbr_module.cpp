@@ -149,7 +149,9 @@ public:
             sbr_recog_config_strips(&cfg_);  // a band's bounds (fields given below still apply)
         else
             sbr_recog_config_default(&cfg_);
-        cfg_.min_score = std::min(cfg_.min_score, threshold_);  // as sbr_detect
+        // as sbr_detect: the operating point, unless the configuration gives min_score (the
+        // core's default floor, 0.3, is below the class stage's operating point)
+        cfg_.min_score = std::min(threshold_, 0.999999f);
         for (auto kv : config) set_field(cfg_, nb::cast<std::string>(kv.first), kv.second);
         check_config(config);
         cfg_.clock = host_clock;
