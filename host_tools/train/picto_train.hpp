@@ -39,7 +39,7 @@ enum class BgSwap { off, round, triangle, all };
 // passes --seed 2).
 struct Options {
     std::string data = std::string(SBR_DATA_ROOT) + "/gtsdb", cand_path, out_c, out_file, model_path;
-    int hidden = 128, epochs = 20, jitter = 20, box_jitter = 0;
+    int hidden = 128, epochs = 40, jitter = 20, box_jitter = 0;
     ImageRanges range{{{0, 399}}}, eval_range;
     float lr = 0.01f, threshold = 0.7f, bg_fraction = 0.3f, dropout = 0.5f, decay = 1e-4f, balance = 0.0f;
     int rounds = 2, rare = 0;
