@@ -99,6 +99,8 @@ static void test_config(void)
     g_cfg.max_hypotheses = 128u;
     g_cfg.max_model_protos = MAXP;
     g_cfg.min_parts = 2u; /* the models here have no class stage */
+    g_cfg.outline_maps = 0u; /* the part model's candidates only (the outline candidates:
+                                test_outline_candidates()) */
 }
 
 /* Learn the model from the parts of one sign of radius r at (cx, cy): every part centred
@@ -1124,6 +1126,115 @@ static void test_class_stage(void)
 /* Hostile frames with the built-in library and class stage: a status or detections that
    are well-formed (inside the frame, valid class, score in [min_score, 1]), never a
    crash. */
+/* Outline candidates: a red-rimmed disc's outline is a candidate at its own box even when
+   the part model gives it no hypothesis (min_parts above any hypothesis's parts), with a
+   class stage only; the bound counts them and says when it ran full; a bar is not
+   sign-shaped; the options are range-checked. The classifier always says class 3. */
+static void test_outline_candidates(void)
+{
+    static float w2[44u * (SBR_PICTO_FEATURES + 1u)];
+    sbr_picto_model_t pm;
+    sbr_recog_config_t rc = g_cfg;
+    sbr_recog_stats_t st;
+    const sbr_image_t v = view();
+    uint32_t n = 99u;
+    uint32_t x;
+    uint32_t y;
+    uint32_t k;
+    (void)memset(w2, 0, sizeof w2);
+    w2[(3u * (SBR_PICTO_FEATURES + 1u)) + SBR_PICTO_FEATURES] = 4.0f;
+    (void)memset(&pm, 0, sizeof pm);
+    pm.version = SBR_PICTO_VERSION;
+    pm.features = SBR_PICTO_FEATURES;
+    pm.classes = 43u;
+    pm.threshold = 0.5f;
+    pm.w2 = w2;
+    rc.min_parts = 65535u; /* no part-model candidate */
+    rc.outline_maps = 1u << (uint32_t)SBR_MAP_RED;
+    /* a paler red around the sign's outline: the red map has two nested regions, the
+       sign without and with the pale part. A ring 2 px wide (boxes 37 and 41 px, IoU
+       0.81 <= 0.85): two candidates; the corners of the sign's box (both 41 px, IoU 1):
+       one */
+    for (k = 0u; k < 2u; k++) {
+        clear();
+        draw_sign(112.0f, 50.0f, 20.0f);
+        for (y = 0u; y < H; y++) {
+            for (x = 0u; x < W; x++) {
+                const float dx = (float)x - 112.0f;
+                const float dy = (float)y - 50.0f;
+                const float d = sqrtf((dx * dx) + (dy * dy));
+                const int pale = (k == 0u) ? ((d > 18.0f) && (d <= 20.0f))
+                                           : ((d > 20.0f) && (fabsf(dx) <= 20.0f) && (fabsf(dy) <= 20.0f));
+                if (pale != 0) {
+                    g_rgb[y][x][0] = 170u;
+                    g_rgb[y][x][1] = 70u;
+                    g_rgb[y][x][2] = 75u;
+                }
+            }
+        }
+        TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &pm, g_ws, sizeof g_ws, g_dets, 16u,
+                                                &n, &st));
+        TEST_ASSERT_EQUAL_UINT32(2u - k, st.outlines);
+    }
+    TEST_ASSERT_EQUAL_UINT32(1u, st.classified);
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_EQUAL_UINT32(0u, g_dets[0].parts);
+    TEST_ASSERT_EQUAL_UINT32(3u, g_dets[0].class_id);
+    TEST_ASSERT_FLOAT_WITHIN(1e-4f, expf(4.0f) / (expf(4.0f) + 43.0f), g_dets[0].score);
+    TEST_ASSERT_FLOAT_WITHIN(1.5f, 112.5f, box_cx(&g_dets[0]));
+    TEST_ASSERT_UINT32_WITHIN(1u, 41u, g_dets[0].box.width); /* the outline's box */
+    TEST_ASSERT_UINT32_WITHIN(1u, 41u, g_dets[0].box.height);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.capacity_hit & SBR_RECOG_HIT_OUTLINES);
+    /* none: without the option, or without a class stage */
+    rc.outline_maps = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &pm, g_ws, sizeof g_ws, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.outlines);
+    rc.outline_maps = 1u << (uint32_t)SBR_MAP_RED;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, NULL, g_ws, sizeof g_ws, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    TEST_ASSERT_EQUAL_UINT32(0u, st.outlines);
+    /* two discs: two candidates; a bound of one takes the first and says so */
+    draw_sign(40.0f, 50.0f, 18.0f);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &pm, g_ws, sizeof g_ws, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(2u, st.outlines);
+    TEST_ASSERT_EQUAL_UINT32(2u, n);
+    rc.max_outline_candidates = 1u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &pm, g_ws, sizeof g_ws, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(1u, st.outlines);
+    TEST_ASSERT_EQUAL_UINT32(1u, n);
+    TEST_ASSERT_EQUAL_UINT32(SBR_RECOG_HIT_OUTLINES, st.capacity_hit & SBR_RECOG_HIT_OUTLINES);
+    rc.max_outline_candidates = 0u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &pm, g_ws, sizeof g_ws, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(0u, n);
+    TEST_ASSERT_EQUAL_UINT32(SBR_RECOG_HIT_OUTLINES, st.capacity_hit & SBR_RECOG_HIT_OUTLINES);
+    rc.max_outline_candidates = SBR_RECOG_DEFAULT_MAX_OUTLINES;
+    /* a red bar three times as wide as it is tall is not sign-shaped */
+    clear();
+    for (y = 44u; y < 56u; y++) {
+        for (x = 40u; x < 76u; x++) {
+            g_rgb[y][x][0] = 210u;
+            g_rgb[y][x][1] = 20u;
+            g_rgb[y][x][2] = 30u;
+        }
+    }
+    TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &pm, g_ws, sizeof g_ws, g_dets, 16u, &n, &st));
+    TEST_ASSERT_EQUAL_UINT32(0u, st.outlines);
+    /* out of range: refused */
+    rc.outline_maps = 1u << SBR_MAP_KINDS;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+    rc.outline_maps = 0u;
+    rc.max_outline_candidates = 1000001u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, recog_run(&v, NULL, &rc, &g_model, &pm, g_ws, sizeof g_ws, g_dets, 16u,
+                                                   &n, &st));
+    /* the defaults: the red and blue maps, 64 */
+    sbr_recog_config_default(&rc);
+    TEST_ASSERT_EQUAL_UINT32((1u << (uint32_t)SBR_MAP_RED) | (1u << (uint32_t)SBR_MAP_BLUE), rc.outline_maps);
+    TEST_ASSERT_EQUAL_UINT32(64u, rc.max_outline_candidates);
+    clear();
+    draw_sign(112.0f, 50.0f, 18.0f); /* the scene of the tests below */
+}
+
 static void test_hostile_frames_builtin(void)
 {
     sbr_model_t m;
@@ -1253,6 +1364,7 @@ int main(void)
     RUN_TEST(test_recog_h_statuses);
     RUN_TEST(test_builtin_model_and_sizes);
     RUN_TEST(test_class_stage);
+    RUN_TEST(test_outline_candidates);
     RUN_TEST(test_hostile_frames_builtin);
     return UNITY_END();
 }

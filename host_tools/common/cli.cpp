@@ -51,6 +51,9 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
     u("--max-votes", cfg.max_votes, 1u, 4000000u, "vote bound");
     u("--max-hypotheses", cfg.max_hypotheses, 1u, 1000000u, "hypothesis bound");
     u("--gate", cfg.gate, 0u, 1u, "0: class stage's gate off (used when the class stage has one)");
+    u("--outline-maps", cfg.outline_maps, 0u, (1u << SBR_MAP_KINDS) - 1u,
+      "outline candidates: bright regions of these maps (bit k = map kind k) at their own box (0: none)");
+    u("--max-outline-candidates", cfg.max_outline_candidates, 0u, 1000000u, "outline candidates per frame");
     u("--maps", cfg.parts.maps, 1u, (1u << SBR_MAP_KINDS) - 1u,
       "parts.maps: bit k = map kind k of include/sbr/map.h (0x1 intensity only)");
     u("--max-nodes", cfg.parts.mser.max_nodes, 0u, 100000000u, "MSER tree nodes (0: the worst case)");

@@ -376,9 +376,9 @@ struct Tally {
     std::vector<std::vector<double>> ms_stage = std::vector<std::vector<double>>(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
     std::vector<std::string> failures;  // "file: why", the first few
-    size_t capacity_kind[6] = {0, 0, 0, 0, 0, 0};
+    size_t capacity_kind[7] = {0, 0, 0, 0, 0, 0, 0};
     uint32_t max_candidates = 0;  // the class stage's bound, for the summary
-    size_t classified = 0, refined = 0, views = 0, rim_rejected = 0, gated = 0, frames_run = 0;
+    size_t classified = 0, outlines = 0, refined = 0, views = 0, rim_rejected = 0, gated = 0, frames_run = 0;
     uint32_t max_extra_looks = 0;  // the most extra looks of one frame
     uint64_t parts_total = 0;
     uint32_t parts_max = 0;
@@ -432,9 +432,10 @@ void count_stats(const sbr_recog_stats_t &stats, sbr_status_t st, double ms, Tal
     t.parts_total += stats.parts;
     t.parts_max = std::max(t.parts_max, stats.parts);
     if (stats.capacity_hit != 0 || st == SBR_ERR_CAPACITY) ++t.capacity_frames;
-    for (unsigned b = 0; b < 6; ++b) t.capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
+    for (unsigned b = 0; b < 7; ++b) t.capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
     t.max_extra_looks = std::max(t.max_extra_looks, stats.extra_looks);
     t.classified += stats.classified;
+    t.outlines += stats.outlines;
     t.refined += stats.refined;
     t.views += stats.views;
     t.rim_rejected += stats.rim_rejected;
@@ -578,6 +579,10 @@ std::string bounds_text(const Options &o, const Tally &t) {
     if (t.capacity_kind[5] > 0)
         s << ":\n    on those frames the last candidates kept the box, class and score of their last look";
     s << "\n";
+    s << "  outline candidates (--max-outline-candidates " << o.cfg.max_outline_candidates << "): reached on "
+      << t.capacity_kind[6] << " of " << fr << " frames";
+    if (t.capacity_kind[6] > 0) s << ":\n    on those frames the later sign-shaped regions got no candidate of their own";
+    s << "\n";
     const char *names[4] = {"parts (--max-parts ", "votes (--max-votes ", "hypotheses (--max-hypotheses ",
                             "MSER tree nodes or boundary heap (--max-nodes "};
     const uint32_t limits[4] = {o.cfg.max_parts, o.cfg.max_votes, o.cfg.max_hypotheses, o.cfg.parts.mser.max_nodes};
@@ -638,9 +643,10 @@ std::string summary(const Options &o, const Models &m, const std::string &dir, s
     if (t.frames_run > 0 && t.classified > 0) {
         const double fr = double(t.frames_run);
         std::snprintf(buf, sizeof buf,
-                      "class stage per frame (mean): %.1f candidates classified, %.1f boxes refined, %.1f extra views, "
+                      "class stage per frame (mean): %.1f candidates classified (%.1f of them outline candidates), "
+                      "%.1f boxes refined, %.1f extra views, "
                       "%.1f rejected by the gate; colour check: %zu candidates dropped in all\n",
-                      double(t.classified) / fr, double(t.refined) / fr, double(t.views) / fr, double(t.gated) / fr,
+                      double(t.classified) / fr, double(t.outlines) / fr, double(t.refined) / fr, double(t.views) / fr, double(t.gated) / fr,
                       t.rim_rejected);
         s << buf;
     }

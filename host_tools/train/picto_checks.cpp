@@ -90,6 +90,9 @@ std::vector<Sample> gate_samples(const std::vector<std::string> &files, const st
     sbr_recog_config_default(&rc);
     rc.min_score = 0.0f;
     rc.nms_iou = 1.0f;
+    // the blue map's regions from 40 of its pixels, as the committed gate was learned (the
+    // recogniser's default took 20 after it; docs/results/crossval.md)
+    rc.parts.map_min_area[SBR_MAP_BLUE] = 40u;
     struct Worker {
         std::vector<uint64_t> ws;
         std::vector<float> f, g = std::vector<float>(kGF);

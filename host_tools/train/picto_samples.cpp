@@ -86,6 +86,9 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     apply_front_end(front_end, rc.parts);
     rc.min_parts = 1;
     rc.min_score = picto != nullptr ? kMineScore : 0.0f;
+    // the part model's candidates only, as the committed class stage was learned (the
+    // recogniser's outline candidates came after it; docs/results/crossval.md)
+    rc.outline_maps = 0u;
     return recog_boxes(v, rc, model, picto, ws);
 }
 

@@ -61,6 +61,9 @@
  *    in view (for candidates at least `triangle_score` likely a danger sign at first),
  *    and a danger class more probable there is taken. Detections
  *    below `min_score` are dropped and suppression runs again on the new scores.
+ *    After the part model's candidates the class stage looks at the outline candidates
+ *    (`outline_maps`, at most `max_outline_candidates`): the sign-shaped bright regions
+ *    of those maps, each at its own bounding box, classified the same way.
  *    Without a class stage the part score and part evidence's class are reported.
  *
  * ## Use
@@ -197,8 +200,8 @@ typedef struct sbr_recog_config_s {
         from level 136 up (map_polarity[SBR_MAP_RED] = SBR_MSER_BRIGHT,
         map_bright_min[SBR_MAP_RED] = 136: red rims and discs, under 2 % of a scene's
         pixels); the blue map at half resolution (map_subsample[SBR_MAP_BLUE] = 2) with
-        regions from 40 of its pixels (map_min_area[SBR_MAP_BLUE] = 40, signs from about
-        15 px), bright ones and dark ones up to level 120 (map_dark_max[SBR_MAP_BLUE] =
+        regions from 20 of its pixels (map_min_area[SBR_MAP_BLUE] = 20, signs from about
+        11 px), bright ones and dark ones up to level 120 (map_dark_max[SBR_MAP_BLUE] =
         120: yellow). Trade-off: maps and subsample set most of the time and memory;
         subsample 2 quarters both and loses signs below about 24 px. On a GRAY8 frame only
         the intensity map of `maps` is used (the colour kinds are skipped), with the
@@ -327,6 +330,24 @@ typedef struct sbr_recog_config_s {
         it; 0: every candidate goes to the full classifier. The candidate bound
         (max_candidates) counts the candidates looked at, passed or not. */
     uint32_t gate;
+    /** With a class stage: outline candidates. Every part of these map kinds (bit k = map
+        kind k, map.h) whose region is bright there, of `min_size` .. `max_size` pixels
+        (its box's larger side) and at most ::SBR_RECOG_OUTLINE_ASPECT times as long as
+        it is wide, also becomes a candidate at its own bounding box, without part
+        evidence (a region that traces a sign's outline is a sign's box; the part model's
+        votes place small or blurred signs too large when their outline matches no
+        prototype). Nested regions of nearly one box (IoU > ::SBR_RECOG_OUTLINE_IOU with
+        an earlier outline candidate) count once. They are classified after the part
+        model's candidates, from the same look budget (max_extra_looks), and report
+        `parts` 0. Default: the red and blue maps (red rims and discs, blue discs: the
+        prohibitory, danger and mandatory signs). 0: none. Measured:
+        docs/results/crossval.md (2026-12-06, outline candidates). */
+    uint32_t outline_maps;
+    /** With a class stage: outline candidates per frame at most, 0 .. 1000000, in the
+        order of the parts (::SBR_RECOG_HIT_OUTLINES when more qualify). Default 64
+        (GTSDB frames have about 33). Each costs a gate look (config.gate) and, when it
+        passes, a classification. */
+    uint32_t max_outline_candidates;
     /** Optional time source for per-stage profiling (e.g. the DWT cycle counter on a
         Cortex-M, a monotonic clock on a host): returns a free-running tick count; the
         stats report differences modulo 2^32. NULL (default): no profiling. */
@@ -352,7 +373,8 @@ typedef struct sbr_detection_s {
     float score;        /**< 0..1 */
     float class_share;  /**< the class's share of the hypothesis's evidence, 0..1 */
     uint16_t class_id;  /**< 0 .. the model's class_count - 1 */
-    uint16_t parts;     /**< distinct prototypes that supported it */
+    uint16_t parts;     /**< distinct prototypes that supported it (0: an outline
+                             candidate, sbr_recog_config_t::outline_maps) */
 } sbr_detection_t;
 
 /** @name Bits of sbr_recog_stats_t::capacity_hit: the internal bounds that ran full @{ */
@@ -362,6 +384,8 @@ typedef struct sbr_detection_s {
 #define SBR_RECOG_HIT_MSER 8u        /**< the part stage's MSER nodes or regions */
 #define SBR_RECOG_HIT_CANDIDATES 16u /**< max_candidates */
 #define SBR_RECOG_HIT_LOOKS 32u      /**< max_extra_looks */
+#define SBR_RECOG_HIT_OUTLINES 64u   /**< max_outline_candidates, or no room among the
+                                          max_hypotheses for them */
 /** @} */
 
 /** What one call did. */
@@ -381,6 +405,8 @@ typedef struct sbr_recog_stats_s {
     uint32_t rim_rejected;    /**< candidates dropped by the class stage's colour check
                                    (sbr_picto_model_t::rim_floor) */
     uint32_t gated;           /**< candidates the class stage's gate rejected (config.gate) */
+    uint32_t outlines;        /**< outline candidates made (config.outline_maps; counted in
+                                   `classified` too) */
     uint32_t capacity_hit;    /**< the bounds that ran full: ::SBR_RECOG_HIT_PARTS, ... */
     uint32_t stage_ticks[SBR_RECOG_STAGES]; /**< clock ticks per ::sbr_recog_stage_t
                                                  (0 without a clock) */
@@ -426,6 +452,12 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
 #define SBR_RECOG_DEFAULT_MAX_HYPOTHESES 4096u   /**< max_hypotheses */
 #define SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS 1024u /**< max_model_protos */
 #define SBR_RECOG_DEFAULT_MAX_EXTRA_LOOKS 256u   /**< max_extra_looks */
+#define SBR_RECOG_DEFAULT_MAX_OUTLINES 64u       /**< max_outline_candidates */
+/** @} */
+
+/** @name Outline candidates (sbr_recog_config_t::outline_maps) @{ */
+#define SBR_RECOG_OUTLINE_ASPECT 1.5f /**< longest box side / shortest side, at most */
+#define SBR_RECOG_OUTLINE_IOU 0.85f   /**< IoU above which a nested region's box counts once */
 /** @} */
 
 /** @name Per-entry bytes of the recogniser's workspace arrays @{ */

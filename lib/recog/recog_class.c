@@ -5,6 +5,8 @@
  */
 #include "recog_internal.h"
 
+#include <string.h>
+
 /* Class and score of one classified box: class = the most probable sign class, score = its
    probability, share = its share of the sign classes' probability. Returns the sign
    classes' total probability. */
@@ -260,8 +262,70 @@ static void class_verdict(recog_ctx_t *c, recog_hyp_t *h, const sbr_image_t *vie
     }
 }
 
+/* The box of an outline candidate's part, x0, y0, x1, y1, if it is one (config.outline_maps,
+   its size and proportions); 0 otherwise. */
+static int outline_box(const sbr_part_t *p, const sbr_recog_config_t *cfg, float b[4])
+{
+    const float w = (float)p->bbox.width;
+    const float h = (float)p->bbox.height;
+    const float big = sbr_util_maxf(w, h);
+    int ok = 0;
+    if (((uint32_t)p->map < (uint32_t)SBR_MAP_KINDS) &&
+        (((cfg->outline_maps >> (uint32_t)p->map) & 1u) != 0u) &&
+        (p->polarity == (uint8_t)SBR_MSER_BRIGHT) && (big >= cfg->min_size) &&
+        (big <= cfg->max_size) && (big <= (SBR_RECOG_OUTLINE_ASPECT * sbr_util_minf(w, h)))) {
+        b[0] = (float)p->bbox.x;
+        b[1] = (float)p->bbox.y;
+        b[2] = b[0] + w;
+        b[3] = b[1] + h;
+        ok = 1;
+    }
+    return ok;
+}
+
+uint32_t sbr_recog_priv_outline_candidates(recog_ctx_t *c, uint32_t kept)
+{
+    const sbr_recog_config_t *cfg = c->cfg;
+    uint32_t end = kept;
+    uint32_t i;
+    int full = 0;
+    for (i = 0u; (i < c->nparts) && (cfg->outline_maps != 0u) && (full == 0); i++) {
+        float b[4];
+        if (outline_box(&c->parts[i], cfg, b) != 0) {
+            uint32_t j;
+            int nested = 0;
+            for (j = kept; (j < end) && (nested == 0); j++) {
+                float o[4];
+                centre_box(&c->hyps[j], o);
+                if (sbr_util_box_iou(b, o) > SBR_RECOG_OUTLINE_IOU) {
+                    nested = 1;
+                }
+            }
+            if (nested != 0) {
+                /* the same box as an earlier one */
+            } else if (((end - kept) >= cfg->max_outline_candidates) ||
+                       (end >= cfg->max_hypotheses)) {
+                c->st.capacity_hit |= SBR_RECOG_HIT_OUTLINES;
+                full = 1;
+            } else {
+                recog_hyp_t *h = &c->hyps[end];
+                (void)memset(h, 0, sizeof *h);
+                h->mx = 0.5f * (b[0] + b[2]);
+                h->my = 0.5f * (b[1] + b[3]);
+                h->mw = b[2] - b[0];
+                h->mh = b[3] - b[1];
+                h->keep = 1u;
+                end++;
+            }
+        }
+    }
+    c->nhyps = end;
+    c->st.outlines = end - kept;
+    return end;
+}
+
 void sbr_recog_priv_class_stage(recog_ctx_t *c, const sbr_image_t *view, uint32_t kept,
-                                recog_picto_buf_t *pb)
+                                uint32_t end, recog_picto_buf_t *pb)
 {
     uint32_t examined = 0u;
     uint32_t i;
@@ -277,5 +341,8 @@ void sbr_recog_priv_class_stage(recog_ctx_t *c, const sbr_image_t *view, uint32_
             class_verdict(c, h, view, pb);
         }
     }
-    c->st.classified = examined;
+    for (i = kept; i < end; i++) {
+        class_verdict(c, &c->hyps[i], view, pb);
+    }
+    c->st.classified = examined + (end - kept);
 }

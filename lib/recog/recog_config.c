@@ -19,15 +19,16 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
              under 2 % of a scene's pixels are that red, so its flood costs a few per cent
              of a full one;
            - blue at half resolution (a quarter of the pixels; its signs are large enough),
-             regions from 40 of its pixels, bright ones (blue signs) and dark ones up to
-             level 120 (the yellow of priority roads). */
+             regions from 20 of its pixels (the outlines of signs from about 11 px; 40
+             lost mandatory signs of 17-22 px, docs/results/crossval.md), bright ones
+             (blue signs) and dark ones up to level 120 (the yellow of priority roads). */
         cfg->parts.maps = (1u << (uint32_t)SBR_MAP_INTENSITY) | (1u << (uint32_t)SBR_MAP_RED) |
                           (1u << (uint32_t)SBR_MAP_BLUE);
         cfg->parts.map_polarity[SBR_MAP_INTENSITY] = (uint32_t)SBR_MSER_BRIGHT;
         cfg->parts.map_polarity[SBR_MAP_RED] = (uint32_t)SBR_MSER_BRIGHT;
         cfg->parts.map_bright_min[SBR_MAP_RED] = 136u;
         cfg->parts.map_subsample[SBR_MAP_BLUE] = 2u;
-        cfg->parts.map_min_area[SBR_MAP_BLUE] = 40u;
+        cfg->parts.map_min_area[SBR_MAP_BLUE] = 20u;
         cfg->parts.map_dark_max[SBR_MAP_BLUE] = 120u;
         /* a grey frame has its intensity map only: both polarities (grey_polarity) */
         cfg->grey_polarity = 0u;
@@ -60,6 +61,8 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg)
         cfg->nms_iou = 0.3f;
         cfg->candidate_iou = 1.0f;
         cfg->gate = 1u;
+        cfg->outline_maps = (1u << (uint32_t)SBR_MAP_RED) | (1u << (uint32_t)SBR_MAP_BLUE);
+        cfg->max_outline_candidates = SBR_RECOG_DEFAULT_MAX_OUTLINES;
         cfg->clock = NULL;
         cfg->clock_ctx = NULL;
     }
@@ -105,7 +108,9 @@ sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
         (cfg->max_candidates > 1000000u) || (cfg->refine_steps > SBR_RECOG_MAX_REFINE) ||
         (cfg->views == 0u) || (cfg->views > SBR_RECOG_MAX_VIEWS) || (cfg->triangle_view > 1u) ||
         (cfg->gate > 1u) || (cfg->grey_polarity > (uint32_t)SBR_MSER_BOTH) ||
-        (cfg->max_extra_looks > 1000000u)) {
+        (cfg->max_extra_looks > 1000000u) ||
+        (cfg->outline_maps >= (1u << (uint32_t)SBR_MAP_KINDS)) ||
+        (cfg->max_outline_candidates > 1000000u)) {
         return SBR_ERR_RANGE;
     }
     if ((in_range(cfg->vote_error, 0.0f, 4.0f) == 0) ||

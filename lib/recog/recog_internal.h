@@ -162,10 +162,16 @@ void sbr_recog_priv_suppress(recog_ctx_t *c, uint32_t n, uint32_t vw, uint32_t v
 
 /* recog_class.c: the class stage */
 
-/* The class stage over the first `kept` hypotheses (sorted best first): each kept one is
-   gated, classified and colour-checked; it stays kept when its class score reaches
-   min_score. At most max_candidates are examined. */
+/* The outline candidates (config.outline_maps) after the first `kept` hypotheses: the
+   parts that qualify, in order, at most max_outline_candidates and up to max_hypotheses
+   in all, each at its own box and kept. Returns the hypotheses' new count (c->nhyps). */
+uint32_t sbr_recog_priv_outline_candidates(recog_ctx_t *c, uint32_t kept);
+
+/* The class stage over the first `kept` hypotheses (sorted best first) and then the
+   outline candidates kept .. end - 1: each kept one is gated, classified and
+   colour-checked; it stays kept when its class score reaches min_score. At most
+   max_candidates of the first are examined. */
 void sbr_recog_priv_class_stage(recog_ctx_t *c, const sbr_image_t *view, uint32_t kept,
-                                recog_picto_buf_t *pb);
+                                uint32_t end, recog_picto_buf_t *pb);
 
 #endif /* SBR_RECOG_INTERNAL_H */

@@ -85,6 +85,7 @@ static void stats_add(sbr_recog_stats_t *t, const sbr_recog_stats_t *s)
     t->extra_looks += s->extra_looks;
     t->rim_rejected += s->rim_rejected;
     t->gated += s->gated;
+    t->outlines += s->outlines;
     t->capacity_hit |= s->capacity_hit;
     for (i = 0u; i < (uint32_t)SBR_RECOG_STAGES; i++) {
         t->stage_ticks[i] += s->stage_ticks[i];

@@ -230,8 +230,8 @@ static sbr_status_t evidence_stages(recog_ctx_t *c, const sbr_image_t *view,
 
 /* Stages 5-6: non-maximum suppression on part evidence, best first (with a class stage at
    candidate_iou, by default none: only empty boxes go); then the class stage (the
-   pictogram classifier scores and classifies the survivors) and suppression again on the
-   new scores. The class stage's buffers are the workspace's last l->picto bytes
+   pictogram classifier scores and classifies the survivors, then the outline candidates)
+   and suppression again on the new scores. The class stage's buffers are the workspace's last l->picto bytes
    (SBR_RECOG_CLASS_BYTES: the looks' workspace, then the probabilities). Returns
    the number of hypotheses left (sorted, kept ones marked). */
 static uint32_t decide_stages(recog_ctx_t *c, const sbr_image_t *view, void *workspace,
@@ -256,7 +256,8 @@ static uint32_t decide_stages(recog_ctx_t *c, const sbr_image_t *view, void *wor
         pb.mean = &pb.prob[SBR_PICTO_MAX_OUTPUTS];
         pb.classes = c->model->class_count;
         pb.outline = c->model->class_outline;
-        sbr_recog_priv_class_stage(c, view, kept, &pb);
+        sbr_recog_priv_class_stage(c, view, kept, sbr_recog_priv_outline_candidates(c, kept),
+                                   &pb);
         kept = sbr_recog_priv_compact(c);
         sbr_recog_priv_suppress(c, kept, view->width, view->height, cfg->nms_iou);
     }

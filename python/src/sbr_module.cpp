@@ -47,6 +47,7 @@ const std::map<std::string, Field> &fields() {
         SBR_U(max_candidates), SBR_U(refine_steps), SBR_F(refine_first_score), SBR_F(grey_refine_first_score), SBR_F(refine_score), SBR_U(views),
         SBR_F(view_score), SBR_U(triangle_view), SBR_F(triangle_score), SBR_F(min_score), SBR_F(nms_iou),
         SBR_F(candidate_iou), SBR_U(gate), SBR_U(grey_polarity), SBR_U(max_extra_looks),
+        SBR_U(outline_maps), SBR_U(max_outline_candidates),
         {"maps", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, maps)}},
         {"subsample", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, subsample)}},
         {"max_nodes", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, mser) +
@@ -222,6 +223,7 @@ public:
         d["votes"] = last_.votes;
         d["hypotheses"] = last_.hypotheses;
         d["classified"] = last_.classified;
+        d["outlines"] = last_.outlines;
         d["capacity_hit"] = last_.capacity_hit;
         for (unsigned s = 0; s < SBR_RECOG_STAGES; ++s) ms[kStageNames[s]] = last_.stage_ticks[s] / 1000.0;
         d["stage_ms"] = ms;
