@@ -421,7 +421,8 @@ void sbr_recog_config_default(sbr_recog_config_t *cfg);
 /**
  * @brief The strip configuration: the defaults with the bounds of one band
  *        (::SBR_RECOG_STRIP_MAX_NODES, ::SBR_RECOG_STRIP_MAX_HEAP,
- *        ::SBR_RECOG_STRIP_MAX_PARTS, ::SBR_RECOG_STRIP_MAX_CANDIDATES), for
+ *        ::SBR_RECOG_STRIP_MAX_PARTS, ::SBR_RECOG_STRIP_MAX_CANDIDATES,
+ *        ::SBR_RECOG_STRIP_MAX_OUTLINES), for
  *        sbr_recog_detect_strips() with ::SBR_RECOG_STRIP_ROWS and
  *        ::SBR_RECOG_STRIP_OVERLAP. No-op for NULL.
  * @param[out] cfg the configuration
@@ -515,6 +516,7 @@ size_t sbr_recog_workspace_size(const sbr_recog_config_t *cfg, uint32_t width, u
 #define SBR_RECOG_STRIP_MAX_HEAP 70000u      /**< parts.mser.max_heap of a band */
 #define SBR_RECOG_STRIP_MAX_PARTS 1024u      /**< max_parts of a band */
 #define SBR_RECOG_STRIP_MAX_CANDIDATES 96u   /**< max_candidates of a band */
+#define SBR_RECOG_STRIP_MAX_OUTLINES 32u     /**< max_outline_candidates of a band */
 #define SBR_RECOG_STRIP_BAND_DETECTIONS 128u /**< detections kept of one band (its best;
                                                   more are flagged by ::SBR_ERR_CAPACITY) */
 /** @} */

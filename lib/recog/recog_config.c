@@ -76,6 +76,7 @@ void sbr_recog_config_strips(sbr_recog_config_t *cfg)
         cfg->parts.mser.max_heap = SBR_RECOG_STRIP_MAX_HEAP;
         cfg->max_parts = SBR_RECOG_STRIP_MAX_PARTS;
         cfg->max_candidates = SBR_RECOG_STRIP_MAX_CANDIDATES;
+        cfg->max_outline_candidates = SBR_RECOG_STRIP_MAX_OUTLINES;
     }
 }
 

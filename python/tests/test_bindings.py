@@ -61,6 +61,7 @@ def test_detections_byte_identical_to_sbr_detect(tmp_path):
     assert "".join(l + "\n" for l in op_lines) == want_op
     assert set(r.last_stats["stage_ms"]) == {"parts", "votes", "group", "verify", "nms", "class"}
     assert r.last_stats["parts"] > 0
+    assert 0 < r.last_stats["outlines"] <= r.config["max_outline_candidates"] == 64
 
 
 @need_data
@@ -151,6 +152,10 @@ def test_bad_roi_order_and_config(rec):
     r = sbr.Recognizer({"views": 3}, max_candidates=128)
     assert r.config["views"] == 3 and r.config["max_candidates"] == 128
     assert set(sbr.CONFIG_FIELDS) == set(r.config)
+    assert r.config["outline_maps"] == 6  # the red and blue maps' outline candidates
+    assert sbr.Recognizer(outline_maps=0).config["outline_maps"] == 0
+    with pytest.raises(ValueError, match="outline_maps"):
+        sbr.Recognizer(outline_maps=16)
     assert r.workspace_size(1360, 800) == sbr.Recognizer().workspace_size(1360, 800) == 7193960
 
 
