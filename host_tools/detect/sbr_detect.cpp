@@ -366,6 +366,10 @@ bool open_outputs(const Options &o, Outputs &out) {
 }
 
 // What the run counts, for the summary.
+// The bits of sbr_recog_stats_t::capacity_hit (SBR_RECOG_HIT_PARTS .. SBR_RECOG_HIT_OUTLINES).
+constexpr unsigned kHitKinds = 7;
+static_assert((1u << (kHitKinds - 1)) == SBR_RECOG_HIT_OUTLINES, "capacity_hit's bits");
+
 struct Tally {
     std::vector<uint64_t> ws;
     sbr_recog_t rec{};
@@ -376,7 +380,7 @@ struct Tally {
     std::vector<std::vector<double>> ms_stage = std::vector<std::vector<double>>(SBR_RECOG_STAGES);
     size_t ndet = 0, nall = 0, failed = 0, capacity_frames = 0;
     std::vector<std::string> failures;  // "file: why", the first few
-    size_t capacity_kind[7] = {0, 0, 0, 0, 0, 0, 0};
+    size_t capacity_kind[kHitKinds] = {};  // frames on which bit b of capacity_hit was set
     uint32_t max_candidates = 0;  // the class stage's bound, for the summary
     size_t classified = 0, outlines = 0, refined = 0, views = 0, rim_rejected = 0, gated = 0, frames_run = 0;
     uint32_t max_extra_looks = 0;  // the most extra looks of one frame
@@ -432,7 +436,7 @@ void count_stats(const sbr_recog_stats_t &stats, sbr_status_t st, double ms, Tal
     t.parts_total += stats.parts;
     t.parts_max = std::max(t.parts_max, stats.parts);
     if (stats.capacity_hit != 0 || st == SBR_ERR_CAPACITY) ++t.capacity_frames;
-    for (unsigned b = 0; b < 7; ++b) t.capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
+    for (unsigned b = 0; b < kHitKinds; ++b) t.capacity_kind[b] += (stats.capacity_hit >> b) & 1u;
     t.max_extra_looks = std::max(t.max_extra_looks, stats.extra_looks);
     t.classified += stats.classified;
     t.outlines += stats.outlines;
@@ -646,8 +650,8 @@ std::string summary(const Options &o, const Models &m, const std::string &dir, s
                       "class stage per frame (mean): %.1f candidates classified (%.1f of them outline candidates), "
                       "%.1f boxes refined, %.1f extra views, "
                       "%.1f rejected by the gate; colour check: %zu candidates dropped in all\n",
-                      double(t.classified) / fr, double(t.outlines) / fr, double(t.refined) / fr, double(t.views) / fr, double(t.gated) / fr,
-                      t.rim_rejected);
+                      double(t.classified) / fr, double(t.outlines) / fr, double(t.refined) / fr, double(t.views) / fr,
+                      double(t.gated) / fr, t.rim_rejected);
         s << buf;
     }
     if (out.can) s << "CAN log: " << o.canlog << " (" << out.can->frames_written() << " frames)\n";
