@@ -25,6 +25,15 @@
 #                                               (docs/usage/crossval.md): both models
 #                                               trained per fold, figures per fold and
 #                                               summed; --baseline: an earlier run's DIR
+#   ./sbr.sh robustness [--models DIR] [--out DIR] [--baseline DIR] [--cache DIR]
+#                       [--corruptions a,b] [--severities 1,2,3] [--detect-args "..."]
+#                                               the robustness benchmark (docs/usage/robustness.md):
+#                                               a cross-validation's fold models (--models,
+#                                               default out/crossval, trained first when it
+#                                               holds none) on corrupted copies of each
+#                                               fold's test images (albumentations, seeded
+#                                               per image, cached); F1 per corruption and
+#                                               severity, mPC, rPC, the plot
 #   ./sbr.sh cost [--range A-B] [--out DIR] [--no-wall] [--no-m4] [-- sbr_detect options]
 #                                               the cost benchmark (docs/usage/cost.md):
 #                                               instructions per frame and per stage under
@@ -420,6 +429,29 @@ cmd_crossval() {
       --data "$DATA/gtsdb" --out "$out" ${gtsrb[@]+"${gtsrb[@]}"} ${args[@]+"${args[@]}"}
 }
 
+cmd_robustness() {
+  local out="$ROOT/out/robustness" models="" args=()
+  while [ $# -gt 0 ]; do
+    case "$1" in
+      --out) need_value "$1" "$#"; out="$2"; shift 2 ;;
+      --models) need_value "$1" "$#"; models="$2"; shift 2 ;;
+      *) args+=("$1"); shift ;;
+    esac
+  done
+  setup
+  build_native
+  if [ -z "$models" ]; then
+    models="$ROOT/out/crossval"
+    if [ ! -f "$models/fold1/picto.sbrp" ]; then
+      log "no fold models in $models: the cross-validation first (./sbr.sh crossval)"
+      cmd_crossval --out "$models"
+    fi
+  fi
+  log "robustness benchmark -> $out (fold models: $models)"
+  "$BUILD/venv/bin/python" "$ROOT/host_tools/robustness/sbr_robustness.py" --tools "$BUILD/native/host_tools" \
+      --data "$DATA/gtsdb" --models "$models" --out "$out" ${args[@]+"${args[@]}"}
+}
+
 cmd_cost() {
   case "${1:-}" in -h|--help) python3 "$ROOT/host_tools/bench_cost/sbr_cost.py" --help; return 0 ;; esac
   setup
@@ -488,10 +520,11 @@ case "${1:-}" in
   train) shift; cmd_train "$@" ;;
   crossval) shift; cmd_crossval "$@" ;;
   cost) shift; cmd_cost "$@" ;;
+  robustness) shift; cmd_robustness "$@" ;;
   learn-tracker) shift; cmd_learn_tracker "$@" ;;
   track) shift; cmd_track "$@" ;;
   setup) setup ;;
   -h|--help|help) usage ;;
   "") usage; exit 2 ;;
-  *) echo "sbr.sh: unknown command '$1' (the commands: detect, dashboard, train, crossval, cost, track, learn-tracker, test, fuzz, setup; ./sbr.sh --help)" >&2; exit 2 ;;
+  *) echo "sbr.sh: unknown command '$1' (the commands: detect, dashboard, train, crossval, robustness, cost, track, learn-tracker, test, fuzz, setup; ./sbr.sh --help)" >&2; exit 2 ;;
 esac
