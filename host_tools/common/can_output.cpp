@@ -23,6 +23,15 @@ CanLogWriter::~CanLogWriter() {
     if (file_) std::fclose(file_);
 }
 
+bool CanLogWriter::close() {
+    if (!file_) return false;
+    const bool good = std::fflush(file_) == 0 && std::ferror(file_) == 0;
+    const bool closed = std::fclose(file_) == 0;
+    file_ = nullptr;
+    port_ctx_.file = nullptr;
+    return good && closed;
+}
+
 bool CanLogWriter::enable_tracking(float width, float height) {
     tracker_ = std::make_shared<SignTracker>(width, height, static_cast<float>(period_) * 1e-6f);
     return tracker_->ok();

@@ -38,6 +38,8 @@ public:
                  uint64_t period_us = 100000ull, const char *ifname = "can0");
     ~CanLogWriter();
     bool ok() const { return file_ != nullptr; }
+    // Closes the log: false when a write or the close failed (disk full), or it never opened.
+    bool close();
     // Consecutive frames of width x height: track signs (see above). False on failure.
     bool enable_tracking(float width, float height);
     // Writes the frames of one image; returns the number of frames, or -1 on error.

@@ -43,7 +43,8 @@ std::map<int, std::vector<GtBox>> read_gt(const std::string &path) {
 }
 
 std::string gtsdb_image_dir(const std::string &dir) {
-    if (fs::is_directory(fs::path(dir) / "FullIJCNN2013")) return (fs::path(dir) / "FullIJCNN2013").string();
+    std::error_code ec;  // an unreadable folder is named by the listing, not thrown here
+    if (fs::is_directory(fs::path(dir) / "FullIJCNN2013", ec)) return (fs::path(dir) / "FullIJCNN2013").string();
     return dir;
 }
 
@@ -53,22 +54,32 @@ uint64_t fnv1a(uint64_t h, const void *p, size_t n) {
     return h;
 }
 
-std::vector<std::string> list_images(const std::string &dir) {
+std::vector<std::string> list_images(const std::string &dir, std::string *problem) {
     std::vector<std::string> out;
     std::error_code ec;
-    for (const auto &e : fs::directory_iterator(dir, ec)) {
-        std::string ext = e.path().extension().string();
+    fs::directory_iterator it(dir, ec), end;
+    // a folder that cannot be listed, or whose entries cannot be looked at, is named with
+    // the reason (not mistaken for a folder without images)
+    for (; !ec && it != end; it.increment(ec)) {
+        std::string ext = it->path().extension().string();
         std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-        if (e.is_regular_file() && (ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".ppm"))
-            out.push_back(e.path().string());
+        if (ext != ".jpg" && ext != ".jpeg" && ext != ".png" && ext != ".ppm") continue;
+        std::error_code tec;
+        const bool regular = fs::is_regular_file(it->path(), tec);  // follows symbolic links
+        if (tec) {
+            if (problem && problem->empty()) *problem = it->path().string() + ": " + tec.message();
+            continue;
+        }
+        if (regular) out.push_back(it->path().string());
     }
+    if (ec && problem && problem->empty()) *problem = dir + ": cannot list it: " + ec.message();
     std::sort(out.begin(), out.end());
     return out;
 }
 
-std::vector<std::string> list_images(const std::string &dir, const ImageRanges &range) {
+std::vector<std::string> list_images(const std::string &dir, const ImageRanges &range, std::string *problem) {
     std::vector<std::string> out;
-    for (auto &f : list_images(dir))
+    for (auto &f : list_images(dir, problem))
         if (range.empty() || range.contains(image_number(f))) out.push_back(std::move(f));
     return out;
 }

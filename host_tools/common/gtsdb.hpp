@@ -38,8 +38,11 @@ std::map<int, std::vector<GtBox>> read_gt(const std::string &path);
 // The folder that holds the images and gt.txt: DIR itself, or DIR/FullIJCNN2013.
 std::string gtsdb_image_dir(const std::string &dir);
 
-// Image files (.jpg, .jpeg, .png, .ppm) of a folder, sorted by name.
-std::vector<std::string> list_images(const std::string &dir);
+// Image files (.jpg, .jpeg, .png, .ppm) of a folder, sorted by name (symbolic links to
+// files count as files). `problem`, when given, gets the first reason the folder or one of
+// its image entries could not be read ("" when none): a caller that finds no image can
+// then say why instead of "no images".
+std::vector<std::string> list_images(const std::string &dir, std::string *problem = nullptr);
 
 // Why an image file cannot be trusted to decode whole, or "" when it looks complete:
 // empty, a JPEG without its end-of-image marker in the last kilobyte, a PNG without its
@@ -70,7 +73,8 @@ constexpr long kMaxImageNumber = 99999999;
 bool parse_image_ranges(const std::string &s, ImageRanges &out);
 // The images of a folder (list_images()) whose number is in `range`; every image when
 // the range is empty.
-std::vector<std::string> list_images(const std::string &dir, const ImageRanges &range);
+std::vector<std::string> list_images(const std::string &dir, const ImageRanges &range,
+                                     std::string *problem = nullptr);
 
 // FNV-1a (64 bit) of n bytes, continuing from h (start: kFnvStart): checksums with which
 // benchmarks show that two builds computed bit-identical results.

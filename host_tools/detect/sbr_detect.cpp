@@ -73,6 +73,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -89,6 +91,7 @@
 #include "cli.hpp"
 #include "gtsdb.hpp"
 #include "model_io.hpp"
+#include "output_file.hpp"
 
 #if defined(__has_include)
 #if __has_include(<valgrind/callgrind.h>)
@@ -322,12 +325,16 @@ struct Annotation {
     std::map<int, std::vector<GtBox>> gt;
     WorstImages worst{12};
     size_t missed = 0, false_dets = 0;
+    std::string annotated_failed;  // the first annotated image that could not be written
 };
 
-// The output files.
+// The output files, each written under a temporary name and renamed over its target at
+// the end of a run that wrote it whole (commit_outputs): an earlier run's files survive
+// every error.
 struct Outputs {
-    std::ofstream det, all;
+    OutputFile det, all, summary;
     std::unique_ptr<CanLogWriter> can;
+    std::string can_tmp;
     Annotation ann;
     bool overview_written = false;
 };
@@ -353,16 +360,58 @@ bool load_ground_truth(const Options &o, const std::string &dir, Annotation &a) 
     return true;
 }
 
+// Every output opened (or, for the contact sheet, probed) before the first image: one
+// that cannot be written is named with the reason, and nothing runs.
 bool open_outputs(const Options &o, Outputs &out) {
-    out.det.open(o.det_path);
-    if (!out.det) { std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.det_path.c_str()); return false; }
-    if (!o.all_path.empty()) out.all.open(o.all_path);
-    if (!o.annotated.empty()) fs::create_directories(o.annotated);
+    const auto cannot = [](const char *opt, const std::string &path, const std::string &why) {
+        std::fprintf(stderr, "sbr_detect: %s %s: cannot write it: %s (nothing was run)\n", opt, path.c_str(),
+                     why.c_str());
+        return false;
+    };
+    std::string why = out.det.open(o.det_path);
+    if (!why.empty()) return cannot("--detections", o.det_path, why);
+    if (!o.all_path.empty() && !(why = out.all.open(o.all_path)).empty())
+        return cannot("--all-detections", o.all_path, why);
+    if (!o.summary_path.empty() && !(why = out.summary.open(o.summary_path)).empty())
+        return cannot("--summary", o.summary_path, why);
+    if (!o.overview.empty() && !(why = probe_writable(o.overview)).empty()) return cannot("--overview", o.overview, why);
     if (!o.canlog.empty()) {
-        out.can.reset(new CanLogWriter(o.canlog));
-        if (!out.can->ok()) { std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.canlog.c_str()); return false; }
+        std::error_code ec;
+        if (fs::is_directory(o.canlog, ec)) return cannot("--canlog", o.canlog, "a folder, not a file");
+        out.can_tmp = temp_path_of(o.canlog);
+        out.can.reset(new CanLogWriter(out.can_tmp));
+        if (!out.can->ok()) {
+            out.can.reset();
+            return cannot("--canlog", o.canlog, std::strerror(errno));
+        }
     }
     return true;
+}
+
+// The files of a run that got to its end: renamed over their targets. False, with each
+// path that failed named, when one of them could not be written whole.
+bool commit_outputs(const Options &o, Outputs &out) {
+    bool ok = true;
+    const auto failed = [&ok](const char *opt, const std::string &path, const std::string &why) {
+        std::fprintf(stderr, "sbr_detect: %s %s: the write failed: %s\n", opt, path.c_str(), why.c_str());
+        ok = false;
+    };
+    std::string why;
+    if (!(why = out.det.commit()).empty()) failed("--detections", o.det_path, why);
+    if (out.all.is_open() && !(why = out.all.commit()).empty()) failed("--all-detections", o.all_path, why);
+    if (out.summary.is_open() && !(why = out.summary.commit()).empty()) failed("--summary", o.summary_path, why);
+    if (out.can) {
+        const bool closed = out.can->close();
+        std::error_code ec;
+        if (!closed) {
+            fs::remove(out.can_tmp, ec);
+            failed("--canlog", o.canlog, "a write failed (disk full?)");
+        } else if (!(why = commit_temp(out.can_tmp, o.canlog)).empty()) {
+            failed("--canlog", o.canlog, why);
+        }
+    }
+    if (!out.ann.annotated_failed.empty()) failed("--annotated", out.ann.annotated_failed, "an image could not be written");
+    return ok;
 }
 
 // What the run counts, for the summary.
@@ -533,7 +582,16 @@ void annotate_image(const Options &o, const std::string &file, cv::Mat &img,
     if (!o.overview.empty()) a.worst.offer(fs::path(file).stem().string(), img, marks, labels);
     draw_legend(img, !a.gt_path.empty());
     const std::string name = fs::path(file).stem().string() + ".jpg";
-    if (!o.annotated.empty()) cv::imwrite((fs::path(o.annotated) / name).string(), img);
+    if (!o.annotated.empty()) {
+        const std::string path = (fs::path(o.annotated) / name).string();
+        bool written = false;
+        try {
+            written = cv::imwrite(path, img);
+        } catch (const cv::Exception &) {
+            written = false;
+        }
+        if (!written && a.annotated_failed.empty()) a.annotated_failed = path;
+    }
 }
 
 // One image: read, detections written, counted, drawn, and its CAN frames. False when
@@ -687,36 +745,71 @@ bool roi_fits_first(const Options &o, const std::string &file) {
 int prepare(Options &o, Models &m, CallgrindClock &cg, std::string &dir, std::vector<std::string> &files,
             Outputs &out) {
     if (!load_models(o, m) || !configure(o, m, cg)) return 2;
-    if (!fs::is_directory(o.input)) {
-        std::fprintf(stderr, "sbr_detect: --input %s: no such folder\n", o.input.c_str());
+    std::error_code ec;
+    if (!fs::is_directory(o.input, ec)) {
+        const bool missing = !ec || ec == std::errc::no_such_file_or_directory;
+        std::fprintf(stderr, "sbr_detect: --input %s: %s\n", o.input.c_str(),
+                     missing ? "no such folder" : ec.message().c_str());
         return 2;
     }
     dir = gtsdb_image_dir(o.input);
-    files = list_images(dir, o.range);
+    std::string unreadable;
+    files = list_images(dir, o.range, &unreadable);
+    if (files.empty() && !unreadable.empty()) {
+        std::fprintf(stderr, "sbr_detect: --input %s: %s (nothing was run)\n", o.input.c_str(), unreadable.c_str());
+        return 2;
+    }
     if (files.empty()) {
         std::fprintf(stderr, "sbr_detect: no .jpg, .jpeg, .png or .ppm images in %s%s\n", dir.c_str(),
                      o.range.empty() ? "" : (" numbered " + o.range.str()).c_str());
         return 2;
     }
     if (!roi_fits_first(o, files.front())) return 2;
-    std::error_code ec;
     if (!o.annotated.empty() && fs::equivalent(o.annotated, dir, ec)) {
         std::fprintf(stderr, "sbr_detect: --annotated %s is the input folder: its images would be overwritten\n",
                      o.annotated.c_str());
         return 2;
     }
+    if (!o.annotated.empty()) {
+        ec.clear();
+        if (fs::exists(o.annotated, ec) && !fs::is_directory(o.annotated, ec)) {
+            std::fprintf(stderr, "sbr_detect: --annotated %s: a file, not a folder (nothing was run)\n",
+                         o.annotated.c_str());
+            return 2;
+        }
+        fs::create_directories(o.annotated, ec);
+        if (ec) {
+            std::fprintf(stderr, "sbr_detect: --annotated %s: cannot make the folder: %s (nothing was run)\n",
+                         o.annotated.c_str(), ec.message().c_str());
+            return 2;
+        }
+    }
     if (!load_ground_truth(o, dir, out.ann)) return 2;
     return open_outputs(o, out) ? -1 : 1;
 }
 
-// The contact sheet of this run, or none (an earlier run's file removed either way).
-void write_overview(const Options &o, Outputs &out) {
-    if (o.overview.empty()) return;
+// The contact sheet of this run, or none (an earlier run's file removed: it would not
+// show this run). False when it could not be written (the earlier one is then kept).
+bool write_overview(const Options &o, Outputs &out) {
+    if (o.overview.empty()) return true;
     std::error_code ec;
-    fs::remove(o.overview, ec);
-    out.overview_written = out.ann.worst.size() > 0 && out.ann.worst.write(o.overview);
-    if (out.ann.worst.size() > 0 && !out.overview_written)
-        std::fprintf(stderr, "sbr_detect: cannot write %s\n", o.overview.c_str());
+    if (out.ann.worst.size() == 0) {
+        fs::remove(o.overview, ec);
+        return true;
+    }
+    const std::string tmp = temp_path_of(o.overview);
+    bool written = false;
+    try {
+        written = out.ann.worst.write(tmp);
+    } catch (const cv::Exception &) {
+        written = false;
+    }
+    const std::string why = written ? commit_temp(tmp, o.overview) : "the image could not be written";
+    if (!written) fs::remove(tmp, ec);
+    out.overview_written = why.empty();
+    if (!why.empty()) std::fprintf(stderr, "sbr_detect: --overview %s: the write failed: %s\n", o.overview.c_str(),
+                                   why.c_str());
+    return out.overview_written;
 }
 
 }  // namespace
@@ -735,15 +828,18 @@ int main(int argc, char **argv) {
     Tally t;
     const auto t0 = std::chrono::steady_clock::now();
     for (size_t i = 0; i < files.size(); ++i) {
-        if (!run_image(o, m, cg, files[i], i == 0, out, t)) return 1;
+        if (!run_image(o, m, cg, files[i], i == 0, out, t)) return 1;  // the temporaries go
+
         if (o.progress)
             progress(i + 1, files.size(), t.ms_total.empty() ? 0.0 : t.sum_ms / double(t.ms_total.size()),
                      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
-    write_overview(o, out);
+    const bool overview_ok = write_overview(o, out);
     const std::string s = summary(o, m, dir, files.size(), out, t);
     std::fputs(s.c_str(), stdout);
-    if (!o.summary_path.empty()) std::ofstream(o.summary_path) << s;
+    if (out.summary.is_open()) out.summary << s;
+    // every output renamed over its target only now: a failed write is exit 1, naming it
+    if (!commit_outputs(o, out) || !overview_ok) return 1;
     if (t.failed > 0) std::fprintf(stderr, "sbr_detect: %zu of %zu images failed\n", t.failed, files.size());
     return t.failed == files.size() ? 1 : (t.failed > 0 ? 3 : 0);
 }

@@ -24,8 +24,9 @@ import tempfile
 FAILURES = []
 
 
-def expect(what, cmd, status, *texts, env=None):
-    r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=env, stdin=subprocess.DEVNULL)
+def expect(what, cmd, status, *texts, env=None, preexec_fn=None):
+    r = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=env, stdin=subprocess.DEVNULL,
+                       preexec_fn=preexec_fn)
     said = r.stdout + r.stderr
     missing = [t for t in texts if t not in said]
     ok = r.returncode == status and not missing
@@ -35,6 +36,84 @@ def expect(what, cmd, status, *texts, env=None):
         FAILURES.append(what)
         if missing:
             print(f"     missing from the output: {missing}\n{said[-1500:]}")
+
+
+def unprivileged():
+    """The command prefix that runs a program without root's right to read anything (as
+    nobody through setpriv when this test runs as root), so that a folder's mode counts."""
+    if os.geteuid() != 0:
+        return []
+    return ["setpriv", "--reuid=nobody", "--regid=nogroup", "--clear-groups"]
+
+
+def same_bytes(path, content):
+    try:
+        with open(path, "rb") as f:
+            return f.read() == content
+    except OSError:
+        return False
+
+
+def detect_outputs(w, run, whole, data):
+    """sbr_detect's outputs (issue 70, items 3 and 4): each checked before the first image,
+    written under a temporary name and renamed; a failed write is exit 1 naming the path;
+    an earlier run's files survive every error; an unreadable input folder or an
+    --annotated file is one line, exit 2."""
+    out = os.path.join(w, "outs")
+    os.makedirs(out)
+    blocker = os.path.join(out, "f")
+    open(blocker, "w").close()
+    det, alld, summ, can = (os.path.join(out, n) for n in ("d.txt", "a.txt", "s.txt", "c.log"))
+    base = [run[0], "--quiet", "--input", whole, "--detections", det]
+    subprocess.run(base + ["--all-detections", alld, "--summary", summ, "--canlog", can], check=True,
+                   capture_output=True)
+    earlier = {p: open(p, "rb").read() for p in (det, alld, summ, can)}
+    for opt in ("--all-detections", "--summary", "--canlog", "--overview"):
+        bad = os.path.join(blocker, "x.png" if opt == "--overview" else "x.txt")
+        gt = ["--gt", os.path.join(data, "FullIJCNN2013", "gt.txt")] if opt == "--overview" else []
+        expect(f"sbr_detect {opt} under a file", base + [opt, bad] + gt, 1,
+               f"{opt} {bad}: cannot write it: Not a directory")
+    expect("sbr_detect --annotated naming a file", base + ["--annotated", blocker], 2,
+           f"--annotated {blocker}: a file, not a folder")
+    intact = all(same_bytes(p, b) for p, b in earlier.items())
+    print(f"{'ok  ' if intact else 'FAIL'} sbr_detect: the earlier run's files are intact after each refusal")
+    if not intact:
+        FAILURES.append("earlier files after a refusal")
+    # a full disk: the file size limit (its signal ignored) makes a write fail mid-run
+    import resource
+    import signal
+
+    def small_disk():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+        resource.setrlimit(resource.RLIMIT_FSIZE, (600, 600))
+    many = [run[0], "--quiet", "--input", data, "--range", "400-419", "--detections", det, "--all-detections", alld]
+    expect("sbr_detect, a write fails mid-run (disk full)", many, 1, f"--all-detections {alld}: the write failed",
+           preexec_fn=small_disk)
+    intact = all(same_bytes(p, earlier[p]) for p in (det, alld)) and not [
+        f for f in os.listdir(out) if ".tmp-" in f]
+    print(f"{'ok  ' if intact else 'FAIL'} sbr_detect: after the failed write the earlier files are intact, no "
+          "temporary left")
+    if not intact:
+        FAILURES.append("earlier files after a failed write")
+    # an input folder that cannot be listed, and one whose images cannot be looked at
+    locked, peek = os.path.join(w, "locked"), os.path.join(w, "peek")
+    for d, mode in ((locked, 0o000), (peek, 0o444)):
+        os.makedirs(d)
+        shutil.copy(os.path.join(whole, "00444.jpg"), d)
+        os.chmod(d, mode)
+    os.chmod(w, 0o755)
+    ok_det = os.path.join(w, "nobody")
+    os.makedirs(ok_det, mode=0o777)
+    os.chmod(ok_det, 0o777)
+    nobody = unprivileged()
+    expect("sbr_detect, an input folder it cannot list (mode 000)",
+           nobody + [run[0], "--quiet", "--input", locked, "--detections", ok_det + "/d.txt"], 2,
+           f"--input {locked}: {locked}: cannot list it: Permission denied")
+    expect("sbr_detect, an input folder it can list but not read (mode 444)",
+           nobody + [run[0], "--quiet", "--input", peek, "--detections", ok_det + "/d.txt"], 2,
+           f"--input {peek}: {peek}/00444.jpg: Permission denied")
+    for d in (locked, peek):
+        os.chmod(d, 0o755)
 
 
 def main():
@@ -87,6 +166,7 @@ def main():
         expect("sbr_detect, a 20000-pixel image beside a whole one", run + ["--input", big], 3,
                "20000 x 2 pixels; the recogniser takes at most 16384 on a side")
         expect("sbr_detect, every image failed", run + ["--input", broken], 1, "1 of 1 images failed")
+        detect_outputs(w, run, whole, a.data)
 
         gt = os.path.join(w, "gt.txt")
         with open(gt, "w") as f:
