@@ -73,7 +73,7 @@ PACKAGES=(cmake ninja-build gcc g++ make pkg-config python3 python3-pip python3-
 log() { printf '\n== %s\n' "$*"; }
 
 # The usage text: this file's head comment without its '#' marks.
-usage() { sed -n '2,/^set -euo/{/^set -euo/!p}' "$0" | sed -E 's/^# ?//'; }
+usage() { sed -n '3,/^set -euo/{/^set -euo/!p}' "$0" | sed -E 's/^# ?//'; }
 
 # need_file OPTION PATH: a file option's file must be there before anything runs.
 need_file() {
@@ -90,6 +90,17 @@ need_value() {
     echo "sbr.sh: $1 needs a value (./sbr.sh --help)" >&2
     exit 2
   fi
+}
+
+# detection_file_problem FILE: the first line of a detection file that is not
+# "NNNNN.ext;left;top;right;bottom;class[;score]" (the rule of sbr_eval's reader,
+# host_tools/common/detection.cpp), as "LINE: TEXT"; nothing when every line is one.
+detection_file_problem() {
+  awk 'BEGIN { n = "[-+]?([0-9]+[.]?[0-9]*|[.][0-9]+)([eE][-+]?[0-9]+)?"
+               re = "^[0-9][^;]*;" n ";" n ";" n ";" n ";[+]?[0-9]+([.]0*)?(;" n ")?$" }
+       { sub(/\r$/, "") }
+       $0 == "" || /^#/ { next }
+       $0 !~ re { print NR ": " substr($0, 1, 80); exit }' "$1"
 }
 
 # The images of GTSDB that the built-in models (lib/models) are trained on.
@@ -296,6 +307,15 @@ cmd_detect() {
     echo "sbr.sh detect: --input $input: no such folder (nothing was written)" >&2
     return 2
   fi
+  if [ -n "$baseline" ]; then
+    # read before anything runs: a malformed baseline is refused now, not after every image
+    local bad
+    bad="$(detection_file_problem "$baseline")"
+    if [ -n "$bad" ]; then
+      echo "sbr.sh detect: --baseline $baseline:$bad: not a detection line (NNNNN.ext;left;top;right;bottom;class[;score]; nothing was run)" >&2
+      return 2
+    fi
+  fi
   if [ -z "$input" ]; then
     if [ -d "$DATA/gtsdb" ]; then
       input="$DATA/gtsdb"
@@ -314,7 +334,8 @@ on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model FILE 
   fi
   local imgdir="$input"
   [ -d "$input/FullIJCNN2013" ] && imgdir="$input/FullIJCNN2013"
-  if [ -z "$(find "$imgdir" -maxdepth 1 -type f \( -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.png' -o -iname '*.ppm' \) -print -quit)" ]; then
+  # -L: images linked into the folder count (sbr_detect reads them too)
+  if [ -z "$(find -L "$imgdir" -maxdepth 1 -type f \( -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.png' -o -iname '*.ppm' \) -print -quit)" ]; then
     echo "sbr.sh detect: no .jpg, .jpeg, .png or .ppm images in $imgdir (nothing was written)" >&2
     return 2
   fi
@@ -325,21 +346,30 @@ on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model FILE 
   setup
   mkdir -p "$BUILD" "$out"
   build_native
-  # the folder holds this run's files only: what an earlier run wrote there goes (other
-  # files are left alone)
-  rm -rf "$out/annotated"
-  rm -f "$out"/{detections.txt,detections_all.txt,overview.png,sbr_can.log,summary.txt,evaluation.txt,evaluation.txt.new,pr_curve.png}
   local tools="$BUILD/native/host_tools"
   log "sbr_detect over $input${range:+ (images $range)}"
   local gt="" status=0
   for g in "$input/gt.txt" "$input/FullIJCNN2013/gt.txt"; do [ -f "$g" ] && gt="$g" && break; done
+  # an earlier run's files stay until this run has written its own: sbr_detect writes each
+  # file under a temporary name and renames it at the end, the pictures go to a folder of
+  # their own that replaces annotated/ afterwards; a run that fails leaves them as they were
+  local pictures="$out/annotated.tmp-$$"
+  rm -rf "$pictures"
   # status 3: some images failed (reported); the rest is evaluated, the status kept
   "$tools/sbr_detect" --input "$input" ${range:+--range "$range"} \
       --detections "$out/detections.txt" --all-detections "$out/detections_all.txt" \
-      --annotated "$out/annotated" ${gt:+--overview "$out/overview.png"} \
+      --annotated "$pictures" ${gt:+--overview "$out/overview.png"} \
       --canlog "$out/sbr_can.log" --summary "$out/summary.txt" \
       ${models[@]+"${models[@]}"} ${extra[@]+"${extra[@]}"} || status=$?
-  [ "$status" -eq 0 ] || [ "$status" -eq 3 ] || return "$status"
+  if [ "$status" -ne 0 ] && [ "$status" -ne 3 ]; then
+    rm -rf "$pictures"
+    return "$status"
+  fi
+  # the folder holds this run's files only: the earlier run's that this one did not write go
+  rm -rf "$out/annotated"
+  mv "$pictures" "$out/annotated"
+  [ -n "$gt" ] || rm -f "$out"/{overview.png,evaluation.txt,pr_curve.png}
+  rm -f "$out/evaluation.txt.new"
   if [ -n "$note" ]; then
     { echo "$note"; echo; cat "$out/summary.txt"; } > "$out/summary.txt.new" && mv "$out/summary.txt.new" "$out/summary.txt"
     printf '\n%s\n' "$note"
@@ -500,7 +530,7 @@ cmd_dashboard() {
 
 # usage_of NAME: the header's lines of one subcommand (./sbr.sh NAME --help).
 usage_of() {
-  sed -n '2,/^set -euo/{/^set -euo/!p}' "$0" \
+  sed -n '3,/^set -euo/{/^set -euo/!p}' "$0" \
     | awk -v c="$1" '/^#   \.\/sbr\.sh / {on = ($3 == c)} /^# *$/ {on = 0} on' | sed 's/^# \{0,1\}//'
   echo "(./sbr.sh --help: every command; docs/usage/ for each tool's options)"
 }

@@ -2,6 +2,8 @@
 // The host's detection type and the detection file's line (detection.hpp).
 #include "detection.hpp"
 
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -18,17 +20,35 @@ Detection from_core(const sbr_detection_t &d, int image) {
     return o;
 }
 
-bool parse_detection_line(const std::string &line, Detection &d) {
+namespace {
+
+// The whole field as a number (no trailing text, finite); false otherwise.
+bool field_number(const std::string &f, double &v) {
+    if (f.empty()) return false;
+    char *end = nullptr;
+    v = std::strtod(f.c_str(), &end);
+    return end == f.c_str() + f.size() && std::isfinite(v);
+}
+
+}  // namespace
+
+bool parse_detection_line(std::string line, Detection &d) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // a file saved with CRLF
     std::stringstream ss(line);
-    std::string f[7];
+    std::string f[8];
     int k = 0;
-    while (k < 7 && std::getline(ss, f[k], ';')) ++k;
-    if (k < 6) return false;
+    while (k < 8 && std::getline(ss, f[k], ';')) ++k;
+    if (k < 6 || k > 7) return false;
+    // NNNNN.ext: the image number first
+    if (f[0].empty() || !std::isdigit(static_cast<unsigned char>(f[0][0]))) return false;
+    double v[6] = {0, 0, 0, 0, 0, 1.0};
+    for (int i = 1; i < k; ++i)
+        if (!field_number(f[i], v[i - 1])) return false;
+    if (v[4] != std::floor(v[4]) || v[4] < 0 || v[4] > 1e6) return false;  // a class id
     d.image = std::atoi(f[0].c_str());
-    d.box = from_inclusive(std::atof(f[1].c_str()), std::atof(f[2].c_str()), std::atof(f[3].c_str()),
-                           std::atof(f[4].c_str()));
-    d.class_id = std::atoi(f[5].c_str());
-    d.score = k >= 7 ? std::atof(f[6].c_str()) : 1.0;
+    d.box = from_inclusive(v[0], v[1], v[2], v[3]);
+    d.class_id = static_cast<int>(v[4]);
+    d.score = v[5];
     return true;
 }
 

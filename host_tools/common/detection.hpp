@@ -25,9 +25,11 @@ struct Detection {
 Detection from_core(const sbr_detection_t &d, int image);
 
 // A detection file's line, "NNNNN.ext;left;top;right;bottom;class[;score]" (inclusive
-// pixels; score 1 when absent), as sbr_detect writes it; false when it has fewer than six
-// fields.
-bool parse_detection_line(const std::string &line, Detection &d);
+// pixels; score 1 when absent), as sbr_detect writes it; false unless it has six or seven
+// fields, the first starting with the image number and the others numbers (finite; the
+// class id a whole number from 0). ./sbr.sh checks a --baseline file by the same rule
+// before it runs anything.
+bool parse_detection_line(std::string line, Detection &d);
 
 // The line of d for the image file `name` (score to four decimals), newline included.
 std::string detection_line(const std::string &name, const Detection &d);

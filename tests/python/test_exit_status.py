@@ -196,6 +196,24 @@ def main():
         expect("./sbr.sh detect, an empty folder", sh + ["detect", "--input", empty], 2, "no .jpg", env=env)
         expect("./sbr.sh detect --baseline missing", sh + ["detect", "--baseline", w + "/none.txt"], 2,
                "none.txt: no such file", env=env)
+        malformed = os.path.join(w, "malformed.txt")
+        with open(malformed, "w") as f:
+            f.write("00444.jpg;379;528;427;573;20;0.9\n00444.jpg;379;528;427\n")
+        expect("./sbr.sh detect --baseline malformed: refused before anything runs",
+               sh + ["detect", "--input", whole, "--baseline", malformed], 2,
+               f"--baseline {malformed}:2: 00444.jpg;379;528;427: not a detection line", env=env)
+        linked = os.path.join(w, "linked")
+        os.makedirs(linked)
+        os.symlink(os.path.join(whole, "00444.jpg"), os.path.join(linked, "00444.jpg"))
+        # the folder of links passes the image check: the next check (--out a file) refuses
+        expect("./sbr.sh detect --input a folder of symbolic links to images",
+               sh + ["detect", "--input", linked, "--out", malformed], 2, "is a file, not a folder", env=env)
+        r = subprocess.run(sh + ["--help"], capture_output=True, text=True, env=env)
+        first = r.stdout.splitlines()[0] if r.stdout else ""
+        ok = r.returncode == 0 and "SPDX" not in r.stdout and first.startswith("sbr's one entry point")
+        print(f"{'ok  ' if ok else 'FAIL'} ./sbr.sh --help starts with what it is, no licence line: {first!r}")
+        if not ok:
+            FAILURES.append("sbr.sh --help first line")
         if os.path.isdir(os.path.join(w, "build")):
             print("FAIL ./sbr.sh ran its set-up for a refused command")
             FAILURES.append("sbr.sh set-up")
