@@ -132,6 +132,18 @@ static void test_model_turns_and_leans(void)
     TEST_ASSERT_TRUE(out.roll > 0.0f); /* leaning into a left turn */
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 10000001u, &out));
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, UINT32_MAX, &out));
+    /* issue 70, item 15: a valid state advanced by the documented maximum leaves the
+       state's range (x = 9999 m at 100 m/s for 10 s): refused, out untouched; what SBR_OK
+       returns is always taken back */
+    {
+        const sbr_bike_state_t edge = {9999.0f, 10.0f, 0.0f, 100.0f, 0.0f, 0.0f};
+        sbr_bike_state_t guard = {7.0f, 7.0f, 0.5f, 7.0f, 0.1f, 0.1f};
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &edge, 10000000u, &guard));
+        TEST_ASSERT_EQUAL_FLOAT(7.0f, guard.x);
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &edge, 5000u, &guard));
+        TEST_ASSERT_FLOAT_WITHIN(1e-2f, 9999.5f, guard.x);
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_bike_predict_state(&m, &guard, 0u, &out));
+    }
     m.wheelbase = 0.5f; /* shorter than two wheel radii */
     TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_bike_predict_state(&m, &s, 100000u, &out));
 }

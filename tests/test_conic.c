@@ -520,6 +520,51 @@ static void test_classify_scaled_and_thin_conics(void)
     TEST_ASSERT_EQUAL_INT(SBR_CONIC_HYPERBOLA, cls);
 }
 
+/* Issue 70, item 14: conics without a centre that the float32 path got wrong at tol = 0
+   (scaled by 1/max and multiplied in plain float32: rounded or underflowed); each also
+   scaled by powers of two far apart (the class of a conic does not change with its scale). */
+static void expect_no_centre(sbr_conic_t q, float tol, sbr_conic_class_t want)
+{
+    static const int scales[5] = {0, -120, 100, -60, 37};
+    uint32_t i;
+    for (i = 0u; i < 5u; ++i) {
+        const int k = scales[i];
+        sbr_conic_t s = mk(ldexpf(q.a, k), ldexpf(q.b, k), ldexpf(q.c, k), ldexpf(q.d, k), ldexpf(q.e, k),
+                           ldexpf(q.f, k));
+        sbr_conic_class_t got = (sbr_conic_class_t)0;
+        if ((isfinite(s.a) == 0) || (isfinite(s.d) == 0) || (isfinite(s.e) == 0) || (isfinite(s.f) == 0) ||
+            ((q.f != 0.0f) && (s.f == 0.0f)) || ((q.e != 0.0f) && (s.e == 0.0f)) ||
+            ((q.a != 0.0f) && (s.a == 0.0f))) {
+            continue; /* that scale leaves float32's range for this conic */
+        }
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_conic_classify(&s, tol, &got));
+        TEST_ASSERT_EQUAL_INT_MESSAGE(want, got, "scaled by a power of two");
+    }
+}
+
+static void test_classify_no_centre_exactly(void)
+{
+    /* (2x + 3y)^2 - 20x - 30y + 6: u^2 - 10u + 6 in u = 2x + 3y, two real roots */
+    expect_no_centre(mk(4.0f, 6.0f, 9.0f, -10.0f, -15.0f, 6.0f), 0.0f, SBR_CONIC_PARALLEL_LINES);
+    /* (5x - 2y - 55)^2 + 36^2: no real point */
+    expect_no_centre(mk(25.0f, -10.0f, 4.0f, -275.0f, 110.0f, 4321.0f), 0.0f,
+                     SBR_CONIC_IMAGINARY_PARALLEL_LINES);
+    /* (x + y + 28)^2: one line counted twice */
+    expect_no_centre(mk(1.0f, 1.0f, 1.0f, 28.0f, 28.0f, 784.0f), 0.0f, SBR_CONIC_DOUBLE_LINE);
+    /* 2e-30 y - 1e4 = 0: a line (and the line at infinity), rank 2, real */
+    expect_no_centre(mk(0.0f, 0.0f, 0.0f, 0.0f, 1e-30f, -1e4f), 0.0f, SBR_CONIC_PARALLEL_LINES);
+    /* 1e-30 (x + y)^2 - 2e30 y: det(C) = -a e^2 != 0, a parabola, also at the default tol */
+    expect_no_centre(mk(1e-30f, 1e-30f, 1e-30f, 0.0f, -1e30f, 0.0f), 0.0f, SBR_CONIC_PARABOLA);
+    expect_no_centre(mk(1e-30f, 1e-30f, 1e-30f, 0.0f, -1e30f, 0.0f), SBR_CONIC_ZERO_TOL, SBR_CONIC_PARABOLA);
+    /* the first three at the default tolerance too */
+    expect_no_centre(mk(4.0f, 6.0f, 9.0f, -10.0f, -15.0f, 6.0f), SBR_CONIC_ZERO_TOL, SBR_CONIC_PARALLEL_LINES);
+    expect_no_centre(mk(25.0f, -10.0f, 4.0f, -275.0f, 110.0f, 4321.0f), SBR_CONIC_ZERO_TOL,
+                     SBR_CONIC_IMAGINARY_PARALLEL_LINES);
+    expect_no_centre(mk(1.0f, 1.0f, 1.0f, 28.0f, 28.0f, 784.0f), SBR_CONIC_ZERO_TOL, SBR_CONIC_DOUBLE_LINE);
+    /* and intersecting lines exactly built: (x + 2y - 3)(3x - y + 5) at tol 0 */
+    expect_no_centre(mk(3.0f, 2.5f, -2.0f, -2.0f, 6.5f, -15.0f), 0.0f, SBR_CONIC_INTERSECTING_LINES);
+}
+
 /* sbr_ellipse_to_conic() refuses (SBR_ERR_RANGE) an ellipse whose float32 conic is not
    that ellipse; sbr_conic_to_ellipse() never returns geometry other than the conic's. */
 static void test_ellipse_conic_far_and_thin(void)
@@ -614,6 +659,7 @@ int main(void)
     RUN_TEST(test_classify_every_case);
     RUN_TEST(test_detect_workspace_macro_equals_function);
     RUN_TEST(test_classify_scaled_and_thin_conics);
+    RUN_TEST(test_classify_no_centre_exactly);
     RUN_TEST(test_ellipse_conic_far_and_thin);
     RUN_TEST(test_fit_returns_a_real_ellipse);
     RUN_TEST(test_ellipse_conic_round_trip);

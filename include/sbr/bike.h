@@ -78,9 +78,11 @@ void sbr_bike_model_default(sbr_bike_model_t *model);
  * @param[in]  model the model.
  * @param[in]  state the state now.
  * @param[in]  dt_us microseconds, at most 10 s (sub-steps of at most 20 ms).
- * @param[out] out   the state dt_us later (may be `state`).
+ * @param[out] out   the state dt_us later (may be `state`); written on ::SBR_OK only.
  * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE (bad model, dt, or a state value that
- *         is not finite or out of its range).
+ *         is not finite or out of its range; also when the state dt_us later would leave
+ *         the state's range, e.g. |x| reaching 1e4 m: ::SBR_OK always comes with a state
+ *         that this function takes back as input).
  */
 sbr_status_t sbr_bike_predict_state(const sbr_bike_model_t *model, const sbr_bike_state_t *state,
                                     uint32_t dt_us, sbr_bike_state_t *out);

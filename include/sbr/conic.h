@@ -80,9 +80,14 @@ typedef enum sbr_conic_class_e {
  * - where det(C22) = 0, det(C) counts as zero when |det(C)| <= tol |r0| |r1| |r2| (the
  *   product of the row norms of C scaled to a largest entry of 1), and the rank is 1 when
  *   every 2 x 2 minor of that C is at most tol.
- * Determinants and f0 are computed exactly enough (float-float products) that their sign
- * is right whenever they are above 2^-40 of their terms, so tol = 0 classifies exactly
- * constructed conics exactly. Where the conic has a quadratic part, it is first scaled by
+ * Determinants, minors and f0 are computed exactly enough (float-float products) that
+ * their sign is right whenever they are above 2^-40 of their terms. Where det(C22) = 0,
+ * det(C) and the minors count as zero at every tol when within 2^-40 of the sum of the
+ * absolute products they are made of (below their rounding), and each
+ * row of C is first scaled by a power of two of its own, so that entries of any range
+ * (1e-30 beside 1e30) neither overflow nor underflow in the products (an entry below
+ * 2^-126 of its row's largest counts as zero). So tol = 0 classifies exactly constructed
+ * conics exactly, at any scale. Where the conic has a quadratic part, it is first scaled by
  * a power of two (exactly) to a largest quadratic entry in [0.5, 1); entries then below
  * 2^-33 count as zero (e.g. an ellipse whose axes differ by a factor above 2^16.5 has a
  * zero det(C22)).

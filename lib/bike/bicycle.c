@@ -122,7 +122,14 @@ sbr_status_t sbr_bike_predict_state(const sbr_bike_model_t *model, const sbr_bik
     } else {
         sbr_bike_state_t s = *state;
         sbr_bike_priv_advance(model, &s, sbr_util_seconds(dt_us));
-        *out = s;
+        /* a state this function would itself refuse is never returned as SBR_OK: one
+           that leaves the state's range (|x| or |z| reaching 1e4 m, a roll at pi/2) is
+           refused and out left as it was */
+        if (state_ok(&s) == 0) {
+            st = SBR_ERR_RANGE;
+        } else {
+            *out = s;
+        }
     }
     return st;
 }

@@ -256,41 +256,136 @@ static int conic_centre(conic_centre_t *cc)
 
 /* ---------------------------------------------------------------- classification */
 
-/* No centre (det(C22) counts as zero): parabola or a pair of lines, from the conic scaled
-   to a largest entry of 1. */
+/* Below this share of the terms they are summed from, a determinant or minor computed in
+   float-float is indistinguishable from zero (its error is about 2^-44 of those terms):
+   it counts as zero at every tolerance, tol = 0 included (conic.h). */
+#define CONIC_EXACT_FLOOR 9.09494702e-13f /* 2^-40 */
+
+/* The sign of v 2^k + w 2^j, each term kept with an exponent of its own: both are scaled
+   to the larger one's exponent (the larger then in [0.5, 1); the smaller underflows only
+   when it is below 2^-126 of the other, where it cannot change the sign). */
+static float sum_scaled(float v, int k, float w, int j)
+{
+    float s;
+    if (v == 0.0f) {
+        s = w;
+    } else if (w == 0.0f) {
+        s = v;
+    } else {
+        int ev = 0;
+        int ew = 0;
+        int top;
+        (void)frexpf(v, &ev);
+        (void)frexpf(w, &ew);
+        top = ev + k;
+        if ((ew + j) > top) {
+            top = ew + j;
+        }
+        s = ldexpf(v, k - top) + ldexpf(w, j - top);
+    }
+    return s;
+}
+
+/* The 2 x 2 minor of rows (i, j) and columns (k, l) of a row-major 3 x 3 matrix, in
+   float-float; `terms` gets |m_ik m_jl| + |m_il m_jk|. */
+static float minor2(const float m[9], uint32_t i, uint32_t j, uint32_t k, uint32_t l, float *terms)
+{
+    *terms = fabsf(m[(i * 3u) + k] * m[(j * 3u) + l]) + fabsf(m[(i * 3u) + l] * m[(j * 3u) + k]);
+    return ff_det2(m[(i * 3u) + k], m[(j * 3u) + l], m[(i * 3u) + l], m[(j * 3u) + k]);
+}
+
+/* No centre (det(C22) counts as zero): parabola or a pair of lines. Each row i of C is
+   scaled exactly by its own power of two 2^r[i] (its largest entry into [0.5, 1)), so
+   that products neither overflow nor underflow whatever the entries' range; det(C), the
+   2 x 2 minors and the principal minors are taken in float-float on that matrix, and the
+   row scales put back as exponents. The rules are conic.h's, on C scaled to a largest
+   entry of 1 (the determinant's is scale-free: |det| against the product of the rows'
+   norms). */
 static sbr_conic_class_t classify_no_centre(const sbr_conic_t *conic, float tol)
 {
     sbr_conic_class_t cls;
     float c[9];
-    float n0;
-    float n1;
-    float n2;
-    float d33;
-    conic_matrix(conic, 1.0f / sbr_conic_priv_max_abs(conic), c);
-    /* det(C) relative to the product of the row norms (Hadamard) */
-    n0 = sqrtf((c[0] * c[0]) + (c[1] * c[1]) + (c[2] * c[2]));
-    n1 = sqrtf((c[3] * c[3]) + (c[4] * c[4]) + (c[5] * c[5]));
-    n2 = sqrtf((c[6] * c[6]) + (c[7] * c[7]) + (c[8] * c[8]));
-    d33 = sbr_conic_priv_det3(c);
-    if (fabsf(d33) > (tol * n0 * n1 * n2)) {
-        cls = SBR_CONIC_PARABOLA;
-    } else {
-        /* rank 1 when every 2 x 2 minor vanishes */
-        const float minors[6] = {(c[0] * c[4]) - (c[1] * c[3]), (c[0] * c[5]) - (c[2] * c[3]),
-                                 (c[0] * c[8]) - (c[2] * c[6]), (c[4] * c[8]) - (c[5] * c[7]),
-                                 (c[1] * c[5]) - (c[2] * c[4]), (c[3] * c[7]) - (c[4] * c[6])};
-        float mm = 0.0f;
-        uint32_t i;
-        for (i = 0u; i < 6u; ++i) {
-            mm = fmaxf(mm, fabsf(minors[i]));
+    float m[9];
+    int r[3];
+    float norm[3];
+    float terms;
+    float det;
+    int mx = 0;
+    uint32_t i;
+    uint32_t j;
+    conic_matrix(conic, 1.0f, c);
+    (void)frexpf(sbr_conic_priv_max_abs(conic), &mx);
+    for (i = 0u; i < 3u; ++i) {
+        float rowmax = 0.0f;
+        int ex = 0;
+        float sq = 0.0f;
+        for (j = 0u; j < 3u; ++j) {
+            rowmax = fmaxf(rowmax, fabsf(c[(i * 3u) + j]));
         }
-        if (mm <= tol) {
+        if (rowmax > 0.0f) {
+            (void)frexpf(rowmax, &ex);
+        }
+        r[i] = -ex;
+        for (j = 0u; j < 3u; ++j) {
+            m[(i * 3u) + j] = ldexpf(c[(i * 3u) + j], r[i]);
+            sq += m[(i * 3u) + j] * m[(i * 3u) + j];
+        }
+        norm[i] = sqrtf(sq);
+    }
+    {
+        /* det(M) = m0 (m4 m8 - m5 m7) - m1 (m3 m8 - m5 m6) + m2 (m3 m7 - m4 m6) */
+        float t1;
+        float t2;
+        float t3;
+        const conic_ff_t k1 = ff_add(ff_prod(m[4], m[8]), ff_neg(ff_prod(m[5], m[7])));
+        const conic_ff_t k2 = ff_add(ff_prod(m[3], m[8]), ff_neg(ff_prod(m[5], m[6])));
+        const conic_ff_t k3 = ff_add(ff_prod(m[3], m[7]), ff_neg(ff_prod(m[4], m[6])));
+        const conic_ff_t dd = ff_add(ff_add(ff_scale(k1, m[0]), ff_neg(ff_scale(k2, m[1]))), ff_scale(k3, m[2]));
+        (void)minor2(m, 1u, 2u, 1u, 2u, &t1);
+        (void)minor2(m, 1u, 2u, 0u, 2u, &t2);
+        (void)minor2(m, 1u, 2u, 0u, 1u, &t3);
+        det = dd.hi + dd.lo;
+        terms = (fabsf(m[0]) * t1) + (fabsf(m[1]) * t2) + (fabsf(m[2]) * t3);
+    }
+    /* det(C / max) against the product of its rows' norms is det(M) against M's */
+    if ((fabsf(det) <= (CONIC_EXACT_FLOOR * terms)) || (fabsf(det) <= (tol * norm[0] * norm[1] * norm[2]))) {
+        /* rank 1 when every 2 x 2 minor of C / max vanishes: zero to within float-float's
+           reach, or at most tol (a minor of rows i, j of M is 2^(r[i] + r[j]) times C's) */
+        const uint8_t rows[3][2] = {{0u, 1u}, {0u, 2u}, {1u, 2u}};
+        const float mant = ldexpf(sbr_conic_priv_max_abs(conic), -mx); /* max / 2^mx, [0.5, 1) */
+        int rank1 = 1;
+        uint32_t a;
+        uint32_t b;
+        for (a = 0u; a < 3u; ++a) {
+            for (b = 0u; b < 3u; ++b) {
+                const uint32_t ri = rows[a][0];
+                const uint32_t rj = rows[a][1];
+                const uint32_t ck = rows[b][0];
+                const uint32_t cl = rows[b][1];
+                float mt;
+                const float mn = minor2(m, ri, rj, ck, cl, &mt);
+                /* the minor of C / 2^mx (largest entry in [0.5, 1)); that of conic.h's
+                   C / max is it over mant^2 */
+                const float scaled = ldexpf(mn, -(r[ri] + r[rj]) - (2 * mx));
+                if ((fabsf(mn) > (CONIC_EXACT_FLOOR * mt)) && ((tol <= 0.0f) || (fabsf(scaled) > (tol * mant * mant)))) {
+                    rank1 = 0;
+                }
+            }
+        }
+        if (rank1 != 0) {
             cls = SBR_CONIC_DOUBLE_LINE;
         } else {
-            /* cofactor sum < 0: two real parallel lines, > 0: imaginary */
-            const float cof = ((c[4] * c[8]) - (c[5] * c[5])) + ((c[0] * c[8]) - (c[2] * c[2]));
+            /* the product of the two non-zero eigenvalues: the principal minors of rows
+               (1, 2) and (0, 2) (the third, det(C22), is zero), each 2^-(r[i] + r[j]) times
+               M's; < 0: two real parallel lines, > 0: imaginary */
+            float t;
+            const float p12 = minor2(m, 1u, 2u, 1u, 2u, &t);
+            const float p02 = minor2(m, 0u, 2u, 0u, 2u, &t);
+            const float cof = sum_scaled(p12, -(r[1] + r[2]), p02, -(r[0] + r[2]));
             cls = (cof < 0.0f) ? SBR_CONIC_PARALLEL_LINES : SBR_CONIC_IMAGINARY_PARALLEL_LINES;
         }
+    } else {
+        cls = SBR_CONIC_PARABOLA;
     }
     return cls;
 }

@@ -70,8 +70,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         model.roll_tau = fz_float(in, 0.0f, 2.0f);
     }
     sbr_bike_state_t s;
-    s.x = fz_float(in, -10.0f, 10.0f);
-    s.z = fz_float(in, 0.0f, 50.0f);
+    // near the scene, or anywhere in the state's range (a bicycle near its 1e4 m edge)
+    const bool far = in.ConsumeIntegral<uint8_t>() < 40u;
+    s.x = far ? fz_float(in, -9999.99f, 9999.99f) : fz_float(in, -10.0f, 10.0f);
+    s.z = far ? fz_float(in, -9999.99f, 9999.99f) : fz_float(in, 0.0f, 50.0f);
     s.heading = fz_float(in, -3.2f, 3.2f);
     s.speed = fz_float(in, 0.0f, in.ConsumeBool() ? 20.0f : 100.0f);
     s.steer = fz_float(in, -1.6f, 1.6f);
@@ -81,8 +83,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                                          : in.ConsumeIntegralInRange<uint32_t>(0u, 10000001u);
     const sbr_status_t ps = sbr_bike_predict_state(&model, &s, dt, &next);
     FZ_STATUS(ps, SBR_OK, SBR_ERR_NULL, SBR_ERR_RANGE);
-    FZ_CHECK((ps == SBR_OK) == (header_model(model) && header_state(s) && dt <= 10000000u));
+    {
+        // valid input is refused only when the state dt later leaves the state's range
+        // (issue 70, item 15: an SBR_OK with a state the function itself refuses)
+        const bool valid = header_model(model) && header_state(s) && dt <= 10000000u;
+        const double reach = std::fmax(std::fabs((double)s.x), std::fabs((double)s.z)) + (double)s.speed * dt * 1e-6;
+        const double yaw = (double)s.speed * std::tan((double)s.steer) / (double)model.wheelbase;
+        const bool may_leave = reach >= 9999.0 || std::fabs(std::atan((double)s.speed * yaw / 9.81)) > 1.5707;
+        FZ_CHECK(valid || ps != SBR_OK);
+        FZ_CHECK(!valid || ps == SBR_OK || may_leave);
+    }
     if (ps == SBR_OK) {
+        // what SBR_OK returns is a state the function takes back
+        sbr_bike_state_t again;
+        FZ_CHECK(sbr_bike_predict_state(&model, &next, 0u, &again) == SBR_OK);
         FZ_CHECK(state_ok(next));
         FZ_CHECK(next.heading > -kPi && next.heading <= kPi);
         FZ_CHECK(next.speed == s.speed && next.steer == s.steer);

@@ -125,6 +125,77 @@ bool centre_out_of_reach(const sbr_conic_t &q)
     return x.q > 0.0L && (std::fmax(std::fabs(x.d), std::fabs(x.e)) > 0x1p49L * x.q || std::fabs(x.f) > 0x1p99L * x.q);
 }
 
+// A conic without a centre built exactly from small integers (issue 70, item 14): two
+// parallel lines, real or imaginary, a double line or a parabola in u = p x + q y, each
+// scaled by a power of two 2^k (|k| <= 100: a scale the class does not depend on). The
+// class is known by construction; sbr_conic_classify() at tol 0 must give it.
+void fuzz_no_centre(FuzzedDataProvider &in)
+{
+    const long double p = in.ConsumeIntegralInRange<int>(-40, 40), q = in.ConsumeIntegralInRange<int>(-40, 40);
+    const long double r = in.ConsumeIntegralInRange<int>(-300, 300), t = in.ConsumeIntegralInRange<int>(-300, 300);
+    const int kind = in.ConsumeIntegralInRange<int>(0, 3);
+    const int k = in.ConsumeIntegralInRange<int>(-100, 100);
+    if (p == 0.0L && q == 0.0L) {
+        return;
+    }
+    // u = p x + q y; the conic as A u^2 + 2 D x + 2 E y + F with exact small integers
+    long double d = 0.0L, e = 0.0L, f = 0.0L;
+    sbr_conic_class_t want = SBR_CONIC_DOUBLE_LINE;
+    switch (kind) {
+    case 0: // (u + r)(u + t): real parallel lines (r != t), a double line (r == t)
+        d = p * (r + t) / 2.0L;
+        e = q * (r + t) / 2.0L;
+        f = r * t;
+        want = r == t ? SBR_CONIC_DOUBLE_LINE : SBR_CONIC_PARALLEL_LINES;
+        break;
+    case 1: // (u + r)^2 + t^2, t != 0: no real point
+        if (t == 0.0L) {
+            return;
+        }
+        d = p * r;
+        e = q * r;
+        f = r * r + t * t;
+        want = SBR_CONIC_IMAGINARY_PARALLEL_LINES;
+        break;
+    case 2: // u^2 + 2 (r x + t y): a parabola when (r, t) is not parallel to (p, q)
+        if (p * t - q * r == 0.0L) {
+            return;
+        }
+        d = r;
+        e = t;
+        want = SBR_CONIC_PARABOLA;
+        break;
+    default: // (u + r)^2: a double line
+        d = p * r;
+        e = q * r;
+        f = r * r;
+        want = SBR_CONIC_DOUBLE_LINE;
+        break;
+    }
+    // every entry an integer below 2^20 (the halves of case 0 are whole or .5): exact in
+    // float32 as long as it keeps 24 bits, and ldexp by k exact unless out of range
+    const long double v[6] = {p * p, p * q, q * q, d, e, f};
+    float c[6];
+    for (int i = 0; i < 6; ++i) {
+        if (std::fabs(v[i]) >= 0x1p23L) {
+            return;
+        }
+        const long double sc = std::ldexp(v[i], k);
+        if (v[i] != 0.0L && (std::fabs(sc) < 0x1p-126L || std::fabs(sc) > 0x1p127L)) {
+            return;
+        }
+        c[i] = (float)sc;
+    }
+    const sbr_conic_t qc = {c[0], c[1], c[2], c[3], c[4], c[5]};
+    sbr_conic_class_t cls = (sbr_conic_class_t)0;
+    FZ_STATUS(sbr_conic_classify(&qc, 0.0f, &cls), SBR_OK);
+    if (cls != want && fz_first(__LINE__)) {
+        std::fprintf(stderr, "conic %.9g %.9g %.9g %.9g %.9g %.9g (2^%d): class %d, by construction %d\n", qc.a, qc.b,
+                     qc.c, qc.d, qc.e, qc.f, k, (int)cls, (int)want);
+    }
+    FZ_CHECK(cls == want);
+}
+
 void fuzz_geometry(FuzzedDataProvider &in)
 {
     const sbr_conic_t q = conic_from(in);
@@ -270,8 +341,11 @@ void fuzz_detect(FuzzedDataProvider &in)
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     FuzzedDataProvider in(data, size);
-    if (in.ConsumeIntegral<uint8_t>() < 200u) {
+    const uint8_t which = in.ConsumeIntegral<uint8_t>();
+    if (which < 170u) {
         fuzz_geometry(in);
+    } else if (which < 200u) {
+        fuzz_no_centre(in);
     } else {
         fuzz_detect(in);
     }
