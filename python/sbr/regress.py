@@ -27,14 +27,22 @@ Then OUT/ gets detections.txt and detections_all.txt in sbr_detect's format and 
 parts, at_operating_point), failures.txt, and, when the images have GTSDB ground truth
 (gt.txt beside them, or --gt), evaluation.txt and pr_curve.png from the package's own
 evaluation (sbr.evaluate: sbr_eval's report; --baseline DIR: compared with the
-detections_all.txt of an earlier run). OUT holds this run's files only: the files of an
-earlier run there are removed first (its chunks too, unless --resume).
+detections_all.txt of an earlier run), and images.txt (the images this run was given:
+the evaluation scores exactly those, and a later run's --baseline knows what this one
+covered). An earlier run's results are never lost to this one: with --scheduler the
+cluster is reached (--connect-timeout, default 10 s) before anything in OUT is touched;
+the earlier chunks are set aside (OUT/chunks.earlier/) rather than deleted, and every
+file is written under a temporary name and renamed over the earlier one only when the
+run has finished: a run with failed chunks writes what it has to OUT/partial/ and leaves
+the earlier files as they were. When a run has finished, OUT holds its files only (an
+earlier run's files it did not write again, and the set-aside chunks, are removed).
 
 Every option is checked before anything is written: the input, --baseline's
-detections_all.txt, --gt, --model and --picto. Exit status (docs/usage/exit-status.md):
-0 done; 2 refused before the run (a bad option, a file or folder that is not there, no
-images, the 'regress' extra missing); 3 done, some images or chunks failed (listed);
-1 the run failed.
+detections_all.txt, --gt, --model and --picto, and the scheduler's address. Exit status
+(docs/usage/exit-status.md): 0 done; 2 refused before the run (a bad option, a file or
+folder that is not there, no images, the 'regress' extra missing, a scheduler that cannot
+be reached); 3 done, some images or chunks failed (listed); 1 the run failed (its output
+could not be written: the earlier files are kept).
 """
 import argparse
 import json
@@ -139,9 +147,13 @@ def run_chunk(index, paths, out_dir, model, picto):
     record = dict(index=index, threshold=rec.threshold, images=images)
     path = chunk_path(out_dir, index)
     tmp = f"{path}.{os.getpid()}.tmp"
-    with open(tmp, "w") as f:
-        json.dump(record, f)
-    os.replace(tmp, path)  # whole or not at all
+    try:
+        with open(tmp, "w") as f:
+            json.dump(record, f)
+        os.replace(tmp, path)  # whole or not at all
+    finally:
+        if os.path.exists(tmp):  # a failed write (a full disk) leaves no partial file
+            os.remove(tmp)
     return index
 
 
@@ -165,6 +177,8 @@ def parse_args(argv):
     ap.add_argument("--out", required=True, help="output folder")
     where = ap.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="ADDRESS", help="a running Dask scheduler (tcp://host:8786)")
+    ap.add_argument("--connect-timeout", type=float, default=10.0, metavar="S",
+                    help="seconds to reach --scheduler before giving up (default 10; nothing is written then)")
     where.add_argument("--workers", type=int, default=1, help="LocalCluster processes without --scheduler (default 1)")
     ap.add_argument("--threads", type=int,
                     help="threads per LocalCluster process (default: the machine's cores over --workers)")
@@ -183,6 +197,8 @@ def parse_args(argv):
     if a.chunk < 1 or (a.scheduler is None and a.workers < 1) or a.retries < 0 or (a.threads is not None
                                                                                   and a.threads < 1):
         ap.error("--chunk, --workers and --threads must be at least 1, --retries at least 0")
+    if not (a.connect_timeout > 0 and a.connect_timeout <= 3600):  # refuses nan too
+        ap.error(f"--connect-timeout {a.connect_timeout}: a number of seconds in (0, 3600]")
     if a.scheduler and a.threads is not None:
         ap.error("--threads is for the LocalCluster: a cluster's workers have their own")
     if a.threads is None:
@@ -196,83 +212,108 @@ def parse_args(argv):
     return a
 
 
-def compute(a, chunks):
-    """Runs the chunks not yet done on Dask; returns the indices of the chunks that failed."""
+def connect(a):
+    """The Dask client (and the LocalCluster without --scheduler), before anything in OUT is
+    touched: (client, cluster, None), or (None, None, the reason) when the scheduler cannot
+    be reached within --connect-timeout."""
     import dask
-    from dask.distributed import Client, LocalCluster, as_completed, progress
-    todo = [i for i, c in enumerate(chunks) if not (a.resume and chunk_done(a.out, i, c))]
-    skipped = len(chunks) - len(todo)
-    print(f"sbr.regress: {len(chunks)} chunks, {skipped} already done (--resume), {len(todo)} to compute", flush=True)
-    if not todo:
-        return []
-    cluster = None
+    from dask.distributed import Client, LocalCluster
     dask.config.set({"distributed.scheduler.allowed-failures": a.retries})
     if a.scheduler:
-        client = Client(a.scheduler)
-    else:
-        # the control plane shares the machine's cores with the chunks: the workers'
-        # sampling profiler (a thread walking every stack every 10 ms, for the dashboard)
-        # is off, and the event loops' 20 ms tick (blocked-loop warnings), the nannies'
-        # 100 ms memory polls and the 0.5 s system monitor run less often; on a 2-core
-        # machine this gave the chunks about 4 % more (docs/results/python.md)
-        dask.config.set({"distributed.worker.profile.enabled": False,
-                         "distributed.admin.tick.interval": "1s",
-                         "distributed.worker.memory.monitor-interval": "1s",
-                         "distributed.admin.system-monitor.interval": "2s"})
-        cluster = LocalCluster(n_workers=a.workers, threads_per_worker=a.threads, processes=True,
-                               dashboard_address=":0")
-        client = Client(cluster)
-    try:
-        model = os.path.abspath(a.model) if a.model else None
-        picto = os.path.abspath(a.picto) if a.picto else None
-        from sbr import regress as task_module
-        t_warm = time.time()
-        ready = client.run(task_module.warm_up, model, picto)
-        threads = sum(client.nthreads().values())
-        print(f"sbr.regress: {len(ready)} worker processes, {threads} threads, ready in {time.time() - t_warm:.1f} s",
-              flush=True)
-        t0 = time.time()
-        # the task by reference to the importable module (under `python -m` this file is
-        # __main__, whose functions would travel by value with fresh globals each time)
-        futures = [client.submit(task_module.run_chunk, i, chunks[i], os.path.abspath(a.out), model, picto,
-                                 key=f"sbr-chunk-{i}", pure=False) for i in todo]
-        if not a.no_progress and sys.stdout.isatty():
-            progress(futures, notebook=False)  # Dask's progress bar, until every task has settled
-            print(flush=True)
-        # each task's outcome when it first settles; then every future is let go, so a
-        # finished task whose worker dies later is not computed again (its file is written)
-        errors = {}
-        for f in as_completed(futures):
-            if f.status == "error":
-                errors[f.key] = f.exception()
-        client.cancel(futures)
-        took = time.time() - t0
-        n = sum(len(chunks[i]) for i in todo)
-        print(f"sbr.regress: computed {n} images in {took:.1f} s on the cluster ({n / took:.2f} images/s, "
-              f"from the first task submitted to the last settled)", flush=True)
-        failed = []
-        for i, f in zip(todo, futures):
-            if chunk_done(a.out, i, chunks[i]):
-                continue
-            err = errors.get(f.key)
-            why = f"{type(err).__name__}: {err}" if err is not None else "no result file"
-            print(f"sbr.regress: chunk {i} ({chunks[i][0]} ...) failed: {why}", file=sys.stderr)
-            failed.append(i)
-        return failed
-    finally:
-        # the results are on disk: a cluster slow to shut down (a worker still restarting
-        # after a death) is not waited for beyond the timeout
         try:
-            client.close(timeout=20)
-            if cluster is not None:
-                cluster.close(timeout=20)
-        except Exception as e:  # noqa: BLE001
-            print(f"sbr.regress: the cluster did not shut down cleanly ({type(e).__name__}); results are kept",
-                  file=sys.stderr)
+            return Client(a.scheduler, timeout=f"{a.connect_timeout}s"), None, None
+        except Exception as e:  # noqa: BLE001 - every reason is named: a bad address, a timeout, DNS
+            why = str(e).splitlines()[0] if str(e) else type(e).__name__
+            return None, None, f"{type(e).__name__}: {why}"
+    # the control plane shares the machine's cores with the chunks: the workers'
+    # sampling profiler (a thread walking every stack every 10 ms, for the dashboard)
+    # is off, and the event loops' 20 ms tick (blocked-loop warnings), the nannies'
+    # 100 ms memory polls and the 0.5 s system monitor run less often; on a 2-core
+    # machine this gave the chunks about 4 % more (docs/results/python.md)
+    dask.config.set({"distributed.worker.profile.enabled": False,
+                     "distributed.admin.tick.interval": "1s",
+                     "distributed.worker.memory.monitor-interval": "1s",
+                     "distributed.admin.system-monitor.interval": "2s"})
+    cluster = LocalCluster(n_workers=a.workers, threads_per_worker=a.threads, processes=True,
+                           dashboard_address=":0")
+    return Client(cluster), cluster, None
 
 
-def gather(a, chunks, failed_chunks):
-    """The chunk files into the detection files, the Parquet file and failures.txt."""
+def compute(a, chunks, client):
+    """Runs the chunks not yet done on Dask; returns the indices of the chunks that failed."""
+    from dask.distributed import as_completed, progress
+    todo = [i for i, c in enumerate(chunks) if not (a.resume and chunk_done(a.out, i, c))]
+    skipped = len(chunks) - len(todo)
+    print(f"sbr.regress: {len(chunks)} chunks, " + (f"{skipped} already done (--resume), " if a.resume else "")
+          + f"{len(todo)} to compute", flush=True)
+    if not todo:
+        return []
+    model = os.path.abspath(a.model) if a.model else None
+    picto = os.path.abspath(a.picto) if a.picto else None
+    from sbr import regress as task_module
+    t_warm = time.time()
+    ready = client.run(task_module.warm_up, model, picto)
+    threads = sum(client.nthreads().values())
+    print(f"sbr.regress: {len(ready)} worker processes, {threads} threads, ready in {time.time() - t_warm:.1f} s",
+          flush=True)
+    t0 = time.time()
+    # the task by reference to the importable module (under `python -m` this file is
+    # __main__, whose functions would travel by value with fresh globals each time)
+    futures = [client.submit(task_module.run_chunk, i, chunks[i], os.path.abspath(a.out), model, picto,
+                             key=f"sbr-chunk-{i}", pure=False) for i in todo]
+    if not a.no_progress and sys.stdout.isatty():
+        progress(futures, notebook=False)  # Dask's progress bar, until every task has settled
+        print(flush=True)
+    # each task's outcome when it first settles; then every future is let go, so a
+    # finished task whose worker dies later is not computed again (its file is written)
+    errors = {}
+    for f in as_completed(futures):
+        if f.status == "error":
+            errors[f.key] = f.exception()
+    client.cancel(futures)
+    took = time.time() - t0
+    n = sum(len(chunks[i]) for i in todo)
+    print(f"sbr.regress: computed {n} images in {took:.1f} s on the cluster ({n / took:.2f} images/s, "
+          f"from the first task submitted to the last settled)", flush=True)
+    failed = []
+    for i, f in zip(todo, futures):
+        if chunk_done(a.out, i, chunks[i]):
+            continue
+        err = errors.get(f.key)
+        why = f"{type(err).__name__}: {err}" if err is not None else "no result file"
+        print(f"sbr.regress: chunk {i} ({chunks[i][0]} ...) failed: {why}", file=sys.stderr)
+        failed.append(i)
+    return failed
+
+
+def disconnect(client, cluster):
+    """The results are on disk: a cluster slow to shut down (a worker still restarting
+    after a death) is not waited for beyond the timeout."""
+    try:
+        client.close(timeout=20)
+        if cluster is not None:
+            cluster.close(timeout=20)
+    except Exception as e:  # noqa: BLE001
+        print(f"sbr.regress: the cluster did not shut down cleanly ({type(e).__name__}); results are kept",
+              file=sys.stderr)
+
+
+def write_whole(path, write):
+    """write(f) into a temporary file beside `path`, renamed over it once written whole
+    (a failed write raises OSError and leaves the earlier file as it was)."""
+    tmp = f"{path}.tmp-{os.getpid()}"
+    try:
+        with open(tmp, "w") as f:
+            write(f)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+
+
+def gather(a, chunks, failed_chunks, dest):
+    """The chunk files into the detection files, the Parquet file, failures.txt and
+    images.txt in `dest` (each written whole, then renamed)."""
     import pandas as pd
     lines_op, lines_all, rows, failures = [], [], [], []
     for i, c in enumerate(chunks):
@@ -291,39 +332,105 @@ def gather(a, chunks, failed_chunks):
                     lines_op.append(line)
                 rows.append(dict(image=im["name"], left=x, top=y, right=x + w - 1, bottom=y + h - 1, class_id=cls,
                                  score=score, share=share, parts=parts, at_operating_point=at_op))
+    os.makedirs(dest, exist_ok=True)
     for name, lines in (("detections.txt", lines_op), ("detections_all.txt", lines_all)):
-        with open(os.path.join(a.out, name), "w") as f:
-            f.writelines(ln + "\n" for ln in lines)
+        write_whole(os.path.join(dest, name), lambda f, lines=lines: f.writelines(ln + "\n" for ln in lines))
     import sbr
     df = pd.DataFrame(rows, columns=["image", "left", "top", "right", "bottom", "class_id", "score", "share",
                                      "parts", "at_operating_point"])
     df.insert(6, "class_name", [sbr.class_name(c) for c in df["class_id"]])
-    df.to_parquet(os.path.join(a.out, "detections.parquet"), index=False)
-    with open(os.path.join(a.out, "failures.txt"), "w") as f:
-        f.writelines(x + "\n" for x in failures)
+    pq = os.path.join(dest, "detections.parquet")
+    tmp = f"{pq}.tmp-{os.getpid()}"
+    try:
+        df.to_parquet(tmp, index=False)
+        os.replace(tmp, pq)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+    write_whole(os.path.join(dest, "failures.txt"), lambda f: f.writelines(x + "\n" for x in failures))
+    write_whole(os.path.join(dest, "images.txt"),
+                lambda f: f.writelines(out_name(p) + "\n" for c in chunks for p in c))
     return len(lines_op), len(lines_all), failures
 
 
-def evaluate(a, paths, threshold):
-    """evaluation.txt and pr_curve.png from the package's own evaluation (sbr.evaluate:
-    sbr_eval's report), when the images have ground truth."""
+TRAINING_NOTE = ("note: the built-in models are trained on GTSDB 00000-00599 ({n} of these images): their "
+                 "figures there are training-set figures, not what unseen images give (for those: ./sbr.sh crossval, "
+                 "docs/usage/crossval.md)")
+
+
+def training_note(a, paths):
+    """The note ./sbr.sh detect adds when the built-in models score images they were
+    trained on, or None."""
+    if a.model or a.picto:
+        return None
+    n = sum(1 for p in paths if (k := image_number(p)) is not None and 0 <= k <= 599)
+    return TRAINING_NOTE.format(n=n) if n else None
+
+
+def baseline_images(a):
+    """The image names an earlier run was given (its images.txt), or None when it did not
+    record them."""
+    try:
+        with open(os.path.join(a.baseline, "images.txt")) as f:
+            return {ln.strip() for ln in f if ln.strip()}
+    except OSError:
+        return None
+
+
+def evaluate(a, paths, threshold, dest):
+    """evaluation.txt and pr_curve.png in `dest` from the package's own evaluation
+    (sbr.evaluate: sbr_eval's report) over exactly the images this run was given, when
+    they have ground truth; with --baseline, compared over the images both runs were given
+    (the report says so when that is not all of this run's)."""
     gt = ground_truth(a, paths)
     if gt is None:
         return None
     import sbr
-    nums = [n for n in (image_number(p) for p in paths) if n is not None]
-    if a.span:
-        images = range(a.span[0], a.span[1] + 1)
-    elif nums and len(nums) == len(paths):
-        images = range(min(nums), max(nums) + 1)
-    else:
-        images = None
-    plot = os.path.join(a.out, "pr_curve.png")
-    ev = sbr.evaluate(os.path.join(a.out, "detections_all.txt"), gt, images=images, threshold=threshold,
-                      baseline=os.path.join(a.baseline, "detections_all.txt") if a.baseline else None, plot=plot)
-    with open(os.path.join(a.out, "evaluation.txt"), "w") as f:
-        f.write(ev.text)
-    return ev.text
+    nums = sorted({n for n in (image_number(p) for p in paths) if n is not None})
+    unnumbered = len(paths) - sum(1 for p in paths if image_number(p) is not None)
+    plot = os.path.join(dest, "pr_curve.png")
+    tmp_plot = os.path.join(dest, f"pr_curve.tmp-{os.getpid()}.png")
+    dets = os.path.join(dest, "detections_all.txt")
+    base = os.path.join(a.baseline, "detections_all.txt") if a.baseline else None
+    notes = []
+    if unnumbered:
+        notes.append(f"note: {unnumbered} of the {len(paths)} images have no GTSDB number (NNNNN.ext) and are not "
+                     "scored")
+    note = training_note(a, paths)
+    if note:
+        notes.append(note)
+    try:
+        if base:
+            theirs = baseline_images(a)
+            mine = {out_name(p) for p in paths}
+            if theirs is None:
+                notes.append(f"note: the baseline {a.baseline} does not record its images (no images.txt): it is "
+                             "compared as if it ran on these images")
+            elif not mine <= theirs:
+                both = sorted(n for n in nums if f"{n:05d}.jpg" in theirs)
+                notes.append(f"note: the baseline {a.baseline} ran on other images: {len(both)} of this run's "
+                             f"{len(nums)} are among its {len(theirs)}; the comparison below is over those "
+                             f"{len(both)} only")
+                ev = sbr.evaluate(dets, gt, images=nums, threshold=threshold, plot=tmp_plot)
+                text = ev.text
+                if both:
+                    cmp_text = sbr.evaluate(dets, gt, images=both, threshold=threshold, baseline=base).text
+                    k = cmp_text.find("against the baseline")
+                    text += cmp_text[k:] if k >= 0 else ""
+                else:
+                    text += f"against the baseline {a.baseline}: no image in common, nothing compared\n"
+                text = ("".join(n + "\n" for n in notes) + text).replace(tmp_plot, plot)
+                write_whole(os.path.join(dest, "evaluation.txt"), lambda f: f.write(text))
+                os.replace(tmp_plot, plot)
+                return text
+        ev = sbr.evaluate(dets, gt, images=nums, threshold=threshold, baseline=base, plot=tmp_plot)
+        text = ("".join(n + "\n" for n in notes) + ev.text).replace(tmp_plot, plot)
+        write_whole(os.path.join(dest, "evaluation.txt"), lambda f: f.write(text))
+        os.replace(tmp_plot, plot)
+    finally:
+        if os.path.exists(tmp_plot):
+            os.remove(tmp_plot)
+    return text
 
 
 def ground_truth(a, paths):
@@ -345,9 +452,24 @@ def missing_extra():
     return [dist for mod, dist in EXTRA_MODULES.items() if importlib.util.find_spec(mod) is None]
 
 
-# The files a run writes into OUT (chunks/ aside): an earlier run's are removed first.
-RUN_FILES = ("detections.txt", "detections_all.txt", "detections.parquet", "failures.txt", "evaluation.txt",
-             "pr_curve.png")
+# The files a finished run writes into OUT (chunks/ aside): an earlier run's that this one
+# did not write again are removed at its end.
+RUN_FILES = ("detections.txt", "detections_all.txt", "detections.parquet", "failures.txt", "images.txt",
+             "evaluation.txt", "pr_curve.png")
+
+
+def extra_hint():
+    """How to install the 'regress' extra from where this package came from: the folder
+    it was installed from (pip's direct_url.json), else the checkout's ./python."""
+    where = "./python"
+    try:
+        from importlib.metadata import distribution
+        url = json.loads(distribution("sbr").read_text("direct_url.json") or "{}").get("url", "")
+        if url.startswith("file://"):
+            where = url[len("file://"):]
+    except Exception:  # noqa: BLE001 - no metadata: the checkout's folder
+        pass
+    return f"pip install '{where}[regress]' (the package's folder in the sbr checkout, with its 'regress' extra)"
 
 
 def refuse(message):
@@ -370,15 +492,26 @@ def check_files(a):
     return None
 
 
-def clear_out(a):
-    """OUT for this run: the earlier run's files removed (its chunks kept with --resume)."""
+def set_aside(a):
+    """OUT for this run: its chunks folder; without --resume an earlier run's chunks are
+    set aside in chunks.earlier/ (removed when this run has finished), never deleted first."""
+    chunks = os.path.join(a.out, "chunks")
+    if not a.resume and os.path.isdir(chunks) and os.listdir(chunks):
+        earlier = os.path.join(a.out, "chunks.earlier")
+        shutil.rmtree(earlier, ignore_errors=True)
+        os.replace(chunks, earlier)
+    os.makedirs(chunks, exist_ok=True)
+
+
+def finish(a, wrote):
+    """A finished run: the earlier run's files that this one did not write again, its
+    set-aside chunks and a partial result of an interrupted run are removed."""
     for name in RUN_FILES:
         p = os.path.join(a.out, name)
-        if os.path.isfile(p):
+        if name not in wrote and os.path.isfile(p):
             os.remove(p)
-    if not a.resume:
-        shutil.rmtree(os.path.join(a.out, "chunks"), ignore_errors=True)
-    os.makedirs(os.path.join(a.out, "chunks"), exist_ok=True)
+    shutil.rmtree(os.path.join(a.out, "chunks.earlier"), ignore_errors=True)
+    shutil.rmtree(os.path.join(a.out, "partial"), ignore_errors=True)
 
 
 def main(argv=None):
@@ -386,7 +519,7 @@ def main(argv=None):
     missing = missing_extra()
     if missing:
         # before anything is read or written
-        print(f"sbr.regress: needs the 'regress' extra: pip install 'sbr[regress]' (missing: {', '.join(missing)})",
+        print(f"sbr.regress: needs the 'regress' extra (missing: {', '.join(missing)}): {extra_hint()}",
               file=sys.stderr)
         return 2
     problem = check_files(a)
@@ -401,15 +534,36 @@ def main(argv=None):
         threshold = sbr.Recognizer(model=a.model, picto=a.picto).threshold
     except ValueError as e:  # a model file the loader refuses
         return refuse(str(e))
-    clear_out(a)
-    chunks = [paths[i:i + a.chunk] for i in range(0, len(paths), a.chunk)]
     t0 = time.time()
-    failed = compute(a, chunks)
-    n_op, n_all, failures = gather(a, chunks, failed)
-    ev = evaluate(a, paths, threshold)
+    client, cluster, why = connect(a)  # before anything in OUT is touched
+    if client is None:
+        return refuse(f"--scheduler {a.scheduler}: cannot be reached within {a.connect_timeout:g} s ({why})")
+    chunks = [paths[i:i + a.chunk] for i in range(0, len(paths), a.chunk)]
+    try:
+        set_aside(a)
+        failed = compute(a, chunks, client)
+    finally:
+        disconnect(client, cluster)
+    # a run with failed chunks leaves the earlier files as they were: what it has goes to
+    # OUT/partial/, and --resume computes the rest
+    dest = os.path.join(a.out, "partial") if failed else a.out
+    try:
+        n_op, n_all, failures = gather(a, chunks, failed, dest)
+        ev = evaluate(a, paths, threshold, dest)
+    except OSError as e:
+        print(f"sbr.regress: cannot write the results into {dest}: {e} (the finished chunks are kept in "
+              f"{os.path.join(a.out, 'chunks')}: --resume goes on from them; the earlier files are unchanged)",
+              file=sys.stderr)
+        return 1
+    if not failed:
+        finish(a, {"detections.txt", "detections_all.txt", "detections.parquet", "failures.txt", "images.txt"}
+               | ({"evaluation.txt", "pr_curve.png"} if ev is not None else set()))
     print(f"sbr.regress: {len(paths)} images in {len(chunks)} chunks, {time.time() - t0:.1f} s; "
           f"{n_op} detections at the operating point (score >= {threshold:g}), {n_all} in all; "
           f"{len(failures)} images failed, {len(failed)} chunks failed")
+    if failed:
+        print(f"sbr.regress: {len(failed)} chunks failed: what was computed is in {dest}; the earlier files in "
+              f"{a.out} are unchanged; --resume computes the missing chunks")
     if ev:
         print(ev, end="")
     for x in failures[:10]:
