@@ -44,6 +44,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -84,25 +86,54 @@ void draw_marker(cv::Mat &img, cv::Point p, int kind, const cv::Scalar &c, int r
 // would give), markers staggered along each curve so coinciding curves stay visible, and
 // the operating point as a large filled marker. Precision runs to 1.04 so a curve at 1.0
 // lies inside the frame.
-void plot_pr(const std::string &path, const sbr_host::EvalReport &r) {
-    const int W = 760, H = 640, x0 = 60, y0 = 30, pw = 660, ph = 440;
-    const double pmax = 1.04, rmax = 1.02;
-    auto to_px = [&](double r, double p) {
-        return cv::Point(x0 + int(std::lround(r / rmax * pw)), y0 + ph - int(std::lround(p / pmax * ph)));
+// The axes zoom to the data: each starts at the lowest recall or precision of any curve
+// (rounded down to 0.05, at most 0.95) and ends just above 1, so curves near the top are
+// not squeezed against the frame; the range is stated on the plot. The title names the
+// images scored.
+void plot_pr(const std::string &path, const sbr_host::EvalReport &r, const std::string &title) {
+    const int W = 760, H = 660, x0 = 60, y0 = 50, pw = 660, ph = 440;
+    double plo = 1.0, rlo = 1.0;
+    for (int s = 0; s < 4; ++s) {
+        if (r.n_gt[s] == 0) continue;
+        for (const auto &pt : r.curve_all[s]) {
+            rlo = std::min(rlo, pt.first);
+            plo = std::min(plo, pt.second);
+        }
+        rlo = std::min(rlo, r.op_recall[s]);
+        plo = std::min(plo, r.op_precision[s]);
+    }
+    plo = std::min(0.95, std::floor(std::max(0.0, plo - 0.02) * 20.0) / 20.0);
+    rlo = std::min(0.95, std::floor(std::max(0.0, rlo - 0.02) * 20.0) / 20.0);
+    const double pmax = 1.0 + 0.04 * (1.0 - plo), rmax = 1.0 + 0.02 * (1.0 - rlo);
+    const double step_p = (1.0 - plo) > 0.5 ? 0.1 : 0.05, step_r = (1.0 - rlo) > 0.5 ? 0.1 : 0.05;
+    auto to_px = [&](double rc, double p) {
+        return cv::Point(x0 + int(std::lround((rc - rlo) / (rmax - rlo) * pw)),
+                         y0 + ph - int(std::lround((p - plo) / (pmax - plo) * ph)));
     };
     cv::Mat img(H, W, CV_8UC3, cv::Scalar(255, 255, 255));
-    for (int k = 0; k <= 10; ++k) {
-        const cv::Point px = to_px(k / 10.0, 0.0), py = to_px(0.0, k / 10.0);
+    for (int k = 0; rlo + k * step_r <= 1.0 + 1e-9; ++k) {
+        const double v = rlo + k * step_r;
+        const cv::Point px = to_px(v, plo);
         cv::line(img, {px.x, y0}, {px.x, y0 + ph}, cv::Scalar(225, 225, 225));
+        char t[8];
+        std::snprintf(t, sizeof t, "%.2f", v);
+        cv::putText(img, t, {px.x - 12, y0 + ph + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0));
+    }
+    for (int k = 0; plo + k * step_p <= 1.0 + 1e-9; ++k) {
+        const double v = plo + k * step_p;
+        const cv::Point py = to_px(rlo, v);
         cv::line(img, {x0, py.y}, {x0 + pw, py.y}, cv::Scalar(225, 225, 225));
         char t[8];
-        std::snprintf(t, sizeof t, "%.1f", k / 10.0);
-        cv::putText(img, t, {px.x - 10, y0 + ph + 18}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0));
-        cv::putText(img, t, {x0 - 35, py.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0));
+        std::snprintf(t, sizeof t, "%.2f", v);
+        cv::putText(img, t, {x0 - 40, py.y + 4}, cv::FONT_HERSHEY_SIMPLEX, 0.4, cv::Scalar(0, 0, 0));
     }
     cv::rectangle(img, {x0, y0}, {x0 + pw, y0 + ph}, cv::Scalar(0, 0, 0));
-    cv::putText(img, "recall", {x0 + pw / 2 - 20, y0 + ph + 38}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
-    cv::putText(img, "precision", {5, y0 - 10}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
+    cv::putText(img, title, {5, 18}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    char axes[128];
+    std::snprintf(axes, sizeof axes, "precision (axis %.2f-1)", plo);
+    cv::putText(img, axes, {5, y0 - 10}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
+    std::snprintf(axes, sizeof axes, "recall (axis %.2f-1)", rlo);
+    cv::putText(img, axes, {x0 + pw / 2 - 60, y0 + ph + 38}, cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(0, 0, 0));
     const cv::Scalar col[4] = {cv::Scalar(40, 40, 220), cv::Scalar(220, 90, 20), cv::Scalar(20, 160, 230),
                                cv::Scalar(60, 160, 60)};
     for (int s = 0; s < 4; ++s) {
@@ -115,7 +146,7 @@ void plot_pr(const std::string &path, const sbr_host::EvalReport &r) {
         // a marker every 0.1 of recall, shifted by a quarter step per superclass
         const auto &curve = r.curve_op[s];
         size_t i = 0;
-        for (double r = 0.025 * (s + 1); r < 1.0 && !curve.empty(); r += 0.1) {
+        for (double r = rlo + (1.0 - rlo) * 0.025 * (s + 1); r < 1.0 && !curve.empty(); r += (1.0 - rlo) * 0.1) {
             while (i + 1 < curve.size() && curve[i].first < r) ++i;
             if (curve[i].first + 1e-9 < r) break;
             draw_marker(img, to_px(curve[i].first, curve[i].second), s, col[s], 4, false);
@@ -210,7 +241,11 @@ int main(int argc, char **argv) {
         std::fprintf(stderr, "sbr_eval: %s\n", error.c_str());
         return 2;
     }
-    plot_pr(o.plot_path, r);
+    std::string title = "precision-recall, images ";
+    if (!o.range.empty()) title += o.range.str() + " (" + std::to_string(q.images.size()) + " images)";
+    else if (!o.images_dir.empty()) title += "of " + o.images_dir + " (" + std::to_string(q.images.size()) + ")";
+    else title += ": every image named in the files";
+    plot_pr(o.plot_path, r, title);
     std::fputs(r.text.c_str(), stdout);
     if (!o.json_path.empty()) {
         std::ofstream j(o.json_path);

@@ -50,33 +50,66 @@ def evaluate(detections: str, gt: str, *, images: Optional[Iterable[int]] = None
                       float(threshold), int(confusion), int(list_lines), -1.0 if max_drop is None else float(max_drop),
                       str(plot) if plot else "")
     if plot:
-        draw_pr(plot, r)
+        draw_pr(plot, r, images_title(images))
     return Evaluation(text=r["text"], figures=json.loads(r["json"]), worst_drop=r["worst_drop"],
                       regression=r["regression"])
 
 
-def draw_pr(path: str, r: dict) -> None:
+def images_title(images) -> str:
+    """The plot's title: the images scored ("400-599 (200 images)", "3 images from 400 to
+    410", or every image named in the files)."""
+    nums = sorted(set(int(i) for i in images)) if images is not None else []
+    if not nums:
+        return "precision-recall, images: every image named in the files"
+    span = f"{nums[0]:05d}-{nums[-1]:05d}"
+    if len(nums) == nums[-1] - nums[0] + 1:
+        return f"precision-recall, images {span} ({len(nums)} images)"
+    return f"precision-recall, {len(nums)} images from {span}"
+
+
+def draw_pr(path: str, r: dict, title: str = "") -> None:
     """The precision-recall plot of sbr_eval: per superclass the curve down to the operating
-    point (thick), on to the lowest score (thin), the operating point as a large dot."""
+    point (thick), on to the lowest score (thin), the operating point as a large dot. The
+    axes zoom to the data (from the lowest recall or precision of a curve, rounded down to
+    0.05, to just above 1), the range stated; the title names the images."""
     from PIL import Image, ImageDraw
-    W, H, x0, y0, pw, ph = 760, 640, 60, 30, 660, 440
-    pmax, rmax = 1.04, 1.02
+    W, H, x0, y0, pw, ph = 760, 660, 60, 50, 660, 440
+    plo, rlo = 1.0, 1.0
+    for s in range(4):
+        if r["n_gt"][s] == 0:
+            continue
+        for rc, p in r["curve_all"][s]:
+            rlo, plo = min(rlo, rc), min(plo, p)
+        rlo, plo = min(rlo, r["op_recall"][s]), min(plo, r["op_precision"][s])
+    plo = min(0.95, int(max(0.0, plo - 0.02) * 20.0) / 20.0)
+    rlo = min(0.95, int(max(0.0, rlo - 0.02) * 20.0) / 20.0)
+    pmax, rmax = 1.0 + 0.04 * (1.0 - plo), 1.0 + 0.02 * (1.0 - rlo)
+    step_p = 0.1 if 1.0 - plo > 0.5 else 0.05
+    step_r = 0.1 if 1.0 - rlo > 0.5 else 0.05
 
     def px(rec, prec):
-        return (x0 + round(rec / rmax * pw), y0 + ph - round(prec / pmax * ph))
+        return (x0 + round((rec - rlo) / (rmax - rlo) * pw), y0 + ph - round((prec - plo) / (pmax - plo) * ph))
 
     img = Image.new("RGB", (W, H), "white")
     d = ImageDraw.Draw(img)
-    for k in range(11):
-        gx, _ = px(k / 10, 0)
-        _, gy = px(0, k / 10)
+    k = 0
+    while rlo + k * step_r <= 1.0 + 1e-9:
+        v = rlo + k * step_r
+        gx, _ = px(v, plo)
         d.line([(gx, y0), (gx, y0 + ph)], fill=(225, 225, 225))
+        d.text((gx - 10, y0 + ph + 6), f"{v:.2f}", fill="black")
+        k += 1
+    k = 0
+    while plo + k * step_p <= 1.0 + 1e-9:
+        v = plo + k * step_p
+        _, gy = px(rlo, v)
         d.line([(x0, gy), (x0 + pw, gy)], fill=(225, 225, 225))
-        d.text((gx - 8, y0 + ph + 6), f"{k / 10:.1f}", fill="black")
-        d.text((x0 - 30, gy - 6), f"{k / 10:.1f}", fill="black")
+        d.text((x0 - 34, gy - 6), f"{v:.2f}", fill="black")
+        k += 1
     d.rectangle([x0, y0, x0 + pw, y0 + ph], outline="black")
-    d.text((x0 + pw // 2 - 20, y0 + ph + 24), "recall", fill="black")
-    d.text((5, y0 - 22), "precision", fill="black")
+    d.text((5, 6), title or images_title(None), fill="black")
+    d.text((x0 + pw // 2 - 50, y0 + ph + 24), f"recall (axis {rlo:.2f}-1)", fill="black")
+    d.text((5, y0 - 18), f"precision (axis {plo:.2f}-1)", fill="black")
     for s, name in enumerate(SUPERCLASSES):
         c = _COLOURS[s]
         for curve, width in ((r["curve_all"][s], 1), (r["curve_op"][s], 3)):

@@ -35,6 +35,58 @@ SUPER = {
 }
 
 
+def read_png_rgb(path):
+    """An 8-bit RGB or BGR-written PNG (OpenCV's) as (width, height, rows of RGB bytes),
+    with the standard library only."""
+    import struct
+    import zlib
+    with open(path, "rb") as f:
+        data = f.read()
+    pos, idat, w, h = 8, b"", 0, 0
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h, depth, ctype = struct.unpack(">IIBB", body[:10])
+            assert depth == 8 and ctype == 2, (depth, ctype)
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw, stride, rows, prev = zlib.decompress(idat), w * 3, [], bytearray(w * 3)
+    for y in range(h):
+        ft, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - 3] if i >= 3 else 0
+            b, c = prev[i], (prev[i - 3] if i >= 3 else 0)
+            if ft == 1:
+                line[i] = (line[i] + a) & 255
+            elif ft == 2:
+                line[i] = (line[i] + b) & 255
+            elif ft == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif ft == 4:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(line)
+        prev = line
+    return w, h, rows
+
+
+def plot_zoomed(png):
+    """Issue 70, item 13: the curves fill the plot's height (the axis zooms to the data)
+    instead of being squeezed against its top edge: the lowest curve pixel lies in the
+    frame's lower third, the highest clear of its top edge."""
+    w, h, rows = read_png_rgb(png)
+    colours = {(220, 40, 40), (20, 90, 220), (230, 160, 20), (60, 160, 60)}
+    x0, y0, pw, ph = 60, 50, 660, 440
+    ys = [y for y in range(y0 + 2, y0 + ph - 1)
+          if any(tuple(rows[y][3 * x:3 * x + 3]) in colours for x in range(x0 + 2, x0 + pw - 1))]
+    ok = bool(ys) and max(ys) >= y0 + 2 * ph // 3 and min(ys) >= y0 + 6
+    print(f"plot: curve rows {min(ys) if ys else '-'}..{max(ys) if ys else '-'} of the frame {y0}..{y0 + ph}: "
+          f"{'zoomed to the data' if ok else 'NOT zoomed'}")
+    return ok
+
+
 def superclass(c):
     return next(s for s, cs in SUPER.items() if c in cs)
 
@@ -176,6 +228,7 @@ def main():
     print(f"class level: got {got}, expected {want}")
     ok &= got == want
     ok &= os.path.getsize(png) > 1000
+    ok &= plot_zoomed(png)
     ok &= "most frequent errors" in res
 
     def prf(e):
