@@ -14,6 +14,7 @@ options: --dbc FILE (default: dbc/sbr.dbc, installed with the package), --termin
 """
 import argparse
 import os
+import math
 import signal
 import sys
 import threading
@@ -52,8 +53,8 @@ def main(argv=None):
     ap.add_argument("--wait-client", action="store_true",
                     help="start the input when the first page connects")
     a = ap.parse_args(argv)
-    if a.rate <= 0 and not a.fast:
-        ap.error("--rate must be > 0 (or use --fast)")
+    if not (math.isfinite(a.rate) and a.rate > 0) and not a.fast:
+        ap.error(f"--rate {a.rate}: a finite replay speed factor > 0 is needed (or use --fast)")
     try:
         model = DbcModel(a.dbc)
     except DbcError as e:
@@ -108,6 +109,14 @@ def main(argv=None):
             if a.terminal and not a.once:
                 sys.stdout.write(HOME_CLEAR + render(monitor.snapshot(), terminal_width()))
                 sys.stdout.flush()
+            if monitor.source_ended and a.log and monitor.frames == 0:
+                # nothing to show: an empty log, or a file that is no candump log
+                print(f"sbr_dashboard: {a.log}: no CAN frame could be read from it ({monitor.skipped_lines} "
+                      "lines skipped); a candump log (candump -l) is expected", file=sys.stderr)
+                source.stop()
+                if server:
+                    server.stop()
+                return 1
             if monitor.source_ended:
                 ended_at = ended_at or time.monotonic()
                 if a.once:

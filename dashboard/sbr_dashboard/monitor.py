@@ -28,8 +28,17 @@ period is the mean time between the first frames of consecutive cycles over the 
 cycles, the jitter their standard deviation, beside the DBC's GenMsgCycleTime.
 
 The trace keeps the last 1000 frames (time, identifier, DLC, bytes, check result); the
-snapshot carries the newest TRACE_SHOWN. The problems list (the newest PROBLEMS_SHOWN
-events, one text line each) is the same on the page and in the terminal.
+snapshot carries the newest TRACE_SHOWN. The problems list is the same on the page and in
+the terminal: one line per kind of problem (message, kind and what it is: a CRC mismatch
+of SBR_Detection, an overload, skipped log lines), with how often it happened and when
+first and last, the most recent first (at most PROBLEMS_SHOWN lines). So a flood of one
+kind (an overloaded host's late images, a log's bad lines) is one line with its count and
+never pushes a rare fault out of the list.
+
+A message's state shows an E2E fault (CRC, alive counter, length) or a range error for
+FAULT_HOLD_S seconds of source time after the last one (at least 10 of its cycles), even
+when valid frames arrive in between, so that one bad frame is seen and not overwritten by
+the next good one; its count stays in the message's row.
 
 Absent values: a raw value at the top of a signal's range that the DBC's value table names
 (e.g. 255 "NoSign", 63 "NoDetection", 255 "NotAvailable") means "absent".
@@ -48,6 +57,7 @@ TRACE_KEPT = 1000
 TRACE_SHOWN = 200
 PROBLEMS_SHOWN = 20
 PERIOD_WINDOW = 200
+FAULT_HOLD_S = 2.0
 
 
 class PeriodMeter:
@@ -83,8 +93,11 @@ class PeriodMeter:
 
 
 def event_text(e):
-    """The one line a problem is shown as, on the page and in the terminal."""
-    return f"{e['t']:.2f} s {e['message'] or '-'} {e['kind']}: {e['detail']}"
+    """The one line a problem is shown as, on the page and in the terminal: its newest
+    occurrence, and with more than one how many and when the first was."""
+    text = f"{e['t']:.2f} s {e['message'] or '-'} {e['kind']}: {e['detail']}"
+    n = e.get("count", 1)
+    return text + (f" ({n} times, first at {e['first']:.2f} s)" if n > 1 else "")
 
 
 class E2EChecker:
@@ -178,6 +191,7 @@ class Monitor:
         self.unknown = 0
         self.skipped_lines = 0  # log lines that held no frame (comments and blanks not counted)
         self.events = collections.deque(maxlen=40)
+        self.problems = {}  # (message, kind, what) -> its newest event, with count and first time
         self.t0 = None
         self.now = None
         # application state
@@ -219,9 +233,7 @@ class Monitor:
         its line number; the replay goes on."""
         with self.lock:
             self.skipped_lines += 1
-            if self.skipped_lines <= 20 or self.skipped_lines % 100 == 0:
-                self._event(self.now or 0.0, None, "log",
-                            f"line {line} skipped: {reason} ({self.skipped_lines} so far)")
+            self._event(self.now or 0.0, None, "log", f"line {line} skipped: {reason}", what="skipped lines")
             self.version += 1
             self.lock.notify_all()
 
@@ -241,10 +253,24 @@ class Monitor:
             self.version += 1
             self.lock.notify_all()
 
-    def _event(self, t, fid, kind, detail=""):
+    def _event(self, t, fid, kind, detail="", what=None):
+        """A problem: into the recent events, and counted under (message, kind, what) for
+        the problems list (`what`: what stays the same from one occurrence to the next,
+        the detail itself by default)."""
         rel = 0.0 if self.t0 is None else t - self.t0
         name = self.stats[fid]["name"] if fid in self.stats else ""
-        self.events.appendleft(dict(t=round(rel, 3), message=name, kind=kind, detail=detail))
+        e = dict(t=round(rel, 3), message=name, kind=kind, detail=detail)
+        self.events.appendleft(e)
+        key = (name, kind, detail if what is None else what)
+        had = self.problems.get(key)
+        self.problems[key] = dict(e, count=(had["count"] + 1) if had else 1,
+                                  first=had["first"] if had else e["t"])
+
+    def _fault(self, t, fid, state):
+        """A message's state turned to a fault, held FAULT_HOLD_S (at least 10 cycles)."""
+        st = self.stats[fid]
+        st["state"] = state
+        st["fault_until"] = t + max(FAULT_HOLD_S, 10 * st["cycle_ms"] / 1000.0)
 
     def _tick(self, now):
         if self.t0 is None:
@@ -279,9 +305,8 @@ class Monitor:
         check = self._check(t, fid, data, spec) if known else "unknown"
         if not known:
             self.unknown += 1
-            if self.unknown <= 5 or self.unknown % 100 == 0:
-                what = f"{odd_kind} " if odd_kind else ""
-                self._event(t, None, "unknown", f"{what}id 0x{fid:X} ({self.unknown} so far)")
+            what = f"{odd_kind} " if odd_kind else ""
+            self._event(t, None, "unknown", f"{what}id 0x{fid:X}", what="frames not in the DBC")
         self.trace.append(dict(t=round(t - self.t0, 4), id=f"0x{fid:03X}",
                                name=spec.name if spec is not None else "", dlc=len(data),
                                data=text, check=check))
@@ -298,7 +323,10 @@ class Monitor:
                       "bad_counter": "alive counter out of range",
                       "length": f"DLC {len(data)}, expected {spec.length}"}[result]
             self._event(t, fid, "e2e", detail)
-            st["state"] = "e2e error"
+            if result == "skipped" and st["state"] == "timeout":
+                st["state"] = "e2e error"  # the frames lost are the timeout's, shown already
+            else:
+                self._fault(t, fid, "e2e error")
             if result != "skipped":
                 return result
         msg = spec.message
@@ -320,13 +348,13 @@ class Monitor:
                 bad.append(f"{sig.name}={v:g} outside [{sig.minimum:g}, {sig.maximum:g}]")
         if bad:
             st["out_of_range"] += 1
-            st["state"] = "range error"
-            self._event(t, fid, "range", "; ".join(bad))
+            self._fault(t, fid, "range error")
+            self._event(t, fid, "range", "; ".join(bad), what="out of range: " + ", ".join(b.split("=")[0] for b in bad))
             return "range"
         st["valid"] += 1
         if self.timeouts.received(fid, t):
             self._event(t, fid, "recovered", "frames arrive again")
-        if result != "skipped":
+        if result != "skipped" and t >= st.get("fault_until", float("-inf")):
             st["state"] = "ok"
         self.signals[fid] = (raw, phys)  # shown as a table in snapshots (_message_view)
         self._apply(t, spec, msg, raw, phys)
@@ -378,7 +406,7 @@ class Monitor:
             self.flag_counts["overload"] += self.overload_now
             if self.overload_now and not was:
                 self._event(t, spec.frame_id, "overload", f"processing {proc:.1f} ms > the {spec.cycle_ms} ms cycle" if late
-                            else "the ECU dropped results of this image")
+                            else "the ECU dropped results of this image", what="overload")
             self._status_times.append(t)
             while len(self._status_times) > 2 and t - self._status_times[0] > 2.0:
                 self._status_times.popleft()
@@ -440,7 +468,7 @@ class Monitor:
             timeout_factor=self.timeout_factor,
             messages=[self._message_view(fid, st) for fid, st in sorted(self.stats.items())],
             events=list(self.events),
-            problems=[event_text(e) for e in list(self.events)[:PROBLEMS_SHOWN]],
+            problems=[event_text(e) for e in sorted(self.problems.values(), key=lambda e: -e["t"])][:PROBLEMS_SHOWN],
             trace=list(self.trace)[-TRACE_SHOWN:],
             tracker_seen=self.object_frames > 0,
             speed_limit=self.speed_limit,

@@ -492,3 +492,74 @@ def test_a_refused_start_shuts_the_bus_down(caplog):
     del src
     gc.collect()
     assert "not properly shut down" not in caplog.text
+
+
+# -- issue 70: every fault seen, nothing silent ------------------------------------------
+def test_a_flood_of_one_problem_does_not_push_out_a_fault():
+    # item 6: 300 late images (an overloaded host) and 500 bad log lines around one CRC
+    # fault: the fault keeps its line; each flood is one line with its count and times
+    mon = Monitor(M)
+    snd = Sender(M)
+    for k in range(300):
+        proc = 130.0 if k % 2 == 0 else 60.0  # overload begins 150 times
+        feed_all(mon, snd.cycle(k, proc_ms=proc), 0.1 * k)
+        if k == 20:
+            fid, data = snd.cycle(21)[0]
+            bad = bytes([data[0] ^ 0xFF]) + data[1:]
+            mon.feed(0.1 * k + 0.05, fid, bad)
+    for n in range(500):
+        mon.skipped(1000 + n, "not a candump line")
+    p = mon.snapshot()["problems"]
+    crc = [x for x in p if "CRC mismatch" in x]
+    over = [x for x in p if " overload:" in x]
+    log = [x for x in p if " log:" in x]
+    assert len(crc) == 1 and len(over) == 1 and len(log) == 1, p
+    assert "(150 times, first at 0.00 s)" in over[0], over
+    assert "(500 times, first at" in log[0] and "line 1499 skipped" in log[0], log
+    assert len(p) <= 20
+
+
+def test_a_bad_crc_turns_the_message_state_to_a_fault():
+    # item 6: one bad frame among good ones: the row shows the fault for FAULT_HOLD_S of
+    # source time (not "ok" again at the next good frame), then ok
+    from sbr_dashboard.monitor import FAULT_HOLD_S
+    mon = Monitor(M)
+    snd = Sender(M)
+    feed_all(mon, snd.cycle(0), 0.0)
+    fid, data = snd.cycle(1)[0]
+    mon.feed(0.1, fid, bytes([data[0] ^ 0x5A]) + data[1:])
+    name = M.messages[fid].name
+    row = lambda: next(m for m in mon.snapshot()["messages"] if m["name"] == name)
+    assert row()["state"] == "e2e error" and row()["crc"] == 1
+    k = 2
+    while 0.1 * k < 0.1 + FAULT_HOLD_S - 0.05:
+        feed_all(mon, snd.cycle(k), 0.1 * k)
+        assert row()["state"] == "e2e error", (0.1 * k, row()["state"])
+        k += 1
+    feed_all(mon, snd.cycle(k + 1), 0.1 * (k + 1))
+    assert row()["state"] == "ok" and row()["crc"] == 1
+
+
+@pytest.mark.parametrize("content", [b"", bytes(random.Random(7).randrange(256) for _ in range(4096))])
+def test_a_log_without_frames_is_an_error(tmp_path, content):
+    # item 7: an empty log or random bytes: "no CAN frame", exit 1 (not 0 with "frames 0")
+    import subprocess
+    import sys
+    log = tmp_path / "x.log"
+    log.write_bytes(content)
+    r = subprocess.run([sys.executable, "-m", "sbr_dashboard", "--log", str(log), "--terminal", "--once", "--fast"],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 1, r.stdout + r.stderr
+    assert "no CAN frame could be read" in r.stderr
+
+
+@pytest.mark.parametrize("rate", ["nan", "inf", "0", "-1"])
+def test_a_rate_that_is_not_a_speed_is_refused(tmp_path, rate):
+    # item 8
+    import subprocess
+    import sys
+    log = tmp_path / "x.log"
+    log.write_text("(1700000000.000000) can0 300#0011223344556677\n")
+    r = subprocess.run([sys.executable, "-m", "sbr_dashboard", "--log", str(log), "--terminal", "--once",
+                        "--rate", rate], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2 and f"--rate {float(rate)}" in r.stderr, r.stderr
