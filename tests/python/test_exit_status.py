@@ -12,7 +12,8 @@ truncated or a 20000-pixel image beside a whole one, each named, the size limit 
 --max-drop). ./sbr.sh: 0 (--help); 2 (no command, an unknown one, an option without its
 value, a missing or empty --input folder, a missing --baseline file), all before any
 set-up. sbr-dashboard: 0 (a log replayed, --help); 2 (a missing log, an unknown option).
-sbr.regress's cases are in python/tests/test_regress.py.
+sbr.regress's cases are in python/tests/test_regress.py. The exit-status table (docs/usage/exit-status.md) is
+read and each of its examples tied to the cases that show it.
 """
 import argparse
 import os
@@ -22,6 +23,102 @@ import sys
 import tempfile
 
 FAILURES = []
+RAN = {}  # case name -> whether it ended as expected
+
+
+# Each example of docs/usage/exit-status.md's table -> the cases of this file that show it
+# (run here), or "file::test" for a test elsewhere that shows it (that test must exist).
+EXAMPLES = {
+    0: {"a run of `sbr_detect`": ["sbr_detect, a whole image"],
+        "`sbr_eval`": ["sbr_eval"],
+        "a log replayed by `sbr-dashboard`": ["sbr-dashboard, a log replayed"],
+        "`--help`": ["./sbr.sh --help", "./sbr.sh detect --help", "sbr-dashboard --help"]},
+    1: {"every image failed to decode": ["sbr_detect, every image failed"],
+        "an output file cannot be written (named: under a file, a full disk)": [
+            "sbr_detect --all-detections under a file", "sbr_detect --summary under a file",
+            "sbr_detect --canlog under a file", "sbr_detect --overview under a file",
+            "sbr_detect, a write fails mid-run (disk full)"],
+        "a log with no CAN frame (empty, or not a candump log)": [
+            "dashboard/tests/test_unit.py::test_a_log_without_frames_is_an_error"]},
+    2: {"an unknown command or option": ["./sbr.sh bogus", "sbr-dashboard --bogus"],
+        "an option without its value or with a value out of range (the option named)": [
+            "./sbr.sh detect --input (no value)", "sbr_detect --threshold abc",
+            "dashboard/tests/test_unit.py::test_a_rate_that_is_not_a_speed_is_refused"],
+        "a file or folder that is not there (named)": [
+            "sbr_detect, a missing folder", "sbr_eval, a missing --gt file", "./sbr.sh detect, a missing folder",
+            "./sbr.sh detect --baseline missing", "sbr-dashboard, a missing log"],
+        "a folder without images": ["sbr_detect, an empty folder", "./sbr.sh detect, an empty folder"],
+        "an input folder that cannot be listed or read (named, with the reason)": [
+            "sbr_detect, an input folder it cannot list (mode 000)",
+            "sbr_detect, an input folder it can list but not read (mode 444)"],
+        "`--roi` outside the first image (with its size)": ["sbr_detect --roi outside"],
+        "a model file the loader refuses": ["sbr_detect, a missing model file"],
+        "a malformed `--baseline` file (its line named)": [
+            "./sbr.sh detect --baseline malformed: refused before anything runs"],
+        "`sbr.regress` without its extra": [
+            "python/tests/test_regress.py::test_a_missing_extra_is_named_before_anything_is_written"],
+        "a `--scheduler` that cannot be reached": [
+            "python/tests/test_regress.py::test_a_bad_scheduler_touches_nothing"],
+        "an image folder given as `--annotated`": ["sbr_detect --annotated = the input"],
+        "a file given as `--annotated`": ["sbr_detect --annotated naming a file"]},
+    3: {"a truncated JPEG among whole ones (named in `summary.txt` / `failures.txt`)": [
+            "sbr_detect, a truncated image beside a whole one"],
+        "an image larger than the recogniser's limit (16384 pixels a side, named with its size)": [
+            "sbr_detect, a 20000-pixel image beside a whole one"],
+        "a chunk of `sbr.regress` whose worker died more often than allowed (what was computed in "
+        "`OUT/partial/`, `--resume` goes on)": ["python/tests/test_regress.py::test_fault_injection"]},
+    4: {"`sbr_eval --baseline FILE --max-drop D` when class-level F1 or a superclass's recall, precision or AP "
+        "fell by more than D": ["sbr_eval, a regression beyond --max-drop"]},
+    77: {"`recog_scene_same_as_host` without GTSDB": ["tests/CMakeLists.txt::recog_scene_same_as_host"],
+         "`host_socketcan_vcan0` without `vcan0`": ["tests/host/CMakeLists.txt::host_socketcan_vcan0"]},
+}
+
+
+def split_examples(cell):
+    """The examples of a table cell: separated by '; ' outside parentheses."""
+    out, depth, cur = [], 0, ""
+    for ch in cell:
+        depth += ch == "("
+        depth -= ch == ")"
+        if ch == ";" and depth == 0:
+            out.append(cur.strip())
+            cur = ""
+        else:
+            cur += ch
+    out.append(cur.strip())
+    return [x for x in out if x]
+
+
+def walk_table(doc, root):
+    """Every example of the doc's table is tied to cases that ran and ended as expected, or
+    to a test elsewhere that exists; the table and EXAMPLES name the same examples."""
+    rows = {}
+    for line in open(doc):
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 4 and cells[0].isdigit():
+            rows[int(cells[0])] = split_examples(cells[3])
+    ok = sorted(rows) == sorted(EXAMPLES)
+    for status, examples in rows.items():
+        want = EXAMPLES.get(status, {})
+        if sorted(examples) != sorted(want):
+            print(f"FAIL table row {status}: the doc's examples {sorted(set(examples) ^ set(want))} "
+                  "are not the test's (or the other way round)")
+            ok = False
+        for ex in examples:
+            for case in want.get(ex, []):
+                if "::" in case:
+                    path, name = case.split("::")
+                    text = open(os.path.join(root, path)).read()
+                    found = f"def {name}(" in text or (name in text and "SKIP_RETURN_CODE 77" in text)
+                else:
+                    found = RAN.get(case) is True
+                if not found:
+                    print(f"FAIL status {status}, '{ex}': {case} did not show it")
+                    ok = False
+    print(f"{'ok  ' if ok else 'FAIL'} docs/usage/exit-status.md: every example of its table shown by a case "
+          f"({sum(len(v) for v in rows.values())} examples)")
+    if not ok:
+        FAILURES.append("exit-status table")
 
 
 def expect(what, cmd, status, *texts, env=None, preexec_fn=None):
@@ -30,6 +127,7 @@ def expect(what, cmd, status, *texts, env=None, preexec_fn=None):
     said = r.stdout + r.stderr
     missing = [t for t in texts if t not in said]
     ok = r.returncode == status and not missing
+    RAN[what] = ok
     first = next((ln for ln in r.stderr.splitlines() if ln.strip()), "")
     print(f"{'ok  ' if ok else 'FAIL'} {what}: exit {r.returncode} (expected {status}){': ' + first if first else ''}")
     if not ok:
@@ -228,6 +326,8 @@ def main():
         expect("sbr-dashboard --bogus", dash + ["--log", log, "--bogus"], 2, "unrecognized arguments: --bogus")
     finally:
         shutil.rmtree(w, ignore_errors=True)
+    walk_table(os.path.join(os.path.dirname(os.path.abspath(a.sbr_sh)), "docs", "usage", "exit-status.md"),
+               os.path.dirname(os.path.abspath(a.sbr_sh)))
     print(f"{len(FAILURES)} failures" if FAILURES else "every status as the table says")
     return 1 if FAILURES else 0
 
