@@ -36,19 +36,14 @@ import subprocess
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(os.path.dirname(HERE), "crossval"))
 import corruptions as C  # noqa: E402
+from sbr_crossval import fold_spans  # noqa: E402 - the cross-validation's folds, the same split
 
 SUPER = ["prohibitory", "mandatory", "danger", "other"]
 SCORED = ["prohibitory", "mandatory", "danger"]
-
-
-def fold_spans(first, last, k):
-    n = last - first + 1
-    if k < 1 or n % k:
-        raise SystemExit(f"sbr_robustness: {n} images do not split into {k} equal folds")
-    size = n // k
-    return [(first + i * size, first + (i + 1) * size - 1) for i in range(k)]
 
 
 def image_files(data):

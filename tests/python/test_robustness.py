@@ -52,7 +52,7 @@ def main():
     py = sys.executable
     cache, cache2 = os.path.join(a.work, "cache"), os.path.join(a.work, "cache2")
     base = [py, a.script, "--tools", a.tools, "--data", a.data, "--models", "builtin", "--first", "444",
-            "--last", "445", "--folds", "1", "--corruptions", "motion_blur,jpeg", "--severities", "2", "--jobs", "2"]
+            "--last", "445", "--folds", "2", "--corruptions", "motion_blur,jpeg", "--severities", "2", "--jobs", "2"]
     out1 = os.path.join(a.work, "run1")
     r = run(base + ["--cache", cache, "--out", out1])
     check("the smoke run exits 0", r.returncode == 0, r.returncode)
