@@ -326,7 +326,8 @@ def main(argv=None):
                 base = json.load(f)
         except (OSError, ValueError) as e:
             ap.error(f"--baseline {a.baseline}: no readable robustness.json ({e})")
-    spans = fold_spans(a.first, a.last, a.folds)
+    # one fold: the images with the models of --models' fold1 (a pilot on one split)
+    spans = [(a.first, a.last)] if a.folds == 1 else fold_spans(a.first, a.last, a.folds)
     for k in range(len(spans)):
         fold_models(a, k)  # every model file there before anything runs
     a.out = os.path.abspath(a.out)
