@@ -110,76 +110,6 @@ int sbr_conic_priv_solve(float *a, float *b, uint32_t n, float tiny)
     return ok;
 }
 
-/* ---------------------------------------------------------------- exact products */
-
-/* A float-float value hi + lo (|lo| <= ulp(hi) / 2): determinants of a conic whose terms
-   cancel (a thin ellipse far from the origin) to about 2^-44 of their terms, with float32
-   operations only (Dekker's product, Knuth's sum; C99 without contraction keeps them exact). */
-typedef struct conic_ff_s {
-    float hi;
-    float lo;
-} conic_ff_t;
-
-static conic_ff_t ff_sum(float a, float b)
-{
-    conic_ff_t r;
-    const float s = a + b;
-    const float bb = s - a;
-    r.hi = s;
-    r.lo = (a - (s - bb)) + (b - bb);
-    return r;
-}
-
-static void ff_split(float a, float *hi, float *lo)
-{
-    const float c = 4097.0f * a; /* 2^12 + 1 */
-    *hi = c - (c - a);
-    *lo = a - *hi;
-}
-
-/* a * b exactly (for |a|, |b| <= 2^100: no overflow in the split) */
-static conic_ff_t ff_prod(float a, float b)
-{
-    conic_ff_t r;
-    float ah;
-    float al;
-    float bh;
-    float bl;
-    ff_split(a, &ah, &al);
-    ff_split(b, &bh, &bl);
-    r.hi = a * b;
-    r.lo = (((ah * bh) - r.hi) + (ah * bl) + (al * bh)) + (al * bl);
-    return r;
-}
-
-static conic_ff_t ff_add(conic_ff_t x, conic_ff_t y)
-{
-    const conic_ff_t s = ff_sum(x.hi, y.hi);
-    return ff_sum(s.hi, s.lo + x.lo + y.lo);
-}
-
-static conic_ff_t ff_neg(conic_ff_t x)
-{
-    conic_ff_t r;
-    r.hi = -x.hi;
-    r.lo = -x.lo;
-    return r;
-}
-
-/* x * b for a float-float x */
-static conic_ff_t ff_scale(conic_ff_t x, float b)
-{
-    const conic_ff_t p = ff_prod(x.hi, b);
-    return ff_sum(p.hi, p.lo + (x.lo * b));
-}
-
-/* a * b - c * d, correctly rounded but for the last bit */
-static float ff_det2(float a, float b, float c, float d)
-{
-    const conic_ff_t r = ff_add(ff_prod(a, b), ff_neg(ff_prod(c, d)));
-    return r.hi + r.lo;
-}
-
 /* What the conic's centre gives: the conic scaled by a power of two (exact) so that its
    quadratic part's largest entry is in [0.5, 1) and a + c >= 0; det(C22); det(C) in
    float-float (so its sign is right even where its terms cancel, a thin ellipse far from
@@ -226,7 +156,7 @@ static void conic_scaled(const sbr_conic_t *q0, conic_centre_t *cc)
     cc->q.d = conic_flush(sg * ldexpf(q0->d, -ex));
     cc->q.e = conic_flush(sg * ldexpf(q0->e, -ex));
     cc->q.f = conic_flush(sg * ldexpf(q0->f, -ex));
-    cc->d22 = ff_det2(cc->q.a, cc->q.c, cc->q.b, cc->q.b);
+    cc->d22 = sbr_conic_priv_ff_det2(cc->q.a, cc->q.c, cc->q.b, cc->q.b);
 }
 
 /* det(C), the centre's numerators and the zero rule's terms of the scaled conic; 0 when
@@ -238,13 +168,13 @@ static int conic_centre(conic_centre_t *cc)
     if ((fabsf(q->d) <= CONIC_MAX_LINEAR) && (fabsf(q->e) <= CONIC_MAX_LINEAR) &&
         (fabsf(q->f) <= CONIC_MAX_CONST)) {
         /* det(C) = a (c f - e^2) - b (b f - d e) + d (b e - c d) */
-        const conic_ff_t m1 = ff_add(ff_prod(q->c, q->f), ff_neg(ff_prod(q->e, q->e)));
-        const conic_ff_t m2 = ff_add(ff_prod(q->b, q->f), ff_neg(ff_prod(q->d, q->e)));
-        const conic_ff_t m3 = ff_add(ff_prod(q->b, q->e), ff_neg(ff_prod(q->c, q->d)));
-        const conic_ff_t det =
-            ff_add(ff_add(ff_scale(m1, q->a), ff_neg(ff_scale(m2, q->b))), ff_scale(m3, q->d));
+        const sbr_conic_ff_t m1 = sbr_conic_priv_ff_add(sbr_conic_priv_ff_prod(q->c, q->f), sbr_conic_priv_ff_neg(sbr_conic_priv_ff_prod(q->e, q->e)));
+        const sbr_conic_ff_t m2 = sbr_conic_priv_ff_add(sbr_conic_priv_ff_prod(q->b, q->f), sbr_conic_priv_ff_neg(sbr_conic_priv_ff_prod(q->d, q->e)));
+        const sbr_conic_ff_t m3 = sbr_conic_priv_ff_add(sbr_conic_priv_ff_prod(q->b, q->e), sbr_conic_priv_ff_neg(sbr_conic_priv_ff_prod(q->c, q->d)));
+        const sbr_conic_ff_t det =
+            sbr_conic_priv_ff_add(sbr_conic_priv_ff_add(sbr_conic_priv_ff_scale(m1, q->a), sbr_conic_priv_ff_neg(sbr_conic_priv_ff_scale(m2, q->b))), sbr_conic_priv_ff_scale(m3, q->d));
         cc->xnum = m3.hi + m3.lo;
-        cc->ynum = ff_det2(q->b, q->d, q->a, q->e);
+        cc->ynum = sbr_conic_priv_ff_det2(q->b, q->d, q->a, q->e);
         cc->det = det.hi + det.lo;
         cc->terms22 = fabsf(q->d * cc->xnum) + fabsf(q->e * cc->ynum) + fabsf(q->f * cc->d22);
         if ((isfinite(cc->det) != 0) && (isfinite(cc->terms22) != 0)) {
@@ -291,7 +221,33 @@ static float sum_scaled(float v, int k, float w, int j)
 static float minor2(const float m[9], uint32_t i, uint32_t j, uint32_t k, uint32_t l, float *terms)
 {
     *terms = fabsf(m[(i * 3u) + k] * m[(j * 3u) + l]) + fabsf(m[(i * 3u) + l] * m[(j * 3u) + k]);
-    return ff_det2(m[(i * 3u) + k], m[(j * 3u) + l], m[(i * 3u) + l], m[(j * 3u) + k]);
+    return sbr_conic_priv_ff_det2(m[(i * 3u) + k], m[(j * 3u) + l], m[(i * 3u) + l], m[(j * 3u) + k]);
+}
+
+/* 1 when every 2 x 2 minor of C / max vanishes (rank 1): zero to within float-float's
+   reach, or at most tol. M is C with row i scaled by 2^r[i] (a minor of rows i, j of M is
+   2^(r[i] + r[j]) times C's), 2^mx the power of two of C's largest entry, mant that entry
+   over 2^mx, in [0.5, 1). */
+static int no_centre_rank1(const float m[9], const int r[3], int mx, float mant, float tol)
+{
+    const uint8_t rows[3][2] = {{0u, 1u}, {0u, 2u}, {1u, 2u}};
+    int rank1 = 1;
+    uint32_t a;
+    uint32_t b;
+    for (a = 0u; a < 3u; ++a) {
+        for (b = 0u; b < 3u; ++b) {
+            const uint32_t ri = rows[a][0];
+            const uint32_t rj = rows[a][1];
+            float mt;
+            const float mn = minor2(m, ri, rj, rows[b][0], rows[b][1], &mt);
+            /* the minor of C / 2^mx; that of conic.h's C / max is it over mant^2 */
+            const float scaled = ldexpf(mn, -(r[ri] + r[rj]) - (2 * mx));
+            if ((fabsf(mn) > (CONIC_EXACT_FLOOR * mt)) && ((tol <= 0.0f) || (fabsf(scaled) > (tol * mant * mant)))) {
+                rank1 = 0;
+            }
+        }
+    }
+    return rank1;
 }
 
 /* No centre (det(C22) counts as zero): parabola or a pair of lines. Each row i of C is
@@ -337,10 +293,10 @@ static sbr_conic_class_t classify_no_centre(const sbr_conic_t *conic, float tol)
         float t1;
         float t2;
         float t3;
-        const conic_ff_t k1 = ff_add(ff_prod(m[4], m[8]), ff_neg(ff_prod(m[5], m[7])));
-        const conic_ff_t k2 = ff_add(ff_prod(m[3], m[8]), ff_neg(ff_prod(m[5], m[6])));
-        const conic_ff_t k3 = ff_add(ff_prod(m[3], m[7]), ff_neg(ff_prod(m[4], m[6])));
-        const conic_ff_t dd = ff_add(ff_add(ff_scale(k1, m[0]), ff_neg(ff_scale(k2, m[1]))), ff_scale(k3, m[2]));
+        const sbr_conic_ff_t k1 = sbr_conic_priv_ff_add(sbr_conic_priv_ff_prod(m[4], m[8]), sbr_conic_priv_ff_neg(sbr_conic_priv_ff_prod(m[5], m[7])));
+        const sbr_conic_ff_t k2 = sbr_conic_priv_ff_add(sbr_conic_priv_ff_prod(m[3], m[8]), sbr_conic_priv_ff_neg(sbr_conic_priv_ff_prod(m[5], m[6])));
+        const sbr_conic_ff_t k3 = sbr_conic_priv_ff_add(sbr_conic_priv_ff_prod(m[3], m[7]), sbr_conic_priv_ff_neg(sbr_conic_priv_ff_prod(m[4], m[6])));
+        const sbr_conic_ff_t dd = sbr_conic_priv_ff_add(sbr_conic_priv_ff_add(sbr_conic_priv_ff_scale(k1, m[0]), sbr_conic_priv_ff_neg(sbr_conic_priv_ff_scale(k2, m[1]))), sbr_conic_priv_ff_scale(k3, m[2]));
         (void)minor2(m, 1u, 2u, 1u, 2u, &t1);
         (void)minor2(m, 1u, 2u, 0u, 2u, &t2);
         (void)minor2(m, 1u, 2u, 0u, 1u, &t3);
@@ -349,29 +305,8 @@ static sbr_conic_class_t classify_no_centre(const sbr_conic_t *conic, float tol)
     }
     /* det(C / max) against the product of its rows' norms is det(M) against M's */
     if ((fabsf(det) <= (CONIC_EXACT_FLOOR * terms)) || (fabsf(det) <= (tol * norm[0] * norm[1] * norm[2]))) {
-        /* rank 1 when every 2 x 2 minor of C / max vanishes: zero to within float-float's
-           reach, or at most tol (a minor of rows i, j of M is 2^(r[i] + r[j]) times C's) */
-        const uint8_t rows[3][2] = {{0u, 1u}, {0u, 2u}, {1u, 2u}};
-        const float mant = ldexpf(sbr_conic_priv_max_abs(conic), -mx); /* max / 2^mx, [0.5, 1) */
-        int rank1 = 1;
-        uint32_t a;
-        uint32_t b;
-        for (a = 0u; a < 3u; ++a) {
-            for (b = 0u; b < 3u; ++b) {
-                const uint32_t ri = rows[a][0];
-                const uint32_t rj = rows[a][1];
-                const uint32_t ck = rows[b][0];
-                const uint32_t cl = rows[b][1];
-                float mt;
-                const float mn = minor2(m, ri, rj, ck, cl, &mt);
-                /* the minor of C / 2^mx (largest entry in [0.5, 1)); that of conic.h's
-                   C / max is it over mant^2 */
-                const float scaled = ldexpf(mn, -(r[ri] + r[rj]) - (2 * mx));
-                if ((fabsf(mn) > (CONIC_EXACT_FLOOR * mt)) && ((tol <= 0.0f) || (fabsf(scaled) > (tol * mant * mant)))) {
-                    rank1 = 0;
-                }
-            }
-        }
+        /* rank 1 when every 2 x 2 minor of C / max vanishes */
+        const int rank1 = no_centre_rank1(m, r, mx, ldexpf(sbr_conic_priv_max_abs(conic), -mx), tol);
         if (rank1 != 0) {
             cls = SBR_CONIC_DOUBLE_LINE;
         } else {

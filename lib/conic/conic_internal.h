@@ -9,6 +9,26 @@
 #include "../common/sbr_util.h"
 
 
+/* A float-float value hi + lo (|lo| <= ulp(hi) / 2): determinants of a conic whose terms
+   cancel to about 2^-44 of their terms, with float32 operations only (conic_ff.c). */
+typedef struct sbr_conic_ff_s {
+    float hi;
+    float lo;
+} sbr_conic_ff_t;
+
+/* a + b exactly, as hi + lo (Knuth's two-sum). */
+sbr_conic_ff_t sbr_conic_priv_ff_sum(float a, float b);
+/* a * b exactly (|a|, |b| <= 2^100; Dekker's product). */
+sbr_conic_ff_t sbr_conic_priv_ff_prod(float a, float b);
+/* x + y. */
+sbr_conic_ff_t sbr_conic_priv_ff_add(sbr_conic_ff_t x, sbr_conic_ff_t y);
+/* -x. */
+sbr_conic_ff_t sbr_conic_priv_ff_neg(sbr_conic_ff_t x);
+/* x * b for a float-float x. */
+sbr_conic_ff_t sbr_conic_priv_ff_scale(sbr_conic_ff_t x, float b);
+/* a * b - c * d, correctly rounded but for the last bit. */
+float sbr_conic_priv_ff_det2(float a, float b, float c, float d);
+
 /* The largest magnitude of the six entries. */
 float sbr_conic_priv_max_abs(const sbr_conic_t *q);
 
