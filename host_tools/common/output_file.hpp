@@ -30,7 +30,6 @@ public:
     // Opens the temporary of `path`; "" on success, else why.
     std::string open(const std::string &path);
     bool is_open() const { return s_.is_open(); }
-    std::ofstream &stream() { return s_; }
     template <class T>
     OutputFile &operator<<(const T &v) {
         s_ << v;

@@ -40,7 +40,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(os.path.dirname(HERE), "crossval"))
 import corruptions as C  # noqa: E402
-from sbr_crossval import fold_spans  # noqa: E402 - the cross-validation's folds, the same split
+from sbr_crossval import fold_spans, join_tool_args  # noqa: E402 - the cross-validation's folds, the same split
 
 SUPER = ["prohibitory", "mandatory", "danger", "other"]
 SCORED = ["prohibitory", "mandatory", "danger"]
@@ -292,8 +292,7 @@ def main(argv=None):
     ap.add_argument("--detect-args", default="", help="extra sbr_detect options, e.g. \"--map-polarity 3,3,3\"")
     ap.add_argument("--print-table", action="store_true", help="print the corruption table (markdown) and stop")
     argv = sys.argv[1:] if argv is None else argv
-    argv = [f"--detect-args={argv[i + 1]}" if x == "--detect-args" and i + 1 < len(argv) else x
-            for i, x in enumerate(argv) if not (i > 0 and argv[i - 1] == "--detect-args")]
+    argv = join_tool_args(argv)  # --detect-args "--grey ..." as one value, as sbr_crossval takes it
     a = ap.parse_args(argv)
     if a.print_table:
         sys.stdout.write(C.markdown_table())
