@@ -399,32 +399,27 @@ def evaluate(a, paths, threshold, dest):
     note = training_note(a, paths)
     if note:
         notes.append(note)
+    compare_over = None  # with a baseline over other images: the images both were given
+    if base:
+        theirs = baseline_images(a)
+        if theirs is None:
+            notes.append(f"note: the baseline {a.baseline} does not record its images (no images.txt): it is "
+                         "compared as if it ran on these images")
+        elif not {out_name(p) for p in paths} <= theirs:
+            compare_over = [n for n in nums if f"{n:05d}.jpg" in theirs]
+            notes.append(f"note: the baseline {a.baseline} ran on other images: {len(compare_over)} of this run's "
+                         f"{len(nums)} are among its {len(theirs)}; the comparison below is over those "
+                         f"{len(compare_over)} only")
     try:
-        if base:
-            theirs = baseline_images(a)
-            mine = {out_name(p) for p in paths}
-            if theirs is None:
-                notes.append(f"note: the baseline {a.baseline} does not record its images (no images.txt): it is "
-                             "compared as if it ran on these images")
-            elif not mine <= theirs:
-                both = sorted(n for n in nums if f"{n:05d}.jpg" in theirs)
-                notes.append(f"note: the baseline {a.baseline} ran on other images: {len(both)} of this run's "
-                             f"{len(nums)} are among its {len(theirs)}; the comparison below is over those "
-                             f"{len(both)} only")
-                ev = sbr.evaluate(dets, gt, images=nums, threshold=threshold, plot=tmp_plot)
-                text = ev.text
-                if both:
-                    cmp_text = sbr.evaluate(dets, gt, images=both, threshold=threshold, baseline=base).text
-                    k = cmp_text.find("against the baseline")
-                    text += cmp_text[k:] if k >= 0 else ""
-                else:
-                    text += f"against the baseline {a.baseline}: no image in common, nothing compared\n"
-                text = ("".join(n + "\n" for n in notes) + text).replace(tmp_plot, plot)
-                write_whole(os.path.join(dest, "evaluation.txt"), lambda f: f.write(text))
-                os.replace(tmp_plot, plot)
-                return text
-        ev = sbr.evaluate(dets, gt, images=nums, threshold=threshold, baseline=base, plot=tmp_plot)
-        text = ("".join(n + "\n" for n in notes) + ev.text).replace(tmp_plot, plot)
+        ev = sbr.evaluate(dets, gt, images=nums, threshold=threshold, plot=tmp_plot,
+                          baseline=base if compare_over is None else None)
+        text = ev.text
+        if compare_over:
+            cmp_text = sbr.evaluate(dets, gt, images=compare_over, threshold=threshold, baseline=base).text
+            text += cmp_text[cmp_text.find("against the baseline"):]
+        elif compare_over is not None:
+            text += f"against the baseline {a.baseline}: no image in common, nothing compared\n"
+        text = ("".join(n + "\n" for n in notes) + text).replace(tmp_plot, plot)
         write_whole(os.path.join(dest, "evaluation.txt"), lambda f: f.write(text))
         os.replace(tmp_plot, plot)
     finally:
