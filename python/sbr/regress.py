@@ -464,7 +464,7 @@ def extra_hint():
             where = url[len("file://"):]
     except Exception:  # noqa: BLE001 - no metadata: the checkout's folder
         pass
-    return f"pip install '{where}[regress]' (the package's folder in the sbr checkout, with its 'regress' extra)"
+    return f"pip install '{where}[regress]' (where this package was installed from, with its 'regress' extra)"
 
 
 def refuse(message):
