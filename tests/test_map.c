@@ -4,7 +4,6 @@
 #include "unity.h"
 #include "sbr/map.h"
 #include "test_support.h"
-#include "../lib/map/map_internal.h" /* the part stage's bright-only map */
 
 void setUp(void) {}
 void tearDown(void) {}
@@ -145,7 +144,7 @@ static void test_map_bright_only_red(void)
                 sbr_image_t ov;
                 TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, (sbr_map_kind_t)k, sub, exact, 21u,
                                                                 sizeof exact, NULL));
-                TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_priv_make_bright(&src, (sbr_map_kind_t)k, sub,
+                TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make_bright(&src, (sbr_map_kind_t)k, sub,
                                                                             bright, 21u, sizeof bright, &ov));
                 TEST_ASSERT_EQUAL_UINT32(20u / sub, ov.width);
                 TEST_ASSERT_EQUAL_UINT32(9u / sub, ov.height);
@@ -166,9 +165,9 @@ static void test_map_bright_only_red(void)
     TEST_ASSERT_TRUE(above > 20u); /* random colours: some pixels are red */
     {
         const sbr_image_t src = {20u, 9u, 64u, SBR_PIXEL_RGB888, px};
-        TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_map_priv_make_bright(NULL, SBR_MAP_RED, 1u, bright, 21u,
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, (int)sbr_map_make_bright(NULL, SBR_MAP_RED, 1u, bright, 21u,
                                                                           sizeof bright, NULL));
-        TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_map_priv_make_bright(&src, SBR_MAP_RED, 1u, bright, 21u,
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, (int)sbr_map_make_bright(&src, SBR_MAP_RED, 1u, bright, 21u,
                                                                            20u, NULL));
     }
 }
@@ -244,7 +243,7 @@ static void test_map_rows_every_width(void)
                 uint32_t y;
                 TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make(&src, (sbr_map_kind_t)k, 1u, out, 11u,
                                                                 sizeof out, NULL));
-                TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_priv_make_bright(&src, (sbr_map_kind_t)k, 1u,
+                TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_map_make_bright(&src, (sbr_map_kind_t)k, 1u,
                                                                             bright, 11u, sizeof bright, NULL));
                 for (y = 0u; y < 2u; y++) {
                     uint32_t x;

@@ -3,7 +3,7 @@
 #include "unity.h"
 #include "sbr/mser.h"
 #include "test_support.h"
-#include "../lib/mser/mser_internal.h" /* the part stage's in-place entry */
+
 
 #include <string.h>
 
@@ -522,7 +522,7 @@ static void test_mser_heap_bound_texture(void)
     g_cfg.max_nodes = 0u;
 }
 
-/* The part stage's entry (lib/mser/mser_internal.h): the map written into the workspace's
+/* The part stage's entry (sbr_mser_map_slot(), sbr_mser_detect_in_place()): the map written into the workspace's
    slot gives sbr_mser_detect()'s regions of that map, and afterwards the same map, byte
    for byte, at the start of the pixel words; for each polarity and with level limits
    (walls keep their level for the next pass); on the whole 256 x 256 map and on a 251 x
@@ -556,11 +556,12 @@ static void test_mser_in_place(void)
             TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_detect(&v, &g_cfg, g_bws, need, g_breg[0], 128u, &n));
             TEST_ASSERT_TRUE(n >= 3u);
             memset(g_bws, 0xA5, sizeof g_bws);
-            slot = sbr_mser_priv_map_slot(&g_cfg, w, h, g_bws);
+            slot = sbr_mser_map_slot(&g_cfg, w, h, g_bws, need);
+            TEST_ASSERT_NOT_NULL(slot);
             for (y = 0u; y < h; y++) {
                 memcpy(&slot[(size_t)y * w], g_big[y], w);
             }
-            TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_priv_detect_in_place(w, h, &g_cfg, g_bws, need,
+            TEST_ASSERT_EQUAL_INT(SBR_OK, (int)sbr_mser_detect_in_place(w, h, &g_cfg, g_bws, need,
                                                                            g_breg[1], 128u, &m, &back));
             TEST_ASSERT_EQUAL_UINT32(n, m);
             TEST_ASSERT_EQUAL_MEMORY(g_breg[0], g_breg[1], n * sizeof(sbr_mser_region_t));

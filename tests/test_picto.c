@@ -4,6 +4,7 @@
    hand-made classifiers, the built-in classifier's consistency, and bad input. */
 #include "unity.h"
 #include "sbr/picto.h"
+#include "sbr/models.h"
 
 #include <math.h>
 #include <string.h>

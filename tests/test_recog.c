@@ -4,6 +4,8 @@
    built-in model is consistent; bad input gets its status. */
 #include "unity.h"
 #include "sbr/recog.h"
+#include "sbr/models.h"
+#include "sbr/recog_strips.h"
 #include "test_status_table.h"
 #include "recog_run.h"
 

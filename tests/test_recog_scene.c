@@ -12,6 +12,7 @@
    requires the same detections (the tolerance is documented there). */
 #include "unity.h"
 #include "sbr/recog.h"
+#include "sbr/models.h"
 #include "recog_run.h"
 
 #include <math.h>

@@ -19,6 +19,7 @@
 #include "sbr/mser.h"
 #include "sbr/picto.h"
 #include "sbr/status.h"
+#include "sbr/models.h"
 #include "test_status_table.h"
 #include "unity.h"
 
@@ -183,6 +184,11 @@ static void test_map_h(void)
     /* the output over the source's own pixels */
     self = gv;
     ROW(&t, SBR_ERR_OVERLAP, sbr_map_make(&self, SBR_MAP_INTENSITY, 1u, g_grey, 16u, sizeof g_grey, &out));
+    ROW(&t, SBR_OK, sbr_map_make_bright(&v, SBR_MAP_RED, 1u, g_out, 16u, sizeof g_out, &out));
+    ROW(&t, SBR_ERR_NULL, sbr_map_make_bright(NULL, SBR_MAP_RED, 1u, g_out, 16u, sizeof g_out, &out));
+    ROW(&t, SBR_ERR_RANGE, sbr_map_make_bright(&gv, SBR_MAP_RED, 1u, g_out, 16u, sizeof g_out, &out));
+    ROW(&t, SBR_ERR_ALIGN, sbr_map_make_bright(&v, SBR_MAP_RED, 1u, g_out, 15u, sizeof g_out, &out));
+    ROW(&t, SBR_ERR_OVERLAP, sbr_map_make_bright(&self, SBR_MAP_INTENSITY, 1u, g_grey, 16u, sizeof g_grey, &out));
     status_table_check(&t);
 }
 
@@ -254,6 +260,34 @@ static void test_mser_h(void)
     ROW(&t, SBR_ERR_WORKSPACE, sbr_mser_detect(&gv, &cfg, (uint8_t *)g_ws + 1, ws, r, 8u, &n));
     ROW(&t, SBR_ERR_SIZE, sbr_mser_detect(&gv, &cfg, g_ws, ws, r, 0u, &n));
     status_table_check(&t);
+    /* the in-place entry: the slot refuses what the detection refuses */
+    {
+        sbr_image_t back;
+        uint8_t *slot;
+        uint32_t y;
+        TEST_ASSERT_NULL(sbr_mser_map_slot(NULL, 16u, 16u, g_ws, ws));
+        TEST_ASSERT_NULL(sbr_mser_map_slot(&bad, 16u, 16u, g_ws, ws));
+        TEST_ASSERT_NULL(sbr_mser_map_slot(&cfg, 2u, 16u, g_ws, ws));
+        TEST_ASSERT_NULL(sbr_mser_map_slot(&cfg, 16u, 16u, NULL, ws));
+        TEST_ASSERT_NULL(sbr_mser_map_slot(&cfg, 16u, 16u, g_ws, ws - 1u));
+        TEST_ASSERT_NULL(sbr_mser_map_slot(&cfg, 16u, 16u, (uint8_t *)g_ws + 1, ws));
+        slot = sbr_mser_map_slot(&cfg, 16u, 16u, g_ws, ws);
+        TEST_ASSERT_NOT_NULL(slot);
+        for (y = 0u; y < 16u; y++) {
+            memcpy(&slot[y * 16u], &gv.data[(size_t)y * gv.stride], 16u);
+        }
+        t.n = 0u;
+        ROW(&t, SBR_OK, sbr_mser_detect_in_place(16u, 16u, &cfg, g_ws, ws, r, 8u, &n, &back));
+        ROW(&t, SBR_ERR_NULL, sbr_mser_detect_in_place(16u, 16u, NULL, g_ws, ws, r, 8u, &n, &back));
+        ROW(&t, SBR_ERR_NULL, sbr_mser_detect_in_place(16u, 16u, &cfg, g_ws, ws, NULL, 8u, &n, &back));
+        ROW(&t, SBR_ERR_NULL, sbr_mser_detect_in_place(16u, 16u, &cfg, g_ws, ws, r, 8u, NULL, &back));
+        ROW(&t, SBR_ERR_NULL, sbr_mser_detect_in_place(16u, 16u, &cfg, g_ws, ws, r, 8u, &n, NULL));
+        ROW(&t, SBR_ERR_RANGE, sbr_mser_detect_in_place(16u, 16u, &bad, g_ws, ws, r, 8u, &n, &back));
+        ROW(&t, SBR_ERR_SIZE, sbr_mser_detect_in_place(2u, 16u, &cfg, g_ws, ws, r, 8u, &n, &back));
+        ROW(&t, SBR_ERR_SIZE, sbr_mser_detect_in_place(16u, 16u, &cfg, g_ws, ws, r, 0u, &n, &back));
+        ROW(&t, SBR_ERR_WORKSPACE, sbr_mser_detect_in_place(16u, 16u, &cfg, g_ws, ws - 1u, r, 8u, &n, &back));
+        status_table_check(&t);
+    }
     /* the node bound reached: a distinct status, the regions found so far exact */
     {
         sbr_mser_config_t few = cfg;

@@ -2,6 +2,7 @@
 /* Unity tests of include/sbr/track.h: the channel-based tracker (paper E): model checks,
    tracking through misses, crossing targets, clutter, bad input. */
 #include "sbr/track.h"
+#include "sbr/models.h"
 
 #include <math.h>
 #include <string.h>

@@ -5,7 +5,7 @@
 Instructions per frame of sbr_recog_detect, which do not depend on the machine's load:
   - host (x86-64): valgrind's callgrind on fixed frames, collected inside sbr_recog_detect
     only (sbr_detect --callgrind), one dump per stage; the part stage is split into maps
-    (sbr_map_make, sbr_map_priv_make_bright), regions (sbr_mser_priv_detect_in_place, the part stage's MSER) and contours + FDs (the rest: region masks,
+    (sbr_map_make, sbr_map_make_bright), regions (sbr_mser_detect_in_place, the part stage's MSER) and contours + FDs (the rest: region masks,
     tracing, descriptors) by callgrind_annotate's inclusive counts;
   - Cortex-M4F: the bench image ports/cortex_m/sbr_cost_m4.c on qemu mps2-an386 with
     -icount shift=0 (1 instruction = 1 ns of virtual time, read from a timer), the same
@@ -117,11 +117,11 @@ def host_callgrind(args, extra, work, inputs=None, name="callgrind"):
             continue
         k = int(m.group(3))
         if k == 0:
-            inc = inclusive(path, ["sbr_map_make", "sbr_map_priv_make_bright", "sbr_mser_priv_detect_in_place"])
-            maps = inc["sbr_map_make"] + inc["sbr_map_priv_make_bright"]
+            inc = inclusive(path, ["sbr_map_make", "sbr_map_make_bright", "sbr_mser_detect_in_place"])
+            maps = inc["sbr_map_make"] + inc["sbr_map_make_bright"]
             fr["maps"] += maps
-            fr["regions"] += inc["sbr_mser_priv_detect_in_place"]
-            fr["contours+FDs"] += summary - maps - inc["sbr_mser_priv_detect_in_place"]
+            fr["regions"] += inc["sbr_mser_detect_in_place"]
+            fr["contours+FDs"] += summary - maps - inc["sbr_mser_detect_in_place"]
         elif k == 1:
             fr["matching+votes"] += summary
         elif k in (2, 3, 4):

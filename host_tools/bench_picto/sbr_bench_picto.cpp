@@ -29,6 +29,7 @@
 
 extern "C" {
 #include "sbr/picto.h"
+#include "sbr/models.h"
 }
 
 namespace {

@@ -6,6 +6,7 @@
 
 #include "cli_core.hpp"
 
+#include <map>
 #include <string>
 
 #include "gtsdb.hpp"
@@ -21,16 +22,28 @@ namespace sbr_host {
 CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string &what,
                               const std::string &name = "--range");
 
-// The recogniser's options that the tools let a user override, bound to the fields of
-// `cfg` (which holds the defaults, shown by --help), in an option group "Recogniser".
+// The recogniser's options: one per field of the configuration's table (recog.h,
+// sbr_recog_field_at(): --name with '-' for '_', its range, its one-line meaning), bound to
+// the fields of `cfg` (which holds the defaults, shown by --help), in an option group
+// "Recogniser". Nothing here repeats a range or a default.
 struct RecogCli {
-    CLI::Option *min_score = nullptr;  // given explicitly? (tools lower the floor otherwise)
-    FrontEnd front_end;                // --map-subsample, --map-min-area, --map-polarity
+    std::map<std::string, CLI::Option *> options;  // by field name: given explicitly?
+    FrontEnd front_end;                            // the per-map-kind lists (--map-*)
+    bool given(const std::string &field) const {
+        const auto it = options.find(field);
+        return it != options.end() && it->second->count() > 0;
+    }
 };
 void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r);
-// --map-subsample, --map-min-area and --map-polarity (per map kind) into fe, in option group `group`.
+// The table's per-map-kind fields (--map-subsample, --map-min-area, ...) into fe, in option
+// group `group` (the training tools: the part stage they learn with).
 void add_front_end_options(CLI::App &app, FrontEnd &fe, const std::string &group = "");
 // What add_recog_options() cannot bind directly (the per-map lists).
 void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg);
+// A field's range as the table gives it ("0 .. 255").
+std::string field_range(const sbr_recog_field_t &f);
+// "" for a configuration the core accepts; otherwise the option to blame, its value, its
+// range and its meaning (sbr_recog_config_check_field()).
+std::string config_problem(const sbr_recog_config_t &cfg);
 
 }  // namespace sbr_host

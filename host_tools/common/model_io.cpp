@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "model_io.hpp"
 
+#include <cstddef>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -321,7 +322,7 @@ std::string parse_model(const std::string &s, const std::string &path, Model &m)
 std::string write_model_c(const Model &m, const std::string &path, const std::string &header) {
     std::ostringstream o;
     const sbr_model_t &v = m.view;
-    o << comment_block(header) << "#include \"sbr/recog.h\"\n\n";
+    o << comment_block(header) << "#include \"sbr/models.h\"\n\n";
     // The tables are block-scope const objects of the one function that uses them
     // (MISRA C:2012 8.9); they live in flash, the caller's struct only points at them.
     o << "sbr_status_t sbr_model_gtsdb(sbr_model_t *out)\n{\n";
@@ -442,7 +443,7 @@ std::string parse_picto(const std::string &s, const std::string &path, Picto &p)
 std::string write_picto_c(const Picto &p, const std::string &path, const std::string &header) {
     if (!picto_sizes_ok(p)) return "classifier sizes do not match its hidden layer";
     std::ostringstream o;
-    o << comment_block(header) << "#include \"sbr/picto.h\"\n\n";
+    o << comment_block(header) << "#include \"sbr/models.h\"\n\n";
     o << "sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)\n{\n";
     auto table = [&](const char *name, const std::vector<float> &w) {
         o << "    static const float " << name << "[" << w.size() << "] = {";
@@ -504,11 +505,18 @@ void training_bounds(sbr_recog_config_t &rc) {
 }
 
 void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts) {
-    for (size_t k = 0; k < fe.sub.size(); ++k) parts.map_subsample[k] = fe.sub[k];
-    for (size_t k = 0; k < fe.area.size(); ++k) parts.map_min_area[k] = fe.area[k];
-    for (size_t k = 0; k < fe.polarity.size(); ++k) parts.map_polarity[k] = fe.polarity[k];
-    for (size_t k = 0; k < fe.bright_min.size(); ++k) parts.map_bright_min[k] = fe.bright_min[k];
-    for (size_t k = 0; k < fe.dark_max.size(); ++k) parts.map_dark_max[k] = fe.dark_max[k];
+    // the table's offsets are into sbr_recog_config_t; the per-map lists are in its `parts`
+    unsigned char *base = reinterpret_cast<unsigned char *>(&parts);
+    for (const auto &kv : fe.lists) {
+        const sbr_recog_field_t *f = sbr_recog_field_at(sbr_recog_field_find(kv.first.c_str()));
+        static_assert(offsetof(sbr_recog_config_t, parts) == 0, "parts opens the configuration");
+        if (f == nullptr || f->offset + 4u * f->count > sizeof parts) continue;
+        const size_t at = f->offset;
+        for (size_t k = 0; k < kv.second.size() && k < f->count; ++k) {
+            const uint32_t v = kv.second[k];
+            std::memcpy(base + at + 4u * k, &v, sizeof v);
+        }
+    }
 }
 
 }  // namespace sbr_host

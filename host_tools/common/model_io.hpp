@@ -14,12 +14,14 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
 extern "C" {
 #include "sbr/picto.h"
 #include "sbr/recog.h"
+#include "sbr/models.h"
 }
 
 namespace sbr_host {
@@ -107,8 +109,10 @@ void training_bounds(sbr_recog_config_t &rc);
 
 // Part-stage options a trainer learns with instead of full resolution (the options of
 // sbr_detect of the same names): --map-subsample, --map-min-area, --map-polarity, --map-bright-min, --map-dark-max I[,R,B,Y].
+// The per-map-kind fields of the configuration's table given on a command line (field name
+// -> the first 1..4 values, in the order intensity, red, blue, yellow).
 struct FrontEnd {
-    std::vector<unsigned> sub, area, polarity, bright_min, dark_max;
+    std::map<std::string, std::vector<unsigned>> lists;
 };
 void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts);
 

@@ -102,6 +102,8 @@
 
 extern "C" {
 #include "sbr/recog.h"
+#include "sbr/models.h"
+#include "sbr/recog_strips.h"
 }
 
 namespace fs = std::filesystem;
@@ -224,6 +226,8 @@ int parse_options(int argc, char **argv, Options &o) {
     app.add_flag("--callgrind", o.callgrind,
                  "count instructions per stage under valgrind's callgrind (./sbr.sh cost)");
     add_recog_options(app, o.cfg, o.rc);
+    o.rc.options["min_score"]->description(
+        "score floor of a reported detection (default: the operating point, or 0.05 with --all-detections)");
     const int rc = parse_cli(app, argc, argv);
     if (rc >= 0) return rc;
     o.progress = !o.quiet && isatty(STDERR_FILENO) != 0;
@@ -295,7 +299,7 @@ bool load_models(const Options &o, Models &m) {
 // core refuses (sbr_recog_init() on a token workspace checks them together).
 bool configure(Options &o, const Models &m, CallgrindClock &cg) {
     if (o.threshold < 0.0f) o.threshold = m.class_stage != nullptr ? m.class_stage->threshold : m.model->score_threshold;
-    if (o.rc.min_score->count() == 0) {
+    if (!o.rc.given("min_score")) {
         o.cfg.min_score = std::min(o.cfg.min_score, o.threshold);
         if (!o.all_path.empty()) o.cfg.min_score = std::min(o.cfg.min_score, 0.05f);  // the curve's tail
     }
@@ -305,11 +309,12 @@ bool configure(Options &o, const Models &m, CallgrindClock &cg) {
         o.cfg.clock_ctx = &cg;
         o.repeat = 1;
     }
-    sbr_status_t st = sbr_recog_config_check(&o.cfg);
-    if (st != SBR_OK) {
-        std::fprintf(stderr, "sbr_detect: bad configuration: %s\n", sbr_status_str(st));
+    const std::string problem = config_problem(o.cfg);
+    if (!problem.empty()) {
+        std::fprintf(stderr, "sbr_detect: %s\n", problem.c_str());
         return false;
     }
+    sbr_status_t st;
     uint64_t token = 0;
     sbr_recog_t rec;
     st = sbr_recog_init(&rec, &o.cfg, m.model, m.class_stage, &token, sizeof token);

@@ -30,6 +30,7 @@ extern "C" {
 #include "sbr/picto.h"
 #include "sbr/recog.h"
 #include "sbr/track.h"
+#include "sbr/models.h"
 }
 
 namespace fs = std::filesystem;

@@ -21,6 +21,7 @@
 
 extern "C" {
 #include "sbr/track.h"
+#include "sbr/models.h"
 }
 
 #include "baselines.hpp"

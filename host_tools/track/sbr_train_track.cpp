@@ -12,6 +12,7 @@
 
 extern "C" {
 #include "sbr/track.h"
+#include "sbr/models.h"
 }
 
 #include "kitti.hpp"

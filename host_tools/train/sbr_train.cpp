@@ -52,6 +52,7 @@
 
 extern "C" {
 #include "sbr/recog.h"
+#include "sbr/models.h"
 }
 
 using namespace sbr_host;

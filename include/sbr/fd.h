@@ -228,6 +228,69 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
                                 sbr_complex_t *work, uint32_t work_len, sbr_fd_match_t *results,
                                 uint32_t *best);
 
+/** @name A prepared table (sbr_fd_table_init(), sbr_fd_match_prepared()) @{ */
+/** Range of a prepared table's prototype scales and of its queries' scales, so that a
+    query's scale over a prototype's stays a float32 value. */
+#define SBR_FD_TABLE_MIN_SCALE 1e-10f
+#define SBR_FD_TABLE_MAX_SCALE 1e10f
+/** Floats of a prepared table's magnitudes for `count` prototypes of M `m`. */
+#define SBR_FD_TABLE_MAGS_LEN(count, m) ((size_t)(count) * ((2u * (size_t)(m)) + 1u))
+/** @} */
+
+/** A prototype table checked once, for matching many queries against it (the
+    recogniser's library: thousands of queries a frame). Fields are private; use
+    sbr_fd_table_init(). The prototypes and the magnitudes are borrowed and must stay
+    unchanged while the table is used. */
+typedef struct sbr_fd_table_s {
+    const sbr_fd_t *protos;
+    const float *mags; /* per prototype its 2M + 1 coefficient magnitudes */
+    uint32_t count;
+    uint32_t m;
+    uint32_t magic;
+    uint32_t check; /* integrity word over everything before it */
+} sbr_fd_table_t;
+
+/**
+ * @brief Prepare a prototype table: check every entry once and compute the coefficient
+ *        magnitudes the matcher's screening reads, so that sbr_fd_match_prepared() checks
+ *        only its query.
+ * @param[out] table    the prepared table (left unusable on any status but ::SBR_OK).
+ * @param[in]  protos   `count` descriptors, each valid (sbr_fd_check()), all of one M, with
+ *                      scales in ::SBR_FD_TABLE_MIN_SCALE .. ::SBR_FD_TABLE_MAX_SCALE
+ *                      (borrowed).
+ * @param[in]  count    entries, >= 1.
+ * @param[out] mags     ::SBR_FD_TABLE_MAGS_LEN(count, M) floats, written (borrowed).
+ * @param[in]  mags_len floats available at `mags`.
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_SIZE for count 0 or `mags` too short;
+ *         ::SBR_ERR_RANGE for an invalid entry, a scale out of range or entries of
+ *         different M.
+ */
+sbr_status_t sbr_fd_table_init(sbr_fd_table_t *table, const sbr_fd_t *protos, uint32_t count,
+                               float *mags, size_t mags_len);
+
+/**
+ * @brief sbr_fd_match_table() of a query against entries first .. first + count - 1 of a
+ *        prepared table: the same results, bit for bit, without checking the entries again.
+ * @param[in] fft      an initialised FFT instance
+ * @param[in] cfg      the configuration
+ * @param[in] table    a table from sbr_fd_table_init()
+ * @param[in] first    the first entry
+ * @param[in] count    entries, >= 1, first + count at most the table's
+ * @param[in] query    the descriptor to look up, of the table's M, with a scale in
+ *                     ::SBR_FD_TABLE_MIN_SCALE .. ::SBR_FD_TABLE_MAX_SCALE
+ * @param[in] work     scratch, as sbr_fd_match_table()
+ * @param[in] work_len length of `work`
+ * @param[out] results one result per entry (`count`)
+ * @param[out] best    index (from `first`) of the entry with the smallest error
+ * @return as sbr_fd_match_table(); ::SBR_ERR_STATE for a table not initialised or changed
+ *         since; ::SBR_ERR_SIZE for count 0 or a range beyond the table; ::SBR_ERR_RANGE
+ *         for a query scale out of range.
+ */
+sbr_status_t sbr_fd_match_prepared(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                                   const sbr_fd_table_t *table, uint32_t first, uint32_t count,
+                                   const sbr_fd_t *query, sbr_complex_t *work, uint32_t work_len,
+                                   sbr_fd_match_t *results, uint32_t *best);
+
 #ifdef __cplusplus
 }
 #endif

@@ -72,6 +72,26 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
                           uint8_t *out, uint32_t out_stride, size_t out_size,
                           sbr_image_t *out_view);
 
+/**
+ * @brief sbr_map_make() for a map whose only MSER pass is bright with a level floor above
+ *        128 (the part stage's red map, sbr_parts_config_t::map_bright_min): such a pass
+ *        treats every value up to 128 as a wall, so those values need not be exact. A
+ *        pixel of the red map at subsample 1 whose colour difference (2R - G - B) is not
+ *        positive gets 128 without the division; every other pixel, and every pixel of the
+ *        other kinds and subsamples, gets sbr_map_make()'s value.
+ * @param[in]  src        as sbr_map_make().
+ * @param[in]  kind       as sbr_map_make().
+ * @param[in]  subsample  as sbr_map_make().
+ * @param[out] out        as sbr_map_make().
+ * @param[in]  out_stride as sbr_map_make().
+ * @param[in]  out_size   as sbr_map_make().
+ * @param[out] out_view   as sbr_map_make().
+ * @return the statuses of sbr_map_make().
+ */
+sbr_status_t sbr_map_make_bright(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t subsample,
+                                 uint8_t *out, uint32_t out_stride, size_t out_size,
+                                 sbr_image_t *out_view);
+
 #ifdef __cplusplus
 }
 #endif

@@ -250,6 +250,44 @@ sbr_status_t sbr_mser_region_mask(const sbr_image_t *map, const sbr_mser_region_
                                   void *workspace, size_t workspace_size, uint8_t *mask,
                                   uint32_t mask_stride, size_t mask_size);
 
+/**
+ * @brief Where a width x height map (stride = width) goes for sbr_mser_detect_in_place():
+ *        inside the MSER's workspace (the second half of its pixel words), so that a
+ *        caller that makes the map itself needs no map buffer of its own (the part stage).
+ * @param[in] cfg            parameters (sbr_mser_config_check()).
+ * @param[in] width          map width, >= 3.
+ * @param[in] height         map height, >= 3.
+ * @param[in] workspace      sbr_mser_workspace_size(cfg, width, height) bytes, 4-byte aligned.
+ * @param[in] workspace_size its size.
+ * @return width x height writable bytes inside `workspace`; NULL for a NULL or bad
+ *         configuration, a size below 3 x 3, or a workspace that is NULL, too small or
+ *         misaligned.
+ */
+uint8_t *sbr_mser_map_slot(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height,
+                           void *workspace, size_t workspace_size);
+
+/**
+ * @brief sbr_mser_detect() of the map the caller wrote at sbr_mser_map_slot() of the same
+ *        configuration, size and workspace. The workspace's copy of the map is consumed;
+ *        `map` is then the same map at the start of the workspace's pixel words, valid
+ *        until the workspace is used again.
+ * @param[in]  width          map width, >= 3.
+ * @param[in]  height         map height, >= 3.
+ * @param[in]  cfg            parameters (sbr_mser_config_check()).
+ * @param[in,out] workspace   as sbr_mser_detect(), holding the map at sbr_mser_map_slot().
+ * @param[in]  workspace_size its size.
+ * @param[out] regions        results, as sbr_mser_detect().
+ * @param[in]  capacity       length of `regions`.
+ * @param[out] count          regions written.
+ * @param[out] map            the map's view after the call (on ::SBR_OK and
+ *                            ::SBR_ERR_CAPACITY).
+ * @return the statuses of sbr_mser_detect(); ::SBR_ERR_NULL also for a NULL `map`.
+ */
+sbr_status_t sbr_mser_detect_in_place(uint32_t width, uint32_t height, const sbr_mser_config_t *cfg,
+                                      void *workspace, size_t workspace_size,
+                                      sbr_mser_region_t *regions, uint32_t capacity,
+                                      uint32_t *count, sbr_image_t *map);
+
 #ifdef __cplusplus
 }
 #endif

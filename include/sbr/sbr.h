@@ -17,11 +17,14 @@
 #include "sbr/mser.h"
 #include "sbr/can.h"
 #include "sbr/parts.h"
+#include "sbr/part_model.h"
 #include "sbr/recog.h"
+#include "sbr/recog_strips.h"
 #include "sbr/bike.h"
 #include "sbr/conic.h"
 #include "sbr/track.h"
 #include "sbr/servo.h"
+#include "sbr/models.h"
 
 /** Library version. */
 #define SBR_VERSION_MAJOR 0

@@ -2,7 +2,6 @@
 /* Fourier descriptors (include/sbr/fd.h): descriptors of contours (resampling, FFT,
    normalisation), their check, mirror and smoothing. Matching: fd_match.c, fd_table.c. */
 #include "sbr/fd.h"
-#include "fd_internal.h"
 
 #include <math.h>
 

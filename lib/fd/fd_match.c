@@ -4,7 +4,6 @@
    pair through the FFT; the per-lane steps of the table matcher (peaks, gathering) that
    share these helpers. The table matcher itself is in fd_table.c. */
 #include "sbr/fd.h"
-#include "fd_internal.h"
 #include "fd_match.h"
 
 #include <math.h>
@@ -136,8 +135,9 @@ sbr_status_t sbr_fd_priv_check_proto(const sbr_fd_t *query, const sbr_fd_t *prot
     return check_proto_header(query, proto);
 }
 
-/* A prototype of a trusted table (fd_internal.h: checked by its owner, its scale ratio to
-   any query of the owner's finite): only its M against the query's. */
+/* A prototype of a prepared table (sbr_fd_table_init() checked it; its scales and the
+   query's are in SBR_FD_TABLE_MIN_SCALE .. SBR_FD_TABLE_MAX_SCALE, so their ratio is
+   finite): only its M against the query's. */
 sbr_status_t sbr_fd_priv_check_trusted(const sbr_fd_t *query, const sbr_fd_t *proto)
 {
     return (proto->m == query->m) ? SBR_OK : SBR_ERR_SIZE;
@@ -649,7 +649,7 @@ void sbr_fd_priv_lanes_gather(const sbr_fd_t *query, const sbr_fd_t *protos, uin
     const int trusted = tb->trusted;
     bt->valid = 0u;
     while ((bt->valid < FD_LANES) && (*i < count) && (*header == SBR_OK)) {
-        /* a trusted table (checked by its owner, fd_internal.h) gets the per-pair checks
+        /* a trusted table (sbr_fd_table_init() checked it) gets the per-pair checks
            only: its M and the scale ratio */
         *header = (trusted != 0) ? sbr_fd_priv_check_trusted(query, &protos[*i]) : sbr_fd_priv_check_proto(query, &protos[*i]);
         if (*header == SBR_OK) {

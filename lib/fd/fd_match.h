@@ -5,9 +5,9 @@
 #define SBR_FD_MATCH_H
 
 #include "sbr/fd.h"
-#include "../fft/fft_lanes.h"
+#include "fd_fft_lanes.h"
 
-/* Prototypes transformed side by side by the table matcher (lib/fft/fft_lanes.h). */
+/* Prototypes transformed side by side by the table matcher (fd_fft_lanes.h). */
 #define FD_LANES SBR_FFT_LANES
 
 /* The four-lane batch of match_table_lanes(): up to four prototypes and their indices. */
@@ -17,7 +17,7 @@ typedef struct lane_batch_s {
     uint32_t valid;
 } lane_batch_t;
 
-/* How a table is matched: trusted (its owner checked every entry, fd_internal.h) or not,
+/* How a table is matched: trusted (a prepared table, sbr_fd_table_init(): every entry checked once) or not,
    and its entries' coefficient magnitudes when the owner computed them (NULL: computed
    per pair by the screening). */
 typedef struct fd_table_s {
@@ -25,6 +25,8 @@ typedef struct fd_table_s {
     const float *pmag; /* per entry 2M + 1 values, query_magnitudes() of it */
 } fd_table_t;
 
+/* |c[k]| of a descriptor's 2M + 1 coefficients, as the screening computes them. */
+void sbr_fd_priv_magnitudes(const sbr_fd_t *fd, float *mag);
 /* Everything a match needs except the prototype: SBR_OK or the status. */
 sbr_status_t sbr_fd_priv_check_match_args(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
                                           const sbr_fd_t *query, const sbr_complex_t *work,

@@ -1,16 +1,17 @@
 /* SPDX-License-Identifier: MIT */
 /* Fourier-descriptor matching over a prototype table (sbr_fd_match_table() and the
-   recogniser's trusted table): four prototypes at a time through the four-lane transform
-   of lib/fft (fft_lanes.h), or pair by pair when the work buffer is too small for the
+   prepared table, sbr_fd_table_init()): four prototypes at a time through the four-lane transform
+   (fd_fft_lanes.c), or pair by pair when the work buffer is too small for the
    lanes. Layout of `work` for the lanes (as floats): re[4P], im[4P], P / 2 complex
    twiddles, then P floats for the screening's query magnitudes (SBR_FD_TABLE_WORK_LEN =
    5P complex). */
 #include "sbr/fd.h"
-#include "fd_internal.h"
 #include "fd_match.h"
-#include "../fft/fft_lanes.h"
+#include "fd_fft_lanes.h"
 
 #include <math.h>
+#include <stddef.h>
+#include <string.h>
 
 #include "../common/sbr_util.h"
 
@@ -189,7 +190,7 @@ static sbr_status_t match_table_lanes(const sbr_fft_t *fft, const sbr_fd_match_c
         if (bt.valid > 0u) {
             uint32_t b;
             lanes_fill(fft, query, &bt, pos, re, im);
-            sbr_fft_priv_lanes_inverse(size, tw, re, im);
+            sbr_fd_priv_lanes_inverse(size, tw, re, im);
             sbr_fd_priv_lanes_peaks(size, inv, cb, re, im, best, check);
             for (b = 0u; b < bt.valid; b++) {
                 if ((isfinite(check[b]) == 0) || (check[b] < 0.0f)) {
@@ -258,12 +259,82 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
     return match_table(fft, cfg, query, protos, count, &tb, work, work_len, results, best);
 }
 
-sbr_status_t sbr_fd_priv_match_checked_table(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
-                                             const sbr_fd_t *query, const sbr_fd_t *protos,
-                                             const float *proto_mag, uint32_t count,
-                                             sbr_complex_t *work, uint32_t work_len,
-                                             sbr_fd_match_t *results, uint32_t *best)
+/* "FDTB": a prepared table. */
+#define FD_TABLE_MAGIC 0x46445442u
+
+/* FNV-1a over the table's bytes before its integrity word. */
+static uint32_t table_checksum(const sbr_fd_table_t *t)
 {
-    const fd_table_t tb = {1, proto_mag};
-    return match_table(fft, cfg, query, protos, count, &tb, work, work_len, results, best);
+    const uint8_t *b = (const uint8_t *)t;
+    const size_t n = offsetof(sbr_fd_table_t, check);
+    uint32_t h = 2166136261u;
+    size_t i;
+    for (i = 0u; i < n; i++) {
+        h = (h ^ (uint32_t)b[i]) * 16777619u;
+    }
+    return h;
+}
+
+static int scale_ok(float s)
+{
+    return ((s >= SBR_FD_TABLE_MIN_SCALE) && (s <= SBR_FD_TABLE_MAX_SCALE)) ? 1 : 0;
+}
+
+sbr_status_t sbr_fd_table_init(sbr_fd_table_t *table, const sbr_fd_t *protos, uint32_t count,
+                               float *mags, size_t mags_len)
+{
+    uint32_t i;
+    uint32_t m;
+    if ((table == NULL) || (protos == NULL) || (mags == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    (void)memset(table, 0, sizeof *table);
+    if (count == 0u) {
+        return SBR_ERR_SIZE;
+    }
+    m = protos[0].m;
+    for (i = 0u; i < count; i++) {
+        float e;
+        if ((sbr_fd_check(&protos[i], &e) != SBR_OK) || (protos[i].m != m) ||
+            (scale_ok(protos[i].scale) == 0)) {
+            return SBR_ERR_RANGE;
+        }
+    }
+    if (mags_len < SBR_FD_TABLE_MAGS_LEN(count, m)) {
+        return SBR_ERR_SIZE;
+    }
+    for (i = 0u; i < count; i++) {
+        sbr_fd_priv_magnitudes(&protos[i], &mags[(size_t)i * ((2u * (size_t)m) + 1u)]);
+    }
+    table->protos = protos;
+    table->mags = mags;
+    table->count = count;
+    table->m = m;
+    table->magic = FD_TABLE_MAGIC;
+    table->check = table_checksum(table);
+    return SBR_OK;
+}
+
+sbr_status_t sbr_fd_match_prepared(const sbr_fft_t *fft, const sbr_fd_match_config_t *cfg,
+                                   const sbr_fd_table_t *table, uint32_t first, uint32_t count,
+                                   const sbr_fd_t *query, sbr_complex_t *work, uint32_t work_len,
+                                   sbr_fd_match_t *results, uint32_t *best)
+{
+    fd_table_t tb;
+    if ((table == NULL) || (query == NULL)) {
+        return SBR_ERR_NULL;
+    }
+    if ((table->magic != FD_TABLE_MAGIC) || (table->check != table_checksum(table))) {
+        return SBR_ERR_STATE;
+    }
+    if ((count == 0u) || (first >= table->count) || (count > (table->count - first))) {
+        return SBR_ERR_SIZE;
+    }
+    if (scale_ok(query->scale) == 0) {
+        return SBR_ERR_RANGE;
+    }
+    tb.trusted = 1;
+    tb.pmag = &table->mags[(size_t)first * ((2u * (size_t)table->m) + 1u)];
+    return match_table(fft, cfg, query, &table->protos[first], count, &tb, work, work_len, results,
+                       best);
 }

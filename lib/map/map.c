@@ -2,7 +2,7 @@
 /* Channel maps (include/sbr/map.h): the u8 intensity and chromaticity maps of a frame,
    with optional block subsampling. */
 #include "sbr/map.h"
-#include "map_internal.h"
+#include "sbr/map.h"
 
 #include "../common/sbr_util.h"
 
@@ -78,7 +78,7 @@ static uint8_t map_value(sbr_map_kind_t kind, uint32_t mr, uint32_t mg, uint32_t
 }
 
 /* One row of the red map whose pixels with a colour difference d <= 0 (value at most
-   128) get 128: map_make() for sbr_map_priv_make_bright(). */
+   128) get 128: map_make() for sbr_map_make_bright(). */
 static inline uint8_t red_bright(const uint8_t *px, uint32_t ri, uint32_t bi)
 {
     const uint32_t ur = (uint32_t)px[ri];
@@ -303,7 +303,7 @@ static void map_block_row(const sbr_image_t *src, sbr_map_kind_t kind, const map
     }
 }
 
-/* sbr_map_make(); bright != 0: sbr_map_priv_make_bright(). */
+/* sbr_map_make(); bright != 0: sbr_map_make_bright(). */
 static sbr_status_t map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t subsample,
                              uint8_t *out, uint32_t out_stride, size_t out_size,
                              sbr_image_t *out_view, int bright)
@@ -388,9 +388,9 @@ sbr_status_t sbr_map_make(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t 
     return map_make(src, kind, subsample, out, out_stride, out_size, out_view, 0);
 }
 
-sbr_status_t sbr_map_priv_make_bright(const sbr_image_t *src, sbr_map_kind_t kind,
-                                      uint32_t subsample, uint8_t *out, uint32_t out_stride,
-                                      size_t out_size, sbr_image_t *out_view)
+sbr_status_t sbr_map_make_bright(const sbr_image_t *src, sbr_map_kind_t kind, uint32_t subsample,
+                                 uint8_t *out, uint32_t out_stride, size_t out_size,
+                                 sbr_image_t *out_view)
 {
     return map_make(src, kind, subsample, out, out_stride, out_size, out_view, 1);
 }

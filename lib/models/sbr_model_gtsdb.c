@@ -6,7 +6,7 @@
  * Training: GTSDB images 00000-00599, 852 signs, 11123 part instances, 641049 background parts.
  * Library: 441 prototypes, 1115 cascade entries, operating point score >= 0.2575.
  */
-#include "sbr/recog.h"
+#include "sbr/models.h"
 
 sbr_status_t sbr_model_gtsdb(sbr_model_t *out)
 {

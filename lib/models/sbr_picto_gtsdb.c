@@ -8,7 +8,7 @@
  * 314 boxes for the box regression only.
  * Gate (--gate-hidden 32 --gate-recall 0.95): threshold -0.8681.
  */
-#include "sbr/picto.h"
+#include "sbr/models.h"
 
 sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)
 {

@@ -8,7 +8,7 @@
  * soft-association EM). 10 x 5 regions, 41 velocity channels of 3.50 px.
  * Data: KITTI (Geiger, Lenz, Urtasun, CVPR 2012), CC BY-NC-SA 3.0: research use.
  */
-#include "sbr/track.h"
+#include "sbr/models.h"
 
 sbr_status_t sbr_track_model_kitti(sbr_track_model_t *out)
 {

@@ -622,22 +622,30 @@ sbr_status_t sbr_mser_detect(const sbr_image_t *map, const sbr_mser_config_t *cf
     return mser_run(&c, map, cfg, regions, capacity, count);
 }
 
-uint8_t *sbr_mser_priv_map_slot(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height,
-                                void *workspace)
+uint8_t *sbr_mser_map_slot(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height,
+                           void *workspace, size_t workspace_size)
 {
     mser_ctx_t c;
-    mser_ctx_init(&c, width, height, cfg, workspace);
-    return &((uint8_t *)(void *)c.lev)[(size_t)width * height];
+    uint8_t *slot = NULL;
+    if ((cfg != NULL) && (mser_args_check(cfg, width, height, 1u, workspace, workspace_size) == SBR_OK)) {
+        mser_ctx_init(&c, width, height, cfg, workspace);
+        slot = &((uint8_t *)(void *)c.lev)[(size_t)width * height];
+    }
+    return slot;
 }
 
-sbr_status_t sbr_mser_priv_detect_in_place(uint32_t width, uint32_t height,
-                                           const sbr_mser_config_t *cfg, void *workspace,
-                                           size_t workspace_size, sbr_mser_region_t *regions,
-                                           uint32_t capacity, uint32_t *count, sbr_image_t *map)
+sbr_status_t sbr_mser_detect_in_place(uint32_t width, uint32_t height, const sbr_mser_config_t *cfg,
+                                      void *workspace, size_t workspace_size,
+                                      sbr_mser_region_t *regions, uint32_t capacity,
+                                      uint32_t *count, sbr_image_t *map)
 {
     mser_ctx_t c;
-    sbr_status_t st = mser_args_check(cfg, width, height, capacity, workspace, workspace_size);
+    sbr_status_t st;
+    if ((cfg == NULL) || (regions == NULL) || (count == NULL) || (map == NULL)) {
+        return SBR_ERR_NULL;
+    }
     *count = 0u;
+    st = mser_args_check(cfg, width, height, capacity, workspace, workspace_size);
     if (st == SBR_OK) {
         mser_ctx_init(&c, width, height, cfg, workspace);
         st = mser_run(&c, NULL, cfg, regions, capacity, count);

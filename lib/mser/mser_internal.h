@@ -127,17 +127,4 @@ void sbr_mser_priv_pass_select(mser_ctx_t *c, const sbr_mser_config_t *cfg, uint
                                uint32_t limit, sbr_mser_region_t *regions, uint32_t capacity,
                                uint32_t *count, int *full);
 
-/* The part stage's use without a map buffer of its own: the bytes where a width x height
-   map (stride the width) goes before sbr_mser_priv_detect_in_place() (the second half of
-   the pixel words of a workspace of sbr_mser_workspace_size(cfg, width, height)), and
-   sbr_mser_detect() of that map there; the workspace's own map is overwritten, and `map`
-   is then the same map at the start of the pixel words, valid until the workspace is
-   used again. Statuses as sbr_mser_detect() (count and map undefined on errors). */
-uint8_t *sbr_mser_priv_map_slot(const sbr_mser_config_t *cfg, uint32_t width, uint32_t height,
-                                void *workspace);
-sbr_status_t sbr_mser_priv_detect_in_place(uint32_t width, uint32_t height,
-                                           const sbr_mser_config_t *cfg, void *workspace,
-                                           size_t workspace_size, sbr_mser_region_t *regions,
-                                           uint32_t capacity, uint32_t *count, sbr_image_t *map);
-
 #endif

@@ -8,8 +8,6 @@
 #include "sbr/contour.h"
 
 #include "../common/sbr_util.h"
-#include "../map/map_internal.h"
-#include "../mser/mser_internal.h"
 
 #include <string.h>
 
@@ -297,19 +295,25 @@ static sbr_status_t parts_of_map(const sbr_image_t *img, const sbr_parts_config_
     {
         const uint32_t mw = img->width / sub;
         const uint32_t mh = img->height / sub;
-        uint8_t *slot = sbr_mser_priv_map_slot(&mc, mw, mh, b->mser);
-        if ((mc.polarity == (uint32_t)SBR_MSER_BRIGHT) && (mc.bright_min > 128u)) {
+        uint8_t *slot = sbr_mser_map_slot(&mc, mw, mh, b->mser, b->mser_size);
+        if (slot == NULL) {
+            /* the MSER refuses the size or the workspace: its status */
+            st = sbr_mser_detect_in_place(mw, mh, &mc, b->mser, b->mser_size, b->regions,
+                                          cfg->max_regions, &nreg, &map);
+        } else if ((mc.polarity == (uint32_t)SBR_MSER_BRIGHT) && (mc.bright_min > 128u)) {
             /* only values above 128 are flooded: the others need not be exact */
-            st = sbr_map_priv_make_bright(img, (sbr_map_kind_t)kind, sub, slot, mw,
-                                          (size_t)mw * mh, &map);
+            st = sbr_map_make_bright(img, (sbr_map_kind_t)kind, sub, slot, mw, (size_t)mw * mh,
+                                     &map);
         } else {
             st = sbr_map_make(img, (sbr_map_kind_t)kind, sub, slot, mw, (size_t)mw * mh, &map);
         }
         if (st != SBR_OK) {
             return st;
         }
-        st = sbr_mser_priv_detect_in_place(mw, mh, &mc, b->mser, b->mser_size, b->regions,
-                                           cfg->max_regions, &nreg, &map);
+        if (slot != NULL) {
+            st = sbr_mser_detect_in_place(mw, mh, &mc, b->mser, b->mser_size, b->regions,
+                                          cfg->max_regions, &nreg, &map);
+        }
     }
     if (st == SBR_ERR_CAPACITY) {
         o->sx.capacity_hit = 1u;

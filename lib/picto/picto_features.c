@@ -58,31 +58,6 @@ static uint32_t nb_hi(uint32_t i)
 }
 
 
-void sbr_picto_priv_colour_channels(const sbr_image_t *img, picto_px_t *px)
-{
-    px->ch[0] = 0u;
-    px->ch[1] = 1u;
-    px->ch[2] = 2u;
-    px->bpp = 3u;
-    if (img->format == SBR_PIXEL_BGR888) {
-        px->ch[0] = 2u;
-        px->ch[2] = 0u;
-    } else if (img->format == SBR_PIXEL_GRAY8) {
-        px->ch[1] = 0u;
-        px->ch[2] = 0u;
-        px->bpp = 1u;
-    } else {
-        /* RGB888 */
-    }
-}
-
-/* 1 for the formats the class stage's features read (RGB888, BGR888, GRAY8). */
-int sbr_picto_priv_format_ok(const sbr_image_t *img)
-{
-    return ((img->format == SBR_PIXEL_RGB888) || (img->format == SBR_PIXEL_BGR888) ||
-            (img->format == SBR_PIXEL_GRAY8)) ? 1 : 0;
-}
-
 /* The taps of `count` output pixels with n sub-samples each along one axis: sub-sample i
    of pixel u sits at start + step (u + (i + 0.5) / n) - 0.5 in pixel-centre coordinates,
    clamped to [0, size - 1]. */

@@ -10,20 +10,6 @@
 #include <math.h>
 #include <string.h>
 
-/* A box sbr_picto_refine() and sbr_picto_rim_contrast() take: finite, each |coordinate|
-   <= SBR_PICTO_MAX_COORD, at least SBR_PICTO_MIN_BOX wide and high. */
-int sbr_picto_priv_box_in_domain(const float box[4])
-{
-    int ok = 0;
-    if ((sbr_picto_priv_finite4(box) != 0) && (fabsf(box[0]) <= SBR_PICTO_MAX_COORD) &&
-        (fabsf(box[1]) <= SBR_PICTO_MAX_COORD) && (fabsf(box[2]) <= SBR_PICTO_MAX_COORD) &&
-        (fabsf(box[3]) <= SBR_PICTO_MAX_COORD) && ((box[2] - box[0]) >= SBR_PICTO_MIN_BOX) &&
-        ((box[3] - box[1]) >= SBR_PICTO_MIN_BOX)) {
-        ok = 1;
-    }
-    return ok;
-}
-
 /* Whether the point (u, v) of the unit box lies inside the rim outline `shape` shrunk to
    k of its size about its centroid. */
 static int in_outline(uint32_t shape, float u, float v, float k)

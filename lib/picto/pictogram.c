@@ -12,18 +12,6 @@
 #include <math.h>
 #include <string.h>
 
-int sbr_picto_priv_finite4(const float b[4])
-{
-    int ok = 1;
-    uint32_t i;
-    for (i = 0u; i < 4u; i++) {
-        if (isfinite(b[i]) == 0) {
-            ok = 0;
-        }
-    }
-    return ok;
-}
-
 /* Version, sizes and tables present (what every call needs; the weights' finiteness is
    sbr_picto_check()'s, once per model). */
 static int header_ok(const sbr_picto_model_t *model)

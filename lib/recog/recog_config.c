@@ -3,66 +3,16 @@
  * Recogniser: configuration, model check and workspace layout. See include/sbr/recog.h.
  */
 #include "recog_internal.h"
+#include "sbr/recog_strips.h"
+
+#include <string.h>
 
 void sbr_recog_config_default(sbr_recog_config_t *cfg)
 {
     if (cfg != NULL) {
-        sbr_parts_config_default(&cfg->parts);
-        /* finer than the MSER defaults: small, blurred signs need a smaller delta and a
-           looser stability bound to come out as regions at all */
-        cfg->parts.mser.delta = SBR_RECOG_DEFAULT_DELTA;
-        cfg->parts.mser.max_variation = 0.5f;
-        /* intensity, red and blue, each flooded where its signs are (docs/results/realtime.md):
-           - intensity: bright regions only (white insides, pictograms on blue); its dark
-             flood cost a third of the part stage and carried few signs the other maps miss;
-           - red: bright regions from level 136 up (red rims, no-entry discs, stop signs):
-             under 2 % of a scene's pixels are that red, so its flood costs a few per cent
-             of a full one;
-           - blue at half resolution (a quarter of the pixels; its signs are large enough),
-             regions from 20 of its pixels (the outlines of signs from about 11 px; 40
-             lost mandatory signs of 17-22 px, docs/results/crossval.md), bright ones
-             (blue signs) and dark ones up to level 120 (the yellow of priority roads). */
-        cfg->parts.maps = (1u << (uint32_t)SBR_MAP_INTENSITY) | (1u << (uint32_t)SBR_MAP_RED) |
-                          (1u << (uint32_t)SBR_MAP_BLUE);
-        cfg->parts.map_polarity[SBR_MAP_INTENSITY] = (uint32_t)SBR_MSER_BRIGHT;
-        cfg->parts.map_polarity[SBR_MAP_RED] = (uint32_t)SBR_MSER_BRIGHT;
-        cfg->parts.map_bright_min[SBR_MAP_RED] = 136u;
-        cfg->parts.map_subsample[SBR_MAP_BLUE] = 2u;
-        cfg->parts.map_min_area[SBR_MAP_BLUE] = 20u;
-        cfg->parts.map_dark_max[SBR_MAP_BLUE] = 120u;
-        /* a grey frame has its intensity map only: both polarities (grey_polarity) */
-        cfg->grey_polarity = 0u;
-        cfg->match_p = SBR_RECOG_DEFAULT_MATCH_P;
-        cfg->max_parts = SBR_RECOG_DEFAULT_MAX_PARTS;
-        cfg->max_votes = SBR_RECOG_DEFAULT_MAX_VOTES;
-        cfg->max_hypotheses = SBR_RECOG_DEFAULT_MAX_HYPOTHESES;
-        cfg->max_model_protos = SBR_RECOG_DEFAULT_MAX_MODEL_PROTOS;
-        cfg->vote_error = 0.0f;
-        cfg->verify_error = 0.25f;
-        cfg->max_rotation = 0.35f;
-        cfg->min_size = 12.0f;
-        cfg->max_size = 200.0f;
-        cfg->centre_tol = 0.2f;
-        cfg->size_tol = 0.3f;
-        cfg->cascade_depth = 8u;
-        cfg->min_parts = 1u;
-        cfg->candidate_score = 0.0f;
-        cfg->max_candidates = 256u;
-        cfg->refine_steps = 2u;
-        cfg->refine_first_score = 0.01f;
-        cfg->grey_refine_first_score = 0.0003f;
-        cfg->refine_score = 0.001f;
-        cfg->views = 5u;
-        cfg->view_score = 0.1f;
-        cfg->triangle_view = 1u;
-        cfg->triangle_score = 0.001f;
-        cfg->max_extra_looks = SBR_RECOG_DEFAULT_MAX_EXTRA_LOOKS;
-        cfg->min_score = 0.3f;
-        cfg->nms_iou = 0.3f;
-        cfg->candidate_iou = 1.0f;
-        cfg->gate = 1u;
-        cfg->outline_maps = (1u << (uint32_t)SBR_MAP_RED) | (1u << (uint32_t)SBR_MAP_BLUE);
-        cfg->max_outline_candidates = SBR_RECOG_DEFAULT_MAX_OUTLINES;
+        /* every field's default is in the table (recog_fields.c); the clock is not a field */
+        (void)memset(cfg, 0, sizeof *cfg);
+        sbr_recog_priv_fields_default(cfg);
         cfg->clock = NULL;
         cfg->clock_ctx = NULL;
     }
@@ -92,47 +42,17 @@ static int in_range(float v, float lo, float hi)
 
 sbr_status_t sbr_recog_config_check(const sbr_recog_config_t *cfg)
 {
-    sbr_status_t st;
-    if (cfg == NULL) {
-        return SBR_ERR_NULL;
+    sbr_status_t st = SBR_ERR_NULL;
+    if (cfg != NULL) {
+        st = SBR_ERR_RANGE;
+        /* the table's ranges and links; the part stage's own check agrees with them
+           (tests/test_recog_fields.c) and stays as a second line */
+        if ((sbr_recog_config_check_field(cfg) == SBR_RECOG_FIELD_NONE) &&
+            (sbr_parts_config_check(&cfg->parts) == SBR_OK)) {
+            st = SBR_OK;
+        }
     }
-    st = sbr_parts_config_check(&cfg->parts);
-    if (st != SBR_OK) {
-        return st;
-    }
-    if ((sbr_fft_size_supported(cfg->match_p) == 0) ||
-        (cfg->match_p < ((2u * cfg->parts.fd_m) + 1u)) || (cfg->max_parts == 0u) ||
-        (cfg->max_parts > 1000000u) || (cfg->max_votes == 0u) || (cfg->max_votes > 4000000u) ||
-        (cfg->max_hypotheses == 0u) || (cfg->max_hypotheses > 1000000u) ||
-        (cfg->max_model_protos == 0u) || (cfg->max_model_protos > 65535u) ||
-        (cfg->cascade_depth > 65535u) || (cfg->min_parts > 65535u) ||
-        (cfg->max_candidates > 1000000u) || (cfg->refine_steps > SBR_RECOG_MAX_REFINE) ||
-        (cfg->views == 0u) || (cfg->views > SBR_RECOG_MAX_VIEWS) || (cfg->triangle_view > 1u) ||
-        (cfg->gate > 1u) || (cfg->grey_polarity > (uint32_t)SBR_MSER_BOTH) ||
-        (cfg->max_extra_looks > 1000000u) ||
-        (cfg->outline_maps >= (1u << (uint32_t)SBR_MAP_KINDS)) ||
-        (cfg->max_outline_candidates > 1000000u)) {
-        return SBR_ERR_RANGE;
-    }
-    if ((in_range(cfg->vote_error, 0.0f, 4.0f) == 0) ||
-        (in_range(cfg->verify_error, 1.0e-6f, 4.0f) == 0) ||
-        (in_range(cfg->max_rotation, 1.0e-6f, SBR_PI_F) == 0) ||
-        (in_range(cfg->min_size, 1.0f, 16384.0f) == 0) ||
-        (in_range(cfg->max_size, cfg->min_size, 16384.0f) == 0) ||
-        (in_range(cfg->centre_tol, 1.0e-6f, 10.0f) == 0) ||
-        (in_range(cfg->size_tol, 0.0f, 10.0f) == 0) ||
-        (in_range(cfg->min_score, 0.0f, 0.999999f) == 0) ||
-        (in_range(cfg->candidate_score, 0.0f, 0.999999f) == 0) ||
-        (in_range(cfg->refine_score, 0.0f, 1.0f) == 0) ||
-        (in_range(cfg->refine_first_score, 0.0f, 1.0f) == 0) ||
-        (in_range(cfg->grey_refine_first_score, 0.0f, 1.0f) == 0) ||
-        (in_range(cfg->view_score, 0.0f, 1.0f) == 0) ||
-        (in_range(cfg->triangle_score, 0.0f, 1.0f) == 0) ||
-        (in_range(cfg->nms_iou, 1.0e-6f, 1.0f) == 0) ||
-        (in_range(cfg->candidate_iou, 1.0e-6f, 1.0f) == 0)) {
-        return SBR_ERR_RANGE;
-    }
-    return SBR_OK;
+    return st;
 }
 
 uint32_t sbr_model_group(uint8_t map, uint8_t polarity)

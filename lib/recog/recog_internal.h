@@ -83,7 +83,7 @@ typedef struct recog_ctx_s {
     const sbr_model_t *model;
     const sbr_picto_model_t *picto; /* the class stage; NULL: none */
     sbr_parts_config_t parts_cfg; /* cfg->parts, the intensity map alone on a grey frame */
-    sbr_fft_t fft_p;
+    const sbr_fft_t *fft_p; /* the recogniser's correlation FFT (match_p) */
     sbr_fd_match_config_t mcfg;  /* votes: screened at the vote error */
     sbr_fd_match_config_t vcfg;  /* cascade: screened at the verification error */
     sbr_part_t *parts;
@@ -94,6 +94,7 @@ typedef struct recog_ctx_s {
     sbr_complex_t *work;
     uint32_t work_len;
     float *pmag; /* the model's prototypes' coefficient magnitudes, 2 fd_m + 1 each */
+    sbr_fd_table_t table; /* the model's prototypes with pmag (sbr_fd_table_init()) */
     uint32_t *grid_head; /* [grid_cols] the hypotheses by column (recog_votes.c) */
     uint32_t *grid_next; /* [max_hypotheses] */
     uint32_t *grid_prev; /* [max_hypotheses] */
@@ -173,5 +174,8 @@ uint32_t sbr_recog_priv_outline_candidates(recog_ctx_t *c, uint32_t kept);
    max_candidates of the first are examined. */
 void sbr_recog_priv_class_stage(recog_ctx_t *c, const sbr_image_t *view, uint32_t kept,
                                 uint32_t end, recog_picto_buf_t *pb);
+
+/* Every field of the table (recog_fields.c) at its default. */
+void sbr_recog_priv_fields_default(sbr_recog_config_t *cfg);
 
 #endif /* SBR_RECOG_INTERNAL_H */

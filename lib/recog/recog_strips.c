@@ -5,6 +5,7 @@
  * detection kept by the one band whose core holds its centre.
  */
 #include "recog_internal.h"
+#include "sbr/recog_strips.h"
 
 #include <string.h>
 

@@ -4,7 +4,6 @@
  * and cascade verification. See include/sbr/recog.h.
  */
 #include "recog_internal.h"
-#include "../fd/fd_internal.h"
 
 #include <math.h>
 #include <string.h>
@@ -53,10 +52,9 @@ sbr_status_t sbr_recog_priv_cast_votes(recog_ctx_t *c, uint32_t pi)
     if (n == 0u) {
         return SBR_OK;
     }
-    /* the model's prototypes were checked by sbr_model_check() this call */
-    st = sbr_fd_priv_match_checked_table(&c->fft_p, &c->mcfg, &p->fd, &m->fds[first],
-                                         &c->pmag[first * ((2u * m->fd_m) + 1u)], n, c->work,
-                                         c->work_len, c->results, &best);
+    /* the model's prototypes were checked once this frame (sbr_fd_table_init()) */
+    st = sbr_fd_match_prepared(c->fft_p, &c->mcfg, &c->table, first, n, &p->fd, c->work,
+                               c->work_len, c->results, &best);
     if (st != SBR_OK) {
         return st;
     }
@@ -377,7 +375,7 @@ static float verify_part(recog_ctx_t *c, const recog_hyp_t *h, uint32_t q, uint3
             (p->fd.scale <= (s * f)) && ((p->fd.scale * f) >= s)) {
             sbr_fd_match_t r;
             c->st.matches++;
-            if ((sbr_fd_match(&c->fft_p, &c->vcfg, &p->fd, &c->model->fds[q], c->work,
+            if ((sbr_fd_match(c->fft_p, &c->vcfg, &p->fd, &c->model->fds[q], c->work,
                               c->work_len, &r) == SBR_OK) &&
                 (r.error <= c->cfg->verify_error)) {
                 const float w = pr->weight * (1.0f - (r.error / c->cfg->verify_error)) *

@@ -6,7 +6,6 @@
  */
 #include "recog_internal.h"
 
-#include "../fd/fd_internal.h"
 
 #include <stddef.h>
 #include <string.h>
@@ -108,6 +107,12 @@ sbr_status_t sbr_recog_init(sbr_recog_t *rec, const sbr_recog_config_t *cfg,
     if ((workspace == NULL) || (workspace_size == 0u) || (sbr_util_aligned(workspace, 8u) == 0)) {
         return SBR_ERR_WORKSPACE;
     }
+    /* the FFT instances of the descriptors (fd_n) and the correlation (match_p), once */
+    if ((sbr_fft_init(&rec->fft_n, cfg->parts.fd_n) != SBR_OK) ||
+        (sbr_fft_init(&rec->fft_p, cfg->match_p) != SBR_OK)) {
+        (void)memset(rec, 0, sizeof *rec);
+        return SBR_ERR_RANGE;
+    }
     rec->cfg = *cfg;
     rec->model = *model;
     if ((picto != NULL) && (picto->version != 0u)) {
@@ -141,9 +146,7 @@ static sbr_status_t ctx_init(recog_ctx_t *c, const sbr_recog_t *rec, const recog
     const sbr_recog_config_t *cfg = &rec->cfg;
     uint8_t *base;
     (void)memset(c, 0, sizeof *c);
-    if (sbr_fft_init(&c->fft_p, cfg->match_p) != SBR_OK) {
-        return SBR_ERR_RANGE;
-    }
+    c->fft_p = &rec->fft_p;
     c->cfg = cfg;
     c->model = &rec->model;
     c->picto = (rec->picto.version != 0u) ? &rec->picto : NULL;
@@ -202,9 +205,12 @@ static sbr_status_t evidence_stages(recog_ctx_t *c, const sbr_image_t *view,
     c->st.parts = c->nparts;
     stage_end(c, (uint32_t)SBR_RECOG_STAGE_PARTS, t0);
 
-    /* the screening's prototype magnitudes, once per frame instead of once per pair */
-    for (i = 0u; i < c->model->proto_count; i++) {
-        sbr_fd_priv_magnitudes(&c->model->fds[i], &c->pmag[i * stride]);
+    /* the model's prototypes as a prepared table: checked and their screening magnitudes
+       computed once per frame instead of once per pair */
+    st = sbr_fd_table_init(&c->table, c->model->fds, c->model->proto_count, c->pmag,
+                           (size_t)c->model->proto_count * stride);
+    if (st != SBR_OK) {
+        return st;
     }
 
     for (i = 0u; i < c->nparts; i++) {
@@ -305,7 +311,6 @@ sbr_status_t sbr_recog_detect(sbr_recog_t *rec, const sbr_image_t *img, const sb
     recog_ctx_t c;
     recog_layout_t l;
     sbr_image_t view;
-    sbr_fft_t fft_n;
     uint32_t ox = 0u;
     uint32_t oy = 0u;
     uint32_t kept;
@@ -327,14 +332,14 @@ sbr_status_t sbr_recog_detect(sbr_recog_t *rec, const sbr_image_t *img, const sb
     if (rec->workspace_size < l.total) {
         return SBR_ERR_WORKSPACE;
     }
-    if ((sbr_fft_init(&fft_n, rec->cfg.parts.fd_n) != SBR_OK) || (ctx_init(&c, rec, &l) != SBR_OK) ||
+    if ((ctx_init(&c, rec, &l) != SBR_OK) ||
         (view_parts(&rec->cfg, &view, &c.parts_cfg) != SBR_OK)) {
         return SBR_ERR_RANGE;
     }
     if (rec->cfg.clock != NULL) {
         t0 = rec->cfg.clock(rec->cfg.clock_ctx);
     }
-    st = evidence_stages(&c, &view, &fft_n, rec->workspace, l.parts_ws, &t0);
+    st = evidence_stages(&c, &view, &rec->fft_n, rec->workspace, l.parts_ws, &t0);
     if (st != SBR_OK) {
         return st;
     }

@@ -39,6 +39,8 @@
 
 #include "sbr_bench_timer.h"
 #include "sbr/recog.h"
+#include "sbr/models.h"
+#include "sbr/recog_strips.h"
 
 #define PSRAM_BASE 0x21000000u
 #define PSRAM_BYTES (16u * 1024u * 1024u)

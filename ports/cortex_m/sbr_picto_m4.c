@@ -23,6 +23,7 @@
 
 #include "sbr_bench_timer.h"
 #include "sbr/picto.h"
+#include "sbr/models.h"
 
 #define FRAME_SIDE 200u
 

@@ -27,14 +27,16 @@ from .evaluation import Evaluation, evaluate
 from ._points import as_points
 
 __all__ = ["Recognizer", "Detection", "Tracker", "Target", "Ellipse", "ellipse_fit", "class_name", "superclass",
-           "SUPERCLASSES", "CONFIG_FIELDS", "TRACKER_FIELDS", "fd", "can", "evaluate", "Evaluation"]
+           "SUPERCLASSES", "CONFIG_FIELDS", "CONFIG_TABLE", "TRACKER_FIELDS", "fd", "can", "evaluate", "Evaluation"]
 
 #: GTSDB's superclasses, by superclass()'s index.
 SUPERCLASSES = ("prohibitory", "mandatory", "danger", "other")
-#: The configuration fields Recognizer takes as keyword arguments (include/sbr/recog.h
-#: documents each; maps, subsample and max_nodes are parts.maps, parts.subsample and
-#: parts.mser.max_nodes).
-CONFIG_FIELDS = tuple(sorted(_sbr.field_names()))
+#: The configuration fields Recognizer takes as keyword arguments: the core's table
+#: (docs/usage/configuration.md), in its order. Per-map-kind fields take a list of 1 to 4
+#: integers (intensity, red, blue, yellow).
+CONFIG_FIELDS = tuple(_sbr.field_names())
+#: The same table: name -> (kind "int" or "float", values, low, high, default, meaning).
+CONFIG_TABLE = dict(_sbr.field_table())
 
 
 def class_name(class_id: int) -> str:

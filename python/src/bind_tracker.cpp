@@ -16,6 +16,7 @@
 
 extern "C" {
 #include "sbr/track.h"
+#include "sbr/models.h"
 }
 
 namespace nb = nanobind;

@@ -14,6 +14,7 @@
 #include <memory>
 #include <mutex>
 #include <stdexcept>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,8 @@
 extern "C" {
 #include "sbr/recog.h"
 #include "sbr/status.h"
+#include "sbr/models.h"
+#include "sbr/recog_strips.h"
 }
 
 namespace nb = nanobind;
@@ -31,65 +34,99 @@ using sbr_py::raise_status;
 
 namespace {
 
-// A configuration field: how to read and write it in sbr_recog_config_t.
-struct Field {
-    bool is_float;
-    size_t offset;
-};
-
-#define SBR_F(name) {#name, {true, offsetof(sbr_recog_config_t, name)}}
-#define SBR_U(name) {#name, {false, offsetof(sbr_recog_config_t, name)}}
-const std::map<std::string, Field> &fields() {
-    static const std::map<std::string, Field> f = {
-        SBR_U(match_p), SBR_U(max_parts), SBR_U(max_votes), SBR_U(max_hypotheses), SBR_U(max_model_protos),
-        SBR_F(vote_error), SBR_F(verify_error), SBR_F(max_rotation), SBR_F(min_size), SBR_F(max_size),
-        SBR_F(centre_tol), SBR_F(size_tol), SBR_U(cascade_depth), SBR_U(min_parts), SBR_F(candidate_score),
-        SBR_U(max_candidates), SBR_U(refine_steps), SBR_F(refine_first_score), SBR_F(grey_refine_first_score), SBR_F(refine_score), SBR_U(views),
-        SBR_F(view_score), SBR_U(triangle_view), SBR_F(triangle_score), SBR_F(min_score), SBR_F(nms_iou),
-        SBR_F(candidate_iou), SBR_U(gate), SBR_U(grey_polarity), SBR_U(max_extra_looks),
-        SBR_U(outline_maps), SBR_U(max_outline_candidates),
-        {"maps", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, maps)}},
-        {"subsample", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, subsample)}},
-        {"max_nodes", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, mser) +
-                                  offsetof(sbr_mser_config_t, max_nodes)}},
-        {"max_heap", {false, offsetof(sbr_recog_config_t, parts) + offsetof(sbr_parts_config_t, mser) +
-                                 offsetof(sbr_mser_config_t, max_heap)}},
-    };
-    return f;
+// The configuration's fields come from the core's table (recog.h, sbr_recog_field_at()):
+// names, kinds, ranges and meanings are not repeated here.
+const sbr_recog_field_t &field(const std::string &name) {
+    const sbr_recog_field_t *f = sbr_recog_field_at(sbr_recog_field_find(name.c_str()));
+    if (f == nullptr) throw nb::value_error(("unknown configuration field: " + name).c_str());
+    return *f;
 }
-#undef SBR_F
-#undef SBR_U
 
-// Writes one field from a Python value; ValueError naming the field for a wrong type.
+std::string range_of(const sbr_recog_field_t &f) {
+    std::ostringstream s;
+    if (f.kind == SBR_RECOG_FIELD_F32)
+        s << f.lo_f << " .. " << f.hi_f;
+    else
+        s << f.lo_u << " .. " << f.hi_u;
+    return s.str();
+}
+
+uint32_t to_u32(const sbr_recog_field_t &f, nb::handle value) {
+    if (!nb::isinstance<nb::int_>(value) || nb::isinstance<nb::bool_>(value))
+        throw nb::value_error((std::string(f.name) + ": an integer is needed").c_str());
+    const long long v = nb::cast<long long>(value);
+    if (v < 0 || v > 0xFFFFFFFFll)
+        throw nb::value_error((std::string(f.name) + ": outside " + range_of(f) + " (" + f.help + ")").c_str());
+    return static_cast<uint32_t>(v);
+}
+
+// Writes one field from a Python value (a number; for a per-map-kind field a sequence of
+// 1..4 integers, intensity, red, blue, yellow); ValueError naming the field for a wrong type.
 void set_field(sbr_recog_config_t &cfg, const std::string &name, nb::handle value) {
-    const auto it = fields().find(name);
-    if (it == fields().end()) throw nb::value_error(("unknown configuration field: " + name).c_str());
-    unsigned char *base = reinterpret_cast<unsigned char *>(&cfg) + it->second.offset;
-    if (it->second.is_float) {
+    const sbr_recog_field_t &f = field(name);
+    unsigned char *base = reinterpret_cast<unsigned char *>(&cfg) + f.offset;
+    if (f.count > 1) {
+        if (!nb::isinstance<nb::list>(value) && !nb::isinstance<nb::tuple>(value))
+            throw nb::value_error((name + ": a list of 1 to 4 integers is needed (intensity, red, blue, yellow)").c_str());
+        const nb::sequence seq = nb::borrow<nb::sequence>(value);
+        const size_t n = nb::len(seq);
+        if (n < 1 || n > f.count)
+            throw nb::value_error((name + ": a list of 1 to 4 integers is needed (intensity, red, blue, yellow)").c_str());
+        for (size_t k = 0; k < n; ++k) {
+            const uint32_t u = to_u32(f, seq[k]);
+            std::memcpy(base + 4u * k, &u, sizeof u);
+        }
+    } else if (f.kind == SBR_RECOG_FIELD_F32) {
         if (!nb::isinstance<nb::float_>(value) && !nb::isinstance<nb::int_>(value))
             throw nb::value_error((name + ": a number is needed").c_str());
         const float v = static_cast<float>(nb::cast<double>(value));
         std::memcpy(base, &v, sizeof v);
     } else {
-        if (!nb::isinstance<nb::int_>(value) || nb::isinstance<nb::bool_>(value))
-            throw nb::value_error((name + ": an integer is needed").c_str());
-        const long long v = nb::cast<long long>(value);
-        if (v < 0 || v > 0xFFFFFFFFll) throw nb::value_error((name + ": out of range (0 .. 2^32 - 1)").c_str());
-        const uint32_t u = static_cast<uint32_t>(v);
+        const uint32_t u = to_u32(f, value);
         std::memcpy(base, &u, sizeof u);
     }
 }
 
-nb::object get_field(const sbr_recog_config_t &cfg, const Field &f) {
+nb::object get_field(const sbr_recog_config_t &cfg, const sbr_recog_field_t &f) {
     const unsigned char *base = reinterpret_cast<const unsigned char *>(&cfg) + f.offset;
-    if (f.is_float) {
+    if (f.kind == SBR_RECOG_FIELD_F32) {
         float v;
         std::memcpy(&v, base, sizeof v);
         return nb::float_(double(v));
     }
-    uint32_t u;
-    std::memcpy(&u, base, sizeof u);
-    return nb::int_(u);
+    std::vector<uint32_t> u(f.count);
+    std::memcpy(u.data(), base, 4u * f.count);
+    if (f.count == 1) return nb::int_(u[0]);
+    nb::list l;
+    for (uint32_t x : u) l.append(x);
+    return l;
+}
+
+// The table as Python data: name -> (kind 'int'/'float', count, low, high, default, meaning).
+nb::dict field_table() {
+    nb::dict d;
+    for (uint32_t i = 0; i < sbr_recog_field_count(); ++i) {
+        const sbr_recog_field_t &f = *sbr_recog_field_at(i);
+        nb::object lo, hi, def;
+        if (f.kind == SBR_RECOG_FIELD_F32) {
+            lo = nb::float_(double(f.lo_f));
+            hi = nb::float_(double(f.hi_f));
+            def = nb::float_(double(f.def_f));
+        } else {
+            lo = nb::int_(f.lo_u);
+            hi = nb::int_(f.hi_u);
+            if (f.count == 1) {
+                def = nb::int_(f.def_u[0]);
+            } else {
+                nb::list l;
+                for (uint32_t k = 0; k < f.count; ++k) l.append(f.def_u[k]);
+                def = l;
+            }
+        }
+        d[f.name] = nb::make_tuple(f.kind == SBR_RECOG_FIELD_F32 ? "float" : "int", f.count, lo, hi, def,
+                                   std::string(f.help));
+    }
+    return d;
 }
 
 uint32_t host_clock(void *) {
@@ -154,7 +191,7 @@ public:
         // core's default floor, 0.3, is below the class stage's operating point)
         cfg_.min_score = std::min(threshold_, 0.999999f);
         for (auto kv : config) set_field(cfg_, nb::cast<std::string>(kv.first), kv.second);
-        check_config(config);
+        check_config();
         cfg_.clock = host_clock;
         // the models against the configuration, once (sbr_recog_init() on a token workspace)
         uint64_t token = 0;
@@ -213,7 +250,10 @@ public:
     float threshold() const { return threshold_; }
     nb::dict config() const {
         nb::dict d;
-        for (const auto &kv : fields()) d[kv.first.c_str()] = get_field(cfg_, kv.second);
+        for (uint32_t i = 0; i < sbr_recog_field_count(); ++i) {
+            const sbr_recog_field_t &f = *sbr_recog_field_at(i);
+            d[f.name] = get_field(cfg_, f);
+        }
         return d;
     }
     // The last call's counters and per-stage times in milliseconds (the core's clock).
@@ -263,14 +303,16 @@ private:
     std::mutex pool_mutex_;
     std::vector<Workspace> pool_;
 
-    // The core's verdict on the whole configuration (the field to blame: bind_common.hpp).
-    void check_config(nb::dict given) {
+    // The core's verdict on the whole configuration, naming the field it blames
+    // (sbr_recog_config_check_field()) with its range and meaning from the table.
+    void check_config() {
+        const sbr_recog_field_t *f = sbr_recog_field_at(sbr_recog_config_check_field(&cfg_));
+        if (f != nullptr)
+            throw nb::value_error((std::string(f->name) + ": refused by the recogniser: outside " + range_of(*f) +
+                                   " or its rule with other fields (" + f->help + ")")
+                                      .c_str());
         const sbr_status_t st = sbr_recog_config_check(&cfg_);
-        if (st != SBR_OK)
-            sbr_py::refuse_config<sbr_recog_config_t>(
-                given, st, "the recogniser", "include/sbr/recog.h",
-                [](sbr_recog_config_t &c) { sbr_recog_config_default(&c); }, set_field,
-                [](const sbr_recog_config_t &c) { return sbr_recog_config_check(&c); });
+        if (st != SBR_OK) raise_status("the configuration", st);
     }
 
     sbr_model_t builtin_{}, model_{};
@@ -305,7 +347,8 @@ NB_MODULE(_sbr, m) {
     sbr_py::bind_eval(m);
     m.def("field_names", []() {
         std::vector<std::string> n;
-        for (const auto &kv : fields()) n.push_back(kv.first);
+        for (uint32_t i = 0; i < sbr_recog_field_count(); ++i) n.push_back(sbr_recog_field_at(i)->name);
         return n;
     });
+    m.def("field_table", &field_table);
 }

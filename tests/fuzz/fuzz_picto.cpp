@@ -8,6 +8,7 @@
 
 extern "C" {
 #include "sbr/picto.h"
+#include "sbr/models.h"
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -14,6 +14,8 @@
 
 extern "C" {
 #include "sbr/recog.h"
+#include "sbr/models.h"
+#include "sbr/recog_strips.h"
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

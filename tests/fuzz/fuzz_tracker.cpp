@@ -11,6 +11,7 @@
 
 extern "C" {
 #include "sbr/track.h"
+#include "sbr/models.h"
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

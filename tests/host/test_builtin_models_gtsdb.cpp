@@ -32,6 +32,7 @@
 
 extern "C" {
 #include "sbr/recog.h"
+#include "sbr/models.h"
 }
 
 using namespace sbr_host;

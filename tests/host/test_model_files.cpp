@@ -19,6 +19,7 @@ extern "C" {
 #include "sbr/picto.h"
 #include "sbr/recog.h"
 #include "sbr/track.h"
+#include "sbr/models.h"
 
 #include "test_help.hpp"
 }

@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: MIT */
 /* The inverse FFT of four transforms side by side (lane-interleaved arrays), for the
-   Fourier-descriptor table matcher (lib/fd/fd_table.c). See fft_lanes.h. */
-#include "fft_lanes.h"
+   Fourier-descriptor table matcher (lib/fd/fd_table.c). See fd_fft_lanes.h. */
+#include "fd_fft_lanes.h"
 
 /* One radix-2 butterfly on SBR_FFT_LANES transforms: all loads before all stores, so that
    the four lanes form straight-line groups a compiler can keep in one vector register. */
@@ -102,7 +102,7 @@ static void lanes_first_stages(uint32_t size, float *re, float *im)
 /* In-place inverse transform (unscaled) of SBR_FFT_LANES bit-reversed inputs, size >= 4: the
    first two stages without multiplies, then radix-2 stages. (Fusing pairs of the later
    stages into radix-4 steps was measured slower on x86-64: the compiler spills them.) */
-void sbr_fft_priv_lanes_inverse(uint32_t size, const sbr_complex_t *tw, float *re, float *im)
+void sbr_fd_priv_lanes_inverse(uint32_t size, const sbr_complex_t *tw, float *re, float *im)
 {
     uint32_t half;
 

@@ -7,8 +7,8 @@
    innermost loop has a fixed trip count over contiguous floats, which compilers map to
    SIMD registers on hosts that have them; on a scalar ECU core it costs the same as one
    transform after another. */
-#ifndef SBR_FFT_LANES_H
-#define SBR_FFT_LANES_H
+#ifndef SBR_FD_FFT_LANES_H
+#define SBR_FD_FFT_LANES_H
 
 #include "sbr/fft.h"
 
@@ -18,6 +18,6 @@
 /* In-place inverse transform (unscaled) of SBR_FFT_LANES bit-reversed inputs of `size`
    points (a power of two >= 4): re and im hold size * SBR_FFT_LANES floats each; tw the
    size / 2 twiddles e^{+2 pi i j / size}. */
-void sbr_fft_priv_lanes_inverse(uint32_t size, const sbr_complex_t *tw, float *re, float *im);
+void sbr_fd_priv_lanes_inverse(uint32_t size, const sbr_complex_t *tw, float *re, float *im);
 
-#endif /* SBR_FFT_LANES_H */
+#endif /* SBR_FD_FFT_LANES_H */
