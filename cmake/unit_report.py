@@ -52,10 +52,14 @@ SHARED_HEADERS = {"sbr.h", "types.h", "status.h"}
 
 
 def module_folders(root):
-    """Public headers include/sbr/X.h whose module has no folder lib/X/ (folder = header)."""
+    """Public headers include/sbr/X.h (or X_more.h, a second header of module X) whose
+    module has no folder lib/X/ (folder = header)."""
     missing = []
     for h in sorted(os.listdir(os.path.join(root, "include", "sbr"))):
-        if h.endswith(".h") and h not in SHARED_HEADERS and not os.path.isdir(os.path.join(root, "lib", h[:-2])):
+        if not h.endswith(".h") or h in SHARED_HEADERS:
+            continue
+        names = {h[:-2], h[:-2].split("_")[0]}
+        if not any(os.path.isdir(os.path.join(root, "lib", n)) for n in names):
             missing.append(h)
     return missing
 

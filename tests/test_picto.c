@@ -7,6 +7,7 @@
 #include "sbr/models.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <string.h>
 
 #define W 128u
@@ -86,6 +87,7 @@ static void hand_model(sbr_picto_model_t *m)
     m->hidden = 0u;
     m->classes = K;
     m->threshold = 0.5f;
+    sbr_picto_looks_default(&m->looks);
     m->w1 = NULL;
     m->w2 = g_w2;
     m->w3 = NULL;
@@ -993,6 +995,50 @@ static void test_look(void)
     TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_look_gate(&m, &v, box, &s, look_ws, sizeof look_ws));
 }
 
+/* The looks' table: the defaults the trainer writes, each threshold's range enforced by
+   the model check, the table's offsets those of sbr_picto_looks_t. */
+static void test_looks_table(void)
+{
+    sbr_picto_model_t m;
+    sbr_picto_looks_t l;
+    sbr_field_t fld;
+    const uint32_t n = sbr_picto_look_field_count();
+    uint32_t i;
+    hand_model(&m);
+    sbr_picto_looks_default(NULL); /* no-op */
+    sbr_picto_looks_default(&l);
+    TEST_ASSERT_EQUAL_FLOAT(0.01f, l.refine_first_score);
+    TEST_ASSERT_EQUAL_FLOAT(0.0003f, l.grey_refine_first_score);
+    TEST_ASSERT_EQUAL_FLOAT(0.001f, l.refine_score);
+    TEST_ASSERT_EQUAL_FLOAT(0.1f, l.view_score);
+    TEST_ASSERT_EQUAL_FLOAT(0.001f, l.triangle_score);
+    TEST_ASSERT_EQUAL_UINT32(5u, n);
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_picto_look_field_at(n, &fld));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_picto_look_field_at(0u, NULL));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_look_field_at(3u, &fld));
+    TEST_ASSERT_EQUAL_STRING("view_score", fld.name);
+    TEST_ASSERT_EQUAL_UINT32(offsetof(sbr_picto_model_t, looks) + offsetof(sbr_picto_looks_t, view_score), fld.offset);
+    for (i = 0u; i < n; i++) {
+        const sbr_field_t *f = &fld;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_look_field_at(i, &fld));
+        float *at = (float *)(void *)&((uint8_t *)&m)[f->offset];
+        const float keep = *at;
+        TEST_ASSERT_EQUAL_INT(SBR_FIELD_F32, f->kind);
+        TEST_ASSERT_EQUAL_FLOAT(f->def_f, keep);
+        *at = f->lo_f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+        *at = f->hi_f;
+        TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_picto_check(&m));
+        *at = nextafterf(f->hi_f, INFINITY);
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m));
+        *at = nextafterf(f->lo_f, -INFINITY);
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m));
+        *at = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&m));
+        *at = keep;
+    }
+}
+
 int main(void)
 {
     UNITY_BEGIN();
@@ -1011,5 +1057,6 @@ int main(void)
     RUN_TEST(test_gate_features);
     RUN_TEST(test_gate_score_and_bad_input);
     RUN_TEST(test_look);
+    RUN_TEST(test_looks_table);
     return UNITY_END();
 }

@@ -809,6 +809,7 @@ static void test_class_stage(void)
     g_picto.hidden = 0u;
     g_picto.classes = 43u;
     g_picto.threshold = 0.5f;
+    sbr_picto_looks_default(&g_picto.looks);
     g_picto.w1 = NULL;
     g_picto.w2 = w2;
     g_picto.w3 = NULL;
@@ -863,19 +864,19 @@ static void test_class_stage(void)
            one refine_score: a first gate above that probability moves nothing, whatever
            the second; a first gate below it and a second above it move the box once. */
         TEST_ASSERT_EQUAL_UINT32(2u, g_cfg.refine_steps);
-        TEST_ASSERT_EQUAL_FLOAT(0.01f, g_cfg.refine_first_score);
-        TEST_ASSERT_EQUAL_FLOAT(0.0003f, g_cfg.grey_refine_first_score);
-        TEST_ASSERT_EQUAL_FLOAT(0.001f, g_cfg.refine_score);
+        TEST_ASSERT_EQUAL_FLOAT(0.01f, g_picto.looks.refine_first_score);
+        TEST_ASSERT_EQUAL_FLOAT(0.0003f, g_picto.looks.grey_refine_first_score);
+        TEST_ASSERT_EQUAL_FLOAT(0.001f, g_picto.looks.refine_score);
         rc.refine_steps = 2u;
-        rc.refine_first_score = 0.995f;
-        rc.refine_score = 0.0f;
+        g_picto.looks.refine_first_score = 0.995f;
+        g_picto.looks.refine_score = 0.0f;
         TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets, 16u,
                                                        &n, &st));
         TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_EQUAL_UINT32(0u, st.refined);
         TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0, box_cx(&g_dets[0]));
-        rc.refine_first_score = 0.98f;
-        rc.refine_score = 0.995f;
+        g_picto.looks.refine_first_score = 0.98f;
+        g_picto.looks.refine_score = 0.995f;
         TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets, 16u,
                                                        &n, &st));
         TEST_ASSERT_TRUE(n >= 1u);
@@ -883,7 +884,7 @@ static void test_class_stage(void)
         TEST_ASSERT_TRUE(st.refined <= st.classified);
         TEST_ASSERT_FLOAT_WITHIN(1.01f, cx0 + (0.1f * w0), box_cx(&g_dets[0]));
         /* both gates below it: two moves */
-        rc.refine_score = 0.98f;
+        g_picto.looks.refine_score = 0.98f;
         TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets, 16u,
                                                        &n, &st));
         TEST_ASSERT_TRUE(n >= 1u);
@@ -903,38 +904,39 @@ static void test_class_stage(void)
             gv.format = SBR_PIXEL_GRAY8;
             gv.stride = W;
             gv.data = &g_grey[0][0];
-            rc.refine_score = 0.0f;
-            rc.refine_first_score = 0.0f;
-            rc.grey_refine_first_score = 0.995f;
+            g_picto.looks.refine_score = 0.0f;
+            g_picto.looks.refine_first_score = 0.0f;
+            g_picto.looks.grey_refine_first_score = 0.995f;
             TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&gv, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
                                                            16u, &n, &st));
             TEST_ASSERT_TRUE(st.classified >= 1u);
             TEST_ASSERT_EQUAL_UINT32(0u, st.refined);
-            rc.refine_first_score = 0.995f;
-            rc.grey_refine_first_score = 0.0f;
+            g_picto.looks.refine_first_score = 0.995f;
+            g_picto.looks.grey_refine_first_score = 0.0f;
             TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&gv, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
                                                            16u, &n, &st));
             TEST_ASSERT_TRUE(st.refined >= 1u);
-            rc.grey_refine_first_score = NAN;
-            TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
-            rc.grey_refine_first_score = 1.5f;
-            TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, recog_run(&gv, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws,
+            g_picto.looks.grey_refine_first_score = NAN;
+            TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&g_picto));
+            g_picto.looks.grey_refine_first_score = 1.5f;
+            TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, recog_run(&gv, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws,
                                                                   g_dets, 16u, &n, &st));
-            rc.grey_refine_first_score = 0.0003f;
+            g_picto.looks.grey_refine_first_score = 0.0003f;
         }
         /* out of [0, 1] or NaN: refused */
-        rc.refine_first_score = NAN;
-        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
-        rc.refine_first_score = -0.5f;
-        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
-        rc.refine_first_score = 1.5f;
-        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
+        g_picto.looks.refine_first_score = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&g_picto));
+        g_picto.looks.refine_first_score = -0.5f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&g_picto));
+        g_picto.looks.refine_first_score = 1.5f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
                                                               16u, &n, &st));
-        rc.refine_first_score = 0.0f;
+        g_picto.looks.refine_first_score = 0.0f;
         rc.refine_steps = SBR_RECOG_MAX_REFINE + 1u;
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
                                                               16u, &n, &st));
         g_picto.w3 = NULL;
+        sbr_picto_looks_default(&g_picto.looks);
     }
     /* suppression before the class stage (candidate_iou): two signs whose boxes overlap
        by IoU 5 / 57 (the right one drawn over the left one's rim). At 1 (the default)
@@ -1005,13 +1007,13 @@ static void test_class_stage(void)
         /* views only for likely signs: the sign classes here are (e^4 + 42) / (e^4 + 43)
            = 0.982 probable, so a view_score above that classifies every candidate once */
         rc.views = SBR_RECOG_MAX_VIEWS;
-        rc.view_score = 0.99f;
+        g_picto.looks.view_score = 0.99f;
         TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
                                                        16u, &n, &st));
         TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_TRUE(st.classified >= 1u);
         TEST_ASSERT_EQUAL_UINT32(0u, st.views);
-        rc.view_score = 0.98f;
+        g_picto.looks.view_score = 0.98f;
         TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
                                                        16u, &n, &st));
         TEST_ASSERT_EQUAL_UINT32((SBR_RECOG_MAX_VIEWS - 1u) * st.classified, st.views);
@@ -1046,11 +1048,11 @@ static void test_class_stage(void)
             rc.refine_steps = g_cfg.refine_steps;
             rc.triangle_view = g_cfg.triangle_view;
         }
-        rc.view_score = NAN;
-        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
-        rc.view_score = 1.5f;
-        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
-        rc.view_score = g_cfg.view_score;
+        g_picto.looks.view_score = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&g_picto));
+        g_picto.looks.view_score = 1.5f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&g_picto));
+        g_picto.looks.view_score = 0.1f;
         rc.views = 0u;
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
                                                               16u, &n, &st));
@@ -1072,8 +1074,8 @@ static void test_class_stage(void)
         sbr_recog_config_t rc = g_cfg;
         const float p18 = expf(6.0f) / (expf(6.0f) + expf(4.0f) + 42.0f);
         TEST_ASSERT_EQUAL_UINT32(1u, rc.triangle_view);
-        TEST_ASSERT_EQUAL_FLOAT(0.001f, rc.triangle_score);
-        rc.triangle_score = 0.0f;
+        TEST_ASSERT_EQUAL_FLOAT(0.001f, g_picto.looks.triangle_score);
+        g_picto.looks.triangle_score = 0.0f;
         w2[row18 + SBR_PICTO_FEATURES] = 6.0f;
         w2[row18 + colour0] = -200.0f;
         w2[row18 + colour0 + 1u] = 200.0f;
@@ -1090,18 +1092,18 @@ static void test_class_stage(void)
         TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_EQUAL_UINT32(3u, g_dets[0].class_id);
         g_model.class_outline[18] = (uint8_t)SBR_PICTO_RIM_TRIANGLE;
-        rc.triangle_score = 1.0f;
+        g_picto.looks.triangle_score = 1.0f;
         TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
                                                        16u, &n, NULL));
         TEST_ASSERT_TRUE(n >= 1u);
         TEST_ASSERT_EQUAL_UINT32(3u, g_dets[0].class_id);
-        rc.triangle_score = NAN;
-        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
-        rc.triangle_score = 1.5f;
-        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
-        rc.triangle_score = -0.5f;
-        TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
-        rc.triangle_score = 0.0f;
+        g_picto.looks.triangle_score = NAN;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&g_picto));
+        g_picto.looks.triangle_score = 1.5f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&g_picto));
+        g_picto.looks.triangle_score = -0.5f;
+        TEST_ASSERT_EQUAL_INT(SBR_ERR_CORRUPT, sbr_picto_check(&g_picto));
+        g_picto.looks.triangle_score = 0.0f;
         rc.triangle_view = 0u;
         TEST_ASSERT_EQUAL_INT(SBR_OK, recog_run(&v, NULL, &rc, &g_model, &g_picto, g_ws, sizeof g_ws, g_dets,
                                                        16u, &n, NULL));
@@ -1110,6 +1112,7 @@ static void test_class_stage(void)
         TEST_ASSERT_FLOAT_WITHIN(1e-3f, expf(4.0f) / (expf(4.0f) + 42.0f), g_dets[0].score);
         rc.triangle_view = 2u;
         TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_recog_config_check(&rc));
+        sbr_picto_looks_default(&g_picto.looks);
         w2[row18 + SBR_PICTO_FEATURES] = 0.0f;
         w2[row18 + colour0] = 0.0f;
         w2[row18 + colour0 + 1u] = 0.0f;
@@ -1150,6 +1153,7 @@ static void test_outline_candidates(void)
     pm.features = SBR_PICTO_FEATURES;
     pm.classes = 43u;
     pm.threshold = 0.5f;
+    sbr_picto_looks_default(&pm.looks);
     pm.w2 = w2;
     rc.min_parts = 65535u; /* no part-model candidate */
     rc.outline_maps = 1u << (uint32_t)SBR_MAP_RED;

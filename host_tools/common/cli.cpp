@@ -36,7 +36,7 @@ std::string number(float v) {
 }
 
 // One value per map kind, in the order intensity, red, blue, yellow: the first 1..4 given.
-CLI::Option *add_list(CLI::App &app, const sbr_recog_field_t &f, std::vector<unsigned> &values) {
+CLI::Option *add_list(CLI::App &app, const sbr_field_t &f, std::vector<unsigned> &values) {
     std::string def;
     for (uint32_t k = 0; k < f.count; ++k) def += (k ? "," : "") + std::to_string(f.def_u[k]);
     return app.add_option(option_name(f.name), values, std::string(f.help) + "; per map kind: intensity, red, blue, yellow")
@@ -49,19 +49,20 @@ CLI::Option *add_list(CLI::App &app, const sbr_recog_field_t &f, std::vector<uns
 
 }  // namespace
 
-std::string field_range(const sbr_recog_field_t &f) {
-    if (f.kind == SBR_RECOG_FIELD_F32) return number(f.lo_f) + " .. " + number(f.hi_f);
+std::string field_range(const sbr_field_t &f) {
+    if (f.kind == SBR_FIELD_F32) return number(f.lo_f) + " .. " + number(f.hi_f);
     return std::to_string(f.lo_u) + " .. " + std::to_string(f.hi_u);
 }
 
 std::string config_problem(const sbr_recog_config_t &cfg) {
-    const uint32_t i = sbr_recog_config_check_field(&cfg);
-    const sbr_recog_field_t *f = sbr_recog_field_at(i);
-    if (f == nullptr) return sbr_recog_config_check(&cfg) == SBR_OK ? "" : "the configuration is refused";
+    sbr_field_t field;
+    if (sbr_recog_field_at(sbr_recog_config_check_field(&cfg), &field) != SBR_OK)
+        return sbr_recog_config_check(&cfg) == SBR_OK ? "" : "the configuration is refused";
+    const sbr_field_t *f = &field;
     std::string v;
     const unsigned char *base = reinterpret_cast<const unsigned char *>(&cfg) + f->offset;
     for (uint32_t k = 0; k < f->count; ++k) {
-        if (f->kind == SBR_RECOG_FIELD_F32) {
+        if (f->kind == SBR_FIELD_F32) {
             float x;
             std::memcpy(&x, base, sizeof x);
             v += number(x);
@@ -78,12 +79,11 @@ std::string config_problem(const sbr_recog_config_t &cfg) {
 void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
     const std::string g = "Recogniser (docs/usage/configuration.md; defaults of sbr_recog_config_default())";
     unsigned char *const base = reinterpret_cast<unsigned char *>(&cfg);
-    for (uint32_t i = 0; i < sbr_recog_field_count(); ++i) {
-        const sbr_recog_field_t &f = *sbr_recog_field_at(i);
+    for (const sbr_field_t &f : recog_fields()) {
         CLI::Option *o;
         if (f.count > 1) {
             o = add_list(app, f, r.front_end.lists[f.name]);
-        } else if (f.kind == SBR_RECOG_FIELD_F32) {
+        } else if (f.kind == SBR_FIELD_F32) {
             o = app.add_option(option_name(f.name), *reinterpret_cast<float *>(base + f.offset), f.help)
                     ->check(finite_range(f.lo_f, f.hi_f))
                     ->capture_default_str();
@@ -98,12 +98,32 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
 }
 
 void add_front_end_options(CLI::App &app, FrontEnd &fe, const std::string &group) {
-    for (uint32_t i = 0; i < sbr_recog_field_count(); ++i) {
-        const sbr_recog_field_t &f = *sbr_recog_field_at(i);
+    for (const sbr_field_t &f : recog_fields())
         if (f.count > 1) add_list(app, f, fe.lists[f.name])->group(group);
-    }
 }
 
 void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg) { apply_front_end(r.front_end, cfg.parts); }
+
+void add_look_options(CLI::App &app, LooksCli &l) {
+    const std::string g = "The class stage's looks (docs/usage/configuration.md; default: the class stage's own)";
+    for (const sbr_field_t &f : look_fields()) {
+        float &v = l.values[f.name];
+        v = f.def_f;
+        l.options[f.name] = app.add_option(option_name(f.name), v, f.help)
+                                ->check(finite_range(f.lo_f, f.hi_f))
+                                ->default_str("the class stage's (trained: " + number(f.def_f) + ")")
+                                ->group(g);
+    }
+}
+
+void apply_looks(const LooksCli &l, sbr_picto_model_t &stage) {
+    unsigned char *base = reinterpret_cast<unsigned char *>(&stage);
+    for (const sbr_field_t &f : look_fields()) {
+        const auto o = l.options.find(f.name);
+        if (o == l.options.end() || o->second->count() == 0) continue;
+        const float v = l.values.at(f.name);
+        std::memcpy(base + f.offset, &v, sizeof v);
+    }
+}
 
 }  // namespace sbr_host

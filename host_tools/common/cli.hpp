@@ -40,8 +40,17 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r);
 void add_front_end_options(CLI::App &app, FrontEnd &fe, const std::string &group = "");
 // What add_recog_options() cannot bind directly (the per-map lists).
 void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg);
+// The class stage's looks (picto.h, sbr_picto_look_field_at()): options that override the
+// values of the class stage in use (its model's, by default; --help says so).
+struct LooksCli {
+    std::map<std::string, float> values;
+    std::map<std::string, CLI::Option *> options;
+};
+void add_look_options(CLI::App &app, LooksCli &l);
+// The given looks into a copy of the class stage (its tables stay borrowed).
+void apply_looks(const LooksCli &l, sbr_picto_model_t &stage);
 // A field's range as the table gives it ("0 .. 255").
-std::string field_range(const sbr_recog_field_t &f);
+std::string field_range(const sbr_field_t &f);
 // "" for a configuration the core accepts; otherwise the option to blame, its value, its
 // range and its meaning (sbr_recog_config_check_field()).
 std::string config_problem(const sbr_recog_config_t &cfg);

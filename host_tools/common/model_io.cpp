@@ -108,9 +108,26 @@ bool picto_sizes_ok(const Picto &p) {
                                 p.gate.size() == SBR_PICTO_GATE_WEIGHTS(p.gate_hidden)));
 }
 // The flags word after the class stage's threshold: bit 0 box regression, bit 1 colour
-// check tables, bit 2 gate.
+// check tables, bit 2 gate, bit 3 the looks' thresholds (always written; files without
+// them are read with sbr_picto_looks_default()).
+constexpr uint32_t kPictoLooks = 8u;
+constexpr uint32_t kPictoFlagsAll = 15u;
 uint32_t picto_flags(const Picto &p) {
-    return (p.w3.empty() ? 0u : 1u) | (p.rim_shape.empty() ? 0u : 2u) | (p.gate.empty() ? 0u : 4u);
+    return (p.w3.empty() ? 0u : 1u) | (p.rim_shape.empty() ? 0u : 2u) | (p.gate.empty() ? 0u : 4u) | kPictoLooks;
+}
+// The looks' thresholds, in the order of sbr_picto_looks_t.
+void put_looks(std::string &s, const sbr_picto_looks_t &l) {
+    put(s, l.refine_first_score);
+    put(s, l.grey_refine_first_score);
+    put(s, l.refine_score);
+    put(s, l.view_score);
+    put(s, l.triangle_score);
+}
+bool get_looks(const std::string &s, size_t &off, uint32_t flags, sbr_picto_looks_t &l) {
+    sbr_picto_looks_default(&l);
+    if ((flags & kPictoLooks) == 0u) return true;
+    return get(s, off, l.refine_first_score) && get(s, off, l.grey_refine_first_score) &&
+           get(s, off, l.refine_score) && get(s, off, l.view_score) && get(s, off, l.triangle_score);
 }
 // The class stage's weights after its header (threshold and box flag written already).
 void put_picto_weights(std::string &s, const Picto &p) {
@@ -191,6 +208,7 @@ Picto picto_from_view(const sbr_picto_model_t &v) {
     p.hidden = v.hidden;
     p.classes = v.classes;
     p.threshold = v.threshold;
+    p.looks = v.looks;
     if (v.w1 != nullptr) p.w1.assign(v.w1, v.w1 + picto_w1_len(v.hidden));
     if (v.w2 != nullptr) p.w2.assign(v.w2, v.w2 + picto_w2_len(v.hidden, v.classes));
     if (v.w3 != nullptr) p.w3.assign(v.w3, v.w3 + picto_w3_len(v.hidden));
@@ -242,6 +260,7 @@ std::string model_bytes(const Model &m, std::string &s) {
         if (!picto_sizes_ok(m.picto)) return "classifier sizes do not match its hidden layer";
         put(s, m.picto.threshold);
         put(s, picto_flags(m.picto));
+        put_looks(s, m.picto.looks);
         put_picto_weights(s, m.picto);
     }
     put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
@@ -299,7 +318,8 @@ std::string parse_model(const std::string &s, const std::string &path, Model &m)
     if (m.has_picto) {
         const uint32_t hidden = picto - 1u;
         uint32_t box = 0;
-        if (hidden > SBR_PICTO_HIDDEN_MAX || !get(s, off, m.picto.threshold) || !get(s, off, box) || box > 7u)
+        if (hidden > SBR_PICTO_HIDDEN_MAX || !get(s, off, m.picto.threshold) || !get(s, off, box) ||
+            box > kPictoFlagsAll || !get_looks(s, off, box, m.picto.looks))
             return path + ": sizes: bad class stage header";
         m.picto.classes = v.class_count;  // the class stage has the model's classes
         if (!get_picto_weights(s, off, hidden, box, m.picto)) return path + ": sizes: do not match the counts";
@@ -379,6 +399,7 @@ void Picto::bind() {
     view.hidden = hidden;
     view.classes = classes;
     view.threshold = threshold;
+    view.looks = looks;
     view.w1 = hidden > 0 ? w1.data() : nullptr;
     view.w2 = w2.data();
     view.w3 = w3.empty() ? nullptr : w3.data();
@@ -399,6 +420,7 @@ std::string picto_bytes(const Picto &p, std::string &s) {
     put(s, p.classes);
     put(s, p.threshold);
     put(s, picto_flags(p));
+    put_looks(s, p.looks);
     put_picto_weights(s, p);
     put(s, crc32(reinterpret_cast<const unsigned char *>(s.data()), s.size()));
     return "";
@@ -424,15 +446,17 @@ std::string parse_picto(const std::string &s, const std::string &path, Picto &p)
     size_t off = 4;
     uint32_t version = 0, features = 0, hidden = 0, box = 0;
     if (!get(s, off, version)) return path + ": sizes: truncated header";
-    if (version != SBR_PICTO_VERSION)
-        return path + ": version: format " + std::to_string(version) + ", this build reads " +
+    // format 3 had no looks' thresholds (they were the recogniser's configuration then)
+    if (version != SBR_PICTO_VERSION && version != 3u)
+        return path + ": version: format " + std::to_string(version) + ", this build reads 3 and " +
                std::to_string(SBR_PICTO_VERSION);
     if (!get(s, off, features) || !get(s, off, hidden) || !get(s, off, p.classes) || !get(s, off, p.threshold) ||
         !get(s, off, box))
         return path + ": sizes: truncated header";
     if (features != SBR_PICTO_FEATURES || hidden > SBR_PICTO_HIDDEN_MAX || p.classes == 0u ||
-        p.classes > SBR_PICTO_MAX_CLASSES || box > 7u)
+        p.classes > SBR_PICTO_MAX_CLASSES || box > kPictoFlagsAll || (version == 3u && (box & kPictoLooks) != 0u))
         return path + ": sizes: features, hidden units, classes or flags out of range";
+    if (!get_looks(s, off, box, p.looks)) return path + ": sizes: truncated header";
     if (!get_picto_weights(s, off, hidden, box, p)) return path + ": sizes: do not match the header";
     p.bind();
     const sbr_status_t st = sbr_picto_check(&p.view);
@@ -465,6 +489,11 @@ std::string write_picto_c(const Picto &p, const std::string &path, const std::st
       << "    out->version = SBR_PICTO_VERSION;\n    out->features = SBR_PICTO_FEATURES;\n"
       << "    out->hidden = " << p.hidden << "u;\n    out->classes = " << p.classes << "u;\n"
       << "    out->threshold = " << flit(p.threshold) << ";\n"
+      << "    out->looks.refine_first_score = " << flit(p.looks.refine_first_score) << ";\n"
+      << "    out->looks.grey_refine_first_score = " << flit(p.looks.grey_refine_first_score) << ";\n"
+      << "    out->looks.refine_score = " << flit(p.looks.refine_score) << ";\n"
+      << "    out->looks.view_score = " << flit(p.looks.view_score) << ";\n"
+      << "    out->looks.triangle_score = " << flit(p.looks.triangle_score) << ";\n"
       << "    out->w1 = " << (p.hidden > 0 ? "picto_w1" : "NULL") << ";\n    out->w2 = picto_w2;\n"
       << "    out->w3 = " << (p.w3.empty() ? "NULL" : "picto_w3") << ";\n"
       << "    out->rim_shape = " << (rim ? "picto_rim_shape" : "NULL") << ";\n"
@@ -508,9 +537,11 @@ void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts) {
     // the table's offsets are into sbr_recog_config_t; the per-map lists are in its `parts`
     unsigned char *base = reinterpret_cast<unsigned char *>(&parts);
     for (const auto &kv : fe.lists) {
-        const sbr_recog_field_t *f = sbr_recog_field_at(sbr_recog_field_find(kv.first.c_str()));
+        sbr_field_t field;
         static_assert(offsetof(sbr_recog_config_t, parts) == 0, "parts opens the configuration");
-        if (f == nullptr || f->offset + 4u * f->count > sizeof parts) continue;
+        if (sbr_recog_field_at(sbr_recog_field_find(kv.first.c_str()), &field) != SBR_OK) continue;
+        const sbr_field_t *f = &field;
+        if (f->offset + 4u * f->count > sizeof parts) continue;
         const size_t at = f->offset;
         for (size_t k = 0; k < kv.second.size() && k < f->count; ++k) {
             const uint32_t v = kv.second[k];

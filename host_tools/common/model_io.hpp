@@ -7,7 +7,7 @@
 //   u16 class_first[K + 1] | u8 class_outline[K] |
 //   sbr_fd_t fds[proto_count] | sbr_model_proto_t protos[proto_count] |
 //   u16 cascade[cascade_count] | u32 picto (0: no class stage, else hidden + 1) |
-//   [f32 threshold | u32 flags | the class stage's weights and tables as in .sbrp, for
+//   [f32 threshold | u32 flags | f32 looks[5] with bit 3 | the class stage's weights and tables as in .sbrp, for
 //   K classes] |
 //   u32 CRC-32 (IEEE) of every byte before it.
 // A loaded model is checked with sbr_model_check() as well.
@@ -26,10 +26,31 @@ extern "C" {
 
 namespace sbr_host {
 
+// The core's field tables as vectors: the recogniser's configuration (recog.h) and the
+// class stage's looks (picto.h).
+inline std::vector<sbr_field_t> recog_fields() {
+    std::vector<sbr_field_t> v(sbr_recog_field_count());
+    for (uint32_t i = 0; i < v.size(); ++i) sbr_recog_field_at(i, &v[i]);
+    return v;
+}
+inline std::vector<sbr_field_t> look_fields() {
+    std::vector<sbr_field_t> v(sbr_picto_look_field_count());
+    for (uint32_t i = 0; i < v.size(); ++i) sbr_picto_look_field_at(i, &v[i]);
+    return v;
+}
+
+inline sbr_picto_looks_t default_looks() {
+    sbr_picto_looks_t l;
+    sbr_picto_looks_default(&l);
+    return l;
+}
+
 // Owns the weights a sbr_picto_model_t points into (the class stage, picto.h).
 // File form (.sbrp), little-endian: "SBRP" | u32 version | u32 features | u32 hidden |
 //   u32 classes (K) | f32 threshold | u32 flags (bit 0: box regression, bit 1: colour
-//   check, bit 2: gate) |
+//   check, bit 2: gate, bit 3: looks) |
+//   f32 looks[5] (sbr_picto_looks_t's order) with bit 3 (format 3 files have none: read
+//   with sbr_picto_looks_default()) |
 //   f32 w1[hidden * (features + 1)] | f32 w2[(K + 1) * (hidden or features, + 1)] |
 //   f32 w3[4 * (hidden or features, + 1)] with bit 0 |
 //   u8 rim_shape[K] | f32 rim_floor[K] with bit 1 |
@@ -40,6 +61,7 @@ struct Picto {
     uint32_t hidden = 0;
     uint32_t classes = 0;  // sign classes (outputs: classes + 1)
     float threshold = 0.5f;
+    sbr_picto_looks_t looks = default_looks();  // the recogniser's looks with it (picto.h)
     std::vector<float> w1, w2, w3;  // w3 empty: no box regression
     std::vector<uint8_t> rim_shape;  // colour check (picto.h): empty or `classes` entries each
     std::vector<float> rim_floor;

@@ -174,6 +174,7 @@ struct Options {
     uint32_t strip_rows = 0, strip_overlap = 0;  // rows 0: whole frames
     sbr_recog_config_t cfg{};
     RecogCli rc;
+    LooksCli looks;  // the class stage's looks given on the command line
 };
 
 // -1: go on; otherwise the exit status.
@@ -226,6 +227,7 @@ int parse_options(int argc, char **argv, Options &o) {
     app.add_flag("--callgrind", o.callgrind,
                  "count instructions per stage under valgrind's callgrind (./sbr.sh cost)");
     add_recog_options(app, o.cfg, o.rc);
+    add_look_options(app, o.looks);
     o.rc.options["min_score"]->description(
         "score floor of a reported detection (default: the operating point, or 0.05 with --all-detections)");
     const int rc = parse_cli(app, argc, argv);
@@ -271,6 +273,7 @@ struct Models {
     sbr_picto_model_t builtin_picto{};
     const sbr_model_t *model = nullptr;
     const sbr_picto_model_t *class_stage = nullptr;  // nullptr: none
+    sbr_picto_model_t stage{};  // the class stage in use with the looks given (tables borrowed)
 };
 
 bool load_models(const Options &o, Models &m) {
@@ -290,6 +293,11 @@ bool load_models(const Options &o, Models &m) {
         m.class_stage = &m.picto.view;
     } else if (o.no_picto) {
         m.class_stage = nullptr;
+    }
+    if (m.class_stage != nullptr) {
+        m.stage = *m.class_stage;
+        apply_looks(o.looks, m.stage);
+        m.class_stage = &m.stage;
     }
     return true;
 }

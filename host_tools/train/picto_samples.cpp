@@ -67,13 +67,19 @@ std::vector<Box> recog_candidates(const sbr_image_t &v, const sbr_model_t &model
     sbr_recog_config_t rc;
     sbr_recog_config_default(&rc);
     rc.triangle_view = triangle_view ? 1u : 0u;
+    // the looks of the class stage that mines (a copy; its tables are borrowed):
     // the triangle view on every candidate (the recogniser's default skips the ones its
     // first classification does not find danger-like): mining also sees the false danger
-    // signs the triangle view makes of those, and the committed class stage was learned so
-    rc.triangle_score = 0.0f;
+    // signs the triangle view makes of those, and the committed class stage was learned so;
     // every candidate refined once, as the committed class stage was learned (the
     // recogniser's default refines only those its first look finds sign-like)
-    rc.refine_first_score = 0.0f;
+    sbr_picto_model_t miner{};
+    if (picto != nullptr) {
+        miner = *picto;
+        miner.looks.triangle_score = 0.0f;
+        miner.looks.refine_first_score = 0.0f;
+        picto = &miner;
+    }
     // every map at full resolution, as the part model was learned (sbr_train): the finest
     // candidates (the recogniser's default runs the blue map at half resolution; the class
     // stage learned this way scores the same there, see docs/results/recognition.md)

@@ -64,8 +64,9 @@ extern "C" {
 #define SBR_PICTO_MAX_OUTPUTS (SBR_PICTO_MAX_CLASSES + 1u)
 /** Largest hidden layer. */
 #define SBR_PICTO_HIDDEN_MAX 256u
-/** Classifier format version (the class count is the model's). */
-#define SBR_PICTO_VERSION 3u
+/** Classifier format version (the class count is the model's; 4: the looks' thresholds,
+    sbr_picto_looks_t, are the model's). */
+#define SBR_PICTO_VERSION 4u
 /** Box-regression outputs: centre shift in x and y (fractions of the box's width and
     height), natural log of the width and height ratios. */
 #define SBR_PICTO_BOX_OUTPUTS 4u
@@ -113,6 +114,17 @@ typedef enum sbr_picto_rim_e {
      (size_t)SBR_PICTO_SIZE * 24u * sizeof(float) + \
      (size_t)SBR_PICTO_HIDDEN_MAX * sizeof(float))
 
+/** How the recogniser looks at a candidate with this classifier: thresholds on its
+    probabilities, so they belong to the trained model (sbr_train_picto writes them; the
+    table sbr_picto_look_field_at() gives each one's range, default and meaning). */
+typedef struct sbr_picto_looks_s {
+    float refine_first_score;      /**< sign probability to start refining (colour) */
+    float grey_refine_first_score; /**< the same on a GRAY8 frame */
+    float refine_score;            /**< sign probability to go on refining */
+    float view_score;              /**< sign probability for the extra views */
+    float triangle_score;          /**< danger probability for the triangle view */
+} sbr_picto_looks_t;
+
 /**
  * A learned classifier. Inputs are standardised features ((f - mean) / scale is folded
  * into the first layer by the trainer, so raw features go in).
@@ -131,6 +143,7 @@ typedef struct sbr_picto_model_s {
     uint32_t hidden;   /**< hidden units, 0 .. ::SBR_PICTO_HIDDEN_MAX */
     uint32_t classes;  /**< sign classes K, 1 .. ::SBR_PICTO_MAX_CLASSES (outputs: K + 1) */
     float threshold;   /**< operating point for the reported probability, (0, 1) */
+    sbr_picto_looks_t looks; /**< the recogniser's looks with it (each in [0, 1]) */
     const float *w1;   /**< hidden x (features + 1), NULL when hidden = 0 */
     const float *w2;   /**< (classes + 1) x (hidden or features, + 1) */
     const float *w3;   /**< SBR_PICTO_BOX_OUTPUTS x (hidden or features, + 1), or NULL (no
@@ -158,7 +171,8 @@ typedef struct sbr_picto_model_s {
 } sbr_picto_model_t;
 
 /**
- * @brief Check a classifier's header (version, sizes, threshold in (0, 1)), that every
+ * @brief Check a classifier's header (version, sizes, threshold in (0, 1), the looks'
+ *        thresholds in their table's ranges), that every
  *        weight is finite, its colour check tables (both or neither; outlines in
  *        range, floors finite in [-2, 2]) and its gate (finite weights and threshold).
  * @param[in] model the model
@@ -166,6 +180,28 @@ typedef struct sbr_picto_model_s {
  *         non-finite weight, one colour table without the other or a value out of range).
  */
 sbr_status_t sbr_picto_check(const sbr_picto_model_t *model);
+
+/**
+ * @brief Fields in the table of sbr_picto_looks_t (offsets into sbr_picto_model_t).
+ * @return the count.
+ */
+uint32_t sbr_picto_look_field_count(void);
+
+/**
+ * @brief One field of the looks' table: its name, range, default (the values the
+ *        trainer writes) and meaning.
+ * @param[in]  index 0 .. sbr_picto_look_field_count() - 1
+ * @param[out] out   the field (name and help point into const tables)
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE beyond the table.
+ */
+sbr_status_t sbr_picto_look_field_at(uint32_t index, sbr_field_t *out);
+
+/**
+ * @brief The looks' defaults, as the trainer writes them (and as a model file of format 3,
+ *        which had none, is read). No-op for NULL.
+ * @param[out] looks the looks
+ */
+void sbr_picto_looks_default(sbr_picto_looks_t *looks);
 
 /**
  * @brief Features of the box [x0, x1) x [y0, y1) of an image (pixel units, pixel (i, j)

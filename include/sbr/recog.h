@@ -62,14 +62,10 @@ typedef struct sbr_recog_config_s {
     uint32_t min_parts;        /**< distinct prototypes a hypothesis needs */
     float candidate_score;     /**< part-score floor of a class-stage candidate */
     uint32_t max_candidates;   /**< class-stage candidates per frame (::SBR_RECOG_HIT_CANDIDATES) */
-    uint32_t refine_steps;     /**< box refinements by the class stage's regression */
-    float refine_first_score;  /**< sign probability to start refining (colour) */
-    float grey_refine_first_score; /**< the same on a GRAY8 frame */
-    float refine_score;        /**< sign probability to go on refining */
+    uint32_t refine_steps;     /**< box refinements by the class stage's regression (when
+                                    and how far: the class stage's looks, picto.h) */
     uint32_t views;            /**< shifted views averaged (::SBR_RECOG_VIEW_SHIFT) */
-    float view_score;          /**< sign probability for the extra views */
     uint32_t triangle_view;    /**< 1: a danger candidate's inner triangle looked at again */
-    float triangle_score;      /**< danger probability for the triangle view */
     uint32_t max_extra_looks;  /**< looks per frame beyond each candidate's first
                                     (::SBR_RECOG_HIT_LOOKS) */
     float min_score;           /**< score floor of a reported detection */
@@ -84,34 +80,6 @@ typedef struct sbr_recog_config_s {
     void *clock_ctx;           /**< passed to `clock` */
 } sbr_recog_config_t;
 
-/** Kinds of a configuration field's values. */
-typedef enum sbr_recog_field_kind_e {
-    SBR_RECOG_FIELD_U32 = 0, /**< uint32_t */
-    SBR_RECOG_FIELD_F32 = 1  /**< float */
-} sbr_recog_field_kind_t;
-
-/** sbr_recog_field_t::flags: the field's range also depends on other fields (its help
-    names them); sbr_recog_config_check_field() blames one field of each rule. */
-#define SBR_RECOG_FIELD_LINKED 1u
-/** sbr_recog_field_find() and sbr_recog_config_check_field(): no field. */
-#define SBR_RECOG_FIELD_NONE 0xFFFFFFFFu
-
-/** One field of sbr_recog_config_t: where its values are and what they may be. */
-typedef struct sbr_recog_field_s {
-    const char *name;  /**< snake_case; the host tools' option is --name with '-' */
-    const char *help;  /**< one line: what it does, when to change it */
-    uint32_t offset;   /**< byte offset of its first value in sbr_recog_config_t */
-    uint8_t kind;      /**< ::sbr_recog_field_kind_t */
-    uint8_t count;     /**< values: 1, or ::SBR_MAP_KINDS (one per map kind) */
-    uint8_t flags;     /**< ::SBR_RECOG_FIELD_LINKED or 0 */
-    uint32_t lo_u;     /**< U32: smallest value */
-    uint32_t hi_u;     /**< U32: largest value */
-    uint32_t def_u[SBR_MAP_KINDS]; /**< U32: the default of each value */
-    float lo_f;        /**< F32: smallest value */
-    float hi_f;        /**< F32: largest value */
-    float def_f;       /**< F32: the default */
-} sbr_recog_field_t;
-
 /**
  * @brief Fields in the configuration's table.
  * @return the count (every field of sbr_recog_config_t but the clock).
@@ -120,23 +88,24 @@ uint32_t sbr_recog_field_count(void);
 
 /**
  * @brief One field of the table.
- * @param[in] index 0 .. sbr_recog_field_count() - 1
- * @return the field (a const table entry); NULL beyond the table.
+ * @param[in]  index 0 .. sbr_recog_field_count() - 1
+ * @param[out] out   the field (name and help point into const tables)
+ * @return ::SBR_OK; ::SBR_ERR_NULL; ::SBR_ERR_RANGE beyond the table.
  */
-const sbr_recog_field_t *sbr_recog_field_at(uint32_t index);
+sbr_status_t sbr_recog_field_at(uint32_t index, sbr_field_t *out);
 
 /**
  * @brief A field's index by name.
- * @param[in] name the field's name (sbr_recog_field_t::name)
- * @return its index; ::SBR_RECOG_FIELD_NONE for an unknown name or NULL.
+ * @param[in] name the field's name (sbr_field_t::name)
+ * @return its index; ::SBR_FIELD_NONE for an unknown name or NULL.
  */
 uint32_t sbr_recog_field_find(const char *name);
 
 /**
  * @brief Which field of a configuration fails its check: every range first, then the
- *        rules between fields (::SBR_RECOG_FIELD_LINKED), in table order.
+ *        rules between fields (::SBR_FIELD_LINKED), in table order.
  * @param[in] cfg the configuration
- * @return the failing field's index; ::SBR_RECOG_FIELD_NONE when all pass or `cfg` is NULL.
+ * @return the failing field's index; ::SBR_FIELD_NONE when all pass or `cfg` is NULL.
  */
 uint32_t sbr_recog_config_check_field(const sbr_recog_config_t *cfg);
 

@@ -18473,6 +18473,11 @@ sbr_status_t sbr_picto_gtsdb(sbr_picto_model_t *out)
     out->hidden = 128u;
     out->classes = 43u;
     out->threshold = 6.999999881e-01f;
+    out->looks.refine_first_score = 9.999999776e-03f;
+    out->looks.grey_refine_first_score = 2.999999924e-04f;
+    out->looks.refine_score = 1.000000047e-03f;
+    out->looks.view_score = 1.000000015e-01f;
+    out->looks.triangle_score = 1.000000047e-03f;
     out->w1 = picto_w1;
     out->w2 = picto_w2;
     out->w3 = picto_w3;

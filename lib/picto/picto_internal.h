@@ -93,4 +93,8 @@ int sbr_picto_priv_box_in_domain(const float box[4]);
    sbr_picto_priv_box_in_domain() or a grey image unless `grey` is 1. */
 sbr_status_t sbr_picto_priv_colour_box_check(const sbr_image_t *img, const float box[4], int grey);
 
+/* 1 when every look threshold of the model is within the looks' table's range
+   (picto_looks.c). */
+int sbr_picto_priv_looks_ok(const sbr_picto_model_t *model);
+
 #endif /* SBR_PICTO_INTERNAL_H */

@@ -77,7 +77,8 @@ sbr_status_t sbr_picto_check(const sbr_picto_model_t *model)
         return SBR_ERR_NULL;
     }
     if ((header_ok(model) == 0) || (model->threshold <= 0.0f) ||
-        (model->threshold >= 1.0f) || (isfinite(model->threshold) == 0)) {
+        (model->threshold >= 1.0f) || (isfinite(model->threshold) == 0) ||
+        (sbr_picto_priv_looks_ok(model) == 0)) {
         return SBR_ERR_CORRUPT;
     }
     if ((all_finite(model->w1, (size_t)model->hidden * (SBR_PICTO_FEATURES + 1u)) == 0) ||

@@ -141,8 +141,9 @@ static int spend_look(sbr_recog_stats_t *st, uint32_t budget, uint32_t n)
 }
 
 /* The class stage on one hypothesis: classify its box; if the signs are at least
-   refine_first_score probable (grey_refine_first_score on a grey frame), and then while
-   they are at least refine_score probable (at most refine_steps times in all), move the
+   refine_first_score probable (grey_refine_first_score on a grey frame; the thresholds
+   are the class stage's, pm->looks), and then while they are at least refine_score
+   probable (at most refine_steps times in all), move the
    box by the classifier's box regression
    and classify again there; the box is the last one, and so are class
    and score unless the candidate, still view_score likely, gets the mean of
@@ -156,8 +157,9 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
     float box[4];
     float signs; /* the sign classes' probability at the current box */
     float danger; /* the upward-triangle classes' probability at the first box */
-    const float first = (view->format == SBR_PIXEL_GRAY8) ? cfg->grey_refine_first_score
-                                                          : cfg->refine_first_score;
+    const sbr_picto_looks_t *lk = &pm->looks;
+    const float first = (view->format == SBR_PIXEL_GRAY8) ? lk->grey_refine_first_score
+                                                          : lk->refine_first_score;
     uint32_t step = 0u;
     uint32_t steps = 0u;
     centre_box(h, box);
@@ -187,16 +189,16 @@ static int classify_hyp(recog_hyp_t *h, const sbr_image_t *view, const sbr_picto
             h->mw = box[2] - box[0];
             h->mh = box[3] - box[1];
             signs = take_class(h, b->prob, b->classes);
-            if (signs < cfg->refine_score) {
+            if (signs < lk->refine_score) {
                 step = steps; /* no longer a likely sign: this was the last move */
             }
         }
     }
-    if ((cfg->views > 1u) && (signs >= cfg->view_score) &&
+    if ((cfg->views > 1u) && (signs >= lk->view_score) &&
         (spend_look(st, cfg->max_extra_looks, cfg->views - 1u) != 0)) {
         st->views += average_views(h, view, pm, cfg->views, box, b);
     }
-    if ((cfg->triangle_view != 0u) && (danger >= cfg->triangle_score) &&
+    if ((cfg->triangle_view != 0u) && (danger >= lk->triangle_score) &&
         (spend_look(st, cfg->max_extra_looks, 1u) != 0)) {
         triangle_view(h, view, pm, box, b);
     }

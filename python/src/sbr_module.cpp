@@ -36,34 +36,35 @@ namespace {
 
 // The configuration's fields come from the core's table (recog.h, sbr_recog_field_at()):
 // names, kinds, ranges and meanings are not repeated here.
-const sbr_recog_field_t &field(const std::string &name) {
-    const sbr_recog_field_t *f = sbr_recog_field_at(sbr_recog_field_find(name.c_str()));
-    if (f == nullptr) throw nb::value_error(("unknown configuration field: " + name).c_str());
-    return *f;
+sbr_field_t field(const std::string &name) {
+    sbr_field_t f;
+    if (sbr_recog_field_at(sbr_recog_field_find(name.c_str()), &f) != SBR_OK)
+        throw nb::value_error(("unknown configuration field: " + name).c_str());
+    return f;
 }
 
-std::string range_of(const sbr_recog_field_t &f) {
+std::string range_of(const sbr_field_t &f) {
     std::ostringstream s;
-    if (f.kind == SBR_RECOG_FIELD_F32)
+    if (f.kind == SBR_FIELD_F32)
         s << f.lo_f << " .. " << f.hi_f;
     else
         s << f.lo_u << " .. " << f.hi_u;
     return s.str();
 }
 
-uint32_t to_u32(const sbr_recog_field_t &f, nb::handle value) {
+uint32_t to_u32(const sbr_field_t &f, nb::handle value) {
     if (!nb::isinstance<nb::int_>(value) || nb::isinstance<nb::bool_>(value))
         throw nb::value_error((std::string(f.name) + ": an integer is needed").c_str());
     const long long v = nb::cast<long long>(value);
     if (v < 0 || v > 0xFFFFFFFFll)
-        throw nb::value_error((std::string(f.name) + ": outside " + range_of(f) + " (" + f.help + ")").c_str());
+        throw nb::value_error((std::string(f.name) + ": out of range " + range_of(f) + " (" + f.help + ")").c_str());
     return static_cast<uint32_t>(v);
 }
 
 // Writes one field from a Python value (a number; for a per-map-kind field a sequence of
 // 1..4 integers, intensity, red, blue, yellow); ValueError naming the field for a wrong type.
 void set_field(sbr_recog_config_t &cfg, const std::string &name, nb::handle value) {
-    const sbr_recog_field_t &f = field(name);
+    const sbr_field_t f = field(name);
     unsigned char *base = reinterpret_cast<unsigned char *>(&cfg) + f.offset;
     if (f.count > 1) {
         if (!nb::isinstance<nb::list>(value) && !nb::isinstance<nb::tuple>(value))
@@ -76,7 +77,7 @@ void set_field(sbr_recog_config_t &cfg, const std::string &name, nb::handle valu
             const uint32_t u = to_u32(f, seq[k]);
             std::memcpy(base + 4u * k, &u, sizeof u);
         }
-    } else if (f.kind == SBR_RECOG_FIELD_F32) {
+    } else if (f.kind == SBR_FIELD_F32) {
         if (!nb::isinstance<nb::float_>(value) && !nb::isinstance<nb::int_>(value))
             throw nb::value_error((name + ": a number is needed").c_str());
         const float v = static_cast<float>(nb::cast<double>(value));
@@ -87,9 +88,9 @@ void set_field(sbr_recog_config_t &cfg, const std::string &name, nb::handle valu
     }
 }
 
-nb::object get_field(const sbr_recog_config_t &cfg, const sbr_recog_field_t &f) {
+nb::object get_field(const sbr_recog_config_t &cfg, const sbr_field_t &f) {
     const unsigned char *base = reinterpret_cast<const unsigned char *>(&cfg) + f.offset;
-    if (f.kind == SBR_RECOG_FIELD_F32) {
+    if (f.kind == SBR_FIELD_F32) {
         float v;
         std::memcpy(&v, base, sizeof v);
         return nb::float_(double(v));
@@ -105,10 +106,11 @@ nb::object get_field(const sbr_recog_config_t &cfg, const sbr_recog_field_t &f) 
 // The table as Python data: name -> (kind 'int'/'float', count, low, high, default, meaning).
 nb::dict field_table() {
     nb::dict d;
-    for (uint32_t i = 0; i < sbr_recog_field_count(); ++i) {
-        const sbr_recog_field_t &f = *sbr_recog_field_at(i);
+    std::vector<sbr_field_t> all = sbr_host::recog_fields();
+    for (const sbr_field_t &f : sbr_host::look_fields()) all.push_back(f);
+    for (const sbr_field_t &f : all) {
         nb::object lo, hi, def;
-        if (f.kind == SBR_RECOG_FIELD_F32) {
+        if (f.kind == SBR_FIELD_F32) {
             lo = nb::float_(double(f.lo_f));
             hi = nb::float_(double(f.hi_f));
             def = nb::float_(double(f.def_f));
@@ -123,7 +125,7 @@ nb::dict field_table() {
                 def = l;
             }
         }
-        d[f.name] = nb::make_tuple(f.kind == SBR_RECOG_FIELD_F32 ? "float" : "int", f.count, lo, hi, def,
+        d[f.name] = nb::make_tuple(f.kind == SBR_FIELD_F32 ? "float" : "int", f.count, lo, hi, def,
                                    std::string(f.help));
     }
     return d;
@@ -183,6 +185,10 @@ public:
             class_stage_ = nullptr;
         }
         threshold_ = class_stage_ != nullptr ? class_stage_->threshold : model_.score_threshold;
+        if (class_stage_ != nullptr) {  // a copy whose looks the configuration may set
+            stage_ = *class_stage_;
+            class_stage_ = &stage_;
+        }
         if (strips_)
             sbr_recog_config_strips(&cfg_);  // a band's bounds (fields given below still apply)
         else
@@ -190,7 +196,13 @@ public:
         // as sbr_detect: the operating point, unless the configuration gives min_score (the
         // core's default floor, 0.3, is below the class stage's operating point)
         cfg_.min_score = std::min(threshold_, 0.999999f);
-        for (auto kv : config) set_field(cfg_, nb::cast<std::string>(kv.first), kv.second);
+        for (auto kv : config) {
+            const std::string name = nb::cast<std::string>(kv.first);
+            if (sbr_recog_field_find(name.c_str()) == SBR_FIELD_NONE && look(name) != nullptr)
+                set_look(name, kv.second);
+            else
+                set_field(cfg_, name, kv.second);
+        }
         check_config();
         cfg_.clock = host_clock;
         // the models against the configuration, once (sbr_recog_init() on a token workspace)
@@ -250,10 +262,13 @@ public:
     float threshold() const { return threshold_; }
     nb::dict config() const {
         nb::dict d;
-        for (uint32_t i = 0; i < sbr_recog_field_count(); ++i) {
-            const sbr_recog_field_t &f = *sbr_recog_field_at(i);
-            d[f.name] = get_field(cfg_, f);
-        }
+        for (const sbr_field_t &f : sbr_host::recog_fields()) d[f.name] = get_field(cfg_, f);
+        if (class_stage_ != nullptr)
+            for (const sbr_field_t &f : sbr_host::look_fields()) {
+                float v;
+                std::memcpy(&v, reinterpret_cast<const unsigned char *>(&stage_) + f.offset, sizeof v);
+                d[f.name] = double(v);
+            }
         return d;
     }
     // The last call's counters and per-stage times in milliseconds (the core's clock).
@@ -306,9 +321,10 @@ private:
     // The core's verdict on the whole configuration, naming the field it blames
     // (sbr_recog_config_check_field()) with its range and meaning from the table.
     void check_config() {
-        const sbr_recog_field_t *f = sbr_recog_field_at(sbr_recog_config_check_field(&cfg_));
+        sbr_field_t bad;
+        const sbr_field_t *f = sbr_recog_field_at(sbr_recog_config_check_field(&cfg_), &bad) == SBR_OK ? &bad : nullptr;
         if (f != nullptr)
-            throw nb::value_error((std::string(f->name) + ": refused by the recogniser: outside " + range_of(*f) +
+            throw nb::value_error((std::string(f->name) + ": refused by the recogniser: out of range " + range_of(*f) +
                                    " or its rule with other fields (" + f->help + ")")
                                       .c_str());
         const sbr_status_t st = sbr_recog_config_check(&cfg_);
@@ -316,7 +332,27 @@ private:
     }
 
     sbr_model_t builtin_{}, model_{};
+    // The look field named so (picto.h's table), or nullptr.
+    static const sbr_field_t *look(const std::string &name) {
+        static const std::vector<sbr_field_t> looks = sbr_host::look_fields();
+        for (const sbr_field_t &f : looks)
+            if (name == f.name) return &f;
+        return nullptr;
+    }
+    // A look of the class stage in use (its copy), checked against the table's range.
+    void set_look(const std::string &name, nb::handle value) {
+        const sbr_field_t &f = *look(name);
+        if (class_stage_ == nullptr) throw nb::value_error((name + ": a look of the class stage, and there is none").c_str());
+        if (!nb::isinstance<nb::float_>(value) && !nb::isinstance<nb::int_>(value))
+            throw nb::value_error((name + ": a number is needed").c_str());
+        const float v = static_cast<float>(nb::cast<double>(value));
+        if (!(v >= f.lo_f && v <= f.hi_f))
+            throw nb::value_error((name + ": out of range " + range_of(f) + " (" + f.help + ")").c_str());
+        std::memcpy(reinterpret_cast<unsigned char *>(&stage_) + f.offset, &v, sizeof v);
+    }
+
     sbr_picto_model_t builtin_picto_{};
+    sbr_picto_model_t stage_{};  // the class stage in use (tables borrowed), its looks as configured
     const sbr_picto_model_t *class_stage_ = nullptr;  // nullptr: none
     sbr_host::Model loaded_;
     sbr_host::Picto picto_;
@@ -347,7 +383,8 @@ NB_MODULE(_sbr, m) {
     sbr_py::bind_eval(m);
     m.def("field_names", []() {
         std::vector<std::string> n;
-        for (uint32_t i = 0; i < sbr_recog_field_count(); ++i) n.push_back(sbr_recog_field_at(i)->name);
+        for (const sbr_field_t &f : sbr_host::recog_fields()) n.push_back(f.name);
+        for (const sbr_field_t &f : sbr_host::look_fields()) n.push_back(f.name);
         return n;
     });
     m.def("field_table", &field_table);

@@ -159,6 +159,39 @@ def test_bad_roi_order_and_config(rec):
     assert r.workspace_size(1360, 800) == sbr.Recognizer().workspace_size(1360, 800) == 7193960
 
 
+def test_config_table_is_the_core_table():
+    """Every keyword is a field of the core's tables (sbr.CONFIG_TABLE): a Recognizer
+    starts at each one's default, and one step beyond either end of its range is refused
+    with the field's name (the strip-free defaults; min_score is the operating point)."""
+    assert list(sbr.CONFIG_TABLE) == list(sbr.CONFIG_FIELDS)
+    r = sbr.Recognizer()
+    for name, (kind, count, lo, hi, default, meaning) in sbr.CONFIG_TABLE.items():
+        assert meaning and kind in ("int", "float")
+        if name != "min_score":
+            assert r.config[name] == pytest.approx(default), name
+        if kind == "int":
+            beyond = [hi + 1] + ([lo - 1] if lo > 0 else [])
+            if count > 1:
+                beyond = [[v] * count for v in beyond]
+        else:
+            beyond = [hi * 1.001 + 1e-3, lo - 1e-3 * (1 + abs(lo))]
+        for v in beyond:
+            with pytest.raises(ValueError, match=name):
+                sbr.Recognizer(**{name: v})
+    # the per-map-kind lists: the first 1..4 values (intensity, red, blue, yellow)
+    assert sbr.Recognizer(map_polarity=[3, 3]).config["map_polarity"] == [3, 3, 0, 0]
+    with pytest.raises(ValueError, match="map_polarity"):
+        sbr.Recognizer(map_polarity=[1, 2, 3, 0, 1])
+    # a rule between fields names the field it blames
+    with pytest.raises(ValueError, match="max_size"):
+        sbr.Recognizer(min_size=50.0, max_size=20.0)
+    # the class stage's looks are the model's; a keyword sets the copy in use
+    assert r.config["refine_score"] == pytest.approx(0.001)
+    assert sbr.Recognizer(refine_score=0.5).config["refine_score"] == pytest.approx(0.5)
+    with pytest.raises(ValueError, match="a look of the class stage"):
+        sbr.Recognizer(no_picto=True, view_score=0.2)
+
+
 def test_gil_released_and_threads_agree():
     rng = np.random.default_rng(7)
     frames = [rng.integers(0, 256, (400, 680, 3), dtype=np.uint8) for _ in range(4)]

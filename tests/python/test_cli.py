@@ -41,7 +41,58 @@ CASES = {
                              ("--gate-recall", "0"), ("--gtsrb-cap", "0")]),
     "sbr_to_ppm": (["--out", "o", __file__], []),
     "sbr_gtsrb_eval": ([], [("--threads", "0"), ("--split", "test")]),
+    "sbr_config": ([], []),
 }
+
+
+def table_rows(tools):
+    """The core's configuration tables as sbr_config prints them: (field, option, type,
+    range, default) per row."""
+    out = run([os.path.join(tools, "sbr_config")]).stdout
+    rows = []
+    for m in re.finditer(r"^\| `(\w+)` \| `(--[a-z0-9-]+)` \| ([^|]+) \| ([^|]+) \| ([^|]+) \|", out, re.M):
+        rows.append(tuple(x.strip() for x in m.groups()))
+    return rows
+
+
+def check_recogniser_options(tools):
+    """sbr_detect's recogniser options are the core's tables, row for row: each option with
+    its default, a value one beyond its range refused naming it, a broken rule between
+    fields refused naming the field the table blames."""
+    failures = 0
+    rows = table_rows(tools)
+    names = {r[0] for r in rows}
+    if len(rows) < 50 or not {"max_parts", "map_polarity", "refine_score"} <= names:
+        print(f"sbr_config: {len(rows)} table rows")
+        return 1
+    exe = os.path.join(tools, "sbr_detect")
+    h = run([exe, "--help"]).stdout
+    with tempfile.TemporaryDirectory() as tmp:
+        with open(os.path.join(tmp, "00000.ppm"), "wb") as f:
+            f.write(b"P6 64 64 255\n" + bytes(64 * 64 * 3))
+        base = [exe, "--input", tmp, "--detections", os.path.join(tmp, "d.txt"), "--quiet"]
+        for field, opt, typ, rng, default in rows:
+            lo, hi = (x.split(" (")[0] for x in rng.split(" .. "))
+            shown = re.search(r"^\s+" + re.escape(opt) + r" [^\n]*", h, re.M)
+            want = default.replace(", ", ",")
+            good = shown is not None and (("=" + want) in shown.group(0) or "trained: " + want in shown.group(0))
+            if typ.startswith("uint32"):
+                r = run(base + [opt, str(int(hi) + 1)])
+                good = good and r.returncode == 2 and opt in r.stderr
+            else:
+                r = run(base + [opt, "nan"])
+                good = good and r.returncode == 2 and opt in r.stderr
+            if not good:
+                print(f"sbr_detect {opt}: help {shown.group(0).strip() if shown else 'missing'!r}, "
+                      f"beyond its range: exit {r.returncode}")
+                failures += 1
+        r = run(base + ["--min-size", "50", "--max-size", "20"])
+        good = r.returncode == 2 and "--max-size 20" in r.stderr and "at least min_size" in r.stderr
+        print(f"sbr_detect --min-size 50 --max-size 20: exit {r.returncode}: {r.stderr.strip()[:100]!r}")
+        failures += not good
+    print(f"sbr_detect: the {len(rows)} options of the core's tables: "
+          + ("each with its default and range" if failures == 0 else f"{failures} disagree"))
+    return failures
 
 
 def run(cmd):
@@ -134,6 +185,7 @@ def main():
                 and b.returncode == 2 and ("--no-such-option" in b.stderr or prog == "test_builtin_models_gtsdb"))
         print(f"{prog} --help: exit {h.returncode}; --no-such-option: exit {b.returncode}")
         failures += not good
+    failures += check_recogniser_options(a.tools)
     print("cli: " + ("OK" if failures == 0 else f"{failures} FAILED"))
     return 1 if failures else 0
 
