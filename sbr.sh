@@ -165,7 +165,7 @@ configure_build() {
   local name="$1" paths=()
   case "$name" in
     native) paths=(-DSBR_VENV_PYTHON="$BUILD/venv/bin/python"
-                   -DSBR_COST_M4_ELF="$BUILD/cortex-m4/ports/cortex_m/sbr_cost_m4.elf"
+                   -DSBR_COST_M4_ELF="$BUILD/cortex-m4/tests/bench_m4/sbr_cost_m4.elf"
                    -DSBR_DATA_DIR="$DATA") ;;
     sanitize) paths=(-DUNITY_ROOT="$(unity_root)") ;;
     cortex-m4|armhf) paths=(-DUNITY_ROOT="$(unity_root)" -DSBR_HOST_TESTS_DIR="$BUILD/native/tests") ;;
@@ -496,7 +496,7 @@ cmd_cost() {
   done
   log "cost benchmark -> $out"
   python3 "$ROOT/host_tools/bench_cost/sbr_cost.py" --bin "$BUILD/native/host_tools" \
-      --m4-elf "$BUILD/cortex-m4/ports/cortex_m/sbr_cost_m4.elf" --gtsdb "$DATA/gtsdb" \
+      --m4-elf "$BUILD/cortex-m4/tests/bench_m4/sbr_cost_m4.elf" --gtsdb "$DATA/gtsdb" \
       --out "$out" ${args[@]+"${args[@]}"}
 }
 

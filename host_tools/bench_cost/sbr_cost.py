@@ -7,12 +7,12 @@ Instructions per frame of sbr_recog_detect, which do not depend on the machine's
     only (sbr_detect --callgrind), one dump per stage; the part stage is split into maps
     (sbr_map_make, sbr_map_make_bright), regions (sbr_mser_detect_in_place, the part stage's MSER) and contours + FDs (the rest: region masks,
     tracing, descriptors) by callgrind_annotate's inclusive counts;
-  - Cortex-M4F: the bench image ports/cortex_m/sbr_cost_m4.c on qemu mps2-an386 with
+  - Cortex-M4F: the bench image tests/bench_m4/sbr_cost_m4.c on qemu mps2-an386 with
     -icount shift=0 (1 instruction = 1 ns of virtual time, read from a timer), the same
     frames as PPM, built-in model and default options; its detections are compared with
     the host's on the same pixels (box edges within 1 px, scores within 1e-3, the
     tolerance of the scene test, cmake/compare_scene.py);
-the Cortex-M4F's cost of one class-stage look (ports/cortex_m/sbr_picto_m4.c: features
+the Cortex-M4F's cost of one class-stage look (tests/bench_m4/sbr_picto_m4.c: features
 and classifier apart, per box side); the strip configuration (sbr_detect --strips; on the
 Cortex-M4F sbr_cost_m4_strips.elf beside the image, its workspace in the SRAM) on the same
 frames; and both on the hostile frames of sbr_hostile_frames (noise, a checkerboard, a grid of
@@ -235,7 +235,7 @@ def cortex_m4(args, work, ppm_dir=None, elf=None, host_opts=()):
 
 
 def picto_m4(args, work):
-    """One class-stage look on the Cortex-M4F (ports/cortex_m/sbr_picto_m4.c, beside the
+    """One class-stage look on the Cortex-M4F (tests/bench_m4/sbr_picto_m4.c, beside the
     frame image): features and classifier instructions per box side and outline."""
     elf = os.path.join(os.path.dirname(os.path.abspath(args.m4_elf)), "sbr_picto_m4.elf")
     if not os.path.exists(elf):
@@ -392,7 +392,7 @@ def main():
         argv, extra = argv[:i], argv[i + 1:]
     ap = argparse.ArgumentParser(description="sbr's cost benchmark", usage=__doc__)
     ap.add_argument("--bin", required=True, help="folder with sbr_detect and sbr_to_ppm")
-    ap.add_argument("--m4-elf", help="ports/cortex_m sbr_cost_m4.elf")
+    ap.add_argument("--m4-elf", help="tests/bench_m4 sbr_cost_m4.elf")
     ap.add_argument("--gtsdb", required=True)
     ap.add_argument("--range", type=parse_range, default=(400, 419))
     ap.add_argument("--m4-range", type=parse_range, default=None)
@@ -442,7 +442,7 @@ def main():
         if looks is not None:
             report["cortex_m4_picto_look"] = looks
             lines.append("")
-            lines.append("Cortex-M4F, one class-stage look (ports/cortex_m/sbr_picto_m4.c), millions of"
+            lines.append("Cortex-M4F, one class-stage look (tests/bench_m4/sbr_picto_m4.c), millions of"
                          " instructions:")
             picto_table(looks, lines)
         if hostile_dir is not None:

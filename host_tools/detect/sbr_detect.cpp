@@ -1,73 +1,8 @@
 // SPDX-License-Identifier: MIT
-// sbr_detect: runs sbr's recogniser over a folder of recorded images.
-//
-//   sbr_detect --input DIR --detections FILE [--annotated DIR] [--overview FILE] [--gt FILE|none] [--canlog FILE]
-//              [--all-detections FILE] [--summary FILE] [--model FILE] [--picto FILE]
-//              [--no-picto] [--range A-B] [--grey]
-//              [--threshold T] [--subsample S] [--roi X,Y,W,H] [--strips [--strip-bands ROWS,OVERLAP]] [--quiet] [--repeat N] [--callgrind]
-//              [--min-parts N] [--vote-error E] [--verify-error E] [--min-score S] [--refine-steps N]
-//              [--refine-first-score S] [--refine-score S] [--views N] [--view-score S] [--maps MASK]
-//              [--map-subsample I,R,B,Y] [--map-min-area I,R,B,Y] [--max-nodes N] [--max-heap N] [--max-candidates N]
-//              [--max-parts N] [--max-votes N] [--max-hypotheses N] [--gate 0|1] [--candidate-score S]
-//              [--candidate-iou U] [--triangle-view 0|1] [--triangle-score S]
-//
-// --input: a folder of JPEG/PNG/PPM images (a GTSDB folder with FullIJCNN2013/ inside is
-//   accepted too). --range A-B keeps images numbered A..B.
-// --detections: one line per detection at the operating point (score >= --threshold,
-//   default the class stage's operating point, or the part model's without one), exactly
-//   `NNNNN.jpg;left;top;right;bottom;class_id;score` (GTSDB's format, inclusive pixel box,
-//   plus a score 0..1).
-// --all-detections: the same format with every detection down to score 0.05 (the
-//   recogniser's floor is lowered to that): for precision-recall curves and AP.
-// --annotated: each image with its operating-point boxes and class names (JPEG). With
-//   ground truth (--gt FILE, default the gt.txt beside the images; --gt none: without)
-//   the detections are judged at class level as sbr_eval does (IoU >= 0.5, same class):
-//   found ones in their superclass's colour, false ones magenta and marked "FP", missed
-//   signs as dashed boxes with their class; labels placed clear of each other and inside
-//   the image (host_tools/common/annotate.hpp).
-// --overview: a contact sheet (PNG) of the 12 images with the most missed signs and false
-//   detections, worst first, each cropped around its errors (needs ground truth).
-// --canlog: a candump log with the CAN frames of every processed image (dbc/sbr.dbc).
-// --grey: each image converted to grey (OpenCV's BGR2GRAY) and given to the recogniser as
-//   a GRAY8 frame, as a monochrome camera would (the annotated images stay in colour).
-// --sequence: the images (sorted by name) are consecutive frames of one drive, 10 per
-//   second: the CAN log's confirmed signs come from the channel tracker (each sign once
-//   per pass, with a stable track id) instead of treating every image as a still.
-// --model: a prototype library file (sbr_train --out-model); default: the built-in one.
-// --picto: a class-stage file (sbr_train_picto --out) used with the library instead of
-//   its own; --no-picto: no class stage (part evidence alone scores and classifies).
-// --summary: the summary text (also printed): images, detections, time per frame (median
-//   and 95th percentile, per stage), workspace bytes, capacity hits.
-// --min-parts, --vote-error, --verify-error, --min-score, --refine-steps, --refine-first-score, --refine-score,
-//   --views, --view-score, --candidate-score, --candidate-iou, --triangle-view, --triangle-score
-//   override the recogniser's options of those names
-//   (include/sbr/recog.h), for tuning and regression; --maps sets parts.maps (bit k =
-//   map kind k of include/sbr/map.h; 0x1 intensity only), --map-subsample
-//   parts.map_subsample, --map-min-area parts.map_min_area and --map-polarity
-//   parts.map_polarity (per kind, in the order intensity, red, blue, yellow; kinds not
-//   given keep their defaults; an area or a polarity of 0 means the MSER default;
-//   polarity 1 dark, 2 bright, 3 both; the default is 2 for intensity: --map-polarity 3
-//   floods both), --grey-polarity the intensity map's polarities on a grey frame
-//   (default 0: both), --max-nodes parts.mser.max_nodes (MSER tree nodes) and
-//   --max-heap parts.mser.max_heap (MSER pixels waiting at once; with the nodes most of
-//   the workspace; 0 = the worst case), --max-candidates the class stage's candidate
-//   bound and --max-parts, --max-votes, --max-hypotheses the recogniser's bounds of those
-//   names (smaller: less workspace); --gate 0 turns the class stage's gate off (it is used
-//   when the class stage has one).
-// A file that is empty, truncated (a JPEG without its end marker, a PNG without IEND, a
-//   short PPM) or undecodable is a failed image: reported, counted in the summary, and the
-//   exit status is 3 when some images failed (1 when all did, or on a set-up error; 2 for
-//   bad options). The progress bar (with an estimate of the time left) is drawn only when
-//   stderr is a terminal.
-// Time is measured per frame on one core (the tool is single-threaded). --repeat N runs the
-//   recogniser N times on each frame (1..20, default 1) and keeps each frame's fastest run
-//   and that run's stage times: a shared or virtual machine's interruptions only ever add
-//   time, so the fastest of a few runs is the figure that repeats from one run of the
-//   tool to the next. The output is the same for every run (the recogniser is
-//   deterministic); the summary says how many runs each frame had.
-// --callgrind: for `./sbr.sh cost` (host_tools/bench_cost): run under valgrind's callgrind
-//   with --collect-atstart=no; instructions are collected inside sbr_recog_detect only and
-//   a dump is written at each stage boundary (one run per frame).
+// sbr_detect: runs sbr's recogniser over a folder of recorded images. Its options and what
+// they do are its --help (the tool's own below; the recogniser's and the class stage's from
+// the core's tables, docs/usage/configuration.md); docs/usage/detect.md describes the
+// outputs and is checked against --help (tests/python/test_cli.py).
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 

@@ -55,6 +55,30 @@ def table_rows(tools):
     return rows
 
 
+def check_detect_docs(tools, sbr_sh):
+    """docs/usage/detect.md against sbr_detect --help (the one source): each of the tool's
+    own options is described there (the core's tables' options in configuration.md), and
+    every option the page names is one of sbr_detect's, sbr_eval's or ./sbr.sh detect's and
+    train's (the tools the page covers)."""
+    def options(cmd):
+        return set(re.findall(r"--[a-z][a-z0-9-]*", run(cmd).stdout))
+    page = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "docs", "usage", "detect.md")
+    with open(page, encoding="utf-8") as f:
+        named = set(re.findall(r"--[a-z][a-z0-9-]*", f.read()))
+    detect = options([os.path.join(tools, "sbr_detect"), "--help"])
+    own = detect - {r[1] for r in table_rows(tools)} - {"--help"}
+    known = detect | options([os.path.join(tools, "sbr_eval"), "--help"])
+    for tool in ("sbr_train", "sbr_train_picto"):
+        known |= options([os.path.join(tools, tool), "--help"])
+    if sbr_sh:
+        known |= options(["bash", sbr_sh, "detect", "--help"]) | options(["bash", sbr_sh, "train", "--help"])
+    undocumented, unknown = sorted(own - named), sorted(named - known)
+    print(f"docs/usage/detect.md: {len(own)} options of sbr_detect's own"
+          + (f"; not described there: {undocumented}" if undocumented else ", each described")
+          + (f"; named there but no tool has them: {unknown}" if unknown else ""))
+    return int(bool(undocumented)) + int(bool(unknown))
+
+
 def check_recogniser_options(tools):
     """sbr_detect's recogniser options are the core's tables, row for row: each option with
     its default, a value one beyond its range refused naming it, a broken rule between
@@ -186,6 +210,7 @@ def main():
         print(f"{prog} --help: exit {h.returncode}; --no-such-option: exit {b.returncode}")
         failures += not good
     failures += check_recogniser_options(a.tools)
+    failures += check_detect_docs(a.tools, a.sbr_sh)
     print("cli: " + ("OK" if failures == 0 else f"{failures} FAILED"))
     return 1 if failures else 0
 
