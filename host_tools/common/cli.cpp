@@ -104,14 +104,15 @@ void add_front_end_options(CLI::App &app, FrontEnd &fe, const std::string &group
 
 void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg) { apply_front_end(r.front_end, cfg.parts); }
 
-void add_look_options(CLI::App &app, LooksCli &l) {
-    const std::string g = "The class stage's looks (docs/usage/configuration.md; default: the class stage's own)";
+void add_look_options(CLI::App &app, LooksCli &l, bool written) {
+    const std::string g = written ? "The looks written into the class stage (docs/usage/configuration.md)"
+                                  : "The class stage's looks (docs/usage/configuration.md; default: the class stage's own)";
     for (const sbr_field_t &f : look_fields()) {
         float &v = l.values[f.name];
         v = f.def_f;
         l.options[f.name] = app.add_option(option_name(f.name), v, f.help)
                                 ->check(finite_range(f.lo_f, f.hi_f))
-                                ->default_str("the class stage's (trained: " + number(f.def_f) + ")")
+                                ->default_str(written ? number(f.def_f) : "the class stage's (trained: " + number(f.def_f) + ")")
                                 ->group(g);
     }
 }

@@ -46,7 +46,9 @@ struct LooksCli {
     std::map<std::string, float> values;
     std::map<std::string, CLI::Option *> options;
 };
-void add_look_options(CLI::App &app, LooksCli &l);
+// `written`: the trainer's options (the looks it writes into the model, default the
+// table's) instead of a tool's overrides of the class stage in use.
+void add_look_options(CLI::App &app, LooksCli &l, bool written = false);
 // The given looks into a copy of the class stage (its tables stay borrowed).
 void apply_looks(const LooksCli &l, sbr_picto_model_t &stage);
 // A field's range as the table gives it ("0 .. 255").

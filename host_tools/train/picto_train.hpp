@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"
 #include "gtsdb.hpp"
 #include "model_io.hpp"
 
@@ -57,6 +58,7 @@ struct Options {
     int gtsrb_copies = 2;   // --gtsrb-copies: jittered copies of each crop besides itself
     int gtsrb_synth = 0;    // --gtsrb-synth: synthetic copies of each crop (synth_copy())
     FrontEnd front_end;     // --map-subsample, --map-min-area: the part stage of the candidates
+    LooksCli looks;         // --refine-score, ...: the looks written into the model (default: the table's)
     std::string trainer = "hand";            // --trainer: hand (picto_net.cpp) or sklearn (picto_fit.py)
     std::string python = SBR_PICTO_PYTHON;   // --python: the interpreter of --trainer sklearn
     std::string trainer_args;                // --trainer-args: more options for picto_fit.py

@@ -115,6 +115,7 @@ int parse_options(int argc, char **argv, Options &o) {
     app.add_option("--python", o.python, "Python with scikit-learn for --trainer sklearn")->capture_default_str();
     app.add_option("--trainer-args", o.trainer_args, "more options for picto_fit.py (--trainer sklearn), e.g. \"--alpha 0.01\"");
     add_front_end_options(app, o.front_end);
+    add_look_options(app, o.looks, true);
     const int parsed = parse_cli(app, argc, argv);
     if (parsed >= 0) return parsed;
     o.gtsrb_given = gtsrb_opt->count() > 0;
@@ -171,6 +172,13 @@ bool fit(const Options &o, const std::vector<Sample> &samples, const Counts &n, 
     out.hidden = uint32_t(o.hidden);
     out.classes = kGtsdbClasses;
     out.threshold = o.threshold;
+    {
+        // the looks the recogniser uses with this class stage: the table's defaults unless given
+        sbr_picto_model_t v{};
+        v.looks = out.looks;
+        apply_looks(o.looks, v);
+        out.looks = v.looks;
+    }
     auto fold = [&](std::vector<float> &w) {
         for (size_t r = 0; r < w.size() / (kF + 1); ++r) {
             float *row = &w[r * (kF + 1)];

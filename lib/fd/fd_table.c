@@ -285,10 +285,13 @@ sbr_status_t sbr_fd_table_init(sbr_fd_table_t *table, const sbr_fd_t *protos, ui
 {
     uint32_t i;
     uint32_t m;
-    if ((table == NULL) || (protos == NULL) || (mags == NULL)) {
+    if (table == NULL) {
         return SBR_ERR_NULL;
     }
     (void)memset(table, 0, sizeof *table);
+    if ((protos == NULL) || (mags == NULL)) {
+        return SBR_ERR_NULL;
+    }
     if (count == 0u) {
         return SBR_ERR_SIZE;
     }

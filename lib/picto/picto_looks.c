@@ -13,7 +13,7 @@
 #include <stddef.h>
 #include <string.h>
 
-#define LOOK_OFF(name) ((uint32_t)(offsetof(sbr_picto_model_t, looks) + offsetof(sbr_picto_looks_t, name)))
+#define LOOK_OFF(name) ((uint32_t)offsetof(sbr_picto_model_t, looks.name))
 
 /* The table, once: X(name, default, meaning); every look is a probability in [0, 1].
    Expanded twice: the numbers and the texts (no pointers: no relocated data). */
@@ -38,9 +38,8 @@ typedef struct look_text_s {
 #define LOOK_TEXT(name, def, help) {#name, help},
 
 static const look_row_t looks[] = {PICTO_LOOKS(LOOK_ROW)};
-static const look_text_t look_texts[] = {PICTO_LOOKS(LOOK_TEXT)};
 
-#define LOOK_COUNT ((uint32_t)(sizeof looks / sizeof looks[0]))
+#define LOOK_COUNT ((uint32_t)((sizeof looks) / (sizeof looks[0])))
 
 uint32_t sbr_picto_look_field_count(void)
 {
@@ -49,6 +48,7 @@ uint32_t sbr_picto_look_field_count(void)
 
 sbr_status_t sbr_picto_look_field_at(uint32_t index, sbr_field_t *out)
 {
+    static const look_text_t look_texts[] = {PICTO_LOOKS(LOOK_TEXT)};
     sbr_status_t st = SBR_ERR_NULL;
     if (out != NULL) {
         st = SBR_ERR_RANGE;
@@ -72,7 +72,7 @@ sbr_status_t sbr_picto_look_field_at(uint32_t index, sbr_field_t *out)
 static float look_value(const sbr_picto_model_t *model, uint32_t offset)
 {
     float v;
-    (void)memcpy(&v, &((const uint8_t *)model)[offset], sizeof v);
+    (void)memcpy((uint8_t *)&v, &((const uint8_t *)model)[offset], sizeof v);
     return v;
 }
 
@@ -83,7 +83,7 @@ void sbr_picto_looks_default(sbr_picto_looks_t *out)
         uint32_t i;
         (void)memset(&m, 0, sizeof m);
         for (i = 0u; i < LOOK_COUNT; i++) {
-            (void)memcpy(&((uint8_t *)&m)[looks[i].offset], &looks[i].def, sizeof looks[i].def);
+            (void)memcpy(&((uint8_t *)&m)[looks[i].offset], (const uint8_t *)&looks[i].def, sizeof looks[i].def);
         }
         *out = m.looks;
     }

@@ -167,7 +167,7 @@ typedef struct field_text_s {
 static const field_row_t fields[] = {RECOG_FIELDS(ROW_U, ROW_A, ROW_F)};
 static const field_text_t texts[] = {RECOG_FIELDS(TEXT_U, TEXT_A, TEXT_F)};
 
-#define FIELD_COUNT ((uint32_t)(sizeof fields / sizeof fields[0]))
+#define FIELD_COUNT ((uint32_t)((sizeof fields) / (sizeof fields[0])))
 
 uint32_t sbr_recog_field_count(void)
 {
@@ -201,9 +201,9 @@ sbr_status_t sbr_recog_field_at(uint32_t index, sbr_field_t *out)
 
 uint32_t sbr_recog_field_find(const char *name)
 {
-    uint32_t i;
     uint32_t found = SBR_FIELD_NONE;
     if (name != NULL) {
+        uint32_t i;
         for (i = 0u; (i < FIELD_COUNT) && (found == SBR_FIELD_NONE); i++) {
             if (strncmp(texts[i].name, name, SBR_FIELD_NAME_LEN) == 0) {
                 found = i;
@@ -217,14 +217,14 @@ uint32_t sbr_recog_field_find(const char *name)
 static uint32_t get_u(const sbr_recog_config_t *cfg, const field_row_t *f, uint32_t k)
 {
     uint32_t v;
-    (void)memcpy(&v, &((const uint8_t *)cfg)[f->offset + (k * 4u)], sizeof v);
+    (void)memcpy((uint8_t *)&v, &((const uint8_t *)cfg)[f->offset + (k * 4u)], sizeof v);
     return v;
 }
 
 static float get_f(const sbr_recog_config_t *cfg, const field_row_t *f)
 {
     float v;
-    (void)memcpy(&v, &((const uint8_t *)cfg)[f->offset], sizeof v);
+    (void)memcpy((uint8_t *)&v, &((const uint8_t *)cfg)[f->offset], sizeof v);
     return v;
 }
 
@@ -236,10 +236,10 @@ void sbr_recog_priv_fields_default(sbr_recog_config_t *cfg)
         const field_row_t *f = &fields[i];
         uint8_t *at = &((uint8_t *)cfg)[f->offset];
         if (f->kind == F32) {
-            (void)memcpy(at, &f->def_f, sizeof f->def_f);
+            (void)memcpy(at, (const uint8_t *)&f->def_f, sizeof f->def_f);
         } else {
             for (k = 0u; k < f->count; k++) {
-                (void)memcpy(&at[k * 4u], &f->def_u[k], sizeof f->def_u[k]);
+                (void)memcpy(&at[k * 4u], (const uint8_t *)&f->def_u[k], sizeof f->def_u[k]);
             }
         }
     }
@@ -249,11 +249,13 @@ void sbr_recog_priv_fields_default(sbr_recog_config_t *cfg)
 static int in_table_range(const sbr_recog_config_t *cfg, const field_row_t *f)
 {
     int ok = 1;
-    uint32_t k;
     if (f->kind == F32) {
         const float v = get_f(cfg, f);
-        ok = ((v >= f->lo_f) && (v <= f->hi_f)) ? 1 : 0;
+        if (!((v >= f->lo_f) && (v <= f->hi_f))) {
+            ok = 0;
+        }
     } else {
+        uint32_t k;
         for (k = 0u; k < f->count; k++) {
             const uint32_t v = get_u(cfg, f, k);
             if ((v < f->lo_u) || (v > f->hi_u)) {
@@ -284,19 +286,29 @@ static int links_ok(const sbr_recog_config_t *cfg, uint32_t offset)
             }
         }
     } else if (offset == OFF(parts.mser.max_area)) {
-        ok = (p->mser.max_area >= p->mser.min_area) ? 1 : 0;
+        if (p->mser.max_area < p->mser.min_area) {
+            ok = 0;
+        }
     } else if (offset == OFF(parts.max_side)) {
-        ok = (p->max_side >= p->min_side) ? 1 : 0;
+        if (p->max_side < p->min_side) {
+            ok = 0;
+        }
     } else if (offset == OFF(parts.fd_n)) {
-        ok = (sbr_fft_size_supported(p->fd_n) != 0) ? 1 : 0;
+        if (sbr_fft_size_supported(p->fd_n) == 0) {
+            ok = 0;
+        }
     } else if (offset == OFF(parts.fd_m)) {
-        ok = ((2u * p->fd_m) < p->fd_n) ? 1 : 0;
+        if ((2u * p->fd_m) >= p->fd_n) {
+            ok = 0;
+        }
     } else if (offset == OFF(match_p)) {
-        ok = ((sbr_fft_size_supported(cfg->match_p) != 0) && (cfg->match_p >= ((2u * p->fd_m) + 1u)))
-                 ? 1
-                 : 0;
+        if ((sbr_fft_size_supported(cfg->match_p) == 0) || (cfg->match_p < ((2u * p->fd_m) + 1u))) {
+            ok = 0;
+        }
     } else if (offset == OFF(max_size)) {
-        ok = (cfg->max_size >= cfg->min_size) ? 1 : 0;
+        if (!(cfg->max_size >= cfg->min_size)) {
+            ok = 0;
+        }
     } else {
         /* the other linked fields are blamed through their partner */
     }
@@ -305,9 +317,9 @@ static int links_ok(const sbr_recog_config_t *cfg, uint32_t offset)
 
 uint32_t sbr_recog_config_check_field(const sbr_recog_config_t *cfg)
 {
-    uint32_t i;
     uint32_t bad = SBR_FIELD_NONE;
     if (cfg != NULL) {
+        uint32_t i;
         /* every range first, so that the links compare values in range */
         for (i = 0u; (i < FIELD_COUNT) && (bad == SBR_FIELD_NONE); i++) {
             if (in_table_range(cfg, &fields[i]) == 0) {

@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <cstring>
 
 extern "C" {
 #include "sbr/fd.h"
@@ -209,6 +210,7 @@ void fuzz_descriptors(FuzzedDataProvider &in)
         }
     }
     sbr_fd_match_t res[6];
+    sbr_fd_match_t res_lanes[6];
     uint32_t best = 99u;
     // both paths: the four-lane one (work_len >= SBR_FD_TABLE_WORK_LEN) and one pair at a
     // time must refuse and accept the same tables
@@ -219,6 +221,9 @@ void fuzz_descriptors(FuzzedDataProvider &in)
         const sbr_status_t ts = sbr_fd_match_table(&fft_p, &cfg, &a, table, nt, mw.data(), wl, res, &best);
         FZ_CHECK(fz_known(ts));
         both[path] = ts;
+        if (path == 0u) {
+            std::memcpy(res_lanes, res, sizeof res);
+        }
         if (ts == SBR_OK) {
             FZ_CHECK(best < nt);
             for (uint32_t i = 0u; i < nt; i++) {
@@ -257,6 +262,54 @@ void fuzz_descriptors(FuzzedDataProvider &in)
                      e, (int)cfg.mode, cfg.max_rotation, cfg.refine, cfg.max_error);
     }
     FZ_CHECK(both[0] == both[1] || (both[0] != SBR_OK && both[1] != SBR_OK) || may_overflow);
+    // the prepared table (sbr_fd_table_init() once, sbr_fd_match_prepared() per query):
+    // for entries the check accepts, the same status and, bit for bit, the same matches as
+    // sbr_fd_match_table() on the four-lane path; a sub-range matches that range alone
+    {
+        sbr_fd_table_t tb{};
+        std::vector<float> mags(SBR_FD_TABLE_MAGS_LEN(6u, SBR_FD_MAX_M) + 1u);
+        const size_t mlen = in.ConsumeBool() ? mags.size() : in.ConsumeIntegralInRange<size_t>(0u, mags.size());
+        const sbr_status_t is = sbr_fd_table_init(&tb, nt > 0u ? table : nullptr, nt, mags.data(), mlen);
+        FZ_STATUS(is, SBR_OK, SBR_ERR_NULL, SBR_ERR_SIZE, SBR_ERR_RANGE);
+        bool entries_ok = nt > 0u;
+        for (uint32_t i = 0u; i < nt; i++) {
+            float e = 0.0f;
+            entries_ok = entries_ok && sbr_fd_check(&table[i], &e) == SBR_OK && table[i].m == table[0].m &&
+                         table[i].scale >= SBR_FD_TABLE_MIN_SCALE && table[i].scale <= SBR_FD_TABLE_MAX_SCALE;
+        }
+        if (entries_ok && mlen >= SBR_FD_TABLE_MAGS_LEN(nt, table[0].m)) {
+            FZ_CHECK(is == SBR_OK);
+        } else {
+            FZ_CHECK(is != SBR_OK);
+        }
+        sbr_fd_match_t pres[6];
+        uint32_t pbest = 99u;
+        const sbr_status_t ps =
+            sbr_fd_match_prepared(&fft_p, &cfg, &tb, 0u, nt, &a, mw.data(), SBR_FD_TABLE_WORK_LEN(64u), pres, &pbest);
+        FZ_STATUS(ps, SBR_OK, SBR_ERR_NULL, SBR_ERR_STATE, SBR_ERR_SIZE, SBR_ERR_RANGE);
+        if (is != SBR_OK) {
+            FZ_CHECK(ps == SBR_ERR_STATE); // a table init refused stays unusable
+        } else if (a.scale >= SBR_FD_TABLE_MIN_SCALE && a.scale <= SBR_FD_TABLE_MAX_SCALE) {
+            FZ_CHECK(ps == both[0] || may_overflow);
+            if (ps == SBR_OK && both[0] == SBR_OK) {
+                FZ_CHECK(pbest < nt);
+                FZ_CHECK(std::memcmp(pres, res_lanes, nt * sizeof(sbr_fd_match_t)) == 0);
+            }
+            if (nt >= 2u) {
+                sbr_fd_match_t one;
+                uint32_t b1 = 99u;
+                FZ_CHECK(sbr_fd_match_prepared(&fft_p, &cfg, &tb, nt - 1u, 2u, &a, mw.data(), SBR_FD_TABLE_WORK_LEN(64u),
+                                               &one, &b1) == SBR_ERR_SIZE);
+            }
+            // a table changed after its init is refused
+            sbr_fd_table_t moved = tb;
+            moved.count = nt + 1u;
+            FZ_CHECK(sbr_fd_match_prepared(&fft_p, &cfg, &moved, 0u, 1u, &a, mw.data(), SBR_FD_TABLE_WORK_LEN(64u), pres,
+                                           &pbest) == SBR_ERR_STATE);
+        } else {
+            FZ_CHECK(ps == SBR_ERR_RANGE || ps == SBR_ERR_NULL);
+        }
+    }
 }
 
 } // namespace

@@ -48,6 +48,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const uint32_t h = use_roi ? roi.height : img.height;
     const sbr_status_t cs = sbr_recog_config_check(&cfg);
     FZ_STATUS(cs, SBR_OK, SBR_ERR_RANGE);
+    // the table names a field exactly when the check refuses
+    const uint32_t blamed = sbr_recog_config_check_field(&cfg);
+    sbr_field_t bf;
+    FZ_CHECK((blamed == SBR_FIELD_NONE) == (cs == SBR_OK));
+    FZ_CHECK(blamed == SBR_FIELD_NONE || sbr_recog_field_at(blamed, &bf) == SBR_OK);
     size_t need = use_strips ? sbr_recog_strip_workspace_size(&cfg, w, h, rows) : sbr_recog_workspace_size(&cfg, w, h);
     if (use_strips && rows > 0u) {
         // one band's workspace and room for a band's detections
@@ -63,8 +68,22 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     void *ws = fz_workspace(given);
     const bool with_picto = in.ConsumeBool();
     sbr_recog_t rec;
-    const sbr_status_t is = sbr_recog_init(&rec, &cfg, &model, with_picto ? &picto : nullptr, ws, given);
+    // the class stage's looks: a copy, one of them possibly out of its range
+    sbr_picto_model_t stage = picto;
+    bool looks_ok = true;
+    if (with_picto && in.ConsumeIntegral<uint8_t>() >= 200u) {
+        float *looks[5] = {&stage.looks.refine_first_score, &stage.looks.grey_refine_first_score,
+                           &stage.looks.refine_score, &stage.looks.view_score, &stage.looks.triangle_score};
+        float *l = looks[in.ConsumeIntegralInRange<uint32_t>(0u, 4u)];
+        *l = fz_float(in, -0.5f, 1.5f);
+        looks_ok = *l >= 0.0f && *l <= 1.0f;
+        FZ_CHECK((sbr_picto_check(&stage) == SBR_OK) == looks_ok);
+    }
+    const sbr_status_t is = sbr_recog_init(&rec, &cfg, &model, with_picto ? &stage : nullptr, ws, given);
     FZ_STATUS(is, SBR_OK, SBR_ERR_RANGE, SBR_ERR_CORRUPT);
+    if (!looks_ok) {
+        FZ_CHECK(is != SBR_OK);
+    }
     if (cs != SBR_OK) {
         FZ_CHECK(is != SBR_OK);
     }

@@ -5,6 +5,7 @@
 // whose points lie in the mask and whose index ranges fit the point array; parts with
 // finite descriptors inside the image.
 #include "fuzz_common.hpp"
+#include <cstring>
 
 extern "C" {
 #include "sbr/contour.h"
@@ -61,6 +62,34 @@ void fuzz_map_mser_contour(FuzzedDataProvider &in)
         return;
     }
     FZ_CHECK(n <= cap);
+    // the part stage's entry: the map written at sbr_mser_map_slot() and detected in place
+    // gives the same regions and status, and the map back
+    if (cap > 0u) {
+        std::vector<uint64_t> ws2(need / 8u + 1u);
+        uint8_t *slot = sbr_mser_map_slot(&cfg, view.width, view.height, ws2.data(), need);
+        FZ_CHECK(slot != nullptr);
+        for (uint32_t y = 0u; y < view.height; y++) {
+            std::memcpy(&slot[(size_t)y * view.width], &view.data[(size_t)y * view.stride], view.width);
+        }
+        sbr_mser_region_t again[64];
+        uint32_t m = 0u;
+        sbr_image_t back{};
+        const sbr_status_t s2 =
+            sbr_mser_detect_in_place(view.width, view.height, &cfg, ws2.data(), need, again, cap, &m, &back);
+        FZ_CHECK(s2 == st && m == n);
+        for (uint32_t i = 0u; i < n; i++) { // field by field (the struct's tail padding is not written)
+            const sbr_mser_region_t &p = again[i], &q = regions[i];
+            FZ_CHECK(p.bbox.x == q.bbox.x && p.bbox.y == q.bbox.y && p.bbox.width == q.bbox.width &&
+                     p.bbox.height == q.bbox.height && p.area == q.area &&
+                     std::memcmp(&p.variation, &q.variation, sizeof p.variation) == 0 && p.seed_x == q.seed_x &&
+                     p.seed_y == q.seed_y && p.level == q.level && p.polarity == q.polarity);
+        }
+        for (uint32_t y = 0u; y < view.height; y++) {
+            FZ_CHECK(std::memcmp(&back.data[(size_t)y * back.stride], &view.data[(size_t)y * view.stride], view.width) ==
+                     0);
+        }
+        FZ_CHECK(sbr_mser_map_slot(&cfg, view.width, view.height, ws2.data(), need - 1u) == nullptr);
+    }
     std::vector<uint8_t> mask;
     for (uint32_t i = 0u; i < n && i < 8u; i++) {
         const sbr_mser_region_t &r = regions[i];
