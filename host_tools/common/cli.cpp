@@ -80,17 +80,34 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
     const std::string g = "Recogniser (docs/usage/configuration.md; defaults of sbr_recog_config_default())";
     unsigned char *const base = reinterpret_cast<unsigned char *>(&cfg);
     for (const sbr_field_t &f : recog_fields()) {
+        const std::string name = f.name;
         CLI::Option *o;
+        // each option's callback writes the field and records that it was given: after the
+        // parse (and the App) is gone, RecogCli::given() still answers
         if (f.count > 1) {
             o = add_list(app, f, r.front_end.lists[f.name]);
         } else if (f.kind == SBR_FIELD_F32) {
-            o = app.add_option(option_name(f.name), *reinterpret_cast<float *>(base + f.offset), f.help)
+            float *at = reinterpret_cast<float *>(base + f.offset);
+            o = app.add_option_function<float>(
+                       option_name(f.name),
+                       [at, name, &r](const float &v) {
+                           *at = v;
+                           r.given_fields.insert(name);
+                       },
+                       f.help)
                     ->check(finite_range(f.lo_f, f.hi_f))
-                    ->capture_default_str();
+                    ->default_str(number(*at));
         } else {
-            o = app.add_option(option_name(f.name), *reinterpret_cast<uint32_t *>(base + f.offset), f.help)
+            uint32_t *at = reinterpret_cast<uint32_t *>(base + f.offset);
+            o = app.add_option_function<uint32_t>(
+                       option_name(f.name),
+                       [at, name, &r](const uint32_t &v) {
+                           *at = v;
+                           r.given_fields.insert(name);
+                       },
+                       f.help)
                     ->check(CLI::Range(f.lo_u, f.hi_u))
-                    ->capture_default_str();
+                    ->default_str(std::to_string(*at));
         }
         o->group(g);
         r.options[f.name] = o;
@@ -108,22 +125,20 @@ void add_look_options(CLI::App &app, LooksCli &l, bool written) {
     const std::string g = written ? "The looks written into the class stage (docs/usage/configuration.md)"
                                   : "The class stage's looks (docs/usage/configuration.md; default: the class stage's own)";
     for (const sbr_field_t &f : look_fields()) {
-        float &v = l.values[f.name];
-        v = f.def_f;
-        l.options[f.name] = app.add_option(option_name(f.name), v, f.help)
-                                ->check(finite_range(f.lo_f, f.hi_f))
-                                ->default_str(written ? number(f.def_f) : "the class stage's (trained: " + number(f.def_f) + ")")
-                                ->group(g);
+        const std::string name = f.name;
+        app.add_option_function<float>(
+               option_name(f.name), [name, &l](const float &v) { l.given[name] = v; }, f.help)
+            ->check(finite_range(f.lo_f, f.hi_f))
+            ->default_str(written ? number(f.def_f) : "the class stage's (trained: " + number(f.def_f) + ")")
+            ->group(g);
     }
 }
 
 void apply_looks(const LooksCli &l, sbr_picto_model_t &stage) {
     unsigned char *base = reinterpret_cast<unsigned char *>(&stage);
     for (const sbr_field_t &f : look_fields()) {
-        const auto o = l.options.find(f.name);
-        if (o == l.options.end() || o->second->count() == 0) continue;
-        const float v = l.values.at(f.name);
-        std::memcpy(base + f.offset, &v, sizeof v);
+        const auto v = l.given.find(f.name);
+        if (v != l.given.end()) std::memcpy(base + f.offset, &v->second, sizeof v->second);
     }
 }
 

@@ -7,6 +7,7 @@
 #include "cli_core.hpp"
 
 #include <map>
+#include <set>
 #include <string>
 
 #include "gtsdb.hpp"
@@ -27,11 +28,13 @@ CLI::Option *add_range_option(CLI::App &app, ImageRanges &out, const std::string
 // the fields of `cfg` (which holds the defaults, shown by --help), in an option group
 // "Recogniser". Nothing here repeats a range or a default.
 struct RecogCli {
-    std::map<std::string, CLI::Option *> options;  // by field name: given explicitly?
+    std::map<std::string, CLI::Option *> options;  // by field name, valid while the App lives
+    std::set<std::string> given_fields;            // the fields given on the command line
     FrontEnd front_end;                            // the per-map-kind lists (--map-*)
     bool given(const std::string &field) const {
-        const auto it = options.find(field);
-        return it != options.end() && it->second->count() > 0;
+        if (given_fields.count(field) != 0) return true;
+        const auto l = front_end.lists.find(field);
+        return l != front_end.lists.end() && !l->second.empty();
     }
 };
 void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r);
@@ -43,8 +46,7 @@ void apply_recog_cli(const RecogCli &r, sbr_recog_config_t &cfg);
 // The class stage's looks (picto.h, sbr_picto_look_field_at()): options that override the
 // values of the class stage in use (its model's, by default; --help says so).
 struct LooksCli {
-    std::map<std::string, float> values;
-    std::map<std::string, CLI::Option *> options;
+    std::map<std::string, float> given;  // the looks given on the command line, by name
 };
 // `written`: the trainer's options (the looks it writes into the model, default the
 // table's) instead of a tool's overrides of the class stage in use.

@@ -148,6 +148,47 @@ int main(int argc, char **argv)
     }
 
     {
+        // the looks' thresholds (flags bit 3, five floats after the flags): they load and
+        // save back; a format-3 file (no looks, from before they were the model's) loads
+        // with sbr_picto_looks_default(); out of [0, 1] is refused; format 3 with the bit
+        // set is refused
+        sbr_host::Picto p = sbr_host::picto_from_view(pv);
+        p.looks.refine_score = 0.5f;
+        p.looks.triangle_score = 0.0f;
+        p.bind();
+        std::string a;
+        expect(sbr_host::picto_bytes(p, a).empty(), "write with looks");
+        sbr_host::Picto back;
+        expect(sbr_host::parse_picto(a, "looks.sbrp", back).empty() && back.looks.refine_score == 0.5f &&
+                   back.looks.triangle_score == 0.0f && back.view.looks.refine_score == 0.5f,
+               "the looks load");
+        std::string old = picto.substr(0, 28) + picto.substr(48);
+        uint32_t v = 3u, flags = 0u;
+        std::memcpy(&old[4], &v, 4u);
+        std::memcpy(&flags, &old[24], 4u);
+        expect((flags & 8u) != 0u, "the built-in class stage's file has the looks' bit");
+        flags &= ~8u;
+        std::memcpy(&old[24], &flags, 4u);
+        fix_crc(old);
+        sbr_picto_looks_t def;
+        sbr_picto_looks_default(&def);
+        expect(sbr_host::parse_picto(old, "format3.sbrp", back).empty() &&
+                   std::memcmp(&back.looks, &def, sizeof def) == 0,
+               "a format-3 .sbrp loads with the default looks");
+        std::string bad = old;
+        flags |= 8u;
+        std::memcpy(&bad[24], &flags, 4u);
+        fix_crc(bad);
+        expect_refused(parse_picto(bad), "sizes", ".sbrp format 3 with the looks' bit, CRC fixed up");
+        bad = a;
+        const float out = 1.5f;
+        std::memcpy(&bad[28 + 8], &out, 4u);  // refine_score
+        fix_crc(bad);
+        expect_refused(parse_picto(bad), "values", ".sbrp refine_score 1.5, CRC fixed up");
+        std::printf(".sbrp looks: round trip, format 3 read with the defaults, out of range refused\n");
+    }
+
+    {
         // the colour check's tables (picto.h rim_shape, rim_floor; flags bit 1): they
         // load and save back; without them the file is the same minus the tables (older
         // files load); damaged tables are refused. Without a gate (the built-in class
