@@ -530,7 +530,9 @@ void parts_at_full_resolution(sbr_parts_config_t &parts) {
 void training_bounds(sbr_recog_config_t &rc) {
     rc.max_parts = 4096u;
     rc.parts.mser.max_heap = 0u;
-    rc.max_extra_looks = 1000000u;
+    // no budget: the largest the table allows
+    sbr_field_t looks;
+    if (sbr_recog_field_at(sbr_recog_field_find("max_extra_looks"), &looks) == SBR_OK) rc.max_extra_looks = looks.hi_u;
 }
 
 void apply_front_end(const FrontEnd &fe, sbr_parts_config_t &parts) {

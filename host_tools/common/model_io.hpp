@@ -122,8 +122,8 @@ bool report_write(const char *tool, const std::string &path, const std::string &
 void parts_at_full_resolution(sbr_parts_config_t &parts);
 
 // The work bounds the trainers' recogniser runs with: at most 4096 parts, every pixel
-// room in the MSER's boundary heap, no budget of extra class-stage looks. The runtime's
-// defaults (max_parts 3072, max_heap 384,000, max_extra_looks 256) bound an ECU's worst
+// room in the MSER's boundary heap, no budget of extra class-stage looks (the table's
+// largest). The runtime's defaults (docs/usage/configuration.md) bound an ECU's worst
 // case; on the trainers' configurations (every map at full resolution, every candidate
 // refined) they would cut training images' parts and candidates, and the shipped models
 // were learned without them (./sbr.sh train reproduces lib/models byte for byte).
