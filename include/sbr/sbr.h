@@ -23,6 +23,7 @@
 #include "sbr/bike.h"
 #include "sbr/conic.h"
 #include "sbr/track.h"
+#include "sbr/rules.h"
 #include "sbr/servo.h"
 #include "sbr/models.h"
 
