@@ -47,6 +47,24 @@ CLI::Option *add_list(CLI::App &app, const sbr_field_t &f, std::vector<unsigned>
         ->default_str(def);
 }
 
+// One scalar field's option: its callback writes the field and records that it was given
+// (after the parse, and the App, are gone, RecogCli::given() still answers).
+template <typename T>
+CLI::Option *add_field(CLI::App &app, const sbr_field_t &f, T *at, RecogCli &r, const CLI::Validator &range,
+                       const std::string &def) {
+    const std::string name = f.name;
+    return app
+        .add_option_function<T>(
+            option_name(f.name),
+            [at, name, &r](const T &v) {
+                *at = v;
+                r.given_fields.insert(name);
+            },
+            f.help)
+        ->check(range)
+        ->default_str(def);
+}
+
 }  // namespace
 
 std::string field_range(const sbr_field_t &f) {
@@ -80,34 +98,15 @@ void add_recog_options(CLI::App &app, sbr_recog_config_t &cfg, RecogCli &r) {
     const std::string g = "Recogniser (docs/usage/configuration.md; defaults of sbr_recog_config_default())";
     unsigned char *const base = reinterpret_cast<unsigned char *>(&cfg);
     for (const sbr_field_t &f : recog_fields()) {
-        const std::string name = f.name;
         CLI::Option *o;
-        // each option's callback writes the field and records that it was given: after the
-        // parse (and the App) is gone, RecogCli::given() still answers
         if (f.count > 1) {
             o = add_list(app, f, r.front_end.lists[f.name]);
         } else if (f.kind == SBR_FIELD_F32) {
             float *at = reinterpret_cast<float *>(base + f.offset);
-            o = app.add_option_function<float>(
-                       option_name(f.name),
-                       [at, name, &r](const float &v) {
-                           *at = v;
-                           r.given_fields.insert(name);
-                       },
-                       f.help)
-                    ->check(finite_range(f.lo_f, f.hi_f))
-                    ->default_str(number(*at));
+            o = add_field(app, f, at, r, finite_range(f.lo_f, f.hi_f), number(*at));
         } else {
             uint32_t *at = reinterpret_cast<uint32_t *>(base + f.offset);
-            o = app.add_option_function<uint32_t>(
-                       option_name(f.name),
-                       [at, name, &r](const uint32_t &v) {
-                           *at = v;
-                           r.given_fields.insert(name);
-                       },
-                       f.help)
-                    ->check(CLI::Range(f.lo_u, f.hi_u))
-                    ->default_str(std::to_string(*at));
+            o = add_field(app, f, at, r, CLI::Range(f.lo_u, f.hi_u), std::to_string(*at));
         }
         o->group(g);
         r.options[f.name] = o;

@@ -54,6 +54,19 @@ static inline uint32_t sbr_util_addr32(const void *p)
     return (uint32_t)folded;
 }
 
+/* FNV-1a over n bytes: the integrity word of an instance (its bytes before the word),
+   so that a call can refuse an instance never initialised or changed since. */
+static inline uint32_t sbr_util_fnv1a(const void *p, size_t n)
+{
+    const uint8_t *b = (const uint8_t *)p;
+    uint32_t h = 2166136261u;
+    size_t i;
+    for (i = 0u; i < n; i++) {
+        h = (h ^ (uint32_t)b[i]) * 16777619u;
+    }
+    return h;
+}
+
 /* a . b over n elements in four interleaved partial sums: element k goes to sum k mod 4
    (the tail after the last whole group of four to sum 0), and the result is
    (s0 + s1) + (s2 + s3). Independent additions the FPU can pipeline (one vector register

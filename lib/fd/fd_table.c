@@ -262,17 +262,10 @@ sbr_status_t sbr_fd_match_table(const sbr_fft_t *fft, const sbr_fd_match_config_
 /* "FDTB": a prepared table. */
 #define FD_TABLE_MAGIC 0x46445442u
 
-/* FNV-1a over the table's bytes before its integrity word. */
+/* The integrity word over the bytes before it. */
 static uint32_t table_checksum(const sbr_fd_table_t *t)
 {
-    const uint8_t *b = (const uint8_t *)t;
-    const size_t n = offsetof(sbr_fd_table_t, check);
-    uint32_t h = 2166136261u;
-    size_t i;
-    for (i = 0u; i < n; i++) {
-        h = (h ^ (uint32_t)b[i]) * 16777619u;
-    }
-    return h;
+    return sbr_util_fnv1a(t, offsetof(sbr_fd_table_t, check));
 }
 
 static int scale_ok(float s)

@@ -39,17 +39,10 @@ static sbr_status_t detect_view(const sbr_image_t *img, const sbr_rect_t *roi, s
 /* "RECO": an initialised recogniser. */
 #define RECOG_MAGIC 0x5245434Fu
 
-/* FNV-1a over the recogniser's bytes before its integrity word. */
+/* The integrity word over the bytes before it. */
 static uint32_t recog_checksum(const sbr_recog_t *rec)
 {
-    const uint8_t *b = (const uint8_t *)rec;
-    const size_t n = offsetof(sbr_recog_t, check);
-    uint32_t h = 2166136261u;
-    size_t i;
-    for (i = 0u; i < n; i++) {
-        h = (h ^ (uint32_t)b[i]) * 16777619u;
-    }
-    return h;
+    return sbr_util_fnv1a(rec, offsetof(sbr_recog_t, check));
 }
 
 sbr_status_t sbr_recog_priv_begin(const sbr_recog_t *rec, const sbr_image_t *img,

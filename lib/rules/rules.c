@@ -7,6 +7,8 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "../common/sbr_util.h"
+
 /* "RULE": an initialised instance. */
 #define RULES_MAGIC 0x52554C45u
 
@@ -99,17 +101,10 @@ sbr_status_t sbr_rules_config_check(const sbr_rules_config_t *cfg)
     return st;
 }
 
-/* FNV-1a over the instance's bytes before its integrity word. */
+/* The integrity word over the bytes before it. */
 static uint32_t rules_checksum(const sbr_rules_t *r)
 {
-    const uint8_t *b = (const uint8_t *)r;
-    const size_t n = offsetof(sbr_rules_t, check);
-    uint32_t h = 2166136261u;
-    size_t i;
-    for (i = 0u; i < n; i++) {
-        h = (h ^ (uint32_t)b[i]) * 16777619u;
-    }
-    return h;
+    return sbr_util_fnv1a(r, offsetof(sbr_rules_t, check));
 }
 
 static void seal(sbr_rules_t *r)
