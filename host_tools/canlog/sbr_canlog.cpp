@@ -14,6 +14,7 @@
 #include <string>
 
 #include "can_output.hpp"
+#include "detection.hpp"
 
 int main(int argc, char **argv) {
     std::string det_path, out_path;
@@ -28,24 +29,25 @@ int main(int argc, char **argv) {
     if (parsed >= 0) return parsed;
     std::ifstream in(det_path);
     if (!in) { std::fprintf(stderr, "sbr_canlog: cannot read %s\n", det_path.c_str()); return 1; }
-    std::map<int, std::vector<sbr_host::Detection>> by_image;
+    std::map<int, std::vector<sbr_detection_t>> by_image;
     std::string line;
     size_t lines = 0;
     while (std::getline(in, line)) {
         if (line.empty()) continue;
         sbr_host::Detection d;
-        if (!sbr_host::parse_detection_line(line, d)) {
+        sbr_detection_t c{};
+        if (!sbr_host::parse_detection_line(line, d) || !sbr_host::to_core(d, c)) {
             std::fprintf(stderr, "sbr_canlog: bad line: %s\n", line.c_str());
             return 1;
         }
-        by_image[d.image].push_back(d);
+        by_image[d.image].push_back(c);
         ++lines;
     }
     sbr_host::CanLogWriter w(out_path);
     if (!w.ok()) { std::fprintf(stderr, "sbr_canlog: cannot write %s\n", out_path.c_str()); return 1; }
     for (int img = first; img < first + images; ++img) {
         auto it = by_image.find(img);
-        static const std::vector<sbr_host::Detection> none;
+        static const std::vector<sbr_detection_t> none;
         if (w.write_image(it == by_image.end() ? none : it->second, 0.0f, 0, false) < 0) {
             std::fprintf(stderr, "sbr_canlog: CAN output failed at image %d\n", img);
             return 1;

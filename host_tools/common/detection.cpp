@@ -20,6 +20,23 @@ Detection from_core(const sbr_detection_t &d, int image) {
     return o;
 }
 
+bool to_core(const Detection &d, sbr_detection_t &out) {
+    const double lim = 16777216.0;
+    const PixBox &b = d.box;
+    const auto whole = [lim](double v) { return v >= 0.0 && v <= lim && v == std::floor(v); };
+    if (!whole(b.x0) || !whole(b.y0) || !whole(b.x1) || !whole(b.y1) || b.x1 < b.x0 || b.y1 < b.y0 ||
+        d.class_id < 0 || d.class_id > 65535)
+        return false;
+    out = sbr_detection_t{};
+    out.box.x = uint32_t(b.x0);
+    out.box.y = uint32_t(b.y0);
+    out.box.width = uint32_t(b.x1 - b.x0);
+    out.box.height = uint32_t(b.y1 - b.y0);
+    out.class_id = uint16_t(d.class_id);
+    out.score = float(d.score);
+    return true;
+}
+
 namespace {
 
 // The whole field as a number (no trailing text, finite); false otherwise.

@@ -24,6 +24,11 @@ struct Detection {
 // The core's detection d on image `image` (its sbr_rect_t is half-open already).
 Detection from_core(const sbr_detection_t &d, int image);
 
+// Back to the core's type (for the core's ECU job, e.g. from a detection file): false
+// unless the box is whole pixels in 0 .. 2^24 with x0 <= x1, y0 <= y1, and the class id
+// fits; the score is taken as it is (the core checks its range).
+bool to_core(const Detection &d, sbr_detection_t &out);
+
 // A detection file's line, "NNNNN.ext;left;top;right;bottom;class[;score]" (inclusive
 // pixels; score 1 when absent), as sbr_detect writes it; false unless it has six or seven
 // fields, the first starting with the image number and the others numbers (finite; the

@@ -111,13 +111,9 @@ void GtsrbScore::add(int cls, const float *prob, int k) {
     if (best != cls && best != k) ++confusions[{cls, best}];
 }
 
-GtsrbScore score_gtsrb(const sbr_picto_model_t &picto, const std::vector<GtsrbCrop> &crops, bool want, bool all,
-                       unsigned threads) {
-    std::vector<size_t> idx;
-    for (size_t i = 0; i < crops.size(); ++i)
-        if (all || crops[i].validation == want) idx.push_back(i);
+std::vector<std::vector<float>> classify_gtsrb(const sbr_picto_model_t &picto, const std::vector<GtsrbCrop> &crops,
+                                              const std::vector<size_t> &idx, unsigned threads) {
     const int k = int(picto.classes);
-    // per crop: its outputs, or empty when it could not be read or classified
     std::vector<std::vector<float>> probs(idx.size());
     struct Worker {
         std::vector<float> ws = std::vector<float>(SBR_PICTO_WORKSPACE_SIZE / sizeof(float) + 1);
@@ -137,10 +133,24 @@ GtsrbScore score_gtsrb(const sbr_picto_model_t &picto, const std::vector<GtsrbCr
             return;
         probs[j] = std::move(p);
     });
+    return probs;
+}
+
+std::vector<size_t> gtsrb_selection(const std::vector<GtsrbCrop> &crops, bool want, bool all) {
+    std::vector<size_t> idx;
+    for (size_t i = 0; i < crops.size(); ++i)
+        if (all || crops[i].validation == want) idx.push_back(i);
+    return idx;
+}
+
+GtsrbScore score_gtsrb(const sbr_picto_model_t &picto, const std::vector<GtsrbCrop> &crops, bool want, bool all,
+                       unsigned threads) {
+    const std::vector<size_t> idx = gtsrb_selection(crops, want, all);
+    const std::vector<std::vector<float>> probs = classify_gtsrb(picto, crops, idx, threads);
     GtsrbScore s;
     for (size_t j = 0; j < idx.size(); ++j) {
         if (probs[j].empty()) { ++s.unreadable; continue; }
-        s.add(crops[idx[j]].cls, probs[j].data(), k);
+        s.add(crops[idx[j]].cls, probs[j].data(), int(picto.classes));
     }
     return s;
 }

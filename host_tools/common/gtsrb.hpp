@@ -54,6 +54,14 @@ struct GtsrbScore {
     void add(int cls, const float *prob, int k);
 };
 
+// The indices of the crops with `validation` == want (every crop when `all`), in order.
+std::vector<size_t> gtsrb_selection(const std::vector<GtsrbCrop> &crops, bool want, bool all);
+
+// The class stage's K + 1 outputs (the last: no sign) for crops[idx[j]] at its annotated
+// box; empty for a crop that could not be read or classified. threads: workers (>= 1).
+std::vector<std::vector<float>> classify_gtsrb(const sbr_picto_model_t &picto, const std::vector<GtsrbCrop> &crops,
+                                              const std::vector<size_t> &idx, unsigned threads);
+
 // The class stage on every crop of `crops` with `validation` == want (both when
 // `all`): features at the annotated box (sbr_picto_features), sbr_picto_classify.
 // threads: worker threads (1 or more).

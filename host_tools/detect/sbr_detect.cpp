@@ -557,13 +557,11 @@ bool run_image(const Options &o, const Models &m, CallgrindClock &cg, const std:
     else error = !detect_image(o, m, cg, file, img, out, t, kept, stats, frame_ms);
     if (!error && (!o.annotated.empty() || !o.overview.empty())) annotate_image(o, file, img, kept, out.ann);
     if (out.can) {
-        std::vector<Detection> cd;
-        for (const auto &d : kept) cd.push_back(from_core(d, image_number(file)));
         if (o.sequence && first && !out.can->enable_tracking(float(img.cols), float(img.rows))) {
             std::fprintf(stderr, "sbr_detect: sign tracker set-up failed\n");
             return false;
         }
-        out.can->write_image(cd, frame_ms, stats.parts_stats.regions, error);
+        out.can->write_image(kept, frame_ms, stats.parts_stats.regions, error);
     }
     return true;
 }

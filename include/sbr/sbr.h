@@ -24,6 +24,8 @@
 #include "sbr/conic.h"
 #include "sbr/track.h"
 #include "sbr/rules.h"
+#include "sbr/signs.h"
+#include "sbr/ecu.h"
 #include "sbr/servo.h"
 #include "sbr/models.h"
 

@@ -197,7 +197,7 @@ def main():
     # the host test programs: --help says what they test (exit 0, nothing run); an option
     # they do not take is named (exit 2), never read as a path
     for prog in ["test_mser_opencv", "test_contour_opencv", "test_annotate", "test_geometry",
-                 "test_model_files", "test_sign_tracking", "test_builtin_models_gtsdb", "test_cli_state"]:
+                 "test_model_files", "test_builtin_models_gtsdb", "test_cli_state"]:
         exe = where(prog)
         if not os.path.exists(exe):
             print(f"{prog}: missing from {os.path.dirname(exe)}")
