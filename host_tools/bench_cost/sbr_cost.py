@@ -108,10 +108,17 @@ def host_callgrind(args, extra, work, inputs=None, name="callgrind"):
                     break
         if desc is None or summary is None:
             continue  # the program-termination dump
-        m = re.fullmatch(r"frame (\S+) (setup|stage (\d)|end)", desc)
+        m = re.fullmatch(r"frame (\S+) (setup|stage (\d)|end|ecu)", desc)
         if not m:
             continue
         fr = frames.setdefault(m.group(1), {s: 0 for s in STAGES})
+        if m.group(2) == "ecu":
+            # the ECU job after the recogniser (sbr_detect --canlog): the core's part
+            # without the port's writing, and the sign tracking with the restrictions
+            inc = inclusive(path, ["sbr_ecu_output", "sbr_can_send", "sbr_signs_update", "sbr_rules_update"])
+            fr["ecu"] = inc["sbr_ecu_output"] - inc["sbr_can_send"]
+            fr["tracking+rules"] = inc["sbr_signs_update"] + inc["sbr_rules_update"]
+            continue
         if m.group(2) in ("setup", "end"):
             fr["set-up+output"] += summary
             continue
@@ -412,7 +419,9 @@ def main():
     lines = ["sbr cost benchmark: sbr_recog_detect, instructions per frame (inclusive)",
              "options: %s" % (" ".join(extra) if extra else "defaults, built-in model")]
 
-    host = host_callgrind(args, extra, args.out)
+    # the recogniser's frames, and the ECU job after it (the frames as one sequence)
+    host = host_callgrind(args, extra + ["--sequence", "--canlog", os.path.join(args.out, "cost_canlog.log")],
+                          args.out)
     report["host"] = host
     lines.append("")
     lines.append("x86-64 (valgrind callgrind), frames %05d-%05d (%d), millions of instructions:"
@@ -423,6 +432,16 @@ def main():
     worst = max(host, key=lambda n: host[n]["total"])
     lines.append("host median: %.3f x 10^9 instructions per frame (worst of the %d: %.3f x 10^9, %s)"
                  % (med["total"] / 1e9, len(host), host[worst]["total"] / 1e9, worst))
+    ecu = sorted(fr.get("ecu", 0) for fr in host.values())
+    trk = sorted(fr.get("tracking+rules", 0) for fr in host.values())
+    if ecu and ecu[-1] > 0:
+        report["ecu_median"] = ecu[len(ecu) // 2]
+        report["tracking_rules_median"] = trk[len(trk) // 2]
+        lines.append("ECU job after the recogniser (sbr_ecu_output without the port; frames as one sequence): "
+                     "median %d instructions per frame (worst %d); sign tracking + restrictions median %d "
+                     "(worst %d) = %.3f %% of the recogniser's median"
+                     % (ecu[len(ecu) // 2], ecu[-1], trk[len(trk) // 2], trk[-1],
+                        100.0 * trk[len(trk) // 2] / med["total"]))
     hostile_dir = None
     if not args.no_hostile:
         hostile_dir = hostile_frames(args, args.out)

@@ -50,12 +50,13 @@ bool CanLogWriter::enable_tracking(float width, float height) {
 }
 
 int CanLogWriter::write_image(const std::vector<sbr_detection_t> &dets, float processing_ms, uint32_t regions,
-                              bool error_flag) {
+                              bool error_flag, bool capacity_hit) {
     if (!file_ || !ready_) return -1;
     sbr_ecu_frame_info_t info{};
     info.processing_ms = processing_ms;
     info.regions = regions;
     info.error = error_flag ? 1u : 0u;
+    info.capacity_hit = capacity_hit ? 1u : 0u;
     const uint64_t now = base_ + static_cast<uint64_t>(image_) * period_;
     port_ctx_.time_us = now;
     sbr_ecu_result_t r{};

@@ -36,8 +36,9 @@ public:
     // call it before the first image.
     bool enable_tracking(float width, float height);
     // Sends the frames of one image; returns the number of frames, or -1 on error.
+    // capacity_hit: a bound of the recogniser ran full on it.
     int write_image(const std::vector<sbr_detection_t> &dets, float processing_ms, uint32_t regions,
-                    bool error_flag);
+                    bool error_flag, bool capacity_hit = false);
     uint32_t frames_written() const { return port_ctx_.written; }
     uint32_t results_dropped() const { return dropped_; }
     // The restrictions in force after the last image.

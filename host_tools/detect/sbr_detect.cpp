@@ -97,6 +97,7 @@ void progress(size_t done, size_t total, double ms_avg, double elapsed_s) {
 struct Options {
     std::string input, det_path, all_path, annotated, overview, gt_path, canlog, model_path, picto_path, summary_path;
     bool no_picto = false, quiet = false, sequence = false, callgrind = false, grey = false;
+    bool canlog_fixed_time = false;
     bool progress = false;  // a progress bar: stderr is a terminal and not --quiet
     ImageRanges range;
     float threshold = -1.0f;  // < 0: the model's operating point
@@ -159,6 +160,9 @@ int parse_options(int argc, char **argv, Options &o) {
         ->capture_default_str();
     app.add_flag("--sequence", o.sequence,
                  "the images are consecutive frames (10 per second): confirmed signs from the tracker");
+    app.add_flag("--canlog-fixed-time", o.canlog_fixed_time,
+                 "the CAN log's status frames say 0 ms of processing time, so that the log depends on the frames "
+                 "alone (compared with the Cortex-M4's, cmake/compare_ecu_log.py)");
     app.add_flag("--callgrind", o.callgrind,
                  "count instructions per stage under valgrind's callgrind (./sbr.sh cost)");
     add_recog_options(app, o.cfg, o.rc);
@@ -561,7 +565,18 @@ bool run_image(const Options &o, const Models &m, CallgrindClock &cg, const std:
             std::fprintf(stderr, "sbr_detect: sign tracker set-up failed\n");
             return false;
         }
-        out.can->write_image(kept, frame_ms, stats.parts_stats.regions, error);
+#ifdef SBR_HAVE_CALLGRIND
+        if (o.callgrind) CALLGRIND_TOGGLE_COLLECT;  // the ECU job's dump: sbr_ecu_output and the port
+#endif
+        out.can->write_image(kept, o.canlog_fixed_time ? 0.0f : frame_ms, stats.parts_stats.regions, error,
+                             stats.capacity_hit != 0u);
+#ifdef SBR_HAVE_CALLGRIND
+        if (o.callgrind) {
+            const std::string label = "frame " + fs::path(file).stem().string() + " ecu";
+            CALLGRIND_DUMP_STATS_AT(label.c_str());
+            CALLGRIND_TOGGLE_COLLECT;
+        }
+#endif
     }
     return true;
 }
