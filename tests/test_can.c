@@ -18,6 +18,66 @@ void tearDown(void) {}
 /* ---- CRC ------------------------------------------------------------------------------ */
 
 /* CRC-8/SAE-J1850 check value and the AUTOSAR CRC library's published vectors. */
+/* SBR_Restrictions: the layout by hand, round trips at the limits, refusals, E2E. */
+static void test_restrictions(void)
+{
+    sbr_can_restrictions_t r, o;
+    sbr_can_frame_t f;
+    sbr_can_e2e_tx_t tx;
+    sbr_can_e2e_rx_t rx;
+    sbr_can_e2e_result_t res;
+    memset(&r, 0, sizeof r);
+    r.speed_limit_kmh = 120u;
+    r.no_overtaking = 1u;
+    r.priority_road = 1u;
+    r.speed_age_s = 0x1234u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_pack_restrictions(&r, &f));
+    TEST_ASSERT_EQUAL_UINT32(0x302u, f.id);
+    TEST_ASSERT_EQUAL_UINT8(8u, f.dlc);
+    TEST_ASSERT_EQUAL_HEX8(120u, f.data[2]);  /* limit: bits 16..23 */
+    TEST_ASSERT_EQUAL_HEX8(0x05u, f.data[3]); /* bans at 24, 25; priority at 26 */
+    TEST_ASSERT_EQUAL_HEX8(0x34u, f.data[4]); /* age: bits 32..47, Intel order */
+    TEST_ASSERT_EQUAL_HEX8(0x12u, f.data[5]);
+    TEST_ASSERT_EQUAL_HEX8(0x00u, f.data[6]);
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_unpack_restrictions(&f, &o));
+    TEST_ASSERT_EQUAL_MEMORY(&r, &o, sizeof r);
+    r.speed_limit_kmh = 255u;
+    r.no_overtaking_trucks = 1u;
+    r.speed_age_s = 65535u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_pack_restrictions(&r, &f));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_unpack_restrictions(&f, &o));
+    TEST_ASSERT_EQUAL_MEMORY(&r, &o, sizeof r);
+    r.speed_age_s = 65536u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_pack_restrictions(&r, &f));
+    r.speed_age_s = 0u;
+    r.priority_road = 2u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_pack_restrictions(&r, &f));
+    r.priority_road = 0u;
+    r.speed_limit_kmh = 256u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_pack_restrictions(&r, &f));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_pack_restrictions(NULL, &f));
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_NULL, sbr_can_unpack_restrictions(&f, NULL));
+    f.id = SBR_CAN_ID_ECU_STATUS;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_RANGE, sbr_can_unpack_restrictions(&f, &o));
+    f.id = SBR_CAN_ID_RESTRICTIONS;
+    f.dlc = 7u;
+    TEST_ASSERT_EQUAL_INT(SBR_ERR_SIZE, sbr_can_unpack_restrictions(&f, &o));
+    /* its own alive counter and Data ID 0x5B02 */
+    r.speed_limit_kmh = 50u;
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_pack_restrictions(&r, &f));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_tx_init(&tx));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_rx_init(&rx, SBR_CAN_ID_RESTRICTIONS));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_protect(&tx, &f));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_check(&rx, &f, &res));
+    TEST_ASSERT_EQUAL_UINT8(1u, tx.counter[4]);
+    TEST_ASSERT_EQUAL_UINT8(0u, tx.counter[1]);
+    {
+        uint8_t buf[9] = {0x02u, 0x5Bu};
+        memcpy(&buf[2], &f.data[1], 7u);
+        TEST_ASSERT_EQUAL_HEX8(sbr_crc8_j1850(buf, 9u), f.data[0]);
+    }
+}
+
 static void test_crc8_j1850_vectors(void)
 {
     static const uint8_t v1[4] = {0x00, 0x00, 0x00, 0x00};
@@ -716,6 +776,7 @@ int main(void)
 {
     UNITY_BEGIN();
     RUN_TEST(test_crc8_j1850_vectors);
+    RUN_TEST(test_restrictions);
     RUN_TEST(test_detection_layout_by_hand);
     RUN_TEST(test_detection_round_trip_limits);
     RUN_TEST(test_sign_object_status_round_trips);

@@ -64,27 +64,34 @@ typedef struct {
     uint32_t signs;
     sbr_can_detection_t det[16];
     uint32_t dets;
+    sbr_can_restrictions_t restr;
+    uint32_t restr_frames;
 } cycle_t;
 
-static sbr_can_e2e_rx_t g_rx[3];
+static sbr_can_e2e_rx_t g_rx[4];
 
 static void rx_start(void)
 {
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_rx_init(&g_rx[0], SBR_CAN_ID_CONFIRMED_SIGN));
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_rx_init(&g_rx[1], SBR_CAN_ID_ECU_STATUS));
     TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_rx_init(&g_rx[2], SBR_CAN_ID_DETECTION));
+    TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_e2e_rx_init(&g_rx[3], SBR_CAN_ID_RESTRICTIONS));
 }
 
 static cycle_t decode(void)
 {
     cycle_t c;
     uint32_t i;
+    uint32_t status_at = 99u;
     memset(&c, 0, sizeof c);
     TEST_ASSERT_EQUAL_UINT32(g_r.frames_sent, g_port.count);
+    (void)status_at;
     for (i = 0u; i < g_port.count; i++) {
         const sbr_can_frame_t *f = &g_frames[i];
         sbr_can_e2e_result_t res;
-        const uint32_t k = (f->id == SBR_CAN_ID_CONFIRMED_SIGN) ? 0u : ((f->id == SBR_CAN_ID_ECU_STATUS) ? 1u : 2u);
+        const uint32_t k = (f->id == SBR_CAN_ID_CONFIRMED_SIGN)
+                               ? 0u
+                               : ((f->id == SBR_CAN_ID_ECU_STATUS) ? 1u : ((f->id == SBR_CAN_ID_RESTRICTIONS) ? 3u : 2u));
         if (f->id == SBR_CAN_ID_TRACKED_OBJECT) {
             continue;
         }
@@ -98,6 +105,11 @@ static cycle_t decode(void)
             }
         } else if (k == 1u) {
             TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_unpack_ecu_status(f, &c.status));
+            status_at = i;
+        } else if (k == 3u) {
+            TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_unpack_restrictions(f, &c.restr));
+            TEST_ASSERT_EQUAL_UINT32(status_at + 1u, i); /* right after the status */
+            c.restr_frames++;
         } else {
             sbr_can_detection_t d;
             TEST_ASSERT_EQUAL_INT(SBR_OK, sbr_can_unpack_detection(f, &d));
@@ -144,6 +156,11 @@ static void test_drive(void)
         TEST_ASSERT_EQUAL_UINT32((f == 7u) ? n - 1u : n, c.status.detection_count);
         TEST_ASSERT_EQUAL_UINT32(c.status.detection_count, c.dets);
         TEST_ASSERT_EQUAL_UINT32(0u, g_r.restrictions.no_overtaking); /* the false sign never counts */
+        /* what the driver is shown, on CAN: the restrictions of the frame */
+        TEST_ASSERT_EQUAL_UINT32(1u, c.restr_frames);
+        TEST_ASSERT_EQUAL_UINT32(g_r.restrictions.speed_limit_kmh, c.restr.speed_limit_kmh);
+        TEST_ASSERT_EQUAL_UINT32(0u, c.restr.no_overtaking);
+        TEST_ASSERT_EQUAL_UINT32(g_r.restrictions.speed_age_ms / 1000u, c.restr.speed_age_s);
         if (f == 0u) {
             TEST_ASSERT_EQUAL_UINT32(0u, c.signs); /* one detection confirms nothing */
             TEST_ASSERT_EQUAL_UINT32(0u, g_r.restrictions.speed_limit_kmh);
@@ -159,6 +176,10 @@ static void test_drive(void)
             id_a = c.sign[0].track_id;
             TEST_ASSERT_EQUAL_UINT32(id_a % 63u, c.det[0].track_id);
             TEST_ASSERT_EQUAL_UINT32(80u, g_r.restrictions.speed_limit_kmh);
+            TEST_ASSERT_EQUAL_UINT32(80u, c.restr.speed_limit_kmh);
+        }
+        if (f == 12u) {
+            TEST_ASSERT_EQUAL_UINT32(1u, c.restr.speed_age_s); /* confirmed in frame 1 */
         }
         if ((f >= 2u) && (f <= 13u)) {
             /* listed once, ageing; the misread frame 4 renames nothing */
@@ -246,7 +267,7 @@ static void test_frame(void)
     TEST_ASSERT_EQUAL_INT(SBR_OK, g_r.recog);
     TEST_ASSERT_EQUAL_UINT32(0u, c.status.error);
     TEST_ASSERT_EQUAL_UINT32(0u, c.status.detection_count);
-    TEST_ASSERT_EQUAL_UINT32(4u, g_r.frames_sent); /* no sign, status, no detection, no object */
+    TEST_ASSERT_EQUAL_UINT32(5u, g_r.frames_sent); /* no sign, status, restrictions, no detection, no object */
     v.stride = 7u; /* shorter than a row */
     sbr_port_mock_init(&g_port, g_frames, 64u);
     TEST_ASSERT_EQUAL_INT(SBR_ERR_ALIGN, sbr_ecu_frame(&g_e, &rec, &v, T0 + P, 0u, &sbr_port_mock, &g_port, &g_r));

@@ -199,6 +199,9 @@ class Monitor:
         self._pending_signs = []
         self.speed_limit = None
         self.speed_limit_sign = None
+        # the ECU's restrictions in force (SBR_Restrictions); None until its first frame,
+        # and then the speed limit is the ECU's, not the dashboard's reading of the signs
+        self.restrictions = None
         self.detections = []
         self._pending_dets = []
         self.objects = []
@@ -425,6 +428,15 @@ class Monitor:
                 cy=phys["SBR_Det_CenterY"], w=phys["SBR_Det_Width"], h=phys["SBR_Det_Height"],
                 track=None if self._absent(msg, "SBR_Det_TrackId", track) else track))
             self.detections = list(self._pending_dets)
+        elif n == "SBR_Restrictions":
+            limit = int(raw["SBR_Restr_SpeedLimit"])
+            self.restrictions = dict(
+                speed_limit=None if limit == 0 else limit,  # the DBC's "NoLimit"
+                no_overtaking=bool(raw["SBR_Restr_NoOvertaking"]),
+                no_overtaking_trucks=bool(raw["SBR_Restr_NoOvertakingTrucks"]),
+                priority_road=bool(raw["SBR_Restr_PriorityRoad"]),
+                speed_age_s=int(raw["SBR_Restr_SpeedAge"]))
+            self.speed_limit = self.restrictions["speed_limit"]
         elif n == "SBR_TrackedObject":
             self.object_frames += 1
             track = int(raw["SBR_Obj_TrackId"])
@@ -442,7 +454,12 @@ class Monitor:
     def _publish_signs(self):
         self.signs = list(self._pending_signs)
         self._pending_signs = []
-        for s in self.signs:  # newest first
+        for s in self.signs:  # newest first: the sign that set or ended the limit
+            if self.restrictions is not None:  # the ECU says which limit is in force
+                if s["speed"] is not None and s["speed"] == self.speed_limit:
+                    self.speed_limit_sign = s
+                    return
+                continue
             if (s["class_name"] or "").startswith("RestrictionEnds"):
                 self.speed_limit, self.speed_limit_sign = None, s
                 return
@@ -473,6 +490,7 @@ class Monitor:
             tracker_seen=self.object_frames > 0,
             speed_limit=self.speed_limit,
             speed_limit_sign=self.speed_limit_sign,
+            restrictions=self.restrictions,
             signs=self.signs, detections=self.detections, objects=self.objects,
             health=dict(status_frames=self.status_count, fps=round(fps, 2),
                         processing_ms=None if self.status is None else self.status["ProcessingTime"],

@@ -78,8 +78,17 @@ def expected(frames):
                 if sp != 255:
                     limit = sp
                     break
+    # the ECU's restrictions in force (SBR_Restrictions): its limit, not a reading of the signs
+    restr = [d for _, _, fid, d in frames if fid == 0x302]
+    bans = []
+    if restr:
+        r = restr[-1]
+        limit = bits(r, 16, 8) or None
+        bans = [name for name, bit in (("no-overtaking", 24), ("no-overtaking-trucks", 25), ("priority", 26))
+                if bits(r, bit, 1)]
     last = status[-1]
-    return dict(frames=len(frames), status_frames=len(status), speed_limit=limit,
+    return dict(frames=len(frames), status_frames=len(status), speed_limit=limit, restrictions=bans,
+                restriction_frames=len(restr),
                 sign_count=len(signs), frame_counter=bits(last, 16, 16),
                 processing_ms=bits(last, 32, 16) * 0.1,
                 processing_mean=sum(bits(d, 32, 16) for d in status) * 0.1 / len(status),
@@ -257,6 +266,7 @@ def page_values(page):
                        "out_of_range", "timeouts")}
         rows[name]["state"] = r.locator("td.state").inner_text()
     return dict(speed_limit=t("#speed-limit"), sign_count=int(t("#sign-count")),
+                restrictions=[e.get_attribute("id")[len("restr-"):] for e in page.locator("#restr-icons .restr").all()],
                 sign_icons=page.locator("#signs .sign").count(), frames=int(t("#h-frames")),
                 status_frames=int(t("#h-status-frames")), frame_counter=t("#h-frame-counter"),
                 proc=t("#h-proc"), proc_mean=t("#h-proc-mean"), fps=t("#h-fps"),
@@ -318,12 +328,17 @@ def main():
         dash = Dashboard(sys.executable, log, a.rate, a.work, "dashboard_clean")
         try:
             page, v = open_page(browser, dash.url, os.path.join(a.work, "dashboard_e2e.png"))
+            # what the driver is shown: the limit in force and the bans, as a cluster draws them
+            page.locator("#limit-panel").screenshot(path=os.path.join(a.work, "dashboard_restrictions.png"))
+            print(f"screenshot: {os.path.join(a.work, 'dashboard_restrictions.png')}")
             check_engineer_views(page, frames, a.work)
         finally:
             dash.stop()
         print("page (clean log):", {k: v[k] for k in v if k not in ("rows", "events")})
         print("expected from the log:", want)
+        assert want["restriction_frames"] == want["status_frames"], "one SBR_Restrictions frame per image"
         assert v["speed_limit"] == f"{want['speed_limit']} km/h", (v["speed_limit"], want)
+        assert v["restrictions"] == want["restrictions"], (v["restrictions"], want["restrictions"])
         assert v["sign_count"] == v["sign_icons"] == want["sign_count"]
         assert v["frames"] == want["frames"] and v["status_frames"] == want["status_frames"]
         assert v["frame_counter"] == str(want["frame_counter"])

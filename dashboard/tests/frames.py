@@ -36,8 +36,10 @@ class Sender:
         self.counter[fid] = (c + 1) % 15
         return frame(self.m, fid, c, **values)
 
-    def cycle(self, frame_counter, dets=(), signs=(), proc_ms=50.0):
-        """The frames of one image, in the ECU's order: signs, status, detections, object."""
+    def cycle(self, frame_counter, dets=(), signs=(), proc_ms=50.0, restr=None):
+        """The frames of one image, in the ECU's order: signs, status, restrictions
+        (limit, no overtaking, no overtaking for trucks, priority road, the limit's age;
+        None: an ECU that sends none), detections, object."""
         out = []
         if signs:
             for slot, (cls, speed, conf, age) in enumerate(signs):
@@ -51,6 +53,10 @@ class Sender:
         out.append((0x301, self(0x301, SBR_Status_FrameCounter=frame_counter,
                                 SBR_Status_ProcessingTime=proc_ms,
                                 SBR_Status_DetectionCount=len(dets))))
+        if restr is not None:
+            out.append((0x302, self(0x302, SBR_Restr_SpeedLimit=restr[0], SBR_Restr_NoOvertaking=restr[1],
+                                    SBR_Restr_NoOvertakingTrucks=restr[2], SBR_Restr_PriorityRoad=restr[3],
+                                    SBR_Restr_SpeedAge=restr[4])))
         for cls, conf, cx, cy in dets or ():
             out.append((0x310, self(0x310, SBR_Det_Class=cls, SBR_Det_Confidence=conf,
                                     SBR_Det_CenterX=cx, SBR_Det_CenterY=cy, SBR_Det_Width=40,

@@ -27,7 +27,7 @@ def feed_all(mon, frames, t):
 
 # -- the DBC model -----------------------------------------------------------------------
 def test_dbc_gives_e2e_and_cycle_times():
-    assert sorted(M.messages) == [0x300, 0x301, 0x310, 0x320]
+    assert sorted(M.messages) == [0x300, 0x301, 0x302, 0x310, 0x320]
     for fid, spec in M.messages.items():
         assert spec.cycle_ms == 100
         assert spec.data_id == 0x5B00 | (fid & 0xFF)
@@ -121,7 +121,7 @@ def test_timeout_after_three_cycles_once_per_silence_and_recovery():
     tm.received(0x300, 0.0)
     assert tm.tick(0.29) == []
     # 0x300 silent since its frame at 0.0, the others never seen since the start at 0.0
-    assert sorted(tm.tick(0.31)) == [0x300, 0x301, 0x310, 0x320]
+    assert sorted(tm.tick(0.31)) == [0x300, 0x301, 0x302, 0x310, 0x320]
     assert tm.count[0x300] == 1
     assert tm.tick(1.0) == []     # still the same silence
     assert tm.received(0x300, 1.05) is True
@@ -132,16 +132,17 @@ def test_timeout_after_three_cycles_once_per_silence_and_recovery():
 def test_monitor_timeout_of_a_silent_message_in_source_time():
     mon = Monitor(M)
     s = Sender(M)
+    r0 = (0, 0, 0, 0, 0)
     for k in range(5):
-        feed_all(mon, s.cycle(k), 0.1 * k)
+        feed_all(mon, s.cycle(k, restr=r0), 0.1 * k)
     for k in range(5, 15):  # tracked objects go silent
-        feed_all(mon, [f for f in s.cycle(k) if f[0] != 0x320], 0.1 * k)
+        feed_all(mon, [f for f in s.cycle(k, restr=r0) if f[0] != 0x320], 0.1 * k)
     snap = mon.snapshot()
     obj = next(m for m in snap["messages"] if m["name"] == "SBR_TrackedObject")
     assert obj["timeouts"] == 1 and obj["state"] == "timeout"
     assert snap["totals"]["timeouts"] == 1
     # the ECU kept counting while its frames were lost: the next one is "skipped" (valid)
-    feed_all(mon, s.cycle(15), 1.5)
+    feed_all(mon, s.cycle(15, restr=r0), 1.5)
     snap = mon.snapshot()
     obj = next(m for m in snap["messages"] if m["name"] == "SBR_TrackedObject")
     assert obj["timeouts"] == 1 and obj["skipped"] == 1 and obj["valid"] == 6
@@ -563,3 +564,28 @@ def test_a_rate_that_is_not_a_speed_is_refused(tmp_path, rate):
     r = subprocess.run([sys.executable, "-m", "sbr_dashboard", "--log", str(log), "--terminal", "--once",
                         "--rate", rate], capture_output=True, text=True, timeout=60)
     assert r.returncode == 2 and f"--rate {float(rate)}" in r.stderr, r.stderr
+
+
+# -- the restrictions in force (SBR_Restrictions) ----------------------------------------
+def test_restrictions_are_the_ecus_not_read_from_the_signs():
+    mon = Monitor(M)
+    s = Sender(M)
+    # the ECU lists a 30 km/h sign, but says the limit in force is 50 (seen 12 s ago),
+    # no overtaking and priority road
+    feed_all(mon, s.cycle(0, signs=[(1, 30, 90, 0)], restr=(50, 1, 0, 1, 12)), 0.0)
+    snap = mon.snapshot()
+    assert snap["speed_limit"] == 50
+    assert snap["restrictions"] == dict(speed_limit=50, no_overtaking=True, no_overtaking_trucks=False,
+                                        priority_road=True, speed_age_s=12)
+    # the limit ends: none shown, however many speed signs are listed
+    feed_all(mon, s.cycle(1, signs=[(1, 30, 90, 1)], restr=(0, 0, 1, 0, 0)), 0.1)
+    snap = mon.snapshot()
+    assert snap["speed_limit"] is None and snap["restrictions"]["no_overtaking_trucks"] is True
+    assert snap["totals"]["e2e_errors"] == 0
+
+
+def test_without_restrictions_the_limit_is_read_from_the_signs():
+    mon = Monitor(M)
+    feed_all(mon, Sender(M).cycle(0, signs=[(1, 30, 90, 0)]), 0.0)
+    snap = mon.snapshot()
+    assert snap["restrictions"] is None and snap["speed_limit"] == 30

@@ -569,7 +569,7 @@ bool run_image(const Options &o, const Models &m, CallgrindClock &cg, const std:
         if (o.callgrind) CALLGRIND_TOGGLE_COLLECT;  // the ECU job's dump: sbr_ecu_output and the port
 #endif
         out.can->write_image(kept, o.canlog_fixed_time ? 0.0f : frame_ms, stats.parts_stats.regions, error,
-                             stats.capacity_hit != 0u);
+                             (stats.capacity_hit & SBR_RECOG_HIT_LOSSES) != 0u);
 #ifdef SBR_HAVE_CALLGRIND
         if (o.callgrind) {
             const std::string label = "frame " + fs::path(file).stem().string() + " ecu";

@@ -11,6 +11,7 @@
  * | id    | message             | cycle  | content                                           |
  * | 0x300 | SBR_ConfirmedSign   | 100 ms | confirmed signs from the tracker (speed limit)    |
  * | 0x301 | SBR_EcuStatus       | 100 ms | frame counter, time, counts, overload/error flags |
+ * | 0x302 | SBR_Restrictions    | 100 ms | the speed limit in force, overtaking bans, priority |
  * | 0x310 | SBR_Detection       | 100 ms | one frame per sign detection of the image         |
  * | 0x320 | SBR_TrackedObject   | 100 ms | one frame per tracked object                      |
  *
@@ -37,6 +38,7 @@ extern "C" {
 /** Message identifiers (11-bit). */
 #define SBR_CAN_ID_CONFIRMED_SIGN 0x300u
 #define SBR_CAN_ID_ECU_STATUS 0x301u
+#define SBR_CAN_ID_RESTRICTIONS 0x302u
 #define SBR_CAN_ID_DETECTION 0x310u
 #define SBR_CAN_ID_TRACKED_OBJECT 0x320u
 
@@ -105,6 +107,16 @@ typedef struct sbr_can_ecu_status_s {
     uint32_t capacity_hit;     /**< 1: a result array or node pool ran full */
 } sbr_can_ecu_status_t;
 
+/** SBR_Restrictions (0x302): the restrictions in force (rules.h), as the driver is shown. */
+typedef struct sbr_can_restrictions_s {
+    uint32_t speed_limit_kmh;      /**< km/h, 0..255; 0: no limit known */
+    uint32_t no_overtaking;        /**< 0/1 */
+    uint32_t no_overtaking_trucks; /**< 0/1 */
+    uint32_t priority_road;        /**< 0/1 */
+    uint32_t speed_age_s;          /**< s since the limit was last seen, 0..65535 (saturate
+                                        before packing) */
+} sbr_can_restrictions_t;
+
 /** @name Pack (E2E bytes left zero) and unpack. Pack: ::SBR_OK, ::SBR_ERR_NULL,
  *  ::SBR_ERR_RANGE (a value outside its signal's range or NaN; the frame is untouched).
  *  Unpack: ::SBR_OK, ::SBR_ERR_NULL, ::SBR_ERR_RANGE (another message id, or a signal
@@ -124,6 +136,8 @@ sbr_status_t sbr_can_pack_object(const sbr_can_object_t *in, sbr_can_frame_t *fr
 sbr_status_t sbr_can_unpack_object(const sbr_can_frame_t *frame, sbr_can_object_t *out);
 sbr_status_t sbr_can_pack_ecu_status(const sbr_can_ecu_status_t *in, sbr_can_frame_t *frame);
 sbr_status_t sbr_can_unpack_ecu_status(const sbr_can_frame_t *frame, sbr_can_ecu_status_t *out);
+sbr_status_t sbr_can_pack_restrictions(const sbr_can_restrictions_t *in, sbr_can_frame_t *frame);
+sbr_status_t sbr_can_unpack_restrictions(const sbr_can_frame_t *frame, sbr_can_restrictions_t *out);
 /** @} */
 
 /**
@@ -135,7 +149,8 @@ uint8_t sbr_crc8_j1850(const uint8_t *data, uint32_t len);
 
 /** Sender side of E2E: the next alive counter of each message. */
 typedef struct sbr_can_e2e_tx_s {
-    uint8_t counter[4]; /**< per message: confirmed sign, status, detection, object */
+    uint8_t counter[5]; /**< per message: confirmed sign, status, detection, object,
+                             restrictions */
 } sbr_can_e2e_tx_t;
 
 /** Receiver side of E2E for one message. */
@@ -202,6 +217,8 @@ typedef struct sbr_can_cycle_s {
     const sbr_can_object_t *objects;       /**< index is set by the scheduler */
     uint32_t object_count;
     sbr_can_ecu_status_t status;           /**< overload is set by the scheduler */
+    /** The restrictions in force; NULL: no SBR_Restrictions frame this cycle. */
+    const sbr_can_restrictions_t *restrictions;
 } sbr_can_cycle_t;
 
 /** Scheduler limits. */
@@ -226,7 +243,7 @@ sbr_status_t sbr_can_sched_config_check(const sbr_can_sched_config_t *cfg);
  * @brief Turn one cycle's results into protected frames, in priority order.
  *
  * Order (and priority when the budget is short): confirmed signs (a "no sign" frame when
- * there is none), the ECU status, detections by decreasing confidence (a "no detection"
+ * there is none), the ECU status, the restrictions (when the cycle has them), detections by decreasing confidence (a "no detection"
  * frame when there is none), tracked objects by decreasing certainty (a "no object" frame
  * when there is none). Frames beyond the budget or beyond the max_* limits are dropped,
  * lowest priority first; the status frame then carries overload = 1 and `dropped` says

@@ -15,7 +15,8 @@
  *      their age (SBR_ConfirmedSign, the speed of a speed-limit class from the rules'
  *      meanings), the status (SBR_EcuStatus: frame counter, processing time, regions,
  *      detections, error and capacity flags), every detection with the id of its sign
- *      (SBR_Detection, id modulo 63);
+ *      (SBR_Detection, id modulo 63), the restrictions in force (SBR_Restrictions: the
+ *      limit, the bans, priority road, the limit's age in seconds);
  *   4. the scheduler packs and protects them (sbr_can_schedule()) and they leave through
  *      the port (sbr_can_send()).
  * A frame that fails (the recogniser refuses the image, or the caller says so with
@@ -69,7 +70,8 @@ typedef struct sbr_ecu_frame_info_s {
                                 0..6553.4) */
     uint32_t regions;      /**< regions of the frame (the recogniser's parts_stats.regions) */
     uint32_t error;        /**< 1: the frame failed */
-    uint32_t capacity_hit; /**< 1: a bound of the recogniser ran full */
+    uint32_t capacity_hit; /**< 1: a bound of the recogniser ran full and lost results
+                                (::SBR_RECOG_HIT_LOSSES) */
 } sbr_ecu_frame_info_t;
 
 /** What one frame did. */

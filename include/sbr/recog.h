@@ -139,6 +139,12 @@ typedef struct sbr_detection_s {
 #define SBR_RECOG_HIT_LOOKS 32u      /**< max_extra_looks */
 #define SBR_RECOG_HIT_OUTLINES 64u   /**< max_outline_candidates, or no room among the
                                           max_hypotheses for them */
+/** The bounds whose reaching loses results: all but ::SBR_RECOG_HIT_CANDIDATES, which
+    ranks by design (the best max_candidates are classified). The ECU's status frame
+    reports these (ecu.h). */
+#define SBR_RECOG_HIT_LOSSES                                                                      \
+    (SBR_RECOG_HIT_PARTS | SBR_RECOG_HIT_VOTES | SBR_RECOG_HIT_HYPOTHESES | SBR_RECOG_HIT_MSER | \
+     SBR_RECOG_HIT_LOOKS | SBR_RECOG_HIT_OUTLINES)
 /** @} */
 
 /** What one call did. */

@@ -14,6 +14,8 @@
 #define MSG_STATUS 1u
 #define MSG_DET 2u
 #define MSG_OBJ 3u
+#define MSG_RESTR 4u
+#define MSG_FOREIGN 5u
 
 /* ---- bits --------------------------------------------------------------------------- */
 
@@ -351,6 +353,46 @@ sbr_status_t sbr_can_unpack_ecu_status(const sbr_can_frame_t *frame, sbr_can_ecu
     return SBR_OK;
 }
 
+/* ---- SBR_Restrictions 0x302 --------------------------------------------------------- */
+
+sbr_status_t sbr_can_pack_restrictions(const sbr_can_restrictions_t *in, sbr_can_frame_t *frame)
+{
+    sbr_status_t st = SBR_ERR_NULL;
+    if ((in != NULL) && (frame != NULL)) {
+        st = SBR_ERR_RANGE;
+        if ((in->speed_limit_kmh <= 255u) && (in->no_overtaking <= 1u) && (in->no_overtaking_trucks <= 1u) &&
+            (in->priority_road <= 1u) && (in->speed_age_s <= 65535u)) {
+            uint64_t v = 0u;
+            v = put_bits(v, 16u, 8u, in->speed_limit_kmh);
+            v = put_bits(v, 24u, 1u, in->no_overtaking);
+            v = put_bits(v, 25u, 1u, in->no_overtaking_trucks);
+            v = put_bits(v, 26u, 1u, in->priority_road);
+            v = put_bits(v, 32u, 16u, in->speed_age_s);
+            frame_init(frame, SBR_CAN_ID_RESTRICTIONS, v);
+            st = SBR_OK;
+        }
+    }
+    return st;
+}
+
+sbr_status_t sbr_can_unpack_restrictions(const sbr_can_frame_t *frame, sbr_can_restrictions_t *out)
+{
+    sbr_status_t st = SBR_ERR_NULL;
+    if ((frame != NULL) && (out != NULL)) {
+        st = frame_check(frame, SBR_CAN_ID_RESTRICTIONS);
+    }
+    if (st == SBR_OK) {
+        const uint64_t v = frame_bits(frame->data);
+        /* every raw value of these signals is in range */
+        out->speed_limit_kmh = get_bits(v, 16u, 8u);
+        out->no_overtaking = get_bits(v, 24u, 1u);
+        out->no_overtaking_trucks = get_bits(v, 25u, 1u);
+        out->priority_road = get_bits(v, 26u, 1u);
+        out->speed_age_s = get_bits(v, 32u, 16u);
+    }
+    return st;
+}
+
 /* ---- E2E ---------------------------------------------------------------------------- */
 
 uint8_t sbr_crc8_j1850(const uint8_t *data, uint32_t len)
@@ -375,7 +417,7 @@ uint8_t sbr_crc8_j1850(const uint8_t *data, uint32_t len)
     return (uint8_t)(crc ^ 0xFFu);
 }
 
-/* Message slot of an identifier, or 4 for a foreign one. */
+/* Message slot of an identifier, or MSG_FOREIGN for a foreign one. */
 static uint32_t msg_slot(uint32_t id)
 {
     uint32_t s;
@@ -392,8 +434,11 @@ static uint32_t msg_slot(uint32_t id)
     case SBR_CAN_ID_TRACKED_OBJECT:
         s = MSG_OBJ;
         break;
+    case SBR_CAN_ID_RESTRICTIONS:
+        s = MSG_RESTR;
+        break;
     default:
-        s = 4u;
+        s = MSG_FOREIGN;
         break;
     }
     return s;
@@ -428,7 +473,7 @@ sbr_status_t sbr_can_e2e_protect(sbr_can_e2e_tx_t *tx, sbr_can_frame_t *frame)
         return SBR_ERR_NULL;
     }
     s = msg_slot(frame->id);
-    if (s > MSG_OBJ) {
+    if (s >= MSG_FOREIGN) {
         return SBR_ERR_RANGE;
     }
     if (frame->dlc != CAN_DLC) {
@@ -454,7 +499,7 @@ sbr_status_t sbr_can_e2e_rx_init(sbr_can_e2e_rx_t *rx, uint32_t id)
     if (rx == NULL) {
         return SBR_ERR_NULL;
     }
-    if (msg_slot(id) > MSG_OBJ) {
+    if (msg_slot(id) >= MSG_FOREIGN) {
         return SBR_ERR_RANGE;
     }
     rx->id = id;

@@ -123,7 +123,7 @@ static void sched_plan(const sbr_can_sched_config_t *cfg, const sbr_can_cycle_t 
     p->n_sign = sched_min(cycle->sign_count, cfg->max_signs);
     p->n_det = sched_min(cycle->detection_count, cfg->max_detections);
     p->n_obj = sched_min(cycle->object_count, cfg->max_objects);
-    p->need = 4u;
+    p->need = (cycle->restrictions != NULL) ? 5u : 4u;
     if (p->n_sign > 1u) {
         p->need += p->n_sign - 1u;
     }
@@ -249,6 +249,9 @@ sbr_status_t sbr_can_schedule(sbr_can_e2e_tx_t *tx, const sbr_can_sched_config_t
         est.overload = 1u;
     }
     sched_emit(&o, sbr_can_pack_ecu_status(&est, &f), &f);
+    if (cycle->restrictions != NULL) {
+        sched_emit(&o, sbr_can_pack_restrictions(cycle->restrictions, &f), &f);
+    }
     sched_ranked(&o, cycle, 0, p.n_det);
     sched_ranked(&o, cycle, 1, p.n_obj);
     *count = o.count;

@@ -98,6 +98,11 @@ sbr_status_t sbr_ecu_init(sbr_ecu_t *ecu, const sbr_ecu_config_t *cfg, void *wor
     return st;
 }
 
+static uint32_t sbr_ecu_min_u32(uint32_t a, uint32_t b)
+{
+    return (a < b) ? a : b;
+}
+
 /* Whether an instance looks initialised. */
 static int ecu_usable(const sbr_ecu_t *e)
 {
@@ -298,6 +303,7 @@ sbr_status_t sbr_ecu_output(sbr_ecu_t *ecu, uint64_t now_us, const sbr_detection
     }
     if (st == SBR_OK) {
         sbr_can_confirmed_sign_t listed[SBR_ECU_LISTED];
+        sbr_can_restrictions_t restr;
         sbr_can_cycle_t cyc;
         uint32_t kept = 0u;
         uint32_t nf = 0u;
@@ -311,6 +317,12 @@ sbr_status_t sbr_ecu_output(sbr_ecu_t *ecu, uint64_t now_us, const sbr_detection
             cyc.sign_count = ecu->listed_count;
             cyc.detections = ecu->records;
             cyc.detection_count = kept;
+            restr.speed_limit_kmh = r.restrictions.speed_limit_kmh;
+            restr.no_overtaking = r.restrictions.no_overtaking;
+            restr.no_overtaking_trucks = r.restrictions.no_overtaking_trucks;
+            restr.priority_road = r.restrictions.priority_road;
+            restr.speed_age_s = sbr_ecu_min_u32(r.restrictions.speed_age_ms / 1000u, 65535u);
+            cyc.restrictions = &restr;
             cyc.status.frame_counter = ecu->frame;
             cyc.status.processing_ms = sbr_util_clampf(info->processing_ms, 0.0f, 6553.4f);
             cyc.status.region_count = info->regions;
@@ -368,7 +380,7 @@ sbr_status_t sbr_ecu_frame(sbr_ecu_t *ecu, sbr_recog_t *rec, const sbr_image_t *
                 info.processing_ms = (float)ticks / (float)ticks_per_ms;
             }
             info.regions = stats.parts_stats.regions;
-            if ((rs == SBR_ERR_CAPACITY) || (stats.capacity_hit != 0u)) {
+            if ((rs == SBR_ERR_CAPACITY) || ((stats.capacity_hit & SBR_RECOG_HIT_LOSSES) != 0u)) {
                 info.capacity_hit = 1u;
             }
         } else {

@@ -54,6 +54,11 @@ const std::vector<Message> &messages() {
          SBR_CAN_ID_TRACKED_OBJECT,
          {U(sbr_can_object_t, index), U(sbr_can_object_t, track_id), F(sbr_can_object_t, x), F(sbr_can_object_t, y),
           F(sbr_can_object_t, vx), F(sbr_can_object_t, vy), F(sbr_can_object_t, certainty)}},
+        {"SBR_Restrictions",
+         SBR_CAN_ID_RESTRICTIONS,
+         {U(sbr_can_restrictions_t, speed_limit_kmh), U(sbr_can_restrictions_t, no_overtaking),
+          U(sbr_can_restrictions_t, no_overtaking_trucks), U(sbr_can_restrictions_t, priority_road),
+          U(sbr_can_restrictions_t, speed_age_s)}},
     };
     return m;
 }
@@ -64,7 +69,7 @@ const Message &by_name(const std::string &name) {
     for (const Message &m : messages())
         if (name == m.name) return m;
     throw nb::value_error(("unknown message: " + name +
-                           " (SBR_ConfirmedSign, SBR_EcuStatus, SBR_Detection, SBR_TrackedObject)")
+                           " (SBR_ConfirmedSign, SBR_EcuStatus, SBR_Restrictions, SBR_Detection, SBR_TrackedObject)")
                               .c_str());
 }
 
@@ -157,6 +162,11 @@ nb::tuple pack(const std::string &name, nb::dict values) {
         st = sbr_can_pack_detection(&s, &f);
         break;
     }
+    case SBR_CAN_ID_RESTRICTIONS: {
+        const auto s = fill<sbr_can_restrictions_t>(m, values);
+        st = sbr_can_pack_restrictions(&s, &f);
+        break;
+    }
     default: {
         const auto s = fill<sbr_can_object_t>(m, values);
         st = sbr_can_pack_object(&s, &f);
@@ -189,6 +199,12 @@ nb::tuple unpack(uint32_t id, const nb::bytes &data) {
     case SBR_CAN_ID_DETECTION: {
         sbr_can_detection_t s{};
         st = sbr_can_unpack_detection(&f, &s);
+        if (st == SBR_OK) d = dict_of(m, s);
+        break;
+    }
+    case SBR_CAN_ID_RESTRICTIONS: {
+        sbr_can_restrictions_t s{};
+        st = sbr_can_unpack_restrictions(&f, &s);
         if (st == SBR_OK) d = dict_of(m, s);
         break;
     }

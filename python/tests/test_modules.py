@@ -218,6 +218,8 @@ SAMPLES = {
     "SBR_TrackedObject": dict(index=3, track_id=200, x=1021.0, y=377.0, vx=-40.0, vy=12.0, certainty=64.0),
     "SBR_EcuStatus": dict(frame_counter=54321, processing_ms=87.3, region_count=1234, detection_count=7,
                           overload=1, error=0, capacity_hit=1),
+    "SBR_Restrictions": dict(speed_limit_kmh=70, no_overtaking=1, no_overtaking_trucks=0, priority_road=1,
+                             speed_age_s=345),
 }
 # the DBC's signal name (cantools) of each of the core's fields
 DBC_NAMES = {
@@ -233,6 +235,9 @@ DBC_NAMES = {
                           region_count="SBR_Status_RegionCount", detection_count="SBR_Status_DetectionCount",
                           overload="SBR_Status_Overload", error="SBR_Status_Error",
                           capacity_hit="SBR_Status_CapacityHit"),
+    "SBR_Restrictions": dict(speed_limit_kmh="SBR_Restr_SpeedLimit", no_overtaking="SBR_Restr_NoOvertaking",
+                             no_overtaking_trucks="SBR_Restr_NoOvertakingTrucks",
+                             priority_road="SBR_Restr_PriorityRoad", speed_age_s="SBR_Restr_SpeedAge"),
 }
 
 

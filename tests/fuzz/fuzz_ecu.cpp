@@ -136,10 +136,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     }
     SignsCheck sig;
     if (cfg.stills == 0u) sig.init(cfg.signs);
-    sbr_can_e2e_rx_t rx[4];
-    const uint32_t ids[4] = {SBR_CAN_ID_CONFIRMED_SIGN, SBR_CAN_ID_ECU_STATUS, SBR_CAN_ID_DETECTION,
-                             SBR_CAN_ID_TRACKED_OBJECT};
-    for (int k = 0; k < 4; ++k) sbr_can_e2e_rx_init(&rx[k], ids[k]);
+    sbr_can_e2e_rx_t rx[5];
+    const uint32_t ids[5] = {SBR_CAN_ID_CONFIRMED_SIGN, SBR_CAN_ID_ECU_STATUS, SBR_CAN_ID_DETECTION,
+                             SBR_CAN_ID_TRACKED_OBJECT, SBR_CAN_ID_RESTRICTIONS};
+    for (int k = 0; k < 5; ++k) sbr_can_e2e_rx_init(&rx[k], ids[k]);
     uint64_t now = 1000000u;
     uint32_t cycles = 0;
     bool started = false;
@@ -184,8 +184,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         for (uint32_t i = 0; i < port.count; ++i) {
             const sbr_can_frame_t &fr = frames[i];
             int k = 0;
-            while (k < 4 && ids[k] != fr.id) ++k;
-            FZ_CHECK(k < 4);
+            while (k < 5 && ids[k] != fr.id) ++k;
+            FZ_CHECK(k < 5);
             sbr_can_e2e_result_t res;
             FZ_CHECK(sbr_can_e2e_check(&rx[k], &fr, &res) == SBR_OK);
             if (k == 0) {
@@ -199,11 +199,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             } else if (k == 2) {
                 sbr_can_detection_t s;
                 FZ_CHECK(sbr_can_unpack_detection(&fr, &s) == SBR_OK);
+            } else if (k == 4) {
+                sbr_can_restrictions_t s;
+                FZ_CHECK(sbr_can_unpack_restrictions(&fr, &s) == SBR_OK);
+                FZ_CHECK(s.speed_limit_kmh == r.restrictions.speed_limit_kmh &&
+                         s.no_overtaking == r.restrictions.no_overtaking &&
+                         s.priority_road == r.restrictions.priority_road);
             }
         }
         if (port.refused > 0u) {
             // frames after the refused one were not sent: the receivers resynchronise
-            for (int k = 0; k < 4; ++k) sbr_can_e2e_rx_init(&rx[k], ids[k]);
+            for (int k = 0; k < 5; ++k) sbr_can_e2e_rx_init(&rx[k], ids[k]);
         }
         FZ_CHECK(signs <= SBR_ECU_LISTED);
         ++cycles;

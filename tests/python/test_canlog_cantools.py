@@ -67,7 +67,7 @@ def main():
         warnings.simplefilter("error")
         db = cantools.database.load_file(a.dbc, strict=True)
     msgs = {m.frame_id: m for m in db.messages}
-    assert set(msgs) == {0x300, 0x301, 0x310, 0x320}, msgs
+    assert set(msgs) == {0x300, 0x301, 0x302, 0x310, 0x320}, msgs
     for m in db.messages:
         assert m.length == 8 and not m.is_extended_frame, m.name
         assert m.cycle_time == 100, (m.name, m.cycle_time)
@@ -127,8 +127,28 @@ def main():
     confirmed = []  # (class, score, image), newest first: the still-image rule of can_output.hpp
     speed = {0: 20, 1: 30, 2: 50, 3: 60, 4: 70, 5: 80, 7: 100, 8: 120}
     signs_compared = 0
+    # the restrictions from the confirmed signs in their listing order (rules.h's GTSDB
+    # meanings; the hold of 600 s outlasts the log, so nothing expires)
+    limit, ban, trucks, priority, limit_set = 0, 0, 0, 0, 0
     for k, (t, fr) in enumerate(images):
         want = sorted(dets.get(a.first + k, []), key=lambda d: (-d["score"], d["order"]))
+        for w in want:
+            c = w["cls"]
+            if c in speed:
+                limit, limit_set = speed[c], k
+            elif (c == 6 and limit == 80) or c == 32:
+                limit = 0
+            if c == 32:
+                ban = trucks = 0
+            ban = 1 if c == 9 else (0 if c == 41 else ban)
+            trucks = 1 if c == 10 else (0 if c == 42 else trucks)
+            priority = 1 if c == 12 else (0 if c in (13, 14) else priority)
+        restr = [d for fid, d in fr if fid == 0x302]
+        assert len(restr) == 1, (k, restr)
+        r = restr[0]
+        assert (r["SBR_Restr_SpeedLimit"], r["SBR_Restr_NoOvertaking"], r["SBR_Restr_NoOvertakingTrucks"],
+                r["SBR_Restr_PriorityRoad"]) == (limit, ban, trucks, priority), (k, r)
+        assert r["SBR_Restr_SpeedAge"] == ((k - limit_set) // 10 if limit else 0), (k, r)
         confirmed = [(w["cls"], w["score"], k) for w in want] + confirmed
         confirmed = [c for c in confirmed if k - c[2] < 255][:4]
         signs = [d for fid, d in fr if fid == 0x300]
@@ -161,7 +181,7 @@ def main():
             compared += 1
     print(f"cantools decode: {frames} frames over {len(images)} images decoded, E2E valid, "
           f"{compared} detections and {signs_compared} confirmed-sign slots equal within "
-          f"resolution: OK")
+          f"resolution, the restrictions of every image equal the reference's: OK")
     assert compared > 0, "no detections were compared"
     return 0
 

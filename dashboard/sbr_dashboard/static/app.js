@@ -39,6 +39,28 @@ function signIcon(name, speed) {
   return `<svg viewBox="0 0 100 100">${body}</svg>`;
 }
 
+// The bans as an instrument cluster draws them: a red ring with two cars (the truck's
+// one dark red on the left), and the priority-road diamond.
+function banIcon(trucks) {
+  const car = (x, fill) => `<rect x="${x}" y="40" width="18" height="26" rx="4" fill="${fill}"/>`;
+  return `<svg viewBox="0 0 100 100"><circle cx="50" cy="50" r="42" fill="#fff" stroke="#c8102e" stroke-width="9"/>` +
+    (trucks ? `<rect x="24" y="36" width="22" height="32" rx="2" fill="#c8102e"/>` : car(28, "#c8102e")) +
+    car(54, "#111") + `</svg>`;
+}
+
+function renderRestrictions(s) {
+  const r = s.restrictions;
+  const icons = [];
+  if (r && r.no_overtaking) icons.push(`<div class="restr" id="restr-no-overtaking" title="no overtaking">${banIcon(false)}</div>`);
+  if (r && r.no_overtaking_trucks) icons.push(`<div class="restr" id="restr-no-overtaking-trucks" title="no overtaking for trucks">${banIcon(true)}</div>`);
+  if (r && r.priority_road) icons.push(`<div class="restr" id="restr-priority" title="priority road">${signIcon("PriorityRoad")}</div>`);
+  $("restr-icons").innerHTML = icons.join("");
+  $("limit-age").textContent = r && r.speed_limit != null ? `(seen ${r.speed_age_s} s ago)` : "";
+  $("restr-text").textContent = r == null ? "the ECU sends no restrictions: the limit is read from the confirmed signs"
+    : [r.no_overtaking ? "no overtaking" : "", r.no_overtaking_trucks ? "no overtaking for trucks" : "",
+       r.priority_road ? "priority road" : ""].filter((x) => x).join(" · ");
+}
+
 function setCount(id, v) {
   const el = $(id);
   el.textContent = v;
@@ -125,6 +147,7 @@ function render(s) {
   st.className = "badge " + (s.source_ended ? "ended" : (problems ? "bad" : "ok"));
   $("speed-limit").textContent = s.speed_limit == null ? "--" : `${s.speed_limit} km/h`;
   $("limit-sign").innerHTML = s.speed_limit == null ? "" : signIcon("SpeedLimit", s.speed_limit);
+  renderRestrictions(s);
   $("sign-count").textContent = s.signs.length;
   $("signs").innerHTML = s.signs.map((x) =>
     `<div class="sign" data-class="${x.class_id}">${signIcon(x.class_name, x.speed)}` +
