@@ -123,7 +123,10 @@ static void sched_plan(const sbr_can_sched_config_t *cfg, const sbr_can_cycle_t 
     p->n_sign = sched_min(cycle->sign_count, cfg->max_signs);
     p->n_det = sched_min(cycle->detection_count, cfg->max_detections);
     p->n_obj = sched_min(cycle->object_count, cfg->max_objects);
-    p->need = (cycle->restrictions != NULL) ? 5u : 4u;
+    p->need = 4u;
+    if (cycle->restrictions != NULL) {
+        p->need = 5u;
+    }
     if (p->n_sign > 1u) {
         p->need += p->n_sign - 1u;
     }

@@ -26,7 +26,7 @@ from . import _sbr, can, fd
 from .evaluation import Evaluation, evaluate
 from ._points import as_points
 
-__all__ = ["Recognizer", "Detection", "Tracker", "Target", "Ellipse", "ellipse_fit", "class_name", "superclass",
+__all__ = ["Recognizer", "Detection", "Tracker", "Target", "SignTracker", "Sign", "Ellipse", "ellipse_fit", "class_name", "superclass",
            "SUPERCLASSES", "CONFIG_FIELDS", "CONFIG_TABLE", "TRACKER_FIELDS", "fd", "can", "evaluate", "Evaluation"]
 
 #: GTSDB's superclasses, by superclass()'s index.
@@ -250,6 +250,93 @@ class Tracker:
         return [Target(i, x, y, vx, vy, c, h, m, a, None if det < 0 else det, bool(f & _sbr.TRACK_CONFIRMED),
                        bool(f & _sbr.TRACK_UPDATED), bool(f & _sbr.TRACK_BORN))
                 for i, x, y, vx, vy, c, h, m, a, det, f in out]
+
+
+SIGN_FIELDS = ("class_count", "max_tracks", "confirm_hits", "confirm_share", "max_misses", "meas_sigma",
+               "min_certainty")
+
+
+@dataclass(frozen=True)
+class Sign:
+    """A confirmed sign after a frame (include/sbr/signs.h): id (stable for its pass, from
+    1), its class by the evidence of all its frames, its position x, y and last box size
+    (pixels), its best score, its class's share of the evidence, the detections it got,
+    the frames since its confirmation, and whether it was confirmed (new) or renamed in
+    this frame or given a detection (seen)."""
+    id: int
+    class_id: int
+    x: float
+    y: float
+    width: float
+    height: float
+    score: float
+    share: float
+    hits: int
+    frames: int
+    new: bool
+    renamed: bool
+    seen: bool
+
+    @property
+    def class_name(self) -> str:
+        return class_name(self.class_id)
+
+
+class SignTracker:
+    """The core's sign tracking (include/sbr/signs.h), as the ECU runs it: the detections
+    of consecutive frames become tracks (the channel tracker, a constant-velocity model);
+    a track's class is the one with the most summed score; a sign is confirmed once per
+    pass (confirm_hits detections and confirm_share of its evidence).
+
+    width, height: the frames' size in pixels; period: seconds between frames. Fields
+    (SIGN_FIELDS) as keyword arguments; a refused one raises ValueError naming it.
+    """
+
+    def __init__(self, width: float = 1360.0, height: float = 800.0, period: float = 0.1, **fields):
+        unknown = sorted(set(fields) - set(SIGN_FIELDS))
+        if unknown:
+            raise ValueError(f"unknown sign-tracking field: {unknown[0]} (fields: {', '.join(SIGN_FIELDS)})")
+        for k, v in fields.items():
+            if isinstance(v, bool) or not isinstance(v, (int, float)):
+                raise ValueError(f"{k}: a number is needed, not {v!r}")
+        if not (isinstance(period, (int, float)) and 0.0 < period <= 4294.0):
+            raise ValueError(f"period: seconds > 0 are needed, not {period!r}")
+        self._period = float(period)
+        self._core = _sbr.SignTracker(dict(fields, width=float(width), height=float(height),
+                                           period_us=int(round(period * 1e6))))
+        self._t = None
+
+    @property
+    def config(self) -> dict:
+        """The configuration in effect."""
+        return self._core.config
+
+    @property
+    def workspace_size(self) -> int:
+        """Bytes of the core's workspace."""
+        return self._core.workspace_size
+
+    @property
+    def capacity_hit(self) -> bool:
+        """The last frame had more detections or signs than the tracking holds."""
+        return self._core.capacity_hit
+
+    def reset(self) -> None:
+        """Drop every track (ids go on, never reused)."""
+        self._core.reset()
+
+    def update(self, detections: Sequence[Detection], time: Optional[float] = None) -> Tuple[List[Sign], List[int]]:
+        """One frame's detections at `time` seconds (default: one period after the previous
+        frame). Returns the confirmed signs after the frame (by id) and, per detection, the
+        id of the sign it was given to (0: none yet)."""
+        t = (0.0 if self._t is None else self._t + self._period) if time is None else float(time)
+        if not (t >= 0.0 and t * 1e6 < 2.0 ** 63):
+            raise ValueError(f"time: seconds >= 0 are needed, not {time!r}")
+        rows = [(*d.box, d.class_id, d.score) for d in detections]
+        signs, det_sign = self._core.update(rows, int(round(t * 1e6)))
+        self._t = t
+        return ([Sign(i, c, x, y, w, h, sc, sh, hits, fr, bool(f & _sbr.SIGN_NEW), bool(f & _sbr.SIGN_RENAMED),
+                      bool(f & _sbr.SIGN_SEEN)) for i, c, f, x, y, w, h, sc, sh, hits, fr in signs], list(det_sign))
 
 
 @dataclass(frozen=True)

@@ -48,6 +48,7 @@ template <typename Cfg, typename Defaults, typename Set, typename Check>
 void bind_tracker(nanobind::module_ &m);
 void bind_shapes(nanobind::module_ &m);
 void bind_can(nanobind::module_ &m);
+void bind_signs(nanobind::module_ &m);
 void bind_eval(nanobind::module_ &m);
 
 }  // namespace sbr_py

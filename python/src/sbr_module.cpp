@@ -380,6 +380,7 @@ NB_MODULE(_sbr, m) {
     sbr_py::bind_tracker(m);
     sbr_py::bind_shapes(m);
     sbr_py::bind_can(m);
+    sbr_py::bind_signs(m);
     sbr_py::bind_eval(m);
     m.def("field_names", []() {
         std::vector<std::string> n;

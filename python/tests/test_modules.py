@@ -22,6 +22,38 @@ DBC = os.path.join(ROOT, "dbc", "sbr.dbc")
 
 # --- Tracker ---------------------------------------------------------------------------
 
+def _det(x, y, w, cls, score):
+    return sbr.Detection(cls, (int(x - w / 2), int(y - w / 2), int(w), int(w)), score, 1.0, 3)
+
+
+def test_sign_tracker_names_a_sign_by_its_evidence_once_per_pass():
+    st = sbr.SignTracker(1360, 800, 0.1)
+    assert st.config["confirm_hits"] == 2 and st.config["confirm_share"] == pytest.approx(0.6)
+    news, ids = [], set()
+    for f in range(12):
+        dets = []
+        if f < 8:  # a 50 km/h sign passing, taken for 60 in frame 4
+            dets.append(_det(800 + 10 * f, 300 - 4 * f, 30 + 2 * f, 3 if f == 4 else 2, 0.9))
+        if f == 5:  # a one-frame false detection
+            dets.append(_det(200, 600, 40, 25, 0.8))
+        signs, det_sign = st.update(dets, time=0.1 * f)
+        assert len(det_sign) == len(dets)
+        news += [s for s in signs if s.new]
+        ids |= {s.id for s in signs}
+        if f == 5:
+            assert det_sign[1] == 0  # never confirmed
+        if 1 <= f < 8:
+            assert len(signs) == 1 and signs[0].class_id == 2 and signs[0].class_name == "SpeedLimit50"
+            assert det_sign[0] == signs[0].id and not signs[0].renamed
+    assert [(s.class_id, s.frames) for s in news] == [(2, 0)] and len(ids) == 1
+    with pytest.raises(ValueError, match="confirm_share"):
+        sbr.SignTracker(confirm_share=1.5)
+    with pytest.raises(ValueError, match="unknown sign-tracking field"):
+        sbr.SignTracker(window=9)
+    with pytest.raises(ValueError, match="time"):
+        st.update([], time=0.5)  # not after the previous frame's
+
+
 def test_tracker_follows_two_targets_with_stable_ids():
     trk = sbr.Tracker("cv", width=640, height=480, period=0.1, window=31, meas_sigma=4.0)
     rng = np.random.default_rng(3)
