@@ -2,12 +2,14 @@
 # SPDX-License-Identifier: MIT
 # sbr's one entry point: set-up, the main job and the tests.
 #
-#   ./sbr.sh detect [--input DIR] [--out DIR] [--range A-B] [--baseline FILE]
+#   ./sbr.sh detect [--input DIR|VIDEO] [--out DIR] [--range A-B] [--baseline FILE]
 #                   [--model FILE.sbrm --picto FILE.sbrp] [recogniser options]
 #                                               the main job (docs/usage/detect.md): the recogniser
 #                                               over a folder of images (default: GTSDB's
 #                                               development split 00400-00599), detections,
-#                                               annotated images, CAN log, summary;
+#                                               annotated images, CAN log, summary; or over a
+#                                               recorded drive's video file (its signs tracked,
+#                                               out/annotated.mp4);
 #                                               --baseline: an earlier version's
 #                                               detections_all.txt, compared in evaluation.txt;
 #                                               other options go to sbr_detect (--threshold,
@@ -287,6 +289,29 @@ cmd_fuzz() {
     --jobs "$JOBS" --report "$BUILD/fuzz-report.md"
 }
 
+# ./sbr.sh detect --input VIDEO: a recorded drive (sbr_detect reads the frames at the
+# file's times, tracks the signs and writes the annotated video; no ground truth)
+cmd_detect_video() {
+  local input="$1" out="$2" status=0
+  shift 2
+  if [ -e "$out" ] && [ ! -d "$out" ]; then
+    echo "sbr.sh detect: --out $out is a file, not a folder (nothing was written)" >&2
+    return 2
+  fi
+  setup
+  mkdir -p "$BUILD" "$out"
+  build_native
+  log "sbr_detect over the video $input"
+  # status 3: the video ended early (named); what was read is written, the status kept
+  "$BUILD/native/host_tools/sbr_detect" --input "$input" --detections "$out/detections.txt" \
+      --annotated-video "$out/annotated.mp4" --canlog "$out/sbr_can.log" --summary "$out/summary.txt" "$@" \
+    || status=$?
+  if [ "$status" -eq 0 ] || [ "$status" -eq 3 ]; then
+    echo "wrote: $out/detections.txt, $out/annotated.mp4, $out/sbr_can.log, $out/summary.txt"
+  fi
+  return "$status"
+}
+
 cmd_detect() {
   local input="" out="$ROOT/out" range="" baseline="" models=() note="" extra=()
   while [ $# -gt 0 ]; do
@@ -303,8 +328,12 @@ cmd_detect() {
       *) extra+=("$1"); shift ;;
     esac
   done
+  if [ -n "$input" ] && [ -f "$input" ]; then
+    cmd_detect_video "$input" "$out" ${models[@]+"${models[@]}"} ${extra[@]+"${extra[@]}"}
+    return $?
+  fi
   if [ -n "$input" ] && [ ! -d "$input" ]; then
-    echo "sbr.sh detect: --input $input: no such folder (nothing was written)" >&2
+    echo "sbr.sh detect: --input $input: no such folder or video file (nothing was written)" >&2
     return 2
   fi
   if [ -n "$baseline" ]; then

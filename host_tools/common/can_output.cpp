@@ -8,7 +8,8 @@ namespace sbr_host {
 CanLogWriter::CanLogWriter(const std::string &path, uint64_t base_time_us, uint64_t period_us,
                            const char *ifname)
     : base_(base_time_us), period_(period_us) {
-    file_ = std::fopen(path.c_str(), "w");
+    logging_ = !path.empty();
+    if (logging_) file_ = std::fopen(path.c_str(), "w");
     port_ctx_.file = file_;
     port_ctx_.ifname = ifname;
     port_ctx_.written = 0;
@@ -37,6 +38,7 @@ bool CanLogWriter::setup(uint32_t stills, float width, float height) {
 }
 
 bool CanLogWriter::close() {
+    if (!logging_) return true;
     if (!file_) return false;
     const bool good = std::fflush(file_) == 0 && std::ferror(file_) == 0;
     const bool closed = std::fclose(file_) == 0;
@@ -49,20 +51,28 @@ bool CanLogWriter::enable_tracking(float width, float height) {
     return image_ == 0u && setup(0u, width, height);
 }
 
+// The port: the frames of the cycle kept, and written to the log when there is one.
+sbr_status_t CanLogWriter::tee_send(void *ctx, const sbr_can_frame_t *frame) {
+    CanLogWriter *w = static_cast<CanLogWriter *>(ctx);
+    w->cycle_.push_back(*frame);
+    return w->file_ ? sbr_port_candump.send(&w->port_ctx_, frame) : SBR_OK;
+}
+
 int CanLogWriter::write_image(const std::vector<sbr_detection_t> &dets, float processing_ms, uint32_t regions,
-                              bool error_flag, bool capacity_hit) {
-    if (!file_ || !ready_) return -1;
+                              bool error_flag, bool capacity_hit, int64_t time_us) {
+    if ((logging_ && !file_) || !ready_) return -1;
     sbr_ecu_frame_info_t info{};
     info.processing_ms = processing_ms;
     info.regions = regions;
     info.error = error_flag ? 1u : 0u;
     info.capacity_hit = capacity_hit ? 1u : 0u;
-    const uint64_t now = base_ + static_cast<uint64_t>(image_) * period_;
+    const uint64_t now = base_ + (time_us >= 0 ? static_cast<uint64_t>(time_us) : static_cast<uint64_t>(image_) * period_);
     port_ctx_.time_us = now;
     sbr_ecu_result_t r{};
+    static const sbr_can_port_t tee = {"tee", &CanLogWriter::tee_send};
+    cycle_.clear();
     const sbr_status_t st = sbr_ecu_output(&ecu_, now, dets.empty() ? nullptr : dets.data(),
-                                           static_cast<uint32_t>(dets.size()), &info, &sbr_port_candump, &port_ctx_,
-                                           &r);
+                                           static_cast<uint32_t>(dets.size()), &info, &tee, this, &r);
     if (st != SBR_OK && st != SBR_ERR_CAPACITY) return -1;
     dropped_ += r.dropped;
     state_ = r.restrictions;

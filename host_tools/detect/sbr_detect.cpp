@@ -27,6 +27,7 @@
 #include "gtsdb.hpp"
 #include "model_io.hpp"
 #include "output_file.hpp"
+#include "video.hpp"
 
 #if defined(__has_include)
 #if __has_include(<valgrind/callgrind.h>)
@@ -96,6 +97,8 @@ void progress(size_t done, size_t total, double ms_avg, double elapsed_s) {
 // Everything the command line sets.
 struct Options {
     std::string input, det_path, all_path, annotated, overview, gt_path, canlog, model_path, picto_path, summary_path;
+    std::string annotated_video;  // --annotated-video
+    bool video = false;           // --input is a video file
     bool no_picto = false, quiet = false, sequence = false, callgrind = false, grey = false;
     bool canlog_fixed_time = false;
     bool progress = false;  // a progress bar: stderr is a terminal and not --quiet
@@ -121,7 +124,13 @@ int parse_options(int argc, char **argv, Options &o) {
     for (int i = 1; i < argc; ++i)
         if (std::string(argv[i]) == "--strips") sbr_recog_config_strips(&o.cfg);
     CLI::App app{"sbr_detect: sbr's recogniser over a folder of recorded images (docs/usage/detect.md)"};
-    app.add_option("--input", o.input, "folder of JPEG/PNG/PPM images (or a GTSDB folder)")->required();
+    app.add_option("--input", o.input,
+                   "folder of JPEG/PNG/PPM images (or a GTSDB folder), or a video file (.mp4, .avi, .mkv, .mov, ...: "
+                   "a drive, its frames consecutive, at the file's own times)")
+        ->required();
+    app.add_option("--annotated-video", o.annotated_video,
+                   "with a video --input: the video with the boxes, the confirmed signs and the limit in force drawn "
+                   "(.mp4 or .avi)");
     app.add_option("--detections", o.det_path,
                    "detections at the operating point, NNNNN.jpg;left;top;right;bottom;class_id;score")
         ->required();
@@ -286,6 +295,8 @@ struct Annotation {
 struct Outputs {
     OutputFile det, all, summary;
     std::unique_ptr<CanLogWriter> can;
+    VideoInput video;
+    VideoOutput video_out;
     std::string can_tmp;
     Annotation ann;
     bool overview_written = false;
@@ -327,6 +338,9 @@ bool open_outputs(const Options &o, Outputs &out) {
     if (!o.summary_path.empty() && !(why = out.summary.open(o.summary_path)).empty())
         return cannot("--summary", o.summary_path, why);
     if (!o.overview.empty() && !(why = probe_writable(o.overview)).empty()) return cannot("--overview", o.overview, why);
+    if (!o.annotated_video.empty() && !(why = probe_writable(o.annotated_video)).empty())
+        return cannot("--annotated-video", o.annotated_video, why);
+    if (o.video && o.canlog.empty()) out.can.reset(new CanLogWriter(""));  // the job, without a log
     if (!o.canlog.empty()) {
         std::error_code ec;
         if (fs::is_directory(o.canlog, ec)) return cannot("--canlog", o.canlog, "a folder, not a file");
@@ -352,7 +366,7 @@ bool commit_outputs(const Options &o, Outputs &out) {
     if (!(why = out.det.commit()).empty()) failed("--detections", o.det_path, why);
     if (out.all.is_open() && !(why = out.all.commit()).empty()) failed("--all-detections", o.all_path, why);
     if (out.summary.is_open() && !(why = out.summary.commit()).empty()) failed("--summary", o.summary_path, why);
-    if (out.can) {
+    if (out.can && !o.canlog.empty()) {
         const bool closed = out.can->close();
         std::error_code ec;
         if (!closed) {
@@ -548,13 +562,16 @@ void annotate_image(const Options &o, const std::string &file, cv::Mat &img,
 
 // One image: read, detections written, counted, drawn, and its CAN frames. False when
 // the CAN log's tracker cannot be set up.
+// A video's frame comes decoded (`given`) with its time from the file's start (`time_us`).
 bool run_image(const Options &o, const Models &m, CallgrindClock &cg, const std::string &file, bool first,
-               Outputs &out, Tally &t) {
+               Outputs &out, Tally &t, const cv::Mat *given = nullptr, int64_t time_us = -1) {
     std::vector<sbr_detection_t> kept;
     sbr_recog_stats_t stats{};
     float frame_ms = 0.0f;
     cv::Mat img;
-    std::string problem = read_image(file, img);
+    std::string problem;
+    if (given) img = given->clone();
+    else problem = read_image(file, img);
     if (problem.empty()) problem = frame_problem(o, img);
     bool error = !problem.empty();
     if (error) image_failed(o, file, problem, t);
@@ -569,7 +586,7 @@ bool run_image(const Options &o, const Models &m, CallgrindClock &cg, const std:
         if (o.callgrind) CALLGRIND_TOGGLE_COLLECT;  // the ECU job's dump: sbr_ecu_output and the port
 #endif
         out.can->write_image(kept, o.canlog_fixed_time ? 0.0f : frame_ms, stats.parts_stats.regions, error,
-                             (stats.capacity_hit & SBR_RECOG_HIT_LOSSES) != 0u);
+                             (stats.capacity_hit & SBR_RECOG_HIT_LOSSES) != 0u, time_us);
 #ifdef SBR_HAVE_CALLGRIND
         if (o.callgrind) {
             const std::string label = "frame " + fs::path(file).stem().string() + " ecu";
@@ -632,7 +649,8 @@ std::string summary(const Options &o, const Models &m, const std::string &dir, s
                                                  "grouping", "evidence and cascade", "NMS on part scores",
                                                  "class stage (pictograms)"};
     s << "sbr_detect summary\n";
-    s << "input: " << dir << " (" << nfiles << " images, " << t.failed << " failed)\n";
+    s << "input: " << (o.video ? o.input : dir) << " (" << nfiles << (o.video ? " frames of a video, " : " images, ")
+      << t.failed << " failed)\n";
     for (const std::string &f : t.failures) s << "  failed: " << f << "\n";
     if (t.failed > t.failures.size()) s << "  (and " << t.failed - t.failures.size() << " more)\n";
     s << "model: " << (o.model_path.empty() ? "built-in (lib/models/sbr_model_gtsdb.c)" : o.model_path) << ", "
@@ -705,8 +723,25 @@ bool roi_fits_first(const Options &o, const std::string &file) {
 // truth. -1 to go on, else the exit status.
 int prepare(Options &o, Models &m, CallgrindClock &cg, std::string &dir, std::vector<std::string> &files,
             Outputs &out) {
+    (void)files;
     if (!load_models(o, m) || !configure(o, m, cg)) return 2;
     std::error_code ec;
+    if (fs::is_regular_file(o.input, ec)) {
+        std::string why = is_video_path(o.input) ? "" : "a file, not a folder of images nor a video (.mp4, .avi, ...)";
+        if (why.empty() && !out.video.open(o.input, why)) why = why.empty() ? "cannot be opened" : why;
+        if (!why.empty()) {
+            std::fprintf(stderr, "sbr_detect: --input %s: %s (nothing was run)\n", o.input.c_str(), why.c_str());
+            return 2;
+        }
+        o.video = true;
+        o.sequence = true;  // a drive: consecutive frames
+        dir = fs::path(o.input).parent_path().string();
+        return open_outputs(o, out) ? -1 : 1;
+    }
+    if (!o.annotated_video.empty()) {
+        std::fprintf(stderr, "sbr_detect: --annotated-video needs a video --input (nothing was run)\n");
+        return 2;
+    }
     if (!fs::is_directory(o.input, ec)) {
         const bool missing = !ec || ec == std::errc::no_such_file_or_directory;
         std::fprintf(stderr, "sbr_detect: --input %s: %s\n", o.input.c_str(),
@@ -749,6 +784,42 @@ int prepare(Options &o, Models &m, CallgrindClock &cg, std::string &dir, std::ve
     return open_outputs(o, out) ? -1 : 1;
 }
 
+// A video --input: every frame in order at its own time, the annotated video written.
+// -1 to go on (summary and outputs), else the exit status.
+int run_video(const Options &o, const Models &m, CallgrindClock &cg, Outputs &out, Tally &t) {
+    cv::Mat frame;
+    uint64_t t_us = 0;
+    for (int64_t k = 0; out.video.next(frame, t_us); ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "%05lld.frame", static_cast<long long>(k));
+        if (!run_image(o, m, cg, name, k == 0, out, t, &frame, int64_t(t_us))) return 1;
+        if (!o.annotated_video.empty()) {
+            std::string why;
+            if (k == 0 && !out.video_out.open(o.annotated_video, out.video.fps(), frame.size(), why)) {
+                std::fprintf(stderr, "sbr_detect: --annotated-video %s: %s\n", o.annotated_video.c_str(), why.c_str());
+                return 1;
+            }
+            draw_cycle(frame, decode_cycle(out.can->last_cycle()), double(t_us) * 1e-6);
+            out.video_out.write(frame);
+        }
+    }
+    const std::string early = out.video.ended_early();
+    if (!early.empty()) {  // a failed input: the run goes on with what was read (exit 3)
+        std::fprintf(stderr, "sbr_detect: --input %s: %s\n", o.input.c_str(), early.c_str());
+        ++t.failed;
+        t.failures.push_back(fs::path(o.input).filename().string() + ": " + early);
+    }
+    if (out.video_out.is_open()) {
+        const std::string why = out.video_out.close();
+        if (!why.empty()) {
+            std::fprintf(stderr, "sbr_detect: --annotated-video %s: the write failed: %s\n",
+                         o.annotated_video.c_str(), why.c_str());
+            return 1;
+        }
+    }
+    return -1;
+}
+
 // The contact sheet of this run, or none (an earlier run's file removed: it would not
 // show this run). False when it could not be written (the earlier one is then kept).
 bool write_overview(const Options &o, Outputs &out) {
@@ -787,8 +858,13 @@ int main(int argc, char **argv) {
     const int ready = prepare(o, m, cg, dir, files, out);
     if (ready >= 0) return ready;
     Tally t;
+    if (o.video) {
+        const int vs = run_video(o, m, cg, out, t);
+        if (vs >= 0) return vs;
+        files.assign(size_t(out.video.frames_read()), std::string());
+    }
     const auto t0 = std::chrono::steady_clock::now();
-    for (size_t i = 0; i < files.size(); ++i) {
+    for (size_t i = 0; i < files.size() && !o.video; ++i) {
         if (!run_image(o, m, cg, files[i], i == 0, out, t)) return 1;  // the temporaries go
 
         if (o.progress)
@@ -801,6 +877,7 @@ int main(int argc, char **argv) {
     if (out.summary.is_open()) out.summary << s;
     // every output renamed over its target only now: a failed write is exit 1, naming it
     if (!commit_outputs(o, out) || !overview_ok) return 1;
+    if (o.video) return t.failed > 0 ? (size_t(out.video.frames_read()) == t.failed ? 1 : 3) : 0;
     if (t.failed > 0) std::fprintf(stderr, "sbr_detect: %zu of %zu images failed\n", t.failed, files.size());
     return t.failed == files.size() ? 1 : (t.failed > 0 ? 3 : 0);
 }

@@ -60,9 +60,13 @@ EXAMPLES = {
         "a `--scheduler` that cannot be reached": [
             "python/tests/test_regress.py::test_a_bad_scheduler_touches_nothing"],
         "an image folder given as `--annotated`": ["sbr_detect --annotated = the input"],
-        "a file given as `--annotated`": ["sbr_detect --annotated naming a file"]},
+        "a file given as `--annotated`": ["sbr_detect --annotated naming a file"],
+        "a file given as `--input` that is no video OpenCV can read (named)": [
+            "tests/python/test_video.py::test_not_a_video"]},
     3: {"a truncated JPEG among whole ones (named in `summary.txt` / `failures.txt`)": [
             "sbr_detect, a truncated image beside a whole one"],
+        "a truncated video (named, with the frame it ends at; the frames before it processed)": [
+            "tests/python/test_video.py::test_truncated_video"],
         "an image larger than the recogniser's limit (16384 pixels a side, named with its size)": [
             "sbr_detect, a 20000-pixel image beside a whole one"],
         "a chunk of `sbr.regress` whose worker died more often than allowed (what was computed in "
