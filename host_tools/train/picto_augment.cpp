@@ -2,6 +2,8 @@
 // sbr_train_picto's synthetic copies of a sign (picto_augment.hpp).
 #include "picto_augment.hpp"
 
+#include <opencv2/imgcodecs.hpp>
+
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -59,6 +61,48 @@ void expose(const cv::Mat &img, float gam, float con, cv::Mat &out) {
         lut.at<uint8_t>(k) = cv::saturate_cast<uint8_t>(128.0f + con * (t - 128.0f));
     }
     cv::LUT(img, lut, out);
+}
+
+// img under one of a camera's degradations, drawn from rng: motion blur (a line of 5 to
+// 11 px at any angle), defocus (a disc of radius 1 to 3 px), sensor noise (sigma 0.02 to
+// 0.08 of the range), JPEG compression (quality 10 to 40) or haze (a grey veil of 0.2 to
+// 0.5 and a slight blur). Into out (not img).
+void degrade(const cv::Mat &img, std::mt19937 &rng, cv::Mat &out) {
+    std::uniform_real_distribution<float> V(0.0f, 1.0f);
+    const int kind = int(V(rng) * 5.0f) % 5;
+    if (kind == 0) {
+        const int len = 5 + 2 * int(V(rng) * 3.999f);
+        cv::Mat k = cv::Mat::zeros(len, len, CV_32F);
+        const float a = 3.1415927f * V(rng), c = 0.5f * float(len - 1);
+        cv::line(k, cv::Point2f(c - c * std::cos(a), c - c * std::sin(a)), cv::Point2f(c + c * std::cos(a), c + c * std::sin(a)),
+                 cv::Scalar(1.0), 1, cv::LINE_AA);
+        k /= std::max(1e-6, cv::sum(k)[0]);
+        cv::filter2D(img, out, -1, k, cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT);
+    } else if (kind == 1) {
+        const int r = 1 + int(V(rng) * 2.999f);
+        cv::Mat k = cv::Mat::zeros(2 * r + 1, 2 * r + 1, CV_32F);
+        cv::circle(k, cv::Point(r, r), r, cv::Scalar(1.0), cv::FILLED, cv::LINE_AA);
+        k /= std::max(1e-6, cv::sum(k)[0]);
+        cv::filter2D(img, out, -1, k, cv::Point(-1, -1), 0.0, cv::BORDER_REFLECT);
+    } else if (kind == 2) {
+        cv::Mat n(img.size(), CV_32FC3);
+        cv::RNG cvr{static_cast<uint64_t>(rng())};
+        cvr.fill(n, cv::RNG::NORMAL, 0.0, 255.0 * (0.02 + 0.06 * double(V(rng))));
+        cv::Mat f;
+        img.convertTo(f, CV_32FC3);
+        f += n;
+        f.convertTo(out, CV_8UC3);
+    } else if (kind == 3) {
+        std::vector<uint8_t> buf;
+        cv::imencode(".jpg", img, buf, {cv::IMWRITE_JPEG_QUALITY, 10 + int(V(rng) * 30.0f)});
+        out = cv::imdecode(buf, cv::IMREAD_COLOR);
+    } else {
+        const float veil = 0.2f + 0.3f * V(rng);
+        cv::Mat b;
+        cv::GaussianBlur(img, b, cv::Size(0, 0), 1.0);
+        cv::addWeighted(b, double(1.0f - veil), cv::Mat(img.size(), img.type(), cv::Scalar(200, 200, 200)), double(veil),
+                        0.0, out);
+    }
 }
 
 }  // namespace
@@ -277,6 +321,17 @@ Copy make_copy(const Options &o, const Site &site, int j, std::mt19937 &rng) {
         qs = {W - (q.x1 - float(mx0)), q.y0 - float(my0), W - (q.x0 - float(mx0)), q.y1 - float(my0)};
         label = mirror_class(site.cls);
         mirrored = true;
+    }
+    if (o.degrade && j % 5 == 3) {
+        // --degrade: this copy as a degraded camera sees it (degrade()); a copy taken
+        // from the frame itself becomes its neighbourhood, degraded
+        if (seen.empty()) {
+            seen = near;
+            qs = {q.x0 - float(mx0), q.y0 - float(my0), q.x1 - float(mx0), q.y1 - float(my0)};
+        }
+        cv::Mat d;
+        degrade(seen, rng, d);
+        seen = d;
     }
     return Copy{q, seen, qs, label, mirrored};
 }

@@ -50,6 +50,7 @@ struct Options {
     float gate_recall = 0.95f;     // --gate-recall: share of positive candidates it passes
     int gate_hidden = 32;          // --gate-hidden: its rectified units (0: linear)
     bool box = true, exposure = false, mirror = true, rotate = true, tview = true;
+    bool degrade = false;  // --degrade: a fifth of the copies under a camera's degradations
     BgSwap bg_swap = BgSwap::round, bg_fill = BgSwap::off;
     unsigned seed = 1;
     std::string gtsrb = std::string(SBR_DATA_ROOT) + "/gtsrb";  // --gtsrb: GTSRB folder whose training tracks add sign samples

@@ -70,6 +70,9 @@ int parse_options(int argc, char **argv, Options &o) {
     app.add_option("--decay", o.decay, "weight decay")->check(f(0.0, 0.999999))->capture_default_str();
     app.add_flag("--no-box", [&o](int64_t) { o.box = false; }, "no box regression");
     app.add_flag("--exposure", o.exposure, "exposure changes in the synthetic copies");
+    app.add_flag("--degrade", o.degrade,
+                 "a fifth of the synthetic copies under a camera's degradations: motion blur, defocus, sensor noise, "
+                 "JPEG compression or haze (picto_augment.cpp, degrade())");
     app.add_option("--bg-swap", o.bg_swap, "synthetic copies on other backgrounds: off, round, triangle, all")
         ->transform(CLI::CheckedTransformer(swaps));
     app.add_option("--bg-fill", o.bg_fill, "background fill of the copies: off, round, triangle, all")
@@ -244,7 +247,7 @@ std::string c_header(const Options &o, const Counts &n) {
                   "Training: GTSDB images %s%s, %zu sign samples, %zu background samples,\n"
                   "%zu boxes for the box regression only.",
                   o.range.str().c_str(), o.hidden, o.epochs, o.jitter, double(o.bg_fraction), double(o.dropout),
-                  double(o.decay), o.box ? "" : " --no-box", o.exposure ? " --exposure" : "", swap_flag.c_str(),
+                  double(o.decay), o.box ? "" : " --no-box", o.exposure ? (o.degrade ? " --exposure --degrade" : " --exposure") : (o.degrade ? " --degrade" : ""), swap_flag.c_str(),
                   o.mirror ? (o.rotate ? "" : " --no-rotate") : (o.rotate ? " --no-mirror" : " --no-mirror --no-rotate"),
                   bal, o.rounds, o.seed, o.range.str(true).c_str(),
                   o.gtsrb.empty() ? "" : " and GTSRB's training tracks (gtsrb.hpp)", n.fg, n.bg, n.reg);
