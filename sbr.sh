@@ -289,15 +289,20 @@ cmd_fuzz() {
     --jobs "$JOBS" --report "$BUILD/fuzz-report.md"
 }
 
+# --out of ./sbr.sh detect: a folder or nothing yet (a file there is refused, nothing written)
+out_folder_ok() {
+  if [ -e "$1" ] && [ ! -d "$1" ]; then
+    echo "sbr.sh detect: --out $1 is a file, not a folder (nothing was written)" >&2
+    return 1
+  fi
+}
+
 # ./sbr.sh detect --input VIDEO: a recorded drive (sbr_detect reads the frames at the
 # file's times, tracks the signs and writes the annotated video; no ground truth)
 cmd_detect_video() {
   local input="$1" out="$2" status=0
   shift 2
-  if [ -e "$out" ] && [ ! -d "$out" ]; then
-    echo "sbr.sh detect: --out $out is a file, not a folder (nothing was written)" >&2
-    return 2
-  fi
+  out_folder_ok "$out" || return 2
   setup
   mkdir -p "$BUILD" "$out"
   build_native
@@ -368,10 +373,7 @@ on 00000-00399: ./sbr.sh train --range 0-399, then ./sbr.sh detect --model FILE 
     echo "sbr.sh detect: no .jpg, .jpeg, .png or .ppm images in $imgdir (nothing was written)" >&2
     return 2
   fi
-  if [ -e "$out" ] && [ ! -d "$out" ]; then
-    echo "sbr.sh detect: --out $out is a file, not a folder (nothing was written)" >&2
-    return 2
-  fi
+  out_folder_ok "$out" || return 2
   setup
   mkdir -p "$BUILD" "$out"
   build_native

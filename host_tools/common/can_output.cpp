@@ -2,6 +2,7 @@
 #include "can_output.hpp"
 
 #include <cerrno>
+#include <cstring>
 
 namespace sbr_host {
 
@@ -9,13 +10,14 @@ CanLogWriter::CanLogWriter(const std::string &path, uint64_t base_time_us, uint6
                            const char *ifname)
     : base_(base_time_us), period_(period_us) {
     logging_ = !path.empty();
-    if (logging_) file_ = std::fopen(path.c_str(), "w");
+    if (logging_) {
+        file_ = std::fopen(path.c_str(), "w");
+        if (!file_) open_error_ = std::strerror(errno);
+    }
     port_ctx_.file = file_;
     port_ctx_.ifname = ifname;
     port_ctx_.written = 0;
-    const int open_errno = errno;  // what the caller reports when the file did not open
     setup(1u, 1360.0f, 800.0f);
-    errno = open_errno;
 }
 
 CanLogWriter::~CanLogWriter() {

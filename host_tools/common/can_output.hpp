@@ -31,6 +31,8 @@ public:
     CanLogWriter(const CanLogWriter &) = delete;
     CanLogWriter &operator=(const CanLogWriter &) = delete;
     bool ok() const { return (file_ != nullptr || !logging_) && ready_; }
+    // Why the log did not open ("" when it did).
+    const std::string &open_error() const { return open_error_; }
     // Closes the log: false when a write or the close failed (disk full), or it never opened.
     bool close();
     // Consecutive frames of width x height: track signs (see above). False on failure;
@@ -53,6 +55,7 @@ private:
     static sbr_status_t tee_send(void *ctx, const sbr_can_frame_t *frame);
     FILE *file_ = nullptr;
     bool logging_ = true;
+    std::string open_error_;
     std::vector<sbr_can_frame_t> cycle_;
     sbr_port_candump_t port_ctx_{};
     uint64_t base_ = 0, period_ = 0;

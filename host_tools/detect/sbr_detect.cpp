@@ -347,8 +347,10 @@ bool open_outputs(const Options &o, Outputs &out) {
         out.can_tmp = temp_path_of(o.canlog);
         out.can.reset(new CanLogWriter(out.can_tmp));
         if (!out.can->ok()) {
+            const std::string why = out.can->open_error().empty() ? "the CAN output could not be set up"
+                                                                   : out.can->open_error();
             out.can.reset();
-            return cannot("--canlog", o.canlog, std::strerror(errno));
+            return cannot("--canlog", o.canlog, why);
         }
     }
     return true;

@@ -262,9 +262,11 @@ static int track_and_list(sbr_ecu_t *e, uint64_t now_us, uint32_t kept, sbr_ecu_
 {
     uint32_t signs = 0u;
     int full = 0;
-    (void)memset(e->det_sign, 0, (size_t)SBR_ECU_MAX_DETECTIONS * sizeof(uint32_t));
     *st = SBR_OK;
-    if (e->cfg.stills == 0u) {
+    if (e->cfg.stills != 0u) {
+        /* stills: no detection belongs to a tracked sign (sbr_signs_update() writes them otherwise) */
+        (void)memset(e->det_sign, 0, (size_t)kept * sizeof(uint32_t));
+    } else {
         *st = sbr_signs_update(&e->signs, now_us, e->dets, kept, e->det_sign, e->alive, e->cfg.signs.max_tracks,
                                &signs);
         if (*st == SBR_ERR_CAPACITY) {

@@ -147,6 +147,16 @@ class Recognizer:
 
 
 #: The tracker's configuration fields (include/sbr/track.h documents each).
+def _check_fields(fields: dict, allowed: Sequence[str], what: str) -> None:
+    """ValueError for a keyword that is not a field of `allowed`, or a value that is not a number."""
+    unknown = sorted(set(fields) - set(allowed))
+    if unknown:
+        raise ValueError(f"unknown {what} field: {unknown[0]} (fields: {', '.join(allowed)})")
+    for k, v in fields.items():
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            raise ValueError(f"{k}: a number is needed, not {v!r}")
+
+
 TRACKER_FIELDS = ("max_targets", "window", "meas_sigma", "gate", "confirm_hits", "max_misses")
 
 
@@ -187,12 +197,7 @@ class Tracker:
                  birth_sigma: float = 20.0, **fields):
         if model == "cv" and (width is None or height is None):
             raise ValueError("a constant-velocity model needs width and height")
-        unknown = sorted(set(fields) - set(TRACKER_FIELDS))
-        if unknown:
-            raise ValueError(f"unknown tracker field: {unknown[0]} (fields: {', '.join(TRACKER_FIELDS)})")
-        for k, v in fields.items():
-            if isinstance(v, bool) or not isinstance(v, (int, float)):
-                raise ValueError(f"{k}: a number is needed, not {v!r}")
+        _check_fields(fields, TRACKER_FIELDS, "tracker")
         self._core = _sbr.Tracker(str(model), float(width or 0.0), float(height or 0.0), float(period),
                                   int(vel_count), float(vel_spacing), float(accel_sigma), float(birth_sigma),
                                   dict(fields))
@@ -293,12 +298,7 @@ class SignTracker:
     """
 
     def __init__(self, width: float = 1360.0, height: float = 800.0, period: float = 0.1, **fields):
-        unknown = sorted(set(fields) - set(SIGN_FIELDS))
-        if unknown:
-            raise ValueError(f"unknown sign-tracking field: {unknown[0]} (fields: {', '.join(SIGN_FIELDS)})")
-        for k, v in fields.items():
-            if isinstance(v, bool) or not isinstance(v, (int, float)):
-                raise ValueError(f"{k}: a number is needed, not {v!r}")
+        _check_fields(fields, SIGN_FIELDS, "sign-tracking")
         if not (isinstance(period, (int, float)) and 0.0 < period <= 4294.0):
             raise ValueError(f"period: seconds > 0 are needed, not {period!r}")
         self._period = float(period)

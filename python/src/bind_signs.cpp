@@ -23,12 +23,7 @@ namespace nb = nanobind;
 namespace sbr_py {
 namespace {
 
-struct SignsField {
-    const char *name;
-    bool is_float;
-    size_t offset;
-};
-const SignsField kSignsFields[] = {
+const ConfigField kSignsFields[] = {
     {"width", true, offsetof(sbr_signs_config_t, width)},
     {"height", true, offsetof(sbr_signs_config_t, height)},
     {"period_us", false, offsetof(sbr_signs_config_t, period_us)},
@@ -42,22 +37,7 @@ const SignsField kSignsFields[] = {
 };
 
 void set_signs_field(sbr_signs_config_t &cfg, const std::string &name, nb::handle value) {
-    for (const SignsField &f : kSignsFields) {
-        if (name != f.name) continue;
-        unsigned char *base = reinterpret_cast<unsigned char *>(&cfg) + f.offset;
-        const double v = nb::cast<double>(value);
-        if (f.is_float) {
-            const float x = float(v);
-            std::memcpy(base, &x, sizeof x);
-        } else {
-            if (!(v >= 0.0 && v <= 4294967295.0) || v != std::floor(v))
-                throw nb::value_error((name + ": a non-negative integer is needed").c_str());
-            const uint32_t u = uint32_t(v);
-            std::memcpy(base, &u, sizeof u);
-        }
-        return;
-    }
-    throw nb::value_error(("unknown sign-tracking field: " + name).c_str());
+    set_config_field(&cfg, kSignsFields, name, nb::cast<double>(value), "sign-tracking");
 }
 
 class SignTracker {
@@ -122,22 +102,7 @@ public:
         check("reset", sbr_signs_reset(&s_));
     }
 
-    nb::dict config() const {
-        nb::dict d;
-        for (const SignsField &f : kSignsFields) {
-            const unsigned char *base = reinterpret_cast<const unsigned char *>(&cfg_) + f.offset;
-            if (f.is_float) {
-                float v;
-                std::memcpy(&v, base, sizeof v);
-                d[f.name] = double(v);
-            } else {
-                uint32_t u;
-                std::memcpy(&u, base, sizeof u);
-                d[f.name] = u;
-            }
-        }
-        return d;
-    }
+    nb::dict config() const { return config_dict(&cfg_, kSignsFields); }
     size_t workspace_size() const { return bytes_; }
     bool capacity_hit() const { return capacity_hit_; }
 

@@ -24,12 +24,7 @@ namespace nb = nanobind;
 namespace sbr_py {
 namespace {
 
-struct TrackField {
-    const char *name;
-    bool is_float;
-    size_t offset;
-};
-const TrackField kTrackFields[] = {
+const ConfigField kTrackFields[] = {
     {"max_targets", false, offsetof(sbr_track_config_t, max_targets)},
     {"window", false, offsetof(sbr_track_config_t, window)},
     {"meas_sigma", true, offsetof(sbr_track_config_t, meas_sigma)},
@@ -39,21 +34,7 @@ const TrackField kTrackFields[] = {
 };
 
 void set_track_field(sbr_track_config_t &cfg, const std::string &name, double value) {
-    for (const TrackField &f : kTrackFields) {
-        if (name != f.name) continue;
-        unsigned char *base = reinterpret_cast<unsigned char *>(&cfg) + f.offset;
-        if (f.is_float) {
-            const float v = static_cast<float>(value);
-            std::memcpy(base, &v, sizeof v);
-        } else {
-            if (!(value >= 0.0 && value <= 4294967295.0) || value != double(uint32_t(value)))
-                throw nb::value_error((name + ": a non-negative integer is needed").c_str());
-            const uint32_t u = uint32_t(value);
-            std::memcpy(base, &u, sizeof u);
-        }
-        return;
-    }
-    throw nb::value_error(("unknown tracker field: " + name).c_str());
+    set_config_field(&cfg, kTrackFields, name, value, "tracker");
 }
 
 using Dets = nb::ndarray<const float, nb::ndim<2>, nb::c_contig, nb::device::cpu>;
@@ -132,22 +113,7 @@ public:
         capacity_hit_ = false;
     }
 
-    nb::dict config() const {
-        nb::dict d;
-        for (const TrackField &f : kTrackFields) {
-            const unsigned char *base = reinterpret_cast<const unsigned char *>(&cfg_) + f.offset;
-            if (f.is_float) {
-                float v;
-                std::memcpy(&v, base, sizeof v);
-                d[f.name] = double(v);
-            } else {
-                uint32_t u;
-                std::memcpy(&u, base, sizeof u);
-                d[f.name] = u;
-            }
-        }
-        return d;
-    }
+    nb::dict config() const { return config_dict(&cfg_, kTrackFields); }
     size_t workspace_size() const { return bytes_; }
     bool capacity_hit() const { return capacity_hit_; }
     float period() const { return model_.period; }

@@ -40,6 +40,7 @@
 #include "sbr_bench_timer.h"
 #include "sbr/recog.h"
 #include "sbr/models.h"
+#include "sbr_bench_ppm.h"
 #include "sbr/recog_strips.h"
 
 #define PSRAM_BASE 0x21000000u
@@ -61,28 +62,6 @@ static uint32_t timer_clock(void *ctx)
 {
     (void)ctx;
     return ticks_now();
-}
-
-static int read_token(FILE *f, uint32_t *v)
-{
-    int ch = fgetc(f);
-    uint32_t x = 0u;
-    int digits = 0;
-    while ((ch == ' ') || (ch == '\n') || (ch == '\r') || (ch == '\t') || (ch == '#')) {
-        if (ch == '#') {
-            while ((ch != '\n') && (ch != EOF)) {
-                ch = fgetc(f);
-            }
-        }
-        ch = fgetc(f);
-    }
-    while ((ch >= '0') && (ch <= '9') && (digits < 9)) {
-        x = x * 10u + (uint32_t)(ch - '0');
-        digits++;
-        ch = fgetc(f);
-    }
-    *v = x;
-    return digits > 0;
 }
 
 int main(void)

@@ -24,6 +24,7 @@
 
 #include "sbr/ecu.h"
 #include "sbr/models.h"
+#include "sbr_bench_ppm.h"
 #include "sbr_port_candump.h"
 
 #define PSRAM_BASE 0x21000000u
@@ -34,28 +35,6 @@
 #define PERIOD_US 100000u
 
 static uint8_t g_frame[SRAM_FRAME_BYTES];
-
-static int read_token(FILE *f, uint32_t *v)
-{
-    int ch = fgetc(f);
-    uint32_t x = 0u;
-    int digits = 0;
-    while ((ch == ' ') || (ch == '\n') || (ch == '\r') || (ch == '\t') || (ch == '#')) {
-        if (ch == '#') {
-            while ((ch != '\n') && (ch != EOF)) {
-                ch = fgetc(f);
-            }
-        }
-        ch = fgetc(f);
-    }
-    while ((ch >= '0') && (ch <= '9') && (digits < 9)) {
-        x = x * 10u + (uint32_t)(ch - '0');
-        digits++;
-        ch = fgetc(f);
-    }
-    *v = x;
-    return digits > 0;
-}
 
 /* Frame k into g_frame; 0 when there is none, -1 when it is not a PPM that fits. */
 static int read_frame(uint32_t k, uint32_t *w, uint32_t *h)
