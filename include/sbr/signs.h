@@ -59,7 +59,7 @@ extern "C" {
 /** A new sign's velocity prior, pixels per period (Gaussian sigma). */
 #define SBR_SIGNS_BIRTH 20.0f
 /** Position channels of a track's window, per axis. */
-#define SBR_SIGNS_WINDOW 31u
+#define SBR_SIGNS_WINDOW 21u
 /** The longest gap between two frames that keeps the tracks, in nominal periods. */
 #define SBR_SIGNS_MAX_GAP 8u
 
